@@ -1,0 +1,50 @@
+/* `sessile bench la`: device kernels and solvers against the C reference. */
+#include <stdio.h>
+#include <string.h>
+#include "cli.h"
+#include "sessile/bench.h"
+
+static const char *help =
+    "usage: sessile bench la [--size N] [--repeat R] [--no-solvers] [--device D] [--precision 32|64]\n"
+    "\n"
+    "Times every linear-algebra kernel on the device and its plain-C reference\n"
+    "(OpenMP, all cores) in the same run, and prints for each: time per call\n"
+    "(GPU from timestamps, C wall clock), GFLOP/s, effective GB/s (minimum\n"
+    "traffic) and the ratio C time / GPU time (> 1: the device is faster).\n"
+    "  --size N      grid edge: vectors of N^3, 7-point and P1-tet matrices on N^3 (default 64)\n"
+    "  --repeat R    repetitions per kernel (default 20)\n"
+    "  --no-solvers  skip PCG (7-point N^3), BiCGSTAB and GMRES(30) (conv-diff (N/2)^3)\n"
+    "Figures are for the record (docs/performance.md), never pass/fail.\n";
+
+int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
+  if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+    if (argc < 2) return cli_usage_error("bench", "name a benchmark: la");
+    fputs(help, stdout);
+    return EXIT_OK;
+  }
+  if (strcmp(argv[1], "la") != 0)
+    return cli_usage_error("bench", "unknown benchmark '%s' (available: la)", argv[1]);
+  cli_gpu_opts o = *global;
+  sessile_bench_la_options bo = {.size = 64, .repeat = 20, .solvers = 1};
+  for (int i = 2; i < argc; i++) {
+    const char *a = argv[i];
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+      fputs(help, stdout);
+      return EXIT_OK;
+    }
+    int r = cli_gpu_option("bench la", argc, argv, &i, &o);
+    if (r < 0) return EXIT_USAGE;
+    if (r > 0) continue;
+    if (strcmp(a, "--no-solvers") == 0) bo.solvers = 0;
+    else if (strcmp(a, "--size") == 0) {
+      if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 2, 400, &bo.size)) return EXIT_USAGE;
+    } else if (strcmp(a, "--repeat") == 0) {
+      if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &bo.repeat)) return EXIT_USAGE;
+    } else return cli_usage_error("bench la", "unknown option '%s'", a);
+  }
+  sessile_gpu *g = NULL;
+  sessile_status s = cli_gpu_create(&o, &g);
+  if (s == SESSILE_OK) s = sessile_bench_la(g, &bo, stdout);
+  sessile_gpu_destroy(g);
+  return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
+}

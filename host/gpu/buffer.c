@@ -1,0 +1,180 @@
+/* Storage buffers.  DEVICE buffers live in device-local memory and are filled
+ * through a staging buffer, except on unified memory (CPU and integrated
+ * devices) where the device-local memory is host-visible and mapped directly.
+ * MAPPED buffers are host-visible and coherent (small readback buffers). */
+#include <stdlib.h>
+#include <string.h>
+#include "gpu_internal.h"
+
+static sessile_status alloc_buffer(sessile_gpu *g, size_t bytes, VkBufferUsageFlags usage,
+                                   VkMemoryPropertyFlags want, VkMemoryPropertyFlags fallback,
+                                   sessile_buffer *b) {
+  b->gpu = g;
+  b->bytes = bytes;
+  VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                           .size = bytes,
+                           .usage = usage,
+                           .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
+  SESSILE_VK(vkCreateBuffer(g->device, &ci, NULL, &b->buffer));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(g->device, b->buffer, &req);
+  uint32_t type = sessile_gpu_memory_type_(g, req.memoryTypeBits, want);
+  if (type == UINT32_MAX) type = sessile_gpu_memory_type_(g, req.memoryTypeBits, fallback);
+  SESSILE_CHECK(type != UINT32_MAX, SESSILE_ERR_UNSUPPORTED,
+                "no suitable memory type for a %zu-byte buffer on %s", bytes, g->info.name);
+  VkMemoryAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                             .allocationSize = req.size,
+                             .memoryTypeIndex = type};
+  VkResult r = vkAllocateMemory(g->device, &ai, NULL, &b->memory);
+  if (r < 0)
+    return sessile_error_set(r == VK_ERROR_OUT_OF_HOST_MEMORY || r == VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                 ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_VULKAN,
+                             "vkAllocateMemory of %zu bytes failed with %s: use a smaller "
+                             "problem or a device with more memory", bytes,
+                             sessile_vk_result_name(r));
+  SESSILE_VK(vkBindBufferMemory(g->device, b->buffer, b->memory, 0));
+  VkMemoryPropertyFlags flags = g->mem.memoryTypes[type].propertyFlags;
+  if (flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
+    SESSILE_VK(vkMapMemory(g->device, b->memory, 0, VK_WHOLE_SIZE, 0, &b->mapped));
+    b->coherent = (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
+  }
+  return SESSILE_OK;
+}
+
+static void release(sessile_buffer *b) {
+  if (!b || !b->gpu) return;
+  VkDevice d = b->gpu->device;
+  if (b->mapped) vkUnmapMemory(d, b->memory);
+  if (b->buffer) vkDestroyBuffer(d, b->buffer, NULL);
+  if (b->memory) vkFreeMemory(d, b->memory, NULL);
+  memset(b, 0, sizeof *b);
+}
+
+static sessile_status copy_buffer(sessile_gpu *g, VkBuffer src, size_t so, VkBuffer dst, size_t dof,
+                                  size_t bytes) {
+  VkCommandBuffer cb;
+  SESSILE_CALL(sessile_gpu_oneshot_begin_(g, &cb));
+  VkBufferCopy region = {.srcOffset = so, .dstOffset = dof, .size = bytes};
+  vkCmdCopyBuffer(cb, src, dst, 1, &region);
+  return sessile_gpu_oneshot_end_(g, cb);
+}
+
+static sessile_status fill_zero(sessile_buffer *b) {
+  if (b->mapped) {
+    memset(b->mapped, 0, b->bytes);
+    if (!b->coherent) {
+      VkMappedMemoryRange r = {.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE,
+                               .memory = b->memory, .offset = 0, .size = VK_WHOLE_SIZE};
+      SESSILE_VK(vkFlushMappedMemoryRanges(b->gpu->device, 1, &r));
+    }
+    return SESSILE_OK;
+  }
+  VkCommandBuffer cb;
+  SESSILE_CALL(sessile_gpu_oneshot_begin_(b->gpu, &cb));
+  vkCmdFillBuffer(cb, b->buffer, 0, VK_WHOLE_SIZE, 0);
+  return sessile_gpu_oneshot_end_(b->gpu, cb);
+}
+
+sessile_status sessile_buffer_create(sessile_gpu *g, size_t bytes, sessile_buffer_kind kind,
+                                     sessile_buffer **out) {
+  *out = NULL;
+  SESSILE_CHECK(bytes > 0, SESSILE_ERR_USAGE, "a buffer of 0 bytes was asked for");
+  SESSILE_CHECK(bytes <= g->info.max_storage_buffer_range, SESSILE_ERR_TOO_LARGE,
+                "a storage buffer of %zu bytes (%.1f MiB) was asked for, but %s allows at most "
+                "%llu bytes (maxStorageBufferRange, %.1f MiB): use a smaller problem or a "
+                "device with a larger limit", bytes, (double)bytes / 1048576.0, g->info.name,
+                (unsigned long long)g->info.max_storage_buffer_range,
+                (double)g->info.max_storage_buffer_range / 1048576.0);
+  sessile_buffer *b = calloc(1, sizeof *b);
+  SESSILE_CHECK(b, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                             VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  VkMemoryPropertyFlags hv = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                             VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  VkMemoryPropertyFlags want, fallback;
+  if (kind == SESSILE_BUFFER_MAPPED) {
+    want = hv | VK_MEMORY_PROPERTY_HOST_CACHED_BIT; /* fast host reads */
+    fallback = hv;
+  } else if (g->info.unified_memory) {
+    want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | hv;
+    fallback = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+  } else {
+    want = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    fallback = 0;
+  }
+  sessile_status s = alloc_buffer(g, bytes, usage, want, fallback, b);
+  if (s == SESSILE_OK && kind == SESSILE_BUFFER_DEVICE && !g->info.unified_memory && b->mapped) {
+    /* A discrete GPU handed us host-visible device memory (BAR): fine, keep it mapped. */
+  }
+  if (s == SESSILE_OK) s = fill_zero(b);
+  if (s != SESSILE_OK) {
+    release(b);
+    free(b);
+    return s;
+  }
+  *out = b;
+  return SESSILE_OK;
+}
+
+void sessile_buffer_destroy(sessile_buffer *b) {
+  if (!b) return;
+  release(b);
+  free(b);
+}
+
+size_t sessile_buffer_size(const sessile_buffer *b) { return b->bytes; }
+void *sessile_buffer_host_ptr(sessile_buffer *b) { return b->mapped; }
+
+static sessile_status check_range(const sessile_buffer *b, size_t offset, size_t bytes) {
+  SESSILE_CHECK(offset <= b->bytes && bytes <= b->bytes - offset, SESSILE_ERR_USAGE,
+                "transfer of %zu bytes at offset %zu exceeds the %zu-byte buffer", bytes, offset,
+                b->bytes);
+  return SESSILE_OK;
+}
+
+/* Transfers through a temporary staging buffer when the memory is not mapped. */
+static sessile_status staged(sessile_buffer *b, size_t offset, void *host, size_t bytes, int up) {
+  sessile_buffer st = {0};
+  sessile_gpu *g = b->gpu;
+  sessile_status s = alloc_buffer(g, bytes,
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &st);
+  if (s == SESSILE_OK && up) {
+    memcpy(st.mapped, host, bytes);
+    s = copy_buffer(g, st.buffer, 0, b->buffer, offset, bytes);
+  } else if (s == SESSILE_OK) {
+    s = copy_buffer(g, b->buffer, offset, st.buffer, 0, bytes);
+    if (s == SESSILE_OK) memcpy(host, st.mapped, bytes);
+  }
+  release(&st);
+  return s;
+}
+
+sessile_status sessile_buffer_upload(sessile_buffer *b, size_t offset, const void *src, size_t bytes) {
+  SESSILE_CALL(check_range(b, offset, bytes));
+  if (bytes == 0) return SESSILE_OK;
+  if (!b->mapped) return staged(b, offset, (void *)src, bytes, 1);
+  memcpy((char *)b->mapped + offset, src, bytes);
+  if (!b->coherent) {
+    VkMappedMemoryRange r = {.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE,
+                             .memory = b->memory, .offset = 0, .size = VK_WHOLE_SIZE};
+    SESSILE_VK(vkFlushMappedMemoryRanges(b->gpu->device, 1, &r));
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_buffer_download(sessile_buffer *b, size_t offset, void *dst, size_t bytes) {
+  SESSILE_CALL(check_range(b, offset, bytes));
+  if (bytes == 0) return SESSILE_OK;
+  if (!b->mapped) return staged(b, offset, dst, bytes, 0);
+  if (!b->coherent) {
+    VkMappedMemoryRange r = {.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE,
+                             .memory = b->memory, .offset = 0, .size = VK_WHOLE_SIZE};
+    SESSILE_VK(vkInvalidateMappedMemoryRanges(b->gpu->device, 1, &r));
+  }
+  memcpy(dst, (const char *)b->mapped + offset, bytes);
+  return SESSILE_OK;
+}

@@ -1,0 +1,209 @@
+/* Command recording: many dispatches per submit, a barrier between dependent
+ * dispatches, timestamps, and re-submission of the same recording (Krylov
+ * solvers record k iterations once and submit them until converged). */
+#include <stdlib.h>
+#include <string.h>
+#include "gpu_internal.h"
+
+enum { SETS_PER_POOL = 512, MAX_POOLS = 256, TIMESTAMPS = 64 };
+
+struct sessile_cmd {
+  sessile_gpu *gpu;
+  VkCommandPool pool;
+  VkCommandBuffer cb;
+  VkFence fence;
+  VkQueryPool queries;
+  VkDescriptorPool dpools[MAX_POOLS];
+  uint32_t ndpools, cur_pool;
+  uint32_t ndispatch;
+  int recording, recorded;
+  uint64_t ts_written; /* bitmask of slots written in this recording */
+  uint64_t ts[TIMESTAMPS];
+  int ts_valid;
+};
+
+static sessile_status add_pool(sessile_cmd *c) {
+  SESSILE_CHECK(c->ndpools < MAX_POOLS, SESSILE_ERR_TOO_LARGE,
+                "more than %d dispatches in one recording: submit in smaller pieces",
+                SETS_PER_POOL * MAX_POOLS);
+  VkDescriptorPoolSize size = {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                               .descriptorCount = SETS_PER_POOL * 16};
+  VkDescriptorPoolCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                   .maxSets = SETS_PER_POOL, .poolSizeCount = 1,
+                                   .pPoolSizes = &size};
+  SESSILE_VK(vkCreateDescriptorPool(c->gpu->device, &ci, NULL, &c->dpools[c->ndpools]));
+  c->ndpools++;
+  return SESSILE_OK;
+}
+
+static sessile_status cmd_init(sessile_cmd *c) {
+  sessile_gpu *g = c->gpu;
+  VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                .queueFamilyIndex = g->queue_family};
+  SESSILE_VK(vkCreateCommandPool(g->device, &pi, NULL, &c->pool));
+  VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                    .commandPool = c->pool,
+                                    .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                    .commandBufferCount = 1};
+  SESSILE_VK(vkAllocateCommandBuffers(g->device, &ai, &c->cb));
+  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  SESSILE_VK(vkCreateFence(g->device, &fi, NULL, &c->fence));
+  if (g->info.timestamp_period_ns > 0) {
+    VkQueryPoolCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = TIMESTAMPS};
+    SESSILE_VK(vkCreateQueryPool(g->device, &qi, NULL, &c->queries));
+  }
+  return add_pool(c);
+}
+
+sessile_status sessile_cmd_create(sessile_gpu *g, sessile_cmd **out) {
+  *out = NULL;
+  sessile_cmd *c = calloc(1, sizeof *c);
+  SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  c->gpu = g;
+  sessile_status s = cmd_init(c);
+  if (s != SESSILE_OK) {
+    sessile_cmd_destroy(c);
+    return s;
+  }
+  *out = c;
+  return SESSILE_OK;
+}
+
+void sessile_cmd_destroy(sessile_cmd *c) {
+  if (!c) return;
+  VkDevice d = c->gpu->device;
+  /* Nothing can be pending: submit_wait always waits for its fence. */
+  if (c->fence) vkDestroyFence(d, c->fence, NULL);
+  for (uint32_t i = 0; i < c->ndpools; i++) vkDestroyDescriptorPool(d, c->dpools[i], NULL);
+  if (c->queries) vkDestroyQueryPool(d, c->queries, NULL);
+  if (c->pool) vkDestroyCommandPool(d, c->pool, NULL); /* frees the command buffer */
+  free(c);
+}
+
+sessile_status sessile_cmd_begin(sessile_cmd *c) {
+  VkDevice d = c->gpu->device;
+  SESSILE_VK(vkResetCommandBuffer(c->cb, 0));
+  for (uint32_t i = 0; i < c->ndpools; i++) SESSILE_VK(vkResetDescriptorPool(d, c->dpools[i], 0));
+  c->cur_pool = 0;
+  c->ndispatch = 0;
+  c->ts_written = 0;
+  c->ts_valid = 0;
+  VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  SESSILE_VK(vkBeginCommandBuffer(c->cb, &bi));
+  if (c->queries) vkCmdResetQueryPool(c->cb, c->queries, 0, TIMESTAMPS);
+  c->recording = 1;
+  c->recorded = 0;
+  return SESSILE_OK;
+}
+
+static sessile_status alloc_set(sessile_cmd *c, VkDescriptorSetLayout layout, VkDescriptorSet *set) {
+  for (;;) {
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                      .descriptorPool = c->dpools[c->cur_pool],
+                                      .descriptorSetCount = 1, .pSetLayouts = &layout};
+    VkResult r = vkAllocateDescriptorSets(c->gpu->device, &ai, set);
+    if (r == VK_SUCCESS) return SESSILE_OK;
+    if (r != VK_ERROR_OUT_OF_POOL_MEMORY && r != VK_ERROR_FRAGMENTED_POOL)
+      return sessile_vk_fail_(r, "vkAllocateDescriptorSets", __func__);
+    c->cur_pool++;
+    if (c->cur_pool == c->ndpools) SESSILE_CALL(add_pool(c));
+  }
+}
+
+static void barrier(VkCommandBuffer cb, VkPipelineStageFlags dst_stage, VkAccessFlags dst) {
+  VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                        .dstAccessMask = dst};
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, dst_stage, 0, 1, &mb, 0, NULL, 0,
+                       NULL);
+}
+
+sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
+                                    sessile_buffer *const *buffers, const void *push) {
+  SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "dispatch of %s outside a recording", k->name);
+  if (groups == 0) return SESSILE_OK;
+  VkDescriptorSet set;
+  SESSILE_CALL(alloc_set(c, k->set_layout, &set));
+  VkDescriptorBufferInfo bi[16];
+  VkWriteDescriptorSet w[16];
+  for (uint32_t i = 0; i < k->nbuffers; i++) {
+    SESSILE_CHECK(buffers[i], SESSILE_ERR_INTERNAL, "kernel %s: binding %u is NULL", k->name, i);
+    bi[i] = (VkDescriptorBufferInfo){.buffer = buffers[i]->buffer, .offset = 0,
+                                     .range = VK_WHOLE_SIZE};
+    w[i] = (VkWriteDescriptorSet){.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = set,
+                                  .dstBinding = i, .descriptorCount = 1,
+                                  .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                  .pBufferInfo = &bi[i]};
+  }
+  vkUpdateDescriptorSets(c->gpu->device, k->nbuffers, w, 0, NULL);
+  if (c->ndispatch > 0)
+    barrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  vkCmdBindPipeline(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->pipeline);
+  vkCmdBindDescriptorSets(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->layout, 0, 1, &set, 0, NULL);
+  if (k->push_bytes)
+    vkCmdPushConstants(c->cb, k->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, k->push_bytes, push);
+  /* Above maxComputeWorkGroupCount[0], spread over y; kernels use sessile_gid(). */
+  uint32_t gx = groups, gy = 1, maxx = c->gpu->info.max_workgroup_count_x;
+  if (gx > maxx) {
+    gy = (groups + maxx - 1) / maxx;
+    gx = (groups + gy - 1) / gy;
+    SESSILE_CHECK(gy <= c->gpu->limits.maxComputeWorkGroupCount[1], SESSILE_ERR_TOO_LARGE,
+                  "kernel %s needs %u workgroups, more than the device allows", k->name, groups);
+  }
+  vkCmdDispatch(c->cb, gx, gy, 1);
+  c->ndispatch++;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_timestamp(sessile_cmd *c, uint32_t slot) {
+  SESSILE_CHECK(slot < TIMESTAMPS, SESSILE_ERR_INTERNAL, "timestamp slot %u >= %d", slot, TIMESTAMPS);
+  SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "timestamp outside a recording");
+  if (!c->queries) return SESSILE_OK;
+  vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->queries, slot);
+  c->ts_written |= 1ull << slot;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_end(sessile_cmd *c) {
+  SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "end without begin");
+  barrier(c->cb, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  SESSILE_VK(vkEndCommandBuffer(c->cb));
+  c->recording = 0;
+  c->recorded = 1;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_submit_wait(sessile_cmd *c) {
+  SESSILE_CHECK(c->recorded, SESSILE_ERR_INTERNAL, "submit of an unfinished recording");
+  VkDevice d = c->gpu->device;
+  SESSILE_VK(vkResetFences(d, 1, &c->fence));
+  VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
+                     .pCommandBuffers = &c->cb};
+  SESSILE_VK(vkQueueSubmit(c->gpu->queue, 1, &si, c->fence));
+  SESSILE_VK(vkWaitForFences(d, 1, &c->fence, VK_TRUE, UINT64_MAX));
+  c->ts_valid = 0;
+  if (c->queries && c->ts_written) {
+    /* Read the slots that were written (contiguous runs of the mask). */
+    for (uint32_t s = 0; s < TIMESTAMPS; s++) {
+      if (!(c->ts_written >> s & 1)) continue;
+      SESSILE_VK(vkGetQueryPoolResults(d, c->queries, s, 1, sizeof(uint64_t), &c->ts[s],
+                                       sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    }
+    c->ts_valid = 1;
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_elapsed_ns(sessile_cmd *c, uint32_t s0, uint32_t s1, double *ns) {
+  *ns = 0;
+  SESSILE_CHECK(c->queries, SESSILE_ERR_UNSUPPORTED, "this device has no compute timestamps");
+  SESSILE_CHECK(c->ts_valid && s0 < TIMESTAMPS && s1 < TIMESTAMPS &&
+                    (c->ts_written >> s0 & 1) && (c->ts_written >> s1 & 1),
+                SESSILE_ERR_INTERNAL, "timestamp slots %u/%u were not recorded", s0, s1);
+  *ns = (double)(c->ts[s1] - c->ts[s0]) * c->gpu->info.timestamp_period_ns;
+  return SESSILE_OK;
+}

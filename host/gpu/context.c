@@ -1,0 +1,156 @@
+/* The compute context: instance, chosen device, one compute queue, a command
+ * pool for transfers, and the pipeline cache. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "device_info.h"
+
+void sessile_gpu_options_default(sessile_gpu_options *o) {
+  memset(o, 0, sizeof *o);
+  o->validation = -1;
+}
+
+double sessile_wall_seconds(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static sessile_status resolve_precision(int asked, int float64, const char *name, int *out) {
+  if (asked == 0) {
+    const char *e = getenv("SESSILE_PRECISION");
+    if (e && *e) {
+      SESSILE_CHECK(strcmp(e, "32") == 0 || strcmp(e, "64") == 0 || strcmp(e, "fp32") == 0 ||
+                        strcmp(e, "fp64") == 0,
+                    SESSILE_ERR_USAGE, "SESSILE_PRECISION=%s: use 32 or 64", e);
+      asked = strstr(e, "32") ? 32 : 64;
+    }
+  }
+  if (asked == 0) asked = float64 ? 64 : 32;
+  SESSILE_CHECK(asked == 32 || asked == 64, SESSILE_ERR_USAGE,
+                "precision %d is not supported: use 32 or 64", asked);
+  SESSILE_CHECK(asked == 32 || float64, SESSILE_ERR_UNSUPPORTED,
+                "fp64 was asked for but %s has no shaderFloat64: use precision 32 "
+                "(mixed-precision iterative refinement)", name);
+  *out = asked;
+  return SESSILE_OK;
+}
+
+static sessile_status create_device(sessile_gpu *g) {
+  uint32_t ts_bits = 0;
+  int fam = sessile_compute_queue_family_(g->phys, &ts_bits);
+  SESSILE_CHECK(fam >= 0, SESSILE_ERR_NO_DEVICE, "device has no compute queue");
+  g->queue_family = (uint32_t)fam;
+  if (ts_bits == 0) g->info.timestamp_period_ns = 0; /* no timestamps on this queue */
+  float prio = 1.0f;
+  VkDeviceQueueCreateInfo q = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                               .queueFamilyIndex = g->queue_family,
+                               .queueCount = 1,
+                               .pQueuePriorities = &prio};
+  VkPhysicalDeviceFeatures feat = {0};
+  feat.shaderFloat64 = g->info.precision == 64 ? VK_TRUE : VK_FALSE;
+  feat.shaderInt64 = VK_FALSE;
+  VkDeviceCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                           .queueCreateInfoCount = 1,
+                           .pQueueCreateInfos = &q,
+                           .pEnabledFeatures = &feat};
+  SESSILE_VK(vkCreateDevice(g->phys, &ci, NULL, &g->device));
+  vkGetDeviceQueue(g->device, g->queue_family, 0, &g->queue);
+  VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                .queueFamilyIndex = g->queue_family};
+  SESSILE_VK(vkCreateCommandPool(g->device, &pi, NULL, &g->pool));
+  return SESSILE_OK;
+}
+
+static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
+  SESSILE_CALL(sessile_instance_create_(o->validation, &g->validation_count, &g->instance,
+                                        &g->messenger));
+  uint32_t index = 0;
+  SESSILE_CALL(sessile_choose_device_(g->instance, o->device, &g->phys, &index));
+  sessile_describe_device_(g->phys, index, &g->info, &g->mem);
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(g->phys, &props);
+  g->limits = props.limits;
+  SESSILE_CALL(resolve_precision(o->precision, g->info.float64, g->info.name, &g->info.precision));
+  SESSILE_CALL(create_device(g));
+  SESSILE_CALL(sessile_pipeline_cache_open_(g, o->cache_dir));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_gpu_create(const sessile_gpu_options *opt, sessile_gpu **out) {
+  *out = NULL;
+  sessile_gpu_options def;
+  if (!opt) { sessile_gpu_options_default(&def); opt = &def; }
+  sessile_gpu *g = calloc(1, sizeof *g);
+  SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory creating the GPU context");
+  sessile_status s = gpu_init(g, opt);
+  if (s != SESSILE_OK) {
+    sessile_gpu_destroy(g);
+    return s;
+  }
+  *out = g;
+  return SESSILE_OK;
+}
+
+void sessile_gpu_destroy(sessile_gpu *g) {
+  if (!g) return;
+  if (g->device) {
+    vkDeviceWaitIdle(g->device); /* result irrelevant: we tear down either way */
+    sessile_pipeline_cache_close_(g);
+    if (g->pool) vkDestroyCommandPool(g->device, g->pool, NULL);
+    vkDestroyDevice(g->device, NULL);
+  }
+  sessile_instance_destroy_(g->instance, g->messenger);
+  free(g);
+}
+
+const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g) { return &g->info; }
+uint64_t sessile_gpu_validation_count(const sessile_gpu *g) { return g->validation_count; }
+
+uint32_t sessile_gpu_memory_type_(const sessile_gpu *g, uint32_t bits, VkMemoryPropertyFlags want) {
+  for (uint32_t i = 0; i < g->mem.memoryTypeCount; i++)
+    if ((bits & (1u << i)) && (g->mem.memoryTypes[i].propertyFlags & want) == want) return i;
+  return UINT32_MAX;
+}
+
+sessile_status sessile_gpu_oneshot_begin_(sessile_gpu *g, VkCommandBuffer *cb) {
+  VkCommandBufferAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                    .commandPool = g->pool,
+                                    .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                    .commandBufferCount = 1};
+  SESSILE_VK(vkAllocateCommandBuffers(g->device, &ai, cb));
+  VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                 .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+  VkResult r = vkBeginCommandBuffer(*cb, &bi);
+  if (r < 0) {
+    vkFreeCommandBuffers(g->device, g->pool, 1, cb);
+    return sessile_vk_fail_(r, "vkBeginCommandBuffer", __func__);
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb) {
+  VkResult r = vkEndCommandBuffer(cb);
+  VkFence fence = VK_NULL_HANDLE;
+  const char *what = "vkEndCommandBuffer";
+  if (r >= 0) {
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    r = vkCreateFence(g->device, &fi, NULL, &fence);
+    what = "vkCreateFence";
+  }
+  if (r >= 0) {
+    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
+                       .pCommandBuffers = &cb};
+    r = vkQueueSubmit(g->queue, 1, &si, fence);
+    what = "vkQueueSubmit";
+  }
+  if (r >= 0) {
+    r = vkWaitForFences(g->device, 1, &fence, VK_TRUE, UINT64_MAX);
+    what = "vkWaitForFences";
+  }
+  if (fence) vkDestroyFence(g->device, fence, NULL);
+  vkFreeCommandBuffers(g->device, g->pool, 1, &cb);
+  if (r < 0) return sessile_vk_fail_(r, what, __func__);
+  return SESSILE_OK;
+}

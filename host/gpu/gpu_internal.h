@@ -1,0 +1,66 @@
+/* Internal definitions shared by the files of host/gpu (not public API). */
+#ifndef SESSILE_GPU_INTERNAL_H
+#define SESSILE_GPU_INTERNAL_H
+
+#include <vulkan/vulkan.h>
+#include "sessile/gpu.h"
+
+struct sessile_gpu {
+  VkInstance instance;
+  VkDebugUtilsMessengerEXT messenger;
+  VkPhysicalDevice phys;
+  VkDevice device;
+  VkQueue queue;
+  uint32_t queue_family;
+  VkCommandPool pool; /* for internal one-shot transfers */
+  VkPipelineCache pipeline_cache;
+  char cache_path[1024]; /* "" when the on-disk cache is off */
+  VkPhysicalDeviceMemoryProperties mem;
+  VkPhysicalDeviceLimits limits;
+  sessile_gpu_info info;
+  uint64_t validation_count;
+};
+
+struct sessile_buffer {
+  sessile_gpu *gpu;
+  VkBuffer buffer;
+  VkDeviceMemory memory;
+  size_t bytes;
+  void *mapped; /* non-NULL when host-visible */
+  int coherent;
+};
+
+struct sessile_kernel {
+  sessile_gpu *gpu;
+  VkShaderModule module;
+  VkDescriptorSetLayout set_layout;
+  VkPipelineLayout layout;
+  VkPipeline pipeline;
+  uint32_t nbuffers, push_bytes, local_size;
+  char name[64];
+};
+
+/* Name of a VkResult ("VK_ERROR_DEVICE_LOST"). */
+const char *sessile_vk_result_name(VkResult r);
+
+/* Checks a Vulkan call: on failure records "CALL failed: VK_...; HINT" and
+ * returns SESSILE_ERR_VULKAN (or SESSILE_ERR_NO_MEMORY for out-of-memory). */
+sessile_status sessile_vk_fail_(VkResult r, const char *call, const char *func);
+#define SESSILE_VK(call)                                                       \
+  do {                                                                         \
+    VkResult sessile_vk_r_ = (call);                                           \
+    if (sessile_vk_r_ < 0) return sessile_vk_fail_(sessile_vk_r_, #call, __func__); \
+  } while (0)
+
+/* Memory type with all of `want` among `bits`, or UINT32_MAX. */
+uint32_t sessile_gpu_memory_type_(const sessile_gpu *g, uint32_t bits, VkMemoryPropertyFlags want);
+
+/* One-shot command buffer for transfers. */
+sessile_status sessile_gpu_oneshot_begin_(sessile_gpu *g, VkCommandBuffer *cb);
+sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb);
+
+/* Pipeline cache persistence (pipeline_cache.c). */
+sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir);
+void sessile_pipeline_cache_close_(sessile_gpu *g);
+
+#endif

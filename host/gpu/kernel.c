@@ -1,0 +1,81 @@
+/* Compute kernels: one pipeline per embedded SPIR-V module.  Bindings 0..n-1
+ * are storage buffers, scalars come as push constants, and the workgroup
+ * size is specialisation constant 0, so one SPIR-V serves every device. */
+#include <stdlib.h>
+#include <string.h>
+#include "gpu_internal.h"
+
+static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
+  sessile_gpu *g = k->gpu;
+  VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                 .codeSize = sp->bytes, .pCode = sp->code};
+  SESSILE_VK(vkCreateShaderModule(g->device, &mi, NULL, &k->module));
+  VkDescriptorSetLayoutBinding b[16];
+  for (uint32_t i = 0; i < k->nbuffers; i++)
+    b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
+                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                          .descriptorCount = 1,
+                                          .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
+  VkDescriptorSetLayoutCreateInfo li = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                        .bindingCount = k->nbuffers, .pBindings = b};
+  SESSILE_VK(vkCreateDescriptorSetLayout(g->device, &li, NULL, &k->set_layout));
+  VkPushConstantRange pr = {.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .offset = 0,
+                            .size = k->push_bytes};
+  VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                    .setLayoutCount = 1, .pSetLayouts = &k->set_layout,
+                                    .pushConstantRangeCount = k->push_bytes ? 1 : 0,
+                                    .pPushConstantRanges = k->push_bytes ? &pr : NULL};
+  SESSILE_VK(vkCreatePipelineLayout(g->device, &pli, NULL, &k->layout));
+  VkSpecializationMapEntry me = {.constantID = 0, .offset = 0, .size = sizeof(uint32_t)};
+  VkSpecializationInfo si = {.mapEntryCount = 1, .pMapEntries = &me,
+                             .dataSize = sizeof(uint32_t), .pData = &k->local_size};
+  VkComputePipelineCreateInfo ci = {
+      .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = k->module, .pName = "main",
+                .pSpecializationInfo = &si},
+      .layout = k->layout};
+  SESSILE_VK(vkCreateComputePipelines(g->device, g->pipeline_cache, 1, &ci, NULL, &k->pipeline));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
+                                     uint32_t push_bytes, uint32_t local_size,
+                                     sessile_kernel **out) {
+  *out = NULL;
+  const sessile_spirv *sp = sessile_spirv_find(name);
+  SESSILE_CHECK(sp, SESSILE_ERR_INTERNAL, "no embedded kernel named \"%s\"", name);
+  SESSILE_CHECK(nbuffers <= 16, SESSILE_ERR_INTERNAL, "kernel %s: %u buffers > 16", name, nbuffers);
+  SESSILE_CHECK(push_bytes <= 128 && push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
+                "kernel %s: %u push-constant bytes (at most 128, multiple of 4)", name, push_bytes);
+  if (local_size == 0) local_size = 256;
+  if (local_size > g->info.max_workgroup_invocations) local_size = g->info.max_workgroup_invocations;
+  if (local_size > g->limits.maxComputeWorkGroupSize[0])
+    local_size = g->limits.maxComputeWorkGroupSize[0];
+  sessile_kernel *k = calloc(1, sizeof *k);
+  SESSILE_CHECK(k, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  k->gpu = g;
+  k->nbuffers = nbuffers;
+  k->push_bytes = push_bytes;
+  k->local_size = local_size;
+  snprintf(k->name, sizeof k->name, "%s", name);
+  sessile_status s = build(k, sp);
+  if (s != SESSILE_OK) {
+    sessile_kernel_destroy(k);
+    return s;
+  }
+  *out = k;
+  return SESSILE_OK;
+}
+
+void sessile_kernel_destroy(sessile_kernel *k) {
+  if (!k) return;
+  VkDevice d = k->gpu->device;
+  if (k->pipeline) vkDestroyPipeline(d, k->pipeline, NULL);
+  if (k->layout) vkDestroyPipelineLayout(d, k->layout, NULL);
+  if (k->set_layout) vkDestroyDescriptorSetLayout(d, k->set_layout, NULL);
+  if (k->module) vkDestroyShaderModule(d, k->module, NULL);
+  free(k);
+}
+
+uint32_t sessile_kernel_local_size(const sessile_kernel *k) { return k->local_size; }

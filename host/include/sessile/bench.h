@@ -1,0 +1,15 @@
+/* sessile — benchmarks (`sessile bench ...`): figures and ratios against a
+ * plain-C baseline measured in the same run.  Never asserted in tests. */
+#ifndef SESSILE_BENCH_H
+#define SESSILE_BENCH_H
+#include <stdio.h>
+#include "sessile/gpu.h"
+
+typedef struct sessile_bench_la_options {
+  unsigned size;    /* grid edge: vectors of size^3, 7-point and P1-tet matrices on size^3 */
+  unsigned repeat;  /* repetitions per kernel (GPU: recorded in one submit) */
+  int solvers;      /* also time PCG, BiCGSTAB, GMRES */
+} sessile_bench_la_options;
+
+sessile_status sessile_bench_la(sessile_gpu *g, const sessile_bench_la_options *o, FILE *out);
+#endif

@@ -1,0 +1,129 @@
+/* sessile — Vulkan compute runtime: device choice, buffers, kernels, command
+ * recording, timestamps, pipeline cache.
+ *
+ * Objects are opaque with create/destroy pairs; destroy(NULL) is a no-op.
+ * A context owns nothing created from it: destroy buffers, kernels and
+ * command recorders before the context. */
+#ifndef SESSILE_GPU_H
+#define SESSILE_GPU_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include "sessile/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sessile_gpu sessile_gpu;
+typedef struct sessile_buffer sessile_buffer;
+typedef struct sessile_kernel sessile_kernel;
+typedef struct sessile_cmd sessile_cmd;
+
+typedef struct sessile_gpu_options {
+  /* Device by index or case-insensitive name substring; NULL: $SESSILE_DEVICE,
+   * else the best (discrete > integrated > virtual > CPU). */
+  const char *device;
+  /* Enable VK_LAYER_KHRONOS_validation: 1 yes, 0 no, -1 from $SESSILE_VALIDATION. */
+  int validation;
+  /* Krylov vector precision: 64, 32, or 0 = 64 where the device has
+   * shaderFloat64 ($SESSILE_PRECISION overrides 0). */
+  int precision;
+  /* Pipeline cache folder; NULL: $XDG_CACHE_HOME/sessile or ~/.cache/sessile;
+   * "" disables the on-disk cache. */
+  const char *cache_dir;
+} sessile_gpu_options;
+
+/* Fills the defaults above. */
+void sessile_gpu_options_default(sessile_gpu_options *o);
+
+typedef struct sessile_gpu_info {
+  char name[256];
+  char type[24];   /* "discrete", "integrated", "virtual", "cpu", "other" */
+  char driver[520]; /* driver name and info */
+  uint32_t api_version, vendor_id, device_id, index;
+  uint32_t subgroup_size;
+  int float64;     /* shaderFloat64 */
+  int precision;   /* chosen Krylov precision: 32 or 64 */
+  uint64_t max_storage_buffer_range;
+  uint32_t max_workgroup_invocations;
+  uint32_t max_workgroup_count_x;
+  double timestamp_period_ns;
+  int unified_memory; /* device-local memory is host-visible */
+} sessile_gpu_info;
+
+sessile_status sessile_gpu_create(const sessile_gpu_options *opt, sessile_gpu **out);
+void sessile_gpu_destroy(sessile_gpu *g);
+const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g);
+
+/* Number of validation-layer warnings and errors seen so far (tests fail on > 0). */
+uint64_t sessile_gpu_validation_count(const sessile_gpu *g);
+
+/* Prints every Vulkan device with type, driver, heaps, subgroup size, fp64 and
+ * the limits that matter; marks the one that would be chosen. */
+sessile_status sessile_gpu_print_devices(FILE *out, const char *device_choice);
+
+/* --- buffers ----------------------------------------------------------- */
+typedef enum sessile_buffer_kind {
+  SESSILE_BUFFER_DEVICE = 0, /* device-local; staged transfers unless unified */
+  SESSILE_BUFFER_MAPPED = 1  /* host-visible + coherent, persistently mapped */
+} sessile_buffer_kind;
+
+/* A storage buffer of `bytes` (> 0).  Fails with SESSILE_ERR_TOO_LARGE over
+ * maxStorageBufferRange.  Contents start zeroed. */
+sessile_status sessile_buffer_create(sessile_gpu *g, size_t bytes, sessile_buffer_kind kind,
+                                     sessile_buffer **out);
+void sessile_buffer_destroy(sessile_buffer *b);
+size_t sessile_buffer_size(const sessile_buffer *b);
+/* Host pointer of a MAPPED buffer (or of a DEVICE one on unified memory); NULL otherwise. */
+void *sessile_buffer_host_ptr(sessile_buffer *b);
+/* Blocking transfers (wait for the device to be idle with respect to them). */
+sessile_status sessile_buffer_upload(sessile_buffer *b, size_t offset, const void *src, size_t bytes);
+sessile_status sessile_buffer_download(sessile_buffer *b, size_t offset, void *dst, size_t bytes);
+
+/* --- kernels ----------------------------------------------------------- */
+/* A compute pipeline from the embedded SPIR-V named `name` (e.g. "la/axpy.f64").
+ * Bindings 0..nbuffers-1 are storage buffers; `push_bytes` of push constants;
+ * local size x through specialisation constant 0 (0 = the kernel's default 256,
+ * clamped to maxComputeWorkGroupInvocations). */
+sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
+                                     uint32_t push_bytes, uint32_t local_size,
+                                     sessile_kernel **out);
+void sessile_kernel_destroy(sessile_kernel *k);
+uint32_t sessile_kernel_local_size(const sessile_kernel *k);
+
+/* --- command recording -------------------------------------------------- */
+sessile_status sessile_cmd_create(sessile_gpu *g, sessile_cmd **out);
+void sessile_cmd_destroy(sessile_cmd *c);
+/* Starts a fresh recording (drops the previous one). */
+sessile_status sessile_cmd_begin(sessile_cmd *c);
+/* Records a dispatch of `groups` workgroups (split into 2-D when above
+ * maxComputeWorkGroupCount[0]; kernels read their index with sessile_gid()).
+ * A compute->compute barrier precedes every dispatch but the first. */
+sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
+                                    sessile_buffer *const *buffers, const void *push);
+/* Records a GPU timestamp into slot (0..63) after all previous work. */
+sessile_status sessile_cmd_timestamp(sessile_cmd *c, uint32_t slot);
+sessile_status sessile_cmd_end(sessile_cmd *c);
+/* Submits the recording and waits; can be called again to re-run it. */
+sessile_status sessile_cmd_submit_wait(sessile_cmd *c);
+/* Nanoseconds between two timestamp slots of the last submitted run. */
+sessile_status sessile_cmd_elapsed_ns(sessile_cmd *c, uint32_t slot0, uint32_t slot1, double *ns);
+
+/* --- embedded SPIR-V table ---------------------------------------------- */
+typedef struct sessile_spirv {
+  const char *name;
+  const uint32_t *code;
+  size_t bytes;
+} sessile_spirv;
+/* The kernel named `name`, or NULL. */
+const sessile_spirv *sessile_spirv_find(const char *name);
+
+/* Monotonic wall clock in seconds. */
+double sessile_wall_seconds(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,115 @@
+/* sessile — GPU linear algebra: vectors, CSR and 4x4 block-CSR matrices,
+ * Jacobi, and Krylov solvers (PCG, BiCGSTAB, restarted GMRES(m)) that run on
+ * the device and read convergence from a small mapped buffer every k
+ * iterations instead of a submit-and-wait per iteration.
+ *
+ * Precision: vectors and matrix values are stored in the context's precision
+ * (sessile_gpu_info.precision): fp64 where the device has shaderFloat64, else
+ * fp32 with compensated reductions, and solves wrapped in mixed-precision
+ * iterative refinement (residuals in double on the host).  docs/precision.md.
+ *
+ * Ownership: sessile_la owns its kernels and work buffers; vectors and
+ * matrices are owned by the caller and must be destroyed before the la. */
+#ifndef SESSILE_LA_H
+#define SESSILE_LA_H
+
+#include <stdint.h>
+#include "sessile/gpu.h"
+#include "sessile/matrix.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sessile_la sessile_la;
+typedef struct sessile_vec sessile_vec;
+typedef struct sessile_mat sessile_mat;
+
+sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out);
+void sessile_la_destroy(sessile_la *la);
+sessile_gpu *sessile_la_gpu(sessile_la *la);
+/* Bytes per stored real: 8 (fp64) or 4 (fp32). */
+uint32_t sessile_la_real_bytes(const sessile_la *la);
+
+/* --- vectors (n reals, zero-initialised) -------------------------------- */
+sessile_status sessile_vec_create(sessile_la *la, uint32_t n, sessile_vec **out);
+void sessile_vec_destroy(sessile_vec *v);
+uint32_t sessile_vec_size(const sessile_vec *v);
+sessile_status sessile_vec_upload(sessile_vec *v, const double *src);   /* n values */
+sessile_status sessile_vec_download(sessile_vec *v, double *dst);       /* n values */
+
+/* Each runs on the device and waits (tests, benchmarks, simple callers). */
+sessile_status sessile_vec_fill(sessile_la *la, double value, sessile_vec *y);
+sessile_status sessile_vec_copy(sessile_la *la, const sessile_vec *x, sessile_vec *y);
+sessile_status sessile_vec_scale(sessile_la *la, double alpha, sessile_vec *y);
+sessile_status sessile_vec_axpy(sessile_la *la, double alpha, const sessile_vec *x, sessile_vec *y);
+sessile_status sessile_vec_aypx(sessile_la *la, double alpha, const sessile_vec *x, sessile_vec *y);
+sessile_status sessile_vec_waxpy(sessile_la *la, double alpha, const sessile_vec *x,
+                                 const sessile_vec *y, sessile_vec *w);
+sessile_status sessile_vec_pmul(sessile_la *la, const sessile_vec *x, const sessile_vec *y,
+                                sessile_vec *w);
+sessile_status sessile_vec_dot(sessile_la *la, const sessile_vec *x, const sessile_vec *y,
+                               double *out);
+sessile_status sessile_vec_nrm2(sessile_la *la, const sessile_vec *x, double *out);
+
+/* --- matrices ------------------------------------------------------------- */
+/* Uploads A (copied; rows padded to multiples of 4 entries for vector loads).
+ * Fails with SESSILE_ERR_NUMERIC if a diagonal entry is zero or not finite
+ * only when Jacobi is later requested (see sessile_mat_jacobi). */
+sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sessile_mat **out);
+sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out);
+void sessile_mat_destroy(sessile_mat *m);
+uint32_t sessile_mat_rows(const sessile_mat *m);
+uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */
+/* y = A x on the device. */
+sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,
+                                sessile_vec *y);
+/* The Jacobi preconditioner: dinv = 1/diag(A) (fails on a zero diagonal, naming the row). */
+sessile_status sessile_mat_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
+
+/* --- Krylov solvers --------------------------------------------------------- */
+typedef enum sessile_ksp_type { SESSILE_KSP_CG = 0, SESSILE_KSP_BICGSTAB = 1, SESSILE_KSP_GMRES = 2 } sessile_ksp_type;
+typedef enum sessile_pc_type { SESSILE_PC_NONE = 0, SESSILE_PC_JACOBI = 1 } sessile_pc_type;
+
+typedef struct sessile_ksp_options {
+  sessile_ksp_type type;
+  sessile_pc_type pc;
+  double rtol;      /* on the true relative residual ‖b−Ax‖/‖b‖; default 1e-6 */
+  int max_it;       /* default 1000 */
+  int restart;      /* GMRES(m): m, default 30 */
+  int check_every;  /* iterations recorded per submit (CG/BiCGSTAB); default 16 */
+  int monitor;      /* print iteration and residual at every check to stderr */
+} sessile_ksp_options;
+
+void sessile_ksp_options_default(sessile_ksp_options *o);
+const char *sessile_ksp_type_name(sessile_ksp_type t);
+
+typedef enum sessile_solve_status {
+  SESSILE_SOLVE_CONVERGED = 0,
+  SESSILE_SOLVE_MAX_ITER = 1,   /* max_it reached before rtol */
+  SESSILE_SOLVE_BREAKDOWN = 2   /* indefinite/singular matrix, zero divisor or non-finite value */
+} sessile_solve_status;
+const char *sessile_solve_status_name(sessile_solve_status s);
+
+typedef struct sessile_solve_result {
+  int iterations;            /* Krylov iterations (GMRES: Arnoldi steps), all refinements */
+  int refinements;           /* outer mixed-precision refinement steps (fp32 devices), else 0 */
+  double true_relres;        /* ‖b − A x‖/‖b‖ recomputed at the end (0 for b = 0) */
+  double est_relres;         /* the solver's recursive estimate at the end */
+  sessile_solve_status status;
+  char reason[128];          /* why it stopped, in words */
+  double seconds;            /* wall time of the whole solve */
+} sessile_solve_result;
+
+/* Solves A x = b; x holds the initial guess (warm start) on entry.  Returns
+ * SESSILE_OK whenever the solve ran, whatever its status; the caller decides
+ * whether MAX_ITER or BREAKDOWN is an error.  x never receives NaN: on
+ * breakdown it holds the last finite iterate. */
+sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
+                                 const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
+                                 sessile_solve_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,72 @@
+/* sessile — plain-C reference implementations of every la kernel and solver.
+ *
+ * They define what the GPU kernels must compute (tests compare against them)
+ * and are the baseline `sessile bench la` measures against.  Threaded with
+ * OpenMP where the work is large; every reduction is summed in a fixed order
+ * (fixed chunks, pairwise), so results do not depend on the thread count. */
+#ifndef SESSILE_LA_REF_H
+#define SESSILE_LA_REF_H
+
+#include <stdint.h>
+#include "sessile/matrix.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+void sessile_ref_fill(uint64_t n, double value, double *y);
+void sessile_ref_copy(uint64_t n, const double *x, double *y);
+void sessile_ref_scale(uint64_t n, double alpha, double *y);                  /* y = a*y */
+void sessile_ref_axpy(uint64_t n, double alpha, const double *x, double *y);  /* y += a*x */
+void sessile_ref_aypx(uint64_t n, double alpha, const double *x, double *y);  /* y = x + a*y */
+void sessile_ref_waxpy(uint64_t n, double alpha, const double *x, const double *y,
+                       double *w);                                            /* w = a*x + y */
+void sessile_ref_pmul(uint64_t n, const double *x, const double *y, double *w); /* w = x.*y */
+double sessile_ref_dot(uint64_t n, const double *x, const double *y);
+double sessile_ref_nrm2(uint64_t n, const double *x);
+
+void sessile_ref_spmv_csr(const sessile_csr *a, const double *x, double *y);     /* y = A x */
+void sessile_ref_spmv_bcsr4(const sessile_bcsr4 *a, const double *x, double *y); /* y = A x */
+
+/* Inverse diagonal for Jacobi; fails (SESSILE_ERR_NUMERIC, message names the
+ * row) on a zero or non-finite diagonal entry. */
+sessile_status sessile_ref_jacobi_csr(const sessile_csr *a, double *dinv);
+/* BCSR4: point Jacobi, dinv has 4*nbrows entries (reciprocals of the scalar
+ * diagonal, i.e. of the diagonals of the diagonal blocks). */
+sessile_status sessile_ref_jacobi_bcsr4(const sessile_bcsr4 *a, double *dinv);
+
+/* ‖b − A x‖ / ‖b‖ (‖r‖ when b = 0). */
+double sessile_ref_true_relres(const sessile_csr *a, const double *b, const double *x);
+
+typedef enum sessile_ref_solve_status {
+  SESSILE_REF_CONVERGED = 0,
+  SESSILE_REF_MAX_ITER = 1,
+  SESSILE_REF_BREAKDOWN = 2
+} sessile_ref_solve_status;
+
+typedef struct sessile_ref_result {
+  int iterations;
+  double true_relres; /* recomputed ‖b − A x‖/‖b‖ */
+  sessile_ref_solve_status status;
+} sessile_ref_result;
+
+/* Solvers on a CSR matrix; x holds the initial guess on entry.  Convergence:
+ * unpreconditioned recursive residual ‖r‖ ≤ rtol‖b‖.  `dinv` may be NULL (no
+ * preconditioner) or the Jacobi inverse diagonal (right preconditioning for
+ * GMRES and BiCGSTAB, split-free left for CG). */
+/* Breakdown (and a run that cannot start: non-square A, no memory) returns
+ * SESSILE_REF_BREAKDOWN with the reason in sessile_error_message(); x then
+ * holds the last finite iterate (untouched if the run could not start).
+ * GMRES counts Arnoldi steps over all restarts in `iterations`; max_it bounds
+ * that total. */
+sessile_ref_result sessile_ref_pcg(const sessile_csr *a, const double *dinv, const double *b,
+                                   double *x, double rtol, int max_it);
+sessile_ref_result sessile_ref_bicgstab(const sessile_csr *a, const double *dinv,
+                                        const double *b, double *x, double rtol, int max_it);
+sessile_ref_result sessile_ref_gmres(const sessile_csr *a, const double *dinv, const double *b,
+                                     double *x, double rtol, int max_it, int restart);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

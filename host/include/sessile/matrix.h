@@ -1,0 +1,81 @@
+/* sessile — host-side sparse matrices (plain C, double precision) and the
+ * generators the tests and benchmarks use.
+ *
+ * Ownership: a matrix owns its arrays; free it with sessile_csr_free /
+ * sessile_bcsr4_free (NULL is a no-op).  Column indices are sorted within each
+ * row and unique. */
+#ifndef SESSILE_MATRIX_H
+#define SESSILE_MATRIX_H
+
+#include <stdint.h>
+#include "sessile/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Compressed sparse row, scalar entries. */
+typedef struct sessile_csr {
+  uint32_t nrows, ncols;
+  uint64_t nnz;
+  uint64_t *rowptr; /* nrows + 1 */
+  uint32_t *col;    /* nnz */
+  double *val;      /* nnz */
+} sessile_csr;
+
+/* Block CSR with dense 4x4 blocks (4 unknowns per node, e.g. u,v,w,p).
+ * Block k's entries are val[16k + 4*i + j] (row-major). */
+typedef struct sessile_bcsr4 {
+  uint32_t nbrows, nbcols; /* in blocks; scalar size is 4x that */
+  uint64_t nnzb;
+  uint64_t *rowptr; /* nbrows + 1 */
+  uint32_t *col;    /* nnzb, block columns */
+  double *val;      /* 16 * nnzb */
+} sessile_bcsr4;
+
+sessile_status sessile_csr_alloc(uint32_t nrows, uint32_t ncols, uint64_t nnz, sessile_csr *out);
+void sessile_csr_free(sessile_csr *a);
+sessile_status sessile_bcsr4_alloc(uint32_t nbrows, uint32_t nbcols, uint64_t nnzb, sessile_bcsr4 *out);
+void sessile_bcsr4_free(sessile_bcsr4 *a);
+
+/* 7-point finite-difference Laplacian (-∇², scaled by h² so entries are 6, -1)
+ * on the n = nx*ny*nz interior nodes of a grid with homogeneous Dirichlet
+ * walls eliminated: SPD. Node (i,j,k) has index i + nx*(j + ny*k). */
+sessile_status sessile_csr_laplacian7(uint32_t nx, uint32_t ny, uint32_t nz, sessile_csr *out);
+
+/* P1 tetrahedral stiffness + mass (K + M) on the nodes of a box of nx*ny*nz
+ * cubes of spacing (hx,hy,hz), each cube cut into the 6 Kuhn tetrahedra
+ * around its main diagonal (0,0,0)-(1,1,1).  (nx+1)(ny+1)(nz+1) rows, the
+ * 15-point graph (self + 14 neighbours); entries that cancel are stored as
+ * explicit zeros so the graph is the full 15-point one.  SPD. */
+sessile_status sessile_csr_p1tet(uint32_t nx, uint32_t ny, uint32_t nz, double hx, double hy,
+                                 double hz, sessile_csr *out);
+
+/* Central-difference convection-diffusion -∇²u + (w·∇)u on the interior
+ * nodes of an nx*ny*nz grid (Dirichlet walls eliminated), scaled by h²,
+ * with constant wind w = (1, 0.5, 0.25)·|w| chosen so the cell Péclet number
+ * |w|h/2 equals `peclet` along x.  Nonsymmetric. */
+sessile_status sessile_csr_convdiff(uint32_t nx, uint32_t ny, uint32_t nz, double peclet,
+                                    sessile_csr *out);
+
+/* Random square n*n matrix with about `per_row` entries per row (always the
+ * diagonal), values uniform in [-1,1], diagonal made dominant by `dominance`
+ * times the row's absolute off-diagonal sum (dominance > 1: nonsingular).
+ * Deterministic from `seed`. */
+sessile_status sessile_csr_random(uint32_t n, uint32_t per_row, double dominance, uint64_t seed,
+                                  sessile_csr *out);
+
+/* Block matrix on the graph of `pattern` (square), blocks random in [-1,1]
+ * with diagonal blocks made dominant; deterministic from `seed`.
+ * (Each scalar diagonal entry is 2x the absolute sum of the rest of its scalar
+ * row; every pattern row must contain its diagonal, else SESSILE_ERR_USAGE.) */
+sessile_status sessile_bcsr4_random_on(const sessile_csr *pattern, uint64_t seed,
+                                       sessile_bcsr4 *out);
+
+/* Deterministic uniform doubles in [lo,hi) (splitmix64 stream from seed). */
+void sessile_fill_random(double *v, uint64_t n, double lo, double hi, uint64_t seed);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

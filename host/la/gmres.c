@@ -1,0 +1,107 @@
+/* Restarted GMRES(m) on the device with right Jacobi preconditioning and
+ * modified Gram-Schmidt.  The basis lives in one buffer (m+1 vectors), the
+ * Hessenberg matrix, Givens rotations and the small triangular solve in the
+ * scalar slots; one recording holds a whole restart cycle, submitted until
+ * the device stops, so the host looks once per cycle. */
+#include <math.h>
+#include <stdio.h>
+#include "la_internal.h"
+#include "solver_slots.h"
+
+static sessile_status gm_op(sessile_la *la, sessile_cmd *c, uint32_t op, uint32_t j, uint32_t m) {
+  uint32_t pc[4] = {op, j, m, 0};
+  sessile_buffer *sb[1] = {la->scalars};
+  return sessile_cmd_dispatch(c, la->k[K_GMRES_SCALAR], 1, sb, pc);
+}
+
+static int hslot(uint32_t i, uint32_t j, uint32_t m) { return GM_BASE + (int)(i + j * (m + 1)); }
+
+static sessile_status record_cycle(sessile_la *la, sessile_cmd *c, const sessile_mat *a,
+                                   const sessile_vec *b, const sessile_vec *x,
+                                   const sessile_vec *dinv, sessile_buffer *V, sessile_vec *z,
+                                   uint32_t m) {
+  uint32_t n = a->nrows, n4 = (n + 3) / 4, cnt;
+  vref none = {0};
+#define VJ(j) ((vref){V, (uint32_t)(j) * n4})
+  SESSILE_CALL(sessile_cmd_begin(c));
+  SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), VJ(1), S_STOP));
+  SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, VJ(1), vref_of(b), VJ(0), -1, COEF_NEG, S_STOP));
+  SESSILE_CALL(rec_dot(la, c, n, VJ(0), VJ(0), 0, S_STOP, &cnt));
+  SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, GM_BETA, 1, S_STOP));
+  SESSILE_CALL(gm_op(la, c, 0, 0, m));
+  SESSILE_CALL(rec_vec(la, c, K_SCALE, n, VJ(0), none, none, GM_INV, 0, GM_DONE));
+  for (uint32_t j = 0; j < m; j++) {
+    SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(dinv), VJ(j), vref_of(z), -1, 0, GM_DONE));
+    SESSILE_CALL(rec_spmv(la, c, a, vref_of(z), VJ(j + 1), GM_DONE));
+    for (uint32_t i = 0; i <= j; i++) { /* modified Gram-Schmidt */
+      SESSILE_CALL(rec_dot(la, c, n, VJ(j + 1), VJ(i), 0, GM_DONE, &cnt));
+      SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, hslot(i, j, m), 0, GM_DONE));
+      SESSILE_CALL(rec_vec(la, c, K_AXPY, n, VJ(i), VJ(j + 1), none, hslot(i, j, m), COEF_NEG, GM_DONE));
+    }
+    SESSILE_CALL(rec_dot(la, c, n, VJ(j + 1), VJ(j + 1), 0, GM_DONE, &cnt));
+    SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, hslot(j + 1, j, m), 1, GM_DONE));
+    SESSILE_CALL(gm_op(la, c, 1, j, m));
+    SESSILE_CALL(rec_vec(la, c, K_SCALE, n, VJ(j + 1), none, none, GM_INV, 0, GM_DONE));
+  }
+  SESSILE_CALL(gm_op(la, c, 2, 0, m));
+  sessile_buffer *ub[4] = {la->scalars, V, dinv->buf, x->buf};
+  vec_push p = {.n4 = n4, .n = n, .off0 = n4, .off1 = m, .a_slot = -1, .guard = S_STOP};
+  SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_GMRES_UPDATE], la_groups(la, K_GMRES_UPDATE, n4), ub, &p));
+  SESSILE_CALL(gm_op(la, c, 3, 0, m));
+#undef VJ
+  return sessile_cmd_end(c);
+}
+
+static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                             const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                             sessile_buffer *V, sessile_vec *z, uint32_t m, sessile_cmd *iter,
+                             sessile_solve_result *res) {
+  sessile_kernel *k;
+  static const la_kernel_id ids[] = {K_GMRES_SCALAR, K_GMRES_UPDATE, K_DOT, K_REDUCE, K_WAXPY,
+                                     K_PMUL, K_AXPY, K_SCALE};
+  for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) SESSILE_CALL(la_kernel(la, ids[i], &k));
+  SESSILE_CALL(la_kernel(la, a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4, &k));
+  la_solver_reset(la, o);
+  /* ‖b‖² for the tolerance, then cycles until the device stops. */
+  uint32_t cnt;
+  SESSILE_CALL(sessile_cmd_begin(la->cmd));
+  SESSILE_CALL(rec_dot(la, la->cmd, a->nrows, vref_of(b), vref_of(b), 0, -1, &cnt));
+  SESSILE_CALL(rec_reduce(la, la->cmd, cnt, 0, 1, S_BB, 0, -1));
+  SESSILE_CALL(sessile_cmd_end(la->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(la->cmd));
+  la_scalar_set(la, S_TOL2, o->rtol * o->rtol * la_scalar_read(la, S_BB));
+  SESSILE_CALL(record_cycle(la, iter, a, b, x, dinv, V, z, m));
+  SESSILE_CALL(la_solver_loop(la, iter, 1, o->max_it, o->monitor, "gmres", GM_EST, 0));
+  la_solver_outcome(la, res, la_scalar_read(la, GM_EST) / sqrt(la_scalar_read(la, S_BB)));
+  return SESSILE_OK;
+}
+
+sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                        const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                        sessile_solve_result *res) {
+  uint32_t n4 = (a->nrows + 3) / 4;
+  uint32_t m = (uint32_t)o->restart;
+  /* The basis must fit one storage buffer: shrink m (and say so) rather than fail. */
+  uint64_t per = (uint64_t)n4 * 4 * la->real_bytes;
+  uint64_t range = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range;
+  if ((uint64_t)(m + 1) * per > range) {
+    uint64_t fit = range / per;
+    SESSILE_CHECK(fit >= 3, SESSILE_ERR_TOO_LARGE,
+                  "GMRES needs at least 3 basis vectors of %llu bytes in one buffer, but "
+                  "maxStorageBufferRange is %llu: use bicgstab", (unsigned long long)per,
+                  (unsigned long long)range);
+    m = (uint32_t)fit - 1;
+    if (o->monitor) fprintf(stderr, "  gmres: restart reduced to %u to fit maxStorageBufferRange\n", m);
+  }
+  sessile_buffer *V = NULL;
+  sessile_vec *z = NULL;
+  sessile_cmd *iter = NULL;
+  sessile_status s = sessile_buffer_create(la->gpu, (size_t)(m + 1) * per, SESSILE_BUFFER_DEVICE, &V);
+  if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &z);
+  if (s == SESSILE_OK) s = sessile_cmd_create(la->gpu, &iter);
+  if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, dinv, V, z, m, iter, res);
+  sessile_cmd_destroy(iter);
+  sessile_vec_destroy(z);
+  sessile_buffer_destroy(V);
+  return s;
+}

@@ -1,0 +1,226 @@
+/* Krylov solve driver: options, the zero right-hand side, the Jacobi
+ * preconditioner, restarts when the true residual lags the recursive one,
+ * and mixed-precision iterative refinement on fp32 devices. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "la_internal.h"
+#include "solver_slots.h"
+#include "sessile/la_ref.h"
+
+void sessile_ksp_options_default(sessile_ksp_options *o) {
+  memset(o, 0, sizeof *o);
+  o->type = SESSILE_KSP_CG;
+  o->pc = SESSILE_PC_JACOBI;
+  o->rtol = 1e-6;
+  o->max_it = 1000;
+  o->restart = 30;
+  o->check_every = 16;
+}
+
+const char *sessile_ksp_type_name(sessile_ksp_type t) {
+  switch (t) {
+  case SESSILE_KSP_CG: return "cg";
+  case SESSILE_KSP_BICGSTAB: return "bicgstab";
+  case SESSILE_KSP_GMRES: return "gmres";
+  }
+  return "?";
+}
+
+const char *sessile_solve_status_name(sessile_solve_status s) {
+  switch (s) {
+  case SESSILE_SOLVE_CONVERGED: return "converged";
+  case SESSILE_SOLVE_MAX_ITER: return "max-iterations";
+  case SESSILE_SOLVE_BREAKDOWN: return "breakdown";
+  }
+  return "?";
+}
+
+static const char *reason_text(int code) {
+  switch (code) {
+  case 1: return "p·Ap <= 0: the matrix is not symmetric positive definite (use bicgstab or gmres)";
+  case 2: return "a non-finite value (NaN/Inf) appeared: the matrix or right-hand side is invalid or singular";
+  case 3: return "r0·r = 0 (BiCGSTAB breakdown): try gmres";
+  case 4: return "r0·A p = 0 (BiCGSTAB breakdown): try gmres";
+  case 5: return "A s = 0 (BiCGSTAB breakdown): the matrix is singular";
+  case 6: return "the iteration stagnated: the matrix is probably singular";
+  default: return "breakdown";
+  }
+}
+
+void la_solver_outcome(sessile_la *la, sessile_solve_result *res, double est) {
+  double stop = la_scalar_read(la, S_STOP);
+  res->iterations += (int)la_scalar_read(la, S_ITER);
+  res->est_relres = est;
+  if (stop == STOP_CONVERGED) {
+    res->status = SESSILE_SOLVE_CONVERGED;
+    snprintf(res->reason, sizeof res->reason, "relative residual <= rtol");
+  } else if (stop == STOP_MAXIT) {
+    res->status = SESSILE_SOLVE_MAX_ITER;
+    snprintf(res->reason, sizeof res->reason, "reached the iteration limit before rtol");
+  } else {
+    res->status = SESSILE_SOLVE_BREAKDOWN;
+    snprintf(res->reason, sizeof res->reason, "%s", reason_text((int)la_scalar_read(la, S_REASON)));
+  }
+}
+
+/* ‖b − A x‖ on the device (into S_TRUE); r and q are scratch. */
+static sessile_status true_residual(sessile_la *la, const sessile_mat *a, const sessile_vec *b,
+                                    const sessile_vec *x, sessile_vec *q, double *norm) {
+  sessile_cmd *c = la->cmd;
+  uint32_t count, n = a->nrows;
+  vref none = {0};
+  SESSILE_CALL(sessile_cmd_begin(c));
+  SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), vref_of(q), -1));
+  SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, vref_of(q), vref_of(b), vref_of(q), -1, COEF_NEG, -1));
+  SESSILE_CALL(rec_dot(la, c, n, vref_of(q), vref_of(q), 0, -1, &count));
+  SESSILE_CALL(rec_reduce(la, c, count, 0, 1, S_TRUE, 1, -1));
+  (void)none;
+  SESSILE_CALL(sessile_cmd_end(c));
+  SESSILE_CALL(sessile_cmd_submit_wait(c));
+  *norm = la_scalar_read(la, S_TRUE);
+  return SESSILE_OK;
+}
+
+static sessile_status run_type(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                               const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                               sessile_solve_result *res) {
+  switch (o->type) {
+  case SESSILE_KSP_CG: return la_cg(la, o, a, b, x, dinv, res);
+  case SESSILE_KSP_BICGSTAB: return la_bicgstab(la, o, a, b, x, dinv, res);
+  case SESSILE_KSP_GMRES: return la_gmres(la, o, a, b, x, dinv, res);
+  }
+  return sessile_error_set(SESSILE_ERR_USAGE, "unknown solver type %d", (int)o->type);
+}
+
+/* The device solve with restarts until the *true* residual meets rtol (the
+ * recursive residual drifts from it in finite precision). */
+static sessile_status solve_device(sessile_la *la, const sessile_ksp_options *o,
+                                   const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
+                                   const sessile_vec *dinv, sessile_vec *q, double bnorm,
+                                   sessile_solve_result *res) {
+  sessile_ksp_options oo = *o;
+  for (int attempt = 0; attempt < 4; attempt++) {
+    oo.max_it = o->max_it - res->iterations;
+    if (oo.max_it <= 0) { res->status = SESSILE_SOLVE_MAX_ITER; break; }
+    SESSILE_CALL(run_type(la, &oo, a, b, x, dinv, res));
+    double rn;
+    SESSILE_CALL(true_residual(la, a, b, x, q, &rn));
+    res->true_relres = rn / bnorm;
+    if (!isfinite(res->true_relres)) {
+      res->status = SESSILE_SOLVE_BREAKDOWN;
+      snprintf(res->reason, sizeof res->reason, "%s", reason_text(2));
+    }
+    if (res->status != SESSILE_SOLVE_CONVERGED || res->true_relres <= o->rtol) break;
+    if (o->monitor)
+      fprintf(stderr, "  %s: true residual %.3e > rtol after convergence: restarting\n",
+              sessile_ksp_type_name(o->type), res->true_relres);
+    res->status = SESSILE_SOLVE_MAX_ITER; /* unless the restart converges */
+    snprintf(res->reason, sizeof res->reason, "true residual stayed above rtol after restarts");
+  }
+  return SESSILE_OK;
+}
+
+/* fp32 devices: iterative refinement, x_{k+1} = x_k + A⁻¹(b − A x_k) with the
+ * residual in double on the host and the correction solved on the device. */
+static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o,
+                                    const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
+                                    const sessile_vec *dinv, sessile_vec *q,
+                                    sessile_solve_result *res) {
+  SESSILE_CHECK(a->kind == MAT_CSR, SESSILE_ERR_UNSUPPORTED,
+                "fp32 iterative refinement is implemented for CSR matrices only");
+  uint32_t n = a->nrows;
+  double *bh = malloc((size_t)n * 3 * sizeof(double));
+  SESSILE_CHECK(bh, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  double *xh = bh + n, *rh = xh + n;
+  sessile_vec *d = NULL;
+  sessile_status s = sessile_vec_download((sessile_vec *)b, bh);
+  if (s == SESSILE_OK) s = sessile_vec_download(x, xh);
+  if (s == SESSILE_OK) s = sessile_vec_create(la, n, &d);
+  double bnorm = sessile_ref_nrm2(n, bh);
+  sessile_ksp_options inner = *o;
+  inner.rtol = fmax(o->rtol, 1e-4); /* what fp32 Krylov reliably reaches */
+  for (int k = 0; s == SESSILE_OK && k < 30; k++) {
+    sessile_ref_spmv_csr(&a->host, xh, rh);
+    for (uint32_t i = 0; i < n; i++) rh[i] = bh[i] - rh[i];
+    res->true_relres = sessile_ref_nrm2(n, rh) / bnorm;
+    if (!isfinite(res->true_relres)) {
+      res->status = SESSILE_SOLVE_BREAKDOWN;
+      snprintf(res->reason, sizeof res->reason, "%s", reason_text(2));
+      break;
+    }
+    if (res->true_relres <= o->rtol) {
+      res->status = SESSILE_SOLVE_CONVERGED;
+      snprintf(res->reason, sizeof res->reason, "relative residual <= rtol");
+      break;
+    }
+    if (res->iterations >= o->max_it) {
+      res->status = SESSILE_SOLVE_MAX_ITER;
+      snprintf(res->reason, sizeof res->reason, "reached the iteration limit before rtol");
+      break;
+    }
+    /* Solve A d = r to inner.rtol relative to ‖r‖. */
+    if ((s = sessile_vec_upload(q, rh)) != SESSILE_OK) break;
+    if ((s = sessile_vec_fill(la, 0.0, d)) != SESSILE_OK) break;
+    inner.max_it = o->max_it - res->iterations;
+    if ((s = run_type(la, &inner, a, q, d, dinv, res)) != SESSILE_OK) break;
+    res->refinements++;
+    if (res->status == SESSILE_SOLVE_BREAKDOWN) break;
+    if ((s = sessile_vec_download(d, rh)) != SESSILE_OK) break;
+    for (uint32_t i = 0; i < n; i++) xh[i] += rh[i];
+  }
+  if (s == SESSILE_OK) s = sessile_vec_upload(x, xh);
+  sessile_vec_destroy(d);
+  free(bh);
+  return s;
+}
+
+sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
+                                 const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
+                                 sessile_solve_result *res) {
+  sessile_ksp_options o;
+  if (opt) o = *opt;
+  else sessile_ksp_options_default(&o);
+  memset(res, 0, sizeof *res);
+  SESSILE_CHECK(b->n == a->nrows && x->n == a->nrows, SESSILE_ERR_USAGE,
+                "solve: matrix has %u rows, b %u and x %u entries", a->nrows, b->n, x->n);
+  SESSILE_CHECK(o.rtol > 0 && o.rtol < 1, SESSILE_ERR_USAGE, "rtol must be in (0, 1), got %g", o.rtol);
+  SESSILE_CHECK(o.max_it > 0, SESSILE_ERR_USAGE, "max_it must be positive, got %d", o.max_it);
+  SESSILE_CHECK(o.restart >= 1 && o.restart <= 64, SESSILE_ERR_USAGE,
+                "GMRES restart must be in 1..64, got %d", o.restart);
+  if (o.check_every < 1) o.check_every = 1;
+  double t0 = sessile_wall_seconds();
+  double bnorm;
+  SESSILE_CALL(sessile_vec_nrm2(la, b, &bnorm));
+  if (!isfinite(bnorm)) {
+    res->status = SESSILE_SOLVE_BREAKDOWN;
+    res->true_relres = NAN;
+    snprintf(res->reason, sizeof res->reason, "the right-hand side contains NaN or Inf");
+    res->seconds = sessile_wall_seconds() - t0;
+    return SESSILE_OK;
+  }
+  if (bnorm == 0) { /* the solution of A x = 0 is x = 0: no iteration needed */
+    SESSILE_CALL(sessile_vec_fill(la, 0.0, x));
+    res->status = SESSILE_SOLVE_CONVERGED;
+    snprintf(res->reason, sizeof res->reason, "zero right-hand side: x = 0");
+    res->seconds = sessile_wall_seconds() - t0;
+    return SESSILE_OK;
+  }
+  sessile_vec *dinv = NULL, *q = NULL;
+  sessile_status s = sessile_vec_create(la, a->nrows, &dinv);
+  if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &q);
+  if (s == SESSILE_OK)
+    s = o.pc == SESSILE_PC_JACOBI ? sessile_mat_jacobi(la, a, dinv) : sessile_vec_fill(la, 1.0, dinv);
+  if (s == SESSILE_OK)
+    s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, dinv, q, bnorm, res)
+                            : solve_refined(la, &o, a, b, x, dinv, q, res);
+  sessile_vec_destroy(q);
+  sessile_vec_destroy(dinv);
+  res->seconds = sessile_wall_seconds() - t0;
+  if (s == SESSILE_OK && o.monitor)
+    fprintf(stderr, "  %s: %s after %d iterations, true relative residual %.3e (%.3f s)\n",
+            sessile_ksp_type_name(o.type), sessile_solve_status_name(res->status),
+            res->iterations, res->true_relres, res->seconds);
+  return s;
+}

@@ -1,0 +1,74 @@
+/* The la context: kernels (created on first use), the mapped scalar-slot
+ * buffer that solvers use to decide on the device and report to the host,
+ * and the reduction partials. */
+#include <stdlib.h>
+#include <string.h>
+#include "la_internal.h"
+
+static const struct { const char *name; uint32_t nbuf, push, local; } kinfo[K_COUNT] = {
+#define X(id, name, nb, pb, ls) {name, nb, pb, ls},
+    SESSILE_LA_KERNELS(X)
+#undef X
+};
+
+static sessile_status la_init(sessile_la *la) {
+  SESSILE_CALL(sessile_buffer_create(la->gpu, (size_t)NSLOTS * la->real_bytes,
+                                     SESSILE_BUFFER_MAPPED, &la->scalars));
+  SESSILE_CALL(sessile_buffer_create(la->gpu, (size_t)NSETS * MAXG * 2 * la->real_bytes,
+                                     SESSILE_BUFFER_DEVICE, &la->partials));
+  SESSILE_CALL(sessile_cmd_create(la->gpu, &la->cmd));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out) {
+  *out = NULL;
+  sessile_la *la = calloc(1, sizeof *la);
+  SESSILE_CHECK(la, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  la->gpu = g;
+  la->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_status s = la_init(la);
+  if (s != SESSILE_OK) {
+    sessile_la_destroy(la);
+    return s;
+  }
+  *out = la;
+  return SESSILE_OK;
+}
+
+void sessile_la_destroy(sessile_la *la) {
+  if (!la) return;
+  for (int i = 0; i < K_COUNT; i++) sessile_kernel_destroy(la->k[i]);
+  sessile_cmd_destroy(la->cmd);
+  sessile_buffer_destroy(la->partials);
+  sessile_buffer_destroy(la->scalars);
+  free(la);
+}
+
+sessile_gpu *sessile_la_gpu(sessile_la *la) { return la->gpu; }
+uint32_t sessile_la_real_bytes(const sessile_la *la) { return la->real_bytes; }
+
+sessile_status la_kernel(sessile_la *la, la_kernel_id id, sessile_kernel **out) {
+  if (!la->k[id]) {
+    char name[96];
+    snprintf(name, sizeof name, "%s.%s", kinfo[id].name, la->real_bytes == 8 ? "f64" : "f32");
+    uint32_t local = kinfo[id].local;
+    /* Reductions use a tree over a power-of-two workgroup. */
+    uint32_t maxl = sessile_gpu_info_of(la->gpu)->max_workgroup_invocations;
+    while (local > maxl) local /= 2;
+    SESSILE_CALL(sessile_kernel_create(la->gpu, name, kinfo[id].nbuf, kinfo[id].push, local,
+                                       &la->k[id]));
+  }
+  *out = la->k[id];
+  return SESSILE_OK;
+}
+
+void la_scalar_set(sessile_la *la, int slot, double v) {
+  void *p = sessile_buffer_host_ptr(la->scalars);
+  if (la->real_bytes == 8) ((double *)p)[slot] = v;
+  else ((float *)p)[slot] = (float)v;
+}
+
+double la_scalar_read(sessile_la *la, int slot) {
+  const void *p = sessile_buffer_host_ptr(la->scalars);
+  return la->real_bytes == 8 ? ((const double *)p)[slot] : (double)((const float *)p)[slot];
+}

@@ -1,0 +1,134 @@
+/* Internal definitions of host/la (not public API). */
+#ifndef SESSILE_LA_INTERNAL_H
+#define SESSILE_LA_INTERNAL_H
+
+#include "sessile/la.h"
+
+/* Scalar slots, shared with shaders/common/sessile.glsl (keep in sync). */
+enum {
+  S_STOP = 0, S_ITER = 1, S_BB = 2, S_TOL2 = 3, S_MAXIT = 4, S_REASON = 5,
+  S_SOLVER = 8,   /* 8..63: per-solver scalars */
+  S_IMM = 64,     /* 64..71: immediate coefficients of the vec_* calls */
+  S_GMRES = 128,  /* GMRES Hessenberg, rotations, g, y */
+  NSLOTS = 8192
+};
+#define STOP_RUNNING 0.0
+#define STOP_CONVERGED 1.0
+#define STOP_MAXIT 2.0
+#define STOP_BREAKDOWN 3.0
+enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
+
+/* The kernel table (X-macro): id, embedded name, buffers, push bytes, local size. */
+#define SESSILE_LA_KERNELS(X)                       \
+  X(K_FILL, "la/fill", 2, 32, 256)                  \
+  X(K_COPY, "la/copy", 3, 32, 256)                  \
+  X(K_SCALE, "la/scale", 2, 32, 256)                \
+  X(K_AXPY, "la/axpy", 3, 32, 256)                  \
+  X(K_AYPX, "la/aypx", 3, 32, 256)                  \
+  X(K_WAXPY, "la/waxpy", 4, 32, 256)                \
+  X(K_PMUL, "la/pmul", 4, 32, 256)                  \
+  X(K_DOT, "la/dot", 4, 32, 256)                    \
+  X(K_REDUCE, "la/reduce", 2, 20, 256)              \
+  X(K_SPMV_CSR, "la/spmv_csr", 6, 20, 64)           \
+  X(K_SPMV_BCSR4, "la/spmv_bcsr4", 6, 20, 64)       \
+  X(K_CG_UPDATE, "la/cg_update", 8, 32, 256)        \
+  X(K_CG_SCALAR, "la/cg_scalar", 1, 8, 1)           \
+  X(K_BICG_P, "la/bicgstab_p", 4, 32, 256)          \
+  X(K_BICG_S, "la/bicgstab_s", 5, 32, 256)          \
+  X(K_BICG_XR, "la/bicgstab_xr", 9, 32, 256)        \
+  X(K_BICG_SCALAR, "la/bicgstab_scalar", 1, 8, 1)   \
+  X(K_GMRES_SCALAR, "la/gmres_scalar", 1, 16, 1)    \
+  X(K_GMRES_UPDATE, "la/gmres_update", 4, 32, 256)
+
+typedef enum {
+#define X(id, name, nb, pb, ls) id,
+  SESSILE_LA_KERNELS(X)
+#undef X
+  K_COUNT
+} la_kernel_id;
+
+struct sessile_la {
+  sessile_gpu *gpu;
+  uint32_t real_bytes;
+  sessile_kernel *k[K_COUNT]; /* created on first use */
+  sessile_buffer *scalars;    /* NSLOTS reals, mapped */
+  sessile_buffer *partials;   /* NSETS * MAXG (hi, lo) pairs */
+  sessile_cmd *cmd;           /* immediate operations */
+};
+
+struct sessile_vec {
+  sessile_la *la;
+  uint32_t n, n4;
+  sessile_buffer *buf;
+};
+
+typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1 } mat_kind;
+
+struct sessile_mat {
+  sessile_la *la;
+  mat_kind kind;
+  uint32_t nrows;          /* scalar rows */
+  uint64_t nnz;            /* scalar entries before padding */
+  sessile_buffer *rowptr, *col, *val;
+  sessile_csr host;        /* CSR: kept for fp32 refinement residuals and Jacobi */
+  sessile_bcsr4 hostb;     /* BCSR4: likewise */
+  uint32_t rows_per;       /* rows per invocation in the SpMV kernel */
+};
+
+/* A vector inside a buffer: `off4` REAL4 chunks from its start. */
+typedef struct { sessile_buffer *buf; uint32_t off4; } vref;
+static inline vref vref_of(const sessile_vec *v) { vref r = {v->buf, 0}; return r; }
+
+/* Push constants of the element-wise kernels (shaders/common/vecpush.glsl). */
+typedef struct {
+  uint32_t n4, n, off0, off1, off2;
+  int32_t a_slot;
+  uint32_t flags;
+  int32_t guard;
+} vec_push;
+enum { COEF_NEG = 1, COEF_INV = 2 };
+
+sessile_status la_kernel(sessile_la *la, la_kernel_id id, sessile_kernel **out);
+/* Host view of the scalar slots (mapped). */
+void la_scalar_set(sessile_la *la, int slot, double v);
+double la_scalar_read(sessile_la *la, int slot);
+
+/* Recording helpers (la_record.c): each records into `c`. */
+sessile_status rec_vec(sessile_la *la, sessile_cmd *c, la_kernel_id id, uint32_t n, vref a,
+                       vref b, vref w, int a_slot, uint32_t flags, int guard);
+/* Partial sums of x·y into `set`; returns the number of partials written. */
+sessile_status rec_dot(sessile_la *la, sessile_cmd *c, uint32_t n, vref x, vref y, uint32_t set,
+                       int guard, uint32_t *count);
+sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32_t first_set,
+                          uint32_t nsets, int dst_slot, int sqrt_flag, int guard);
+sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
+                        int guard);
+/* Groups for an element-wise kernel over n reals, and for a reduction. */
+uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
+uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);
+
+/* Host <-> device transfers in the stored precision (vec.c). */
+sessile_status la_upload_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
+                               const double *src, size_t n);
+sessile_status la_download_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
+                                 double *dst, size_t n);
+
+/* Solvers (one file each); run on the device in the context precision. */
+sessile_status la_cg(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                     const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                     sessile_solve_result *res);
+sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                           const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                           sessile_solve_result *res);
+sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                        const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                        sessile_solve_result *res);
+/* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
+sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
+                              int monitor, const char *name, int est_slot, int est_is_sq);
+void la_solver_reset(sessile_la *la, const sessile_ksp_options *o);
+
+/* Shared by the solvers: reads STOP/ITER, fills status and reason. */
+void la_solver_outcome(sessile_la *la, sessile_solve_result *res, double est_relres);
+
+#endif

@@ -1,0 +1,60 @@
+/* Recording helpers: turn an la operation into one dispatch with the right
+ * bindings, push constants and group count. */
+#include "la_internal.h"
+
+uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t items) {
+  uint32_t local = sessile_kernel_local_size(la->k[id]);
+  return (items + local - 1) / local;
+}
+
+uint32_t la_reduce_groups(sessile_la *la, uint32_t n4) {
+  uint32_t g = la_groups(la, K_DOT, n4);
+  if (g > MAXG) g = MAXG;
+  return g ? g : 1;
+}
+
+sessile_status rec_vec(sessile_la *la, sessile_cmd *c, la_kernel_id id, uint32_t n, vref a,
+                       vref b, vref w, int a_slot, uint32_t flags, int guard) {
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, id, &k));
+  sessile_buffer *bufs[4] = {la->scalars, a.buf, b.buf, w.buf};
+  vec_push p = {.n4 = (n + 3) / 4, .n = n, .off0 = a.off4, .off1 = b.off4, .off2 = w.off4,
+                .a_slot = a_slot, .flags = flags, .guard = guard};
+  return sessile_cmd_dispatch(c, k, la_groups(la, id, p.n4), bufs, &p);
+}
+
+sessile_status rec_dot(sessile_la *la, sessile_cmd *c, uint32_t n, vref x, vref y, uint32_t set,
+                       int guard, uint32_t *count) {
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_DOT, &k));
+  sessile_buffer *bufs[4] = {la->scalars, x.buf, y.buf, la->partials};
+  vec_push p = {.n4 = (n + 3) / 4, .n = n, .off0 = x.off4, .off1 = y.off4, .off2 = set,
+                .a_slot = -1, .guard = guard};
+  *count = la_reduce_groups(la, p.n4);
+  return sessile_cmd_dispatch(c, k, *count, bufs, &p);
+}
+
+sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32_t first_set,
+                          uint32_t nsets, int dst_slot, int sqrt_flag, int guard) {
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_REDUCE, &k));
+  sessile_buffer *bufs[2] = {la->scalars, la->partials};
+  struct { uint32_t count, first_set; int32_t dst; uint32_t sq; int32_t guard; } p = {
+      count, first_set, dst_slot, (uint32_t)sqrt_flag, guard};
+  return sessile_cmd_dispatch(c, k, nsets, bufs, &p);
+}
+
+sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
+                        int guard) {
+  la_kernel_id id = a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4;
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, id, &k));
+  sessile_buffer *bufs[6] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf};
+  uint32_t rows = a->kind == MAT_CSR ? a->nrows : a->nrows / 4;
+  uint32_t per = a->kind == MAT_CSR ? a->rows_per : 1;
+  uint32_t scale = a->kind == MAT_CSR ? 4 : 1; /* CSR offsets in reals, BCSR in REAL4 */
+  struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
+      rows, x.off4 * scale, y.off4 * scale, guard, per};
+  uint32_t items = (rows + per - 1) / per;
+  return sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p);
+}

@@ -1,0 +1,177 @@
+/* GPU matrices.  CSR rows are padded to a multiple of 4 entries (column 0,
+ * value 0) so the SpMV kernel loads uvec4 columns and REAL4 values; block-CSR
+ * stores each 4x4 block as four REAL4 rows.  A host copy in double is kept for
+ * the Jacobi diagonal and for fp32 iterative-refinement residuals. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "la_internal.h"
+#include "sessile/la_ref.h"
+
+static sessile_status copy_csr(const sessile_csr *a, sessile_csr *out) {
+  SESSILE_CALL(sessile_csr_alloc(a->nrows, a->ncols, a->nnz, out));
+  memcpy(out->rowptr, a->rowptr, ((size_t)a->nrows + 1) * sizeof *a->rowptr);
+  memcpy(out->col, a->col, (size_t)a->nnz * sizeof *a->col);
+  memcpy(out->val, a->val, (size_t)a->nnz * sizeof *a->val);
+  return SESSILE_OK;
+}
+
+static sessile_status check_csr(const sessile_csr *a) {
+  SESSILE_CHECK(a->nrows > 0 && a->nrows == a->ncols, SESSILE_ERR_USAGE,
+                "matrix must be square and non-empty (got %u x %u)", a->nrows, a->ncols);
+  SESSILE_CHECK(a->rowptr[0] == 0 && a->rowptr[a->nrows] == a->nnz, SESSILE_ERR_USAGE,
+                "CSR row pointers do not span the %llu entries", (unsigned long long)a->nnz);
+  for (uint32_t r = 0; r < a->nrows; r++) {
+    SESSILE_CHECK(a->rowptr[r] <= a->rowptr[r + 1], SESSILE_ERR_USAGE,
+                  "CSR row pointers decrease at row %u", r);
+    for (uint64_t k = a->rowptr[r]; k < a->rowptr[r + 1]; k++)
+      SESSILE_CHECK(a->col[k] < a->ncols, SESSILE_ERR_USAGE,
+                    "CSR column %u in row %u is out of range (ncols %u)", a->col[k], r, a->ncols);
+  }
+  return SESSILE_OK;
+}
+
+static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
+  const sessile_csr *a = &m->host;
+  uint32_t *rp = malloc(((size_t)a->nrows + 1) * sizeof *rp);
+  SESSILE_CHECK(rp, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  uint64_t chunks = 0;
+  rp[0] = 0;
+  for (uint32_t r = 0; r < a->nrows; r++) {
+    chunks += (a->rowptr[r + 1] - a->rowptr[r] + 3) / 4;
+    if (chunks > UINT32_MAX) break;
+    rp[r + 1] = (uint32_t)chunks;
+  }
+  if (chunks == 0) chunks = 1; /* an all-empty matrix still needs non-empty buffers */
+  uint32_t *col = calloc((size_t)chunks * 4, sizeof *col);
+  double *val = calloc((size_t)chunks * 4, sizeof *val);
+  sessile_status s = SESSILE_OK;
+  if (chunks > UINT32_MAX)
+    s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "matrix has too many entries for 32-bit indices");
+  else if (!col || !val)
+    s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
+  for (uint32_t r = 0; s == SESSILE_OK && r < a->nrows; r++) {
+    uint64_t k = (uint64_t)rp[r] * 4;
+    for (uint64_t e = a->rowptr[r]; e < a->rowptr[r + 1]; e++, k++) {
+      col[k] = a->col[e];
+      val[k] = a->val[e];
+    }
+  }
+  if (s == SESSILE_OK)
+    s = sessile_buffer_create(la->gpu, ((size_t)a->nrows + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, rp, ((size_t)a->nrows + 1) * 4);
+  if (s == SESSILE_OK)
+    s = sessile_buffer_create(la->gpu, (size_t)chunks * 16, SESSILE_BUFFER_DEVICE, &m->col);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(m->col, 0, col, (size_t)chunks * 16);
+  if (s == SESSILE_OK)
+    s = sessile_buffer_create(la->gpu, (size_t)chunks * 4 * la->real_bytes, SESSILE_BUFFER_DEVICE,
+                              &m->val);
+  if (s == SESSILE_OK) s = la_upload_reals(la, m->val, 0, val, (size_t)chunks * 4);
+  free(rp);
+  free(col);
+  free(val);
+  return s;
+}
+
+sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sessile_mat **out) {
+  *out = NULL;
+  SESSILE_CALL(check_csr(a));
+  sessile_mat *m = calloc(1, sizeof *m);
+  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  m->la = la;
+  m->kind = MAT_CSR;
+  m->nrows = a->nrows;
+  m->nnz = a->nnz;
+  m->rows_per = 1;
+  const char *e = getenv("SESSILE_SPMV_ROWS");
+  if (e && atoi(e) > 0 && atoi(e) <= 64) m->rows_per = (uint32_t)atoi(e);
+  sessile_status s = copy_csr(a, &m->host);
+  if (s == SESSILE_OK) s = upload_csr(la, m);
+  if (s != SESSILE_OK) {
+    sessile_mat_destroy(m);
+    return s;
+  }
+  *out = m;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out) {
+  *out = NULL;
+  SESSILE_CHECK(a->nbrows > 0 && a->nbrows == a->nbcols, SESSILE_ERR_USAGE,
+                "block matrix must be square and non-empty (got %u x %u blocks)", a->nbrows,
+                a->nbcols);
+  SESSILE_CHECK(a->nbrows <= UINT32_MAX / 4, SESSILE_ERR_TOO_LARGE, "block matrix too large");
+  for (uint32_t r = 0; r < a->nbrows; r++)
+    for (uint64_t k = a->rowptr[r]; k < a->rowptr[r + 1]; k++)
+      SESSILE_CHECK(a->col[k] < a->nbcols, SESSILE_ERR_USAGE,
+                    "block column %u in block row %u is out of range", a->col[k], r);
+  SESSILE_CHECK(a->nnzb <= UINT32_MAX / 4, SESSILE_ERR_TOO_LARGE, "block matrix too large");
+  sessile_mat *m = calloc(1, sizeof *m);
+  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  m->la = la;
+  m->kind = MAT_BCSR4;
+  m->nrows = a->nbrows * 4;
+  m->nnz = a->nnzb * 16;
+  m->rows_per = 1;
+  size_t nb = a->nnzb ? (size_t)a->nnzb : 1;
+  uint32_t *rp = malloc(((size_t)a->nbrows + 1) * sizeof *rp);
+  sessile_status s = rp ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if (s == SESSILE_OK) {
+    for (uint32_t r = 0; r <= a->nbrows; r++) rp[r] = (uint32_t)a->rowptr[r];
+    s = sessile_bcsr4_alloc(a->nbrows, a->nbcols, a->nnzb, &m->hostb);
+  }
+  if (s == SESSILE_OK) {
+    memcpy(m->hostb.rowptr, a->rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr);
+    memcpy(m->hostb.col, a->col, (size_t)a->nnzb * sizeof *a->col);
+    memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
+    s = sessile_buffer_create(la->gpu, ((size_t)a->nbrows + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
+  }
+  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, rp, ((size_t)a->nbrows + 1) * 4);
+  if (s == SESSILE_OK) s = sessile_buffer_create(la->gpu, nb * 4, SESSILE_BUFFER_DEVICE, &m->col);
+  if (s == SESSILE_OK && a->nnzb) s = sessile_buffer_upload(m->col, 0, a->col, (size_t)a->nnzb * 4);
+  if (s == SESSILE_OK)
+    s = sessile_buffer_create(la->gpu, nb * 16 * la->real_bytes, SESSILE_BUFFER_DEVICE, &m->val);
+  if (s == SESSILE_OK && a->nnzb) s = la_upload_reals(la, m->val, 0, a->val, (size_t)a->nnzb * 16);
+  free(rp);
+  if (s != SESSILE_OK) {
+    sessile_mat_destroy(m);
+    return s;
+  }
+  *out = m;
+  return SESSILE_OK;
+}
+
+void sessile_mat_destroy(sessile_mat *m) {
+  if (!m) return;
+  sessile_buffer_destroy(m->rowptr);
+  sessile_buffer_destroy(m->col);
+  sessile_buffer_destroy(m->val);
+  if (m->kind == MAT_CSR) sessile_csr_free(&m->host);
+  else sessile_bcsr4_free(&m->hostb);
+  free(m);
+}
+
+uint32_t sessile_mat_rows(const sessile_mat *m) { return m->nrows; }
+uint64_t sessile_mat_nnz(const sessile_mat *m) { return m->nnz; }
+
+sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,
+                                sessile_vec *y) {
+  SESSILE_CHECK(x->n == a->nrows && y->n == a->nrows, SESSILE_ERR_USAGE,
+                "SpMV: matrix has %u rows but x has %u and y %u entries", a->nrows, x->n, y->n);
+  SESSILE_CALL(sessile_cmd_begin(la->cmd));
+  SESSILE_CALL(rec_spmv(la, la->cmd, a, vref_of(x), vref_of(y), -1));
+  SESSILE_CALL(sessile_cmd_end(la->cmd));
+  return sessile_cmd_submit_wait(la->cmd);
+}
+
+sessile_status sessile_mat_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv) {
+  SESSILE_CHECK(dinv->n == a->nrows, SESSILE_ERR_USAGE, "Jacobi: vector has %u entries, matrix %u rows",
+                dinv->n, a->nrows);
+  double *d = malloc((size_t)a->nrows * sizeof *d);
+  SESSILE_CHECK(d, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_status s = a->kind == MAT_CSR ? sessile_ref_jacobi_csr(&a->host, d)
+                                        : sessile_ref_jacobi_bcsr4(&a->hostb, d);
+  if (s == SESSILE_OK) s = sessile_vec_upload(dinv, d);
+  free(d);
+  return s;
+}

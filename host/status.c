@@ -1,0 +1,36 @@
+/* The one error path: the failing function records a message here and
+ * returns its code; callers only propagate the code.  The message buffer is
+ * thread-local so OpenMP workers and Vulkan callers never race on it. */
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "sessile/status.h"
+
+#define SESSILE_ERROR_MESSAGE_MAX 1024
+
+static _Thread_local char error_message[SESSILE_ERROR_MESSAGE_MAX];
+
+const char *sessile_status_name(sessile_status s) {
+  switch (s) {
+#define X(v) case v: return #v;
+    X(SESSILE_OK) X(SESSILE_ERR_USAGE) X(SESSILE_ERR_NO_DEVICE) X(SESSILE_ERR_VULKAN)
+    X(SESSILE_ERR_NO_MEMORY) X(SESSILE_ERR_TOO_LARGE) X(SESSILE_ERR_IO)
+    X(SESSILE_ERR_UNSUPPORTED) X(SESSILE_ERR_NUMERIC) X(SESSILE_ERR_INTERNAL)
+#undef X
+  }
+  /* Outside the switch so -Wswitch still flags a newly added enumerator. */
+  return "SESSILE_STATUS_UNKNOWN";
+}
+
+sessile_status sessile_error_set(sessile_status s, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  /* vsnprintf truncates and always terminates: a long message is cut, never lost. */
+  if (vsnprintf(error_message, sizeof error_message, fmt, ap) < 0) error_message[0] = '\0';
+  va_end(ap);
+  return s;
+}
+
+const char *sessile_error_message(void) { return error_message; }
+
+void sessile_error_clear(void) { error_message[0] = '\0'; }

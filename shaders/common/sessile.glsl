@@ -1,0 +1,63 @@
+// Shared GLSL for sessile kernels: precision, workgroup size, indexing,
+// the scalar-slot map and compensated accumulation.
+// Every kernel is built twice: SESSILE_F64=1 (REAL = double) and 0 (float).
+#ifndef SESSILE_GLSL
+#ifndef SESSILE_F64
+#define SESSILE_F64 1
+#endif
+#define SESSILE_GLSL
+
+#if SESSILE_F64
+#define REAL double
+#define REAL2 dvec2
+#define REAL4 dvec4
+#else
+#define REAL float
+#define REAL2 vec2
+#define REAL4 vec4
+#endif
+
+// Workgroup size is specialisation constant 0 (set by the host per device).
+layout(local_size_x_id = 0) in;
+
+// Linear invocation index; the host spreads large dispatches over y.
+uint sessile_gid() {
+  return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+}
+uint sessile_group() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
+
+// Scalar slots shared with host/la/la_internal.h (keep in sync).
+#define S_STOP 0     // 0 running, 1 converged, 2 max iterations, 3 breakdown
+#define S_ITER 1
+#define S_BB 2       // ||b||^2
+#define S_TOL2 3     // rtol^2 ||b||^2
+#define S_MAXIT 4
+#define S_REASON 5   // breakdown reason code
+#define STOP_CONVERGED 1.0
+#define STOP_MAXIT 2.0
+#define STOP_BREAKDOWN 3.0
+
+// Reductions: each group writes a (hi, lo) pair per set; MAXG groups at most.
+#define MAXG 1024u
+
+// Compensated accumulation: exact two-sum in fp32, plain sum in fp64.
+void acc_add(inout REAL2 a, REAL x) {
+#if SESSILE_F64
+  a.x += x;
+#else
+  precise float s = a.x + x;
+  precise float bp = s - a.x;
+  precise float e = (a.x - (s - bp)) + (x - bp);
+  a.x = s;
+  a.y += e;
+#endif
+}
+void acc_merge(inout REAL2 a, REAL2 b) {
+  acc_add(a, b.x);
+  a.y += b.y;
+}
+REAL acc_value(REAL2 a) { return a.x + a.y; }
+
+bool is_finite(REAL v) { return !isnan(v) && !isinf(v); }
+
+#endif

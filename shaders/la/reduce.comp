@@ -1,0 +1,27 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Finishes reductions: workgroup k sums the `count` partial pairs of set
+// first_set + k in a fixed order and stores s[dst_slot + k] (its square root
+// when sqrt_flag is set).
+#include "../common/sessile.glsl"
+#include "../common/reduce_shared.glsl"
+layout(push_constant) uniform ReducePush {
+  uint count, first_set;
+  int dst_slot;
+  uint sqrt_flag;
+  int guard;
+} pc;
+layout(std430, binding = 0) buffer Scalars { REAL s[]; };
+layout(std430, binding = 1) readonly buffer P { REAL2 part[]; };
+void main() {
+  if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
+  uint set = pc.first_set + gl_WorkGroupID.x;
+  REAL2 acc = REAL2(0);
+  for (uint i = gl_LocalInvocationID.x; i < pc.count; i += gl_WorkGroupSize.x)
+    acc_merge(acc, part[set * MAXG + i]);
+  REAL2 t = group_reduce(acc);
+  if (gl_LocalInvocationID.x == 0u) {
+    REAL v = acc_value(t);
+    s[pc.dst_slot + int(gl_WorkGroupID.x)] = pc.sqrt_flag != 0u ? sqrt(max(v, REAL(0))) : v;
+  }
+}

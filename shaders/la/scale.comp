@@ -1,0 +1,11 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// y = a y
+#include "../common/sessile.glsl"
+#include "../common/vecpush.glsl"
+layout(std430, binding = 1) buffer Y { REAL4 y[]; };
+void main() {
+  uint i = sessile_gid();
+  if (i >= pc.n4 || guarded()) return;
+  y[pc.off0 + i] *= coef();
+}

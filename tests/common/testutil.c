@@ -1,0 +1,58 @@
+#include "testutil.h"
+#include <math.h>
+#include <stdlib.h>
+
+int t_failed, t_passed;
+
+void t_check(const char *what, double err, double tol) {
+  int ok = err <= tol; /* false for NaN */
+  printf("%s %-60s error %.3e  tolerance %.1e\n", ok ? "PASS" : "FAIL", what, err, tol);
+  if (ok) t_passed++;
+  else t_failed++;
+}
+
+void t_true(const char *what, int cond) {
+  printf("%s %s\n", cond ? "PASS" : "FAIL", what);
+  if (cond) t_passed++;
+  else t_failed++;
+}
+
+void t_ok(const char *what, sessile_status s) {
+  if (s == SESSILE_OK) return;
+  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
+  t_failed++;
+}
+
+sessile_gpu *t_gpu(int precision) {
+  sessile_gpu_options o;
+  sessile_gpu_options_default(&o);
+  o.validation = 1;
+  o.precision = precision;
+  sessile_gpu *g = NULL;
+  sessile_status s = sessile_gpu_create(&o, &g);
+  if (s != SESSILE_OK) {
+    printf("FAIL cannot create the GPU context: %s\n", sessile_error_message());
+    exit(1);
+  }
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  printf("device: %s (%s), driver %s, precision fp%d\n", i->name, i->type, i->driver, i->precision);
+  return g;
+}
+
+int t_finish(sessile_gpu *g) {
+  uint64_t v = g ? sessile_gpu_validation_count(g) : 0;
+  sessile_gpu_destroy(g);
+  t_check("validation layer messages", (double)v, 0);
+  printf("%d passed, %d failed\n", t_passed, t_failed);
+  return t_failed ? 1 : 0;
+}
+
+double t_relerr(const double *a, const double *b, size_t n) {
+  double num = 0, den = 1e-300;
+  for (size_t i = 0; i < n; i++) {
+    double d = fabs(a[i] - b[i]);
+    if (!(d <= num)) num = d; /* propagates NaN */
+    if (fabs(b[i]) > den) den = fabs(b[i]);
+  }
+  return num / den;
+}

@@ -1,0 +1,324 @@
+/* Tests of the Vulkan compute runtime (host/include/sessile/gpu.h): device
+ * info, device choice and its errors, buffers (round trips at offsets, the
+ * size limits and their messages), kernels from the embedded SPIR-V table,
+ * command recording with a dispatch and timestamps, and destroy(NULL).
+ * Every check prints what it compared; the exit status is non-zero if any
+ * check failed or the validation layer reported anything. */
+#include <inttypes.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "testutil.h"
+
+/* Deterministic pseudo-random bytes (splitmix64). */
+static void random_bytes(unsigned char *p, size_t n, uint64_t seed) {
+  uint64_t s = seed;
+  for (size_t i = 0; i < n; i++) {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    p[i] = (unsigned char)(z ^ (z >> 31));
+  }
+}
+
+static int all_zero(const unsigned char *p, size_t n) {
+  for (size_t i = 0; i < n; i++)
+    if (p[i]) return 0;
+  return 1;
+}
+
+static void test_info(sessile_gpu *g) {
+  printf("-- device info\n");
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  printf("   name \"%s\", type %s, subgroup %u, fp64 %d, precision %d, maxStorageBufferRange %" PRIu64
+         ", maxComputeWorkGroupInvocations %u, maxComputeWorkGroupCount[0] %u, timestamp period %g ns, "
+         "unified %d\n",
+         i->name, i->type, i->subgroup_size, i->float64, i->precision, i->max_storage_buffer_range,
+         i->max_workgroup_invocations, i->max_workgroup_count_x, i->timestamp_period_ns,
+         i->unified_memory);
+  t_true("info: device name is non-empty", i->name[0] != '\0');
+  static const char *types[] = {"discrete", "integrated", "virtual", "cpu", "other"};
+  int type_ok = 0;
+  for (size_t k = 0; k < sizeof types / sizeof types[0]; k++) type_ok |= strcmp(i->type, types[k]) == 0;
+  t_true("info: type is one of discrete/integrated/virtual/cpu/other", type_ok);
+  t_true("info: subgroup_size > 0", i->subgroup_size > 0);
+  t_true("info: max_storage_buffer_range > 0", i->max_storage_buffer_range > 0);
+  t_true("info: max_workgroup_invocations > 0 and max_workgroup_count_x > 0",
+         i->max_workgroup_invocations > 0 && i->max_workgroup_count_x > 0);
+  t_true("info: precision is 32 or 64", i->precision == 32 || i->precision == 64);
+  t_true("info: precision 64 only where the device has shaderFloat64",
+         i->precision == 32 || i->float64);
+  t_true("info: timestamp_period_ns >= 0", i->timestamp_period_ns >= 0);
+}
+
+/* Uploads random bytes at assorted (unaligned) offsets into a buffer, keeps
+ * a host mirror, and checks full and partial downloads byte for byte. */
+static void roundtrip(sessile_gpu *g, size_t bytes, sessile_buffer_kind kind, const char *kname) {
+  char what[160];
+  sessile_buffer *b = NULL;
+  sessile_status s = sessile_buffer_create(g, bytes, kind, &b);
+  t_ok("buffer_create", s);
+  if (s != SESSILE_OK) return;
+  t_true("buffer_size returns the size asked for", sessile_buffer_size(b) == bytes);
+  if (kind == SESSILE_BUFFER_MAPPED)
+    t_true("MAPPED buffer has a host pointer", sessile_buffer_host_ptr(b) != NULL);
+
+  unsigned char *mirror = calloc(bytes, 1), *got = malloc(bytes), *src = malloc(bytes);
+  if (!mirror || !got || !src) {
+    printf("FAIL out of host memory\n");
+    exit(1);
+  }
+  t_ok("download of a fresh buffer", sessile_buffer_download(b, 0, got, bytes));
+  snprintf(what, sizeof what, "%s buffer of %zu bytes starts zeroed", kname, bytes);
+  t_true(what, all_zero(got, bytes));
+
+  /* (offset, length) pairs: start, unaligned middle, the very end, whole. */
+  const size_t pieces[][2] = {{0, 1},           {1, 7},          {3, 4096 + 5},
+                              {bytes / 2 + 1, bytes / 3},        {bytes - 9, 9},
+                              {bytes - 1, 1},   {0, 0},          {bytes, 0}};
+  int ok = 1;
+  for (size_t k = 0; k < sizeof pieces / sizeof pieces[0]; k++) {
+    size_t off = pieces[k][0], len = pieces[k][1];
+    random_bytes(src, len, 1000 + k);
+    s = sessile_buffer_upload(b, off, src, len);
+    t_ok("buffer_upload in range", s);
+    ok &= s == SESSILE_OK;
+    memcpy(mirror + off, src, len);
+  }
+  t_ok("download whole buffer", sessile_buffer_download(b, 0, got, bytes));
+  snprintf(what, sizeof what, "%s %zu bytes: 8 uploads at offsets, whole download == mirror",
+           kname, bytes);
+  t_true(what, ok && memcmp(got, mirror, bytes) == 0);
+  /* Partial download at an odd offset. */
+  memset(got, 0xAB, bytes);
+  t_ok("partial download", sessile_buffer_download(b, 5, got, bytes - 12));
+  snprintf(what, sizeof what, "%s: download of %zu bytes at offset 5 == mirror", kname,
+           bytes - 12);
+  t_true(what, memcmp(got, mirror + 5, bytes - 12) == 0);
+  if (kind == SESSILE_BUFFER_MAPPED) {
+    snprintf(what, sizeof what, "%s: host pointer sees the uploaded bytes", kname);
+    t_true(what, memcmp(sessile_buffer_host_ptr(b), mirror, bytes) == 0);
+  }
+
+  /* Out-of-range transfers are usage errors and leave the buffer alone. */
+  sessile_error_clear();
+  s = sessile_buffer_upload(b, bytes - 3, src, 4);
+  snprintf(what, sizeof what, "%s: upload of 4 bytes at size-3 -> %s (\"%s\")", kname,
+           sessile_status_name(s), sessile_error_message());
+  t_true(what, s == SESSILE_ERR_USAGE);
+  s = sessile_buffer_upload(b, bytes + 1, src, 0);
+  snprintf(what, sizeof what, "%s: upload at offset size+1 -> %s", kname, sessile_status_name(s));
+  t_true(what, s == SESSILE_ERR_USAGE);
+  s = sessile_buffer_upload(b, 8, src, SIZE_MAX - 4); /* offset + bytes wraps around */
+  snprintf(what, sizeof what, "%s: upload whose offset+bytes overflows size_t -> %s", kname,
+           sessile_status_name(s));
+  t_true(what, s == SESSILE_ERR_USAGE);
+  s = sessile_buffer_download(b, 1, got, bytes);
+  snprintf(what, sizeof what, "%s: download of size bytes at offset 1 -> %s", kname,
+           sessile_status_name(s));
+  t_true(what, s == SESSILE_ERR_USAGE);
+  t_ok("download after refused transfers", sessile_buffer_download(b, 0, got, bytes));
+  snprintf(what, sizeof what, "%s: refused transfers changed nothing", kname);
+  t_true(what, memcmp(got, mirror, bytes) == 0);
+
+  sessile_buffer_destroy(b);
+  free(mirror);
+  free(got);
+  free(src);
+}
+
+static void test_buffers(sessile_gpu *g) {
+  printf("-- buffers\n");
+  roundtrip(g, (1u << 20) + 13, SESSILE_BUFFER_DEVICE, "DEVICE");
+  roundtrip(g, 4099 + 4096, SESSILE_BUFFER_MAPPED, "MAPPED");
+
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  sessile_buffer *b = (sessile_buffer *)&b; /* must be reset to NULL on failure */
+  sessile_error_clear();
+  size_t too_big = (size_t)i->max_storage_buffer_range + 1;
+  sessile_status s = sessile_buffer_create(g, too_big, SESSILE_BUFFER_DEVICE, &b);
+  printf("   create of %zu bytes: %s: \"%s\"\n", too_big, sessile_status_name(s),
+         sessile_error_message());
+  t_true("buffer of maxStorageBufferRange+1 bytes -> SESSILE_ERR_TOO_LARGE, *out = NULL",
+         s == SESSILE_ERR_TOO_LARGE && b == NULL);
+  t_true("  ... and its message names maxStorageBufferRange",
+         strstr(sessile_error_message(), "maxStorageBufferRange") != NULL);
+  b = (sessile_buffer *)&b;
+  s = sessile_buffer_create(g, too_big, SESSILE_BUFFER_MAPPED, &b);
+  t_true("MAPPED buffer of maxStorageBufferRange+1 bytes -> SESSILE_ERR_TOO_LARGE",
+         s == SESSILE_ERR_TOO_LARGE && b == NULL);
+
+  b = (sessile_buffer *)&b;
+  sessile_error_clear();
+  s = sessile_buffer_create(g, 0, SESSILE_BUFFER_DEVICE, &b);
+  printf("   create of 0 bytes: %s: \"%s\"\n", sessile_status_name(s), sessile_error_message());
+  t_true("buffer of 0 bytes -> SESSILE_ERR_USAGE, *out = NULL, message set",
+         s == SESSILE_ERR_USAGE && b == NULL && sessile_error_message()[0] != '\0');
+}
+
+static void test_kernels(sessile_gpu *g) {
+  printf("-- kernels and the SPIR-V table\n");
+  const sessile_spirv *sp = sessile_spirv_find("la/axpy.f64");
+  t_true("spirv_find(\"la/axpy.f64\") is non-NULL, named, non-empty, SPIR-V magic",
+         sp && sp->name && strcmp(sp->name, "la/axpy.f64") == 0 && sp->bytes >= 20 &&
+             sp->bytes % 4 == 0 && sp->code && sp->code[0] == 0x07230203u);
+  t_true("spirv_find(\"la/axpy.f32\") is non-NULL", sessile_spirv_find("la/axpy.f32") != NULL);
+  t_true("spirv_find(\"nope\") is NULL", sessile_spirv_find("nope") == NULL);
+  t_true("spirv_find(\"la/axpy\") (no precision suffix) is NULL",
+         sessile_spirv_find("la/axpy") == NULL);
+
+  sessile_kernel *k = (sessile_kernel *)&k;
+  sessile_error_clear();
+  sessile_status s = sessile_kernel_create(g, "la/no-such-kernel.f64", 2, 32, 0, &k);
+  printf("   kernel_create(\"la/no-such-kernel.f64\"): %s: \"%s\"\n", sessile_status_name(s),
+         sessile_error_message());
+  t_true("kernel_create with an unknown name fails, *out = NULL, message names the kernel",
+         s != SESSILE_OK && k == NULL && strstr(sessile_error_message(), "no-such-kernel") != NULL);
+}
+
+/* A real dispatch through the public API: la/fill with no coefficient slot
+ * writes 1 to the first n reals and 0 to the rest of the last REAL4
+ * (shaders/common/vecpush.glsl); timestamps around it are ordered. */
+static void test_dispatch(sessile_gpu *g) {
+  printf("-- command recording: one dispatch and timestamps\n");
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  const int f64 = i->precision == 64;
+  const uint32_t n = 1001, n4 = (n + 3) / 4, rb = f64 ? 8 : 4;
+  sessile_kernel *k = NULL;
+  sessile_cmd *c = NULL;
+  sessile_buffer *scal = NULL, *y = NULL;
+  sessile_status s = sessile_kernel_create(g, f64 ? "la/fill.f64" : "la/fill.f32", 2, 32, 0, &k);
+  t_ok("kernel_create la/fill", s);
+  if (s == SESSILE_OK) {
+    uint32_t ls = sessile_kernel_local_size(k);
+    printf("   la/fill local size %u\n", ls);
+    t_true("kernel local size: default 256 clamped to maxComputeWorkGroupInvocations",
+           ls == (i->max_workgroup_invocations < 256 ? i->max_workgroup_invocations : 256));
+  }
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 64 * rb, SESSILE_BUFFER_MAPPED, &scal);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, (size_t)(n4 + 1) * 4 * rb, SESSILE_BUFFER_DEVICE, &y);
+  /* A marker past the vector the kernel must not touch. */
+  unsigned char marker[32];
+  memset(marker, 0x5A, sizeof marker);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(y, (size_t)n4 * 4 * rb, marker, 4 * rb);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
+  struct { uint32_t n4, n, off0, off1, off2; int32_t a_slot; uint32_t flags; int32_t guard; } push = {
+      n4, n, 0, 0, 0, -1, 0, -1};
+  sessile_buffer *bufs[2] = {scal, y};
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_timestamp(c, 0);
+  /* One group more than needed: the kernel must bounds-check against n4. */
+  uint32_t ls = k ? sessile_kernel_local_size(k) : 1, groups = (n4 + ls - 1) / ls + 1;
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_timestamp(c, 1);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c); /* re-submission of the same recording */
+  t_ok("record, submit twice", s);
+  if (s == SESSILE_OK) {
+    size_t total = (size_t)(n4 + 1) * 4;
+    double *v = malloc(total * sizeof *v);
+    unsigned char *raw = malloc(total * rb);
+    t_ok("download", sessile_buffer_download(y, 0, raw, total * rb));
+    for (size_t e = 0; e < (size_t)n4 * 4; e++) {
+      if (f64) memcpy(&v[e], raw + e * 8, 8);
+      else {
+        float f;
+        memcpy(&f, raw + e * 4, 4);
+        v[e] = f;
+      }
+    }
+    int ok = 1;
+    for (size_t e = 0; e < (size_t)n4 * 4; e++) ok &= v[e] == (e < n ? 1.0 : 0.0);
+    t_true("la/fill dispatch: y[0..1000] == 1 exactly, padding y[1001..1003] == 0", ok);
+    t_true("la/fill dispatch: bytes past the vector untouched",
+           memcmp(raw + (size_t)n4 * 4 * rb, marker, 4 * rb) == 0);
+    free(v);
+    free(raw);
+    double ns = -1;
+    sessile_status ts = sessile_cmd_elapsed_ns(c, 0, 1, &ns);
+    if (i->timestamp_period_ns > 0) {
+      printf("   elapsed between timestamps: %.0f ns\n", ns);
+      t_true("cmd_elapsed_ns(0, 1) succeeds and is >= 0", ts == SESSILE_OK && ns >= 0);
+      ts = sessile_cmd_elapsed_ns(c, 0, 2, &ns);
+      t_true("cmd_elapsed_ns with an unrecorded slot fails", ts != SESSILE_OK);
+    } else {
+      t_true("no timestamps on this device: elapsed_ns -> SESSILE_ERR_UNSUPPORTED",
+             ts == SESSILE_ERR_UNSUPPORTED);
+    }
+    s = sessile_cmd_timestamp(c, 64);
+    t_true("cmd_timestamp slot 64 (of 0..63) fails", s != SESSILE_OK);
+  }
+  sessile_cmd_destroy(c);
+  sessile_buffer_destroy(y);
+  sessile_buffer_destroy(scal);
+  sessile_kernel_destroy(k);
+}
+
+static void test_device_choice(void) {
+  printf("-- device choice\n");
+  sessile_gpu_options o;
+  sessile_gpu_options_default(&o);
+  t_true("options_default: device NULL, validation -1, precision 0, cache_dir NULL",
+         o.device == NULL && o.validation == -1 && o.precision == 0 && o.cache_dir == NULL);
+  o.validation = 1;
+  o.device = "no-such-device";
+  sessile_gpu *g = (sessile_gpu *)&g;
+  sessile_error_clear();
+  sessile_status s = sessile_gpu_create(&o, &g);
+  printf("   device \"no-such-device\": %s: \"%s\"\n", sessile_status_name(s),
+         sessile_error_message());
+  t_true("device \"no-such-device\" -> SESSILE_ERR_NO_DEVICE, *out = NULL",
+         s == SESSILE_ERR_NO_DEVICE && g == NULL);
+  t_true("  ... and the message points to `sessile devices`",
+         strstr(sessile_error_message(), "sessile devices") != NULL);
+
+  o.device = "9999";
+  g = (sessile_gpu *)&g;
+  s = sessile_gpu_create(&o, &g);
+  printf("   device \"9999\": %s: \"%s\"\n", sessile_status_name(s), sessile_error_message());
+  t_true("device index 9999 -> SESSILE_ERR_NO_DEVICE", s == SESSILE_ERR_NO_DEVICE && g == NULL);
+
+  o.device = "0";
+  g = NULL;
+  s = sessile_gpu_create(&o, &g);
+  t_ok("device \"0\"", s);
+  t_true("device \"0\" works and is device index 0",
+         s == SESSILE_OK && g && sessile_gpu_info_of(g)->index == 0);
+  if (g) {
+    uint64_t v = sessile_gpu_validation_count(g);
+    t_check("device \"0\": validation messages", (double)v, 0);
+    sessile_gpu_destroy(g);
+  }
+
+  o.device = NULL;
+  o.precision = 48;
+  g = (sessile_gpu *)&g;
+  s = sessile_gpu_create(&o, &g);
+  t_true("precision 48 -> SESSILE_ERR_USAGE", s == SESSILE_ERR_USAGE && g == NULL);
+}
+
+static void test_destroy_null(void) {
+  printf("-- destroy(NULL)\n");
+  sessile_gpu_destroy(NULL);
+  sessile_buffer_destroy(NULL);
+  sessile_kernel_destroy(NULL);
+  sessile_cmd_destroy(NULL);
+  sessile_la_destroy(NULL);
+  sessile_vec_destroy(NULL);
+  sessile_mat_destroy(NULL);
+  t_true("gpu/buffer/kernel/cmd/la/vec/mat destroy(NULL) are no-ops", 1);
+}
+
+int main(void) {
+  sessile_gpu *g = t_gpu(0);
+  test_info(g);
+  test_buffers(g);
+  test_kernels(g);
+  test_dispatch(g);
+  test_device_choice();
+  test_destroy_null();
+  return t_finish(g);
+}

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The README's first command: install Debian's packages, build, and run the
+# main job on its embedded default.  Safe to run again.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  build-essential cmake pkg-config \
+  mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
+  libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j"$(nproc)"
+# The main job on its embedded default (until `sessile grow` exists):
+./build/sessile devices
+./build/sessile bench la --size 48 --repeat 5
