@@ -1,12 +1,15 @@
 /* Preconditioned conjugate gradients on the device (Jacobi M = D⁻¹):
  *   q = A p; α = (r·z)/(p·q); x += α p; r −= α q; z = M r; β = (r·z)'/(r·z); p = z + β p
  * Convergence on the unpreconditioned ‖r‖.  Two recordings: the start, and a
- * block of `check_every` iterations submitted until the device stops. */
+ * block of `check_every` iterations submitted until the device stops.
+ * Per iteration: SpMV fused with p·q, one update pass (x, r and both dots),
+ * one direction pass (z is recomputed there, never stored), three tiny
+ * scalar/reduction dispatches: about 11 vector passes (docs/performance.md). */
 #include <math.h>
 #include "la_internal.h"
 #include "solver_slots.h"
 
-typedef struct { sessile_vec *r, *z, *p, *q; } cg_work;
+typedef struct { sessile_vec *r, *p, *q; } cg_work; /* p starts as z = M r */
 
 static sessile_kernel *kern(sessile_la *la, la_kernel_id id) { return la->k[id]; }
 
@@ -14,14 +17,12 @@ static sessile_status record_start(sessile_la *la, sessile_cmd *c, const sessile
                                    const sessile_vec *b, const sessile_vec *x,
                                    const sessile_vec *dinv, cg_work *w) {
   uint32_t n = a->nrows, cnt;
-  vref none = {0};
   SESSILE_CALL(sessile_cmd_begin(c));
   SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), vref_of(w->q), -1));
   SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, vref_of(w->q), vref_of(b), vref_of(w->r), -1, COEF_NEG, -1));
-  SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(dinv), vref_of(w->r), vref_of(w->z), -1, 0, -1));
-  SESSILE_CALL(rec_vec(la, c, K_COPY, n, vref_of(w->z), vref_of(w->p), none, -1, 0, -1));
+  SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(dinv), vref_of(w->r), vref_of(w->p), -1, 0, -1));
   SESSILE_CALL(rec_dot(la, c, n, vref_of(b), vref_of(b), 0, -1, &cnt));
-  SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r), vref_of(w->z), 1, -1, &cnt));
+  SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r), vref_of(w->p), 1, -1, &cnt));
   SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r), vref_of(w->r), 2, -1, &cnt));
   SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, S_BB, 0, -1));
   SESSILE_CALL(rec_reduce(la, c, cnt, 1, 2, CG_RZNEW, 0, -1));
@@ -39,17 +40,17 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
   uint32_t op1[2] = {1, 0}, op2[2] = {2, 0};
   SESSILE_CALL(sessile_cmd_begin(c));
   for (int it = 0; it < k; it++) {
-    SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->p), vref_of(w->q), S_STOP));
-    SESSILE_CALL(rec_dot(la, c, n, vref_of(w->p), vref_of(w->q), 0, S_STOP, &cnt));
+    SESSILE_CALL(rec_spmv_dot(la, c, a, vref_of(w->p), vref_of(w->q), S_STOP, &cnt));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, CG_PQ, 0, S_STOP));
     SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, op1));
-    sessile_buffer *ub[8] = {la->scalars, w->p->buf, w->q->buf, dinv->buf,
-                             x->buf,      w->r->buf, w->z->buf, la->partials};
+    sessile_buffer *ub[7] = {la->scalars, w->p->buf, w->q->buf, dinv->buf,
+                             x->buf,      w->r->buf, la->partials};
+    uint32_t ucnt = la_reduce_groups(la, w->p->n4);
     vec_push p = {.n4 = w->p->n4, .n = n, .a_slot = CG_ALPHA, .guard = S_STOP};
-    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_UPDATE), cnt, ub, &p));
-    SESSILE_CALL(rec_reduce(la, c, cnt, 0, 2, CG_RZNEW, 0, S_STOP));
+    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_UPDATE), ucnt, ub, &p));
+    SESSILE_CALL(rec_reduce(la, c, ucnt, 0, 2, CG_RZNEW, 0, S_STOP));
     SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, op2));
-    SESSILE_CALL(rec_vec(la, c, K_AYPX, n, vref_of(w->z), vref_of(w->p), (vref){0}, CG_BETA, 0, S_STOP));
+    SESSILE_CALL(rec_vec(la, c, K_CG_DIRECTION, n, vref_of(dinv), vref_of(w->r), vref_of(w->p), -1, 0, S_STOP));
   }
   return sessile_cmd_end(c);
 }
@@ -59,8 +60,8 @@ static sessile_status cg_run(sessile_la *la, const sessile_ksp_options *o, const
                              cg_work *w, sessile_cmd *iter, sessile_solve_result *res) {
   sessile_kernel *k;
   /* Create every kernel before recording (la_groups reads their local size). */
-  static const la_kernel_id ids[] = {K_CG_SCALAR, K_CG_UPDATE, K_DOT, K_REDUCE, K_AYPX,
-                                     K_WAXPY, K_PMUL, K_COPY};
+  static const la_kernel_id ids[] = {K_CG_SCALAR, K_CG_UPDATE, K_CG_DIRECTION, K_DOT,
+                                     K_REDUCE, K_WAXPY, K_PMUL, K_SPMV_CSR_DOT};
   for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) SESSILE_CALL(la_kernel(la, ids[i], &k));
   SESSILE_CALL(la_kernel(la, a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4, &k));
   la_solver_reset(la, o);
@@ -79,14 +80,12 @@ sessile_status la_cg(sessile_la *la, const sessile_ksp_options *o, const sessile
   sessile_cmd *iter = NULL;
   uint32_t n = a->nrows;
   sessile_status s = sessile_vec_create(la, n, &w.r);
-  if (s == SESSILE_OK) s = sessile_vec_create(la, n, &w.z);
   if (s == SESSILE_OK) s = sessile_vec_create(la, n, &w.p);
   if (s == SESSILE_OK) s = sessile_vec_create(la, n, &w.q);
   if (s == SESSILE_OK) s = sessile_cmd_create(la->gpu, &iter);
   if (s == SESSILE_OK) s = cg_run(la, o, a, b, x, dinv, &w, iter, res);
   sessile_cmd_destroy(iter);
   sessile_vec_destroy(w.r);
-  sessile_vec_destroy(w.z);
   sessile_vec_destroy(w.p);
   sessile_vec_destroy(w.q);
   return s;

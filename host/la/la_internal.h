@@ -31,7 +31,9 @@ enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
   X(K_REDUCE, "la/reduce", 2, 20, 256)              \
   X(K_SPMV_CSR, "la/spmv_csr", 6, 20, 64)           \
   X(K_SPMV_BCSR4, "la/spmv_bcsr4", 6, 20, 64)       \
-  X(K_CG_UPDATE, "la/cg_update", 8, 32, 256)        \
+  X(K_SPMV_CSR_DOT, "la/spmv_csr_dot", 7, 20, 64)   \
+  X(K_CG_UPDATE, "la/cg_update", 7, 32, 256)        \
+  X(K_CG_DIRECTION, "la/cg_direction", 4, 32, 256)  \
   X(K_CG_SCALAR, "la/cg_scalar", 1, 8, 1)           \
   X(K_BICG_P, "la/bicgstab_p", 4, 32, 256)          \
   X(K_BICG_S, "la/bicgstab_s", 5, 32, 256)          \
@@ -103,6 +105,9 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
                           uint32_t nsets, int dst_slot, int sqrt_flag, int guard);
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard);
+/* y = A x with the partial sums of x·y in set 0 (CG's p·Ap). */
+sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
+                            int guard, uint32_t *count);
 /* Groups for an element-wise kernel over n reals, and for a reduction. */
 uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
 uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);

@@ -58,3 +58,20 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
   uint32_t items = (rows + per - 1) / per;
   return sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p);
 }
+
+sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
+                            int guard, uint32_t *count) {
+  if (a->kind != MAT_CSR) { /* block matrices: SpMV, then a separate dot */
+    SESSILE_CALL(rec_spmv(la, c, a, x, y, guard));
+    return rec_dot(la, c, a->nrows, x, y, 0, guard, count);
+  }
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_SPMV_CSR_DOT, &k));
+  sessile_buffer *bufs[7] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf, la->partials};
+  struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
+      a->nrows, x.off4 * 4, y.off4 * 4, guard, a->rows_per};
+  uint32_t items = (a->nrows + a->rows_per - 1) / a->rows_per;
+  *count = la_groups(la, K_SPMV_CSR_DOT, items);
+  if (*count > MAXG) *count = MAXG;
+  return sessile_cmd_dispatch(c, k, *count, bufs, &p);
+}

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// CG step, fused: x += α p; r -= α q; z = D⁻¹ r; partial sums of r·z (set 0)
-// and r·r (set 1).  One pass over six vectors instead of five kernels.
+// CG step, fused: x += α p; r -= α q; partial sums of r·D⁻¹r (set 0) and r·r
+// (set 1).  z = D⁻¹ r is never stored: cg_direction.comp recomputes it.
 #include "../common/sessile.glsl"
 #include "../common/vecpush.glsl"
 #include "../common/reduce_shared.glsl"
@@ -11,8 +11,7 @@ layout(std430, binding = 2) readonly buffer Q { REAL4 q[]; };
 layout(std430, binding = 3) readonly buffer D { REAL4 dinv[]; };
 layout(std430, binding = 4) buffer X { REAL4 x[]; };
 layout(std430, binding = 5) buffer R { REAL4 r[]; };
-layout(std430, binding = 6) writeonly buffer Z { REAL4 z[]; };
-layout(std430, binding = 7) writeonly buffer PART { REAL2 part[]; };
+layout(std430, binding = 6) writeonly buffer PART { REAL2 part[]; };
 void main() {
   if (guarded()) return;
   REAL a = s[CG_ALPHA];
@@ -23,7 +22,6 @@ void main() {
     REAL4 ri = r[i] - a * q[i];
     r[i] = ri;
     REAL4 zi = dinv[i] * ri;
-    z[i] = zi;
     REAL4 t = ri * zi, u = ri * ri;
     acc_add(rz, t.x); acc_add(rz, t.y); acc_add(rz, t.z); acc_add(rz, t.w);
     acc_add(rr, u.x); acc_add(rr, u.y); acc_add(rr, u.z); acc_add(rr, u.w);
