@@ -119,7 +119,7 @@ sessile_status sessile_choose_device_(VkInstance inst, const char *choice, VkPhy
     char *end = NULL;
     long idx = strtol(choice, &end, 10);
     if (end && *end == 0) {
-      SESSILE_CHECK(idx >= 0 && idx < (long)n, SESSILE_ERR_NO_DEVICE,
+      SESSILE_CHECK(idx >= 0 && idx < (long)n, SESSILE_ERR_USAGE,
                     "device index %ld does not exist: there are %u devices (0..%u); "
                     "list them with `sessile devices`", idx, n, n - 1);
       pick = (int)idx;
@@ -129,7 +129,7 @@ sessile_status sessile_choose_device_(VkInstance inst, const char *choice, VkPhy
         vkGetPhysicalDeviceProperties(devs[i], &pr);
         if (ieq_substr(pr.deviceName, choice)) pick = (int)i;
       }
-      SESSILE_CHECK(pick >= 0, SESSILE_ERR_NO_DEVICE,
+      SESSILE_CHECK(pick >= 0, SESSILE_ERR_USAGE,
                     "no device name contains \"%s\": list them with `sessile devices`", choice);
     }
     SESSILE_CHECK(sessile_compute_queue_family_(devs[pick], NULL) >= 0, SESSILE_ERR_NO_DEVICE,

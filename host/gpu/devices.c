@@ -34,6 +34,10 @@ sessile_status sessile_gpu_print_devices(FILE *out, const char *device_choice) {
   VkPhysicalDevice chosen = VK_NULL_HANDLE;
   uint32_t chosen_index = 0;
   sessile_status s = sessile_choose_device_(inst, device_choice, &chosen, &chosen_index);
+  if (s == SESSILE_ERR_USAGE) { /* a --device that names nothing: say only that */
+    sessile_instance_destroy_(inst, m);
+    return s;
+  }
   uint32_t n = 0;
   VkResult r = vkEnumeratePhysicalDevices(inst, &n, NULL);
   if (r >= 0 && n > 0) {

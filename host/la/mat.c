@@ -50,12 +50,15 @@ static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
     s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "matrix has too many entries for 32-bit indices");
   else if (!col || !val)
     s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
+  /* Padding repeats the row's last column with value 0: the row reads that x
+   * anyway, so an Inf there cannot turn a finite row into NaN (0·Inf). */
   for (uint32_t r = 0; s == SESSILE_OK && r < a->nrows; r++) {
-    uint64_t k = (uint64_t)rp[r] * 4;
+    uint64_t k = (uint64_t)rp[r] * 4, end = (uint64_t)rp[r + 1] * 4;
     for (uint64_t e = a->rowptr[r]; e < a->rowptr[r + 1]; e++, k++) {
       col[k] = a->col[e];
       val[k] = a->val[e];
     }
+    for (; k < end; k++) col[k] = a->col[a->rowptr[r + 1] - 1];
   }
   if (s == SESSILE_OK)
     s = sessile_buffer_create(la->gpu, ((size_t)a->nrows + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);

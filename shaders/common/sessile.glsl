@@ -58,6 +58,14 @@ void acc_merge(inout REAL2 a, REAL2 b) {
 }
 REAL acc_value(REAL2 a) { return a.x + a.y; }
 
-bool is_finite(REAL v) { return !isnan(v) && !isinf(v); }
+// Finite test on the exponent bits: isnan/isinf may be folded away by a
+// driver compiling with fast-math assumptions.
+bool is_finite(REAL v) {
+#if SESSILE_F64
+  return (unpackDouble2x32(v).y & 0x7ff00000u) != 0x7ff00000u;
+#else
+  return (floatBitsToUint(v) & 0x7f800000u) != 0x7f800000u;
+#endif
+}
 
 #endif

@@ -22,6 +22,7 @@ void main() {
   REAL2 t = group_reduce(acc);
   if (gl_LocalInvocationID.x == 0u) {
     REAL v = acc_value(t);
-    s[pc.dst_slot + int(gl_WorkGroupID.x)] = pc.sqrt_flag != 0u ? sqrt(max(v, REAL(0))) : v;
+    // A sum of squares is >= 0; no clamp, so a NaN stays a NaN (max(NaN, 0) is 0).
+    s[pc.dst_slot + int(gl_WorkGroupID.x)] = pc.sqrt_flag != 0u ? sqrt(v) : v;
   }
 }

@@ -1,2 +1,48 @@
-#!/bin/sh
-"$1" --help
+#!/usr/bin/env bash
+# The command line as a user meets it: every --help answers, bad usage gives
+# one line on stderr and exit 2, `devices` lists what matters, a tiny
+# `bench la` runs, and nothing says a word from the validation layer.
+set -u
+S="$1"
+fails=0 passes=0
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+check() { # description, command...
+  local what="$1"; shift
+  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi
+}
+run() { "$S" "$@" >"$T/out" 2>"$T/err"; echo $? >"$T/rc"; }
+rc_is() { [ "$(cat "$T/rc")" = "$1" ]; }
+one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" && [ ! -s "$T/out" ]; }
+no_validation() { ! grep -qi "validation \(error\|warning\)" "$T/err"; }
+
+for args in "--help" "help" "devices --help" "bench --help" "bench la --help"; do
+  run $args
+  check "'sessile $args' exits 0 with usage text" eval 'rc_is 0 && grep -q "usage: sessile" "$T/out"'
+done
+run --version
+check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessile " "$T/out"'
+
+for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
+            "bench la --repeat 0" "bench la --wat" "devices --wat" "--precision 16 devices" \
+            "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4"; do
+  run $args
+  check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
+done
+
+run devices
+check "'sessile devices' lists a chosen device with its limits" eval \
+  'rc_is 0 && grep -q "^\* \[0\]" "$T/out" && grep -q maxStorageBufferRange "$T/out" && grep -q "fp64" "$T/out" && grep -q "subgroup size" "$T/out"'
+run --device 0 devices
+check "'sessile --device 0 devices' works" eval 'rc_is 0'
+
+run --validation bench la --size 8 --repeat 2
+check "'sessile bench la --size 8' prints kernels, solves and ratios" eval \
+  'rc_is 0 && grep -q "^spmv csr P1-tet 8^3" "$T/out" && grep -q "^pcg 7-point 8^3" "$T/out" && grep -q "C/gpu" "$T/out"'
+check "bench under the validation layer is silent" no_validation
+run --precision 32 bench la --size 8 --repeat 1 --no-solvers
+check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
+
+echo "$passes passed, $fails failed"
+[ "$fails" -eq 0 ]

@@ -270,8 +270,9 @@ static void test_device_choice(void) {
   sessile_status s = sessile_gpu_create(&o, &g);
   printf("   device \"no-such-device\": %s: \"%s\"\n", sessile_status_name(s),
          sessile_error_message());
-  t_true("device \"no-such-device\" -> SESSILE_ERR_NO_DEVICE, *out = NULL",
-         s == SESSILE_ERR_NO_DEVICE && g == NULL);
+  /* A device choice that names nothing is bad user input (docs/design.md). */
+  t_true("device \"no-such-device\" -> SESSILE_ERR_USAGE, *out = NULL",
+         s == SESSILE_ERR_USAGE && g == NULL);
   t_true("  ... and the message points to `sessile devices`",
          strstr(sessile_error_message(), "sessile devices") != NULL);
 
@@ -279,7 +280,7 @@ static void test_device_choice(void) {
   g = (sessile_gpu *)&g;
   s = sessile_gpu_create(&o, &g);
   printf("   device \"9999\": %s: \"%s\"\n", sessile_status_name(s), sessile_error_message());
-  t_true("device index 9999 -> SESSILE_ERR_NO_DEVICE", s == SESSILE_ERR_NO_DEVICE && g == NULL);
+  t_true("device index 9999 -> SESSILE_ERR_USAGE", s == SESSILE_ERR_USAGE && g == NULL);
 
   o.device = "0";
   g = NULL;
