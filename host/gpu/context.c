@@ -73,6 +73,12 @@ static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
   vkGetPhysicalDeviceProperties(g->phys, &props);
   g->limits = props.limits;
   SESSILE_CALL(resolve_precision(o->precision, g->info.float64, g->info.name, &g->info.precision));
+  /* The reductions use subgroupAdd (fewer barriers on lavapipe); every
+   * Vulkan 1.1 GPU driver we know of has it, but a device may not. */
+  SESSILE_CHECK(g->info.subgroup_arithmetic, SESSILE_ERR_UNSUPPORTED,
+                "device '%s' lacks subgroup arithmetic in compute shaders "
+                "(VK_SUBGROUP_FEATURE_ARITHMETIC_BIT), which sessile's reductions need; "
+                "choose another device with --device (see 'sessile devices')", g->info.name);
   SESSILE_CALL(create_device(g));
   SESSILE_CALL(sessile_pipeline_cache_open_(g, o->cache_dir));
   return SESSILE_OK;

@@ -71,6 +71,11 @@ void sessile_describe_device_(VkPhysicalDevice p, uint32_t index, sessile_gpu_in
   info->device_id = props.deviceID;
   info->index = index;
   info->subgroup_size = sub.subgroupSize;
+  {
+    VkSubgroupFeatureFlags need = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    info->subgroup_arithmetic = (sub.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                                (sub.supportedOperations & need) == need;
+  }
   info->float64 = feat.shaderFloat64 ? 1 : 0;
   info->max_storage_buffer_range = props.limits.maxStorageBufferRange;
   info->max_workgroup_invocations = props.limits.maxComputeWorkGroupInvocations;

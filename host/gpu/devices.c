@@ -14,8 +14,9 @@ static void print_one(FILE *out, VkPhysicalDevice p, uint32_t i, int chosen) {
   for (uint32_t h = 0; h < mem.memoryHeapCount; h++)
     fprintf(out, "      heap %u: %.2f GiB%s\n", h, (double)mem.memoryHeaps[h].size / 1073741824.0,
             (mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) ? " device-local" : "");
-  fprintf(out, "      subgroup size: %u   fp64 (shaderFloat64): %s   unified memory: %s\n",
-          info.subgroup_size, info.float64 ? "yes" : "no", info.unified_memory ? "yes" : "no");
+  fprintf(out, "      subgroup size: %u (arithmetic: %s)   fp64 (shaderFloat64): %s   unified memory: %s\n",
+          info.subgroup_size, info.subgroup_arithmetic ? "yes" : "no", info.float64 ? "yes" : "no",
+          info.unified_memory ? "yes" : "no");
   fprintf(out, "      maxStorageBufferRange: %llu bytes (%.0f MiB)   "
                "maxComputeWorkGroupInvocations: %u   maxComputeWorkGroupCount[0]: %u\n",
           (unsigned long long)info.max_storage_buffer_range,

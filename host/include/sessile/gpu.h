@@ -44,6 +44,7 @@ typedef struct sessile_gpu_info {
   char driver[520]; /* driver name and info */
   uint32_t api_version, vendor_id, device_id, index;
   uint32_t subgroup_size;
+  int subgroup_arithmetic; /* subgroup BASIC + ARITHMETIC ops in compute shaders */
   int float64;     /* shaderFloat64 */
   int precision;   /* chosen Krylov precision: 32 or 64 */
   uint64_t max_storage_buffer_range;
