@@ -1,0 +1,84 @@
+/* sessile — the run directory's files: every file is written to a temporary
+ * name in the same folder and renamed into place, so a failed or interrupted
+ * run never leaves a half-written file that looks whole.
+ *
+ * Formats: PLY (binary little-endian) and OBJ meshes; OpenEXR slices (float32
+ * channels, through OpenEXR's C API, openexr.h) with plane origin, spacing and
+ * iteration as header attributes; VTK XML UnstructuredGrid (.vtu, the box's
+ * tetrahedra with point data) and ParaView's .pvd series; JSON through cJSON. */
+#ifndef SESSILE_IO_H
+#define SESSILE_IO_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include "sessile/box.h"
+#include "sessile/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* --- atomic files ------------------------------------------------------------ */
+/* An output file being written: data goes to "<path>.tmp.<pid>" until commit
+ * renames it to path (after fflush + fsync); abort removes the temporary. */
+typedef struct sessile_atomic_file {
+  FILE *f;
+  char *path, *tmp;
+} sessile_atomic_file;
+sessile_status sessile_atomic_open(const char *path, sessile_atomic_file *af);
+sessile_status sessile_atomic_commit(sessile_atomic_file *af); /* closes; removes tmp on failure */
+void sessile_atomic_abort(sessile_atomic_file *af);           /* closes and removes tmp; NULL-safe */
+/* Whole buffer to path, atomically. */
+sessile_status sessile_write_file_atomic(const char *path, const void *data, size_t bytes);
+/* mkdir -p; fails with SESSILE_ERR_IO naming the folder and errno's text. */
+sessile_status sessile_mkdirs(const char *path);
+
+/* --- meshes --------------------------------------------------------------------- */
+/* Binary little-endian PLY: float x,y,z per vertex (plus float nx,ny,nz when
+ * normals != NULL, and any extra float vertex properties named in extra_names
+ * with values extra[p][v]), uchar-count uint-index faces. */
+sessile_status sessile_write_ply(const char *path, const sessile_surface *s, const double *normals,
+                                 int nextra, const char *const *extra_names,
+                                 const double *const *extra);
+sessile_status sessile_write_obj(const char *path, const sessile_surface *s, const double *normals);
+
+/* --- slices --------------------------------------------------------------------- */
+typedef enum sessile_axis { SESSILE_AXIS_X = 0, SESSILE_AXIS_Y = 1, SESSILE_AXIS_Z = 2 } sessile_axis;
+/* A slice: the axis-aligned plane axis = value through the box, sampled on
+ * the box's own node grid of the other two axes (P1 interpolation between
+ * node layers).  Channel values are float32, width = nodes along the first
+ * remaining axis, height = along the second (x,y for a z-plane; x,z for a
+ * y-plane; y,z for an x-plane), row 0 at the low end. */
+typedef struct sessile_slice_channel {
+  const char *name;     /* e.g. "c", "ux" */
+  const double *field;  /* one value per box node */
+} sessile_slice_channel;
+/* Writes an EXR with float32 channels; header attributes "sessile:plane"
+ * (string, e.g. "z=3.5"), "sessile:origin" (v3f: the world position of pixel
+ * (0,0)), "sessile:spacing" (v2f: cm per pixel along width, height),
+ * "sessile:iteration" (int). */
+sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
+                                       double value, int nchan, const sessile_slice_channel *chan,
+                                       int iteration);
+
+/* --- volume fields -------------------------------------------------------------- */
+/* VTK XML UnstructuredGrid of the box's tetrahedra (appended raw binary,
+ * Float64 points, Int64 connectivity) with scalar point data (double) and
+ * optional uint8 point data (e.g. the solid mask). */
+typedef struct sessile_point_data {
+  const char *name;
+  const double *f64; /* one per node, or NULL */
+  const uint8_t *u8; /* one per node, when f64 is NULL */
+  int components;    /* 1 or 3 (f64 only) */
+} sessile_point_data;
+sessile_status sessile_write_vtu(const char *path, const sessile_box *box, int ndata,
+                                 const sessile_point_data *data);
+/* ParaView collection listing (timestep, file) pairs; files relative to the .pvd. */
+sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
+                                 const char *const *files);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

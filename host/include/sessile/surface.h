@@ -1,0 +1,94 @@
+/* sessile — the sponge's triangle surface: a closed, consistently oriented
+ * 2-manifold (genus 0 as it starts), its adjacency, normals, invariants and
+ * the remesher (vertex insertion, fusion, small-triangle deletion; O'Hagan et
+ * al. §4.6).  Plain C on the host: topology changes are the host's job.
+ *
+ * Triangles are counter-clockwise seen from outside, so face normals point
+ * out.  Ownership: a sessile_surface owns its arrays; sessile_surface_free
+ * releases them (a zeroed struct is valid and empty). */
+#ifndef SESSILE_SURFACE_H
+#define SESSILE_SURFACE_H
+
+#include <stdint.h>
+#include "sessile/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sessile_surface {
+  uint32_t nv, nf;       /* vertices, triangles */
+  uint32_t cap_v, cap_f; /* allocated capacity */
+  double *pos;           /* 3 nv */
+  uint32_t *tri;         /* 3 nf, counter-clockwise from outside */
+} sessile_surface;
+
+void sessile_surface_free(sessile_surface *s);
+/* Makes room for nv vertices and nf triangles (keeps contents). */
+sessile_status sessile_surface_reserve(sessile_surface *s, uint32_t nv, uint32_t nf);
+/* Deep copy (dst is freed first). */
+sessile_status sessile_surface_copy(const sessile_surface *src, sessile_surface *dst);
+
+/* Icosphere: level 1 is the icosahedron (12 vertices, 20 triangles); each
+ * further level splits every triangle into 4 and projects onto the sphere:
+ * level L has 10*4^(L-1)+2 vertices and 20*4^(L-1) triangles (level 4: 642
+ * vertices, 1280 triangles; docs/model.md reconciles Table 1's "642"). */
+sessile_status sessile_surface_icosphere(int level, double radius, const double center[3],
+                                         sessile_surface *out);
+
+/* Vertex adjacency as CSR: the neighbours of v are nbr[off[v] .. off[v+1]),
+ * sorted ascending (so results do not depend on triangle order).  Caller
+ * frees off and nbr with free(). */
+sessile_status sessile_surface_vertex_neighbours(const sessile_surface *s, uint32_t **off,
+                                                 uint32_t **nbr);
+/* Vertex -> incident triangles as CSR (ascending triangle index). */
+sessile_status sessile_surface_vertex_faces(const sessile_surface *s, uint32_t **off,
+                                            uint32_t **faces);
+
+/* Area-weighted vertex normals (sum of the incident faces' cross products,
+ * normalised; the reference for the GPU kernel).  n has 3 nv doubles. */
+void sessile_surface_normals(const sessile_surface *s, double *n);
+
+/* Mesh statistics for the manifest. */
+typedef struct sessile_surface_stats {
+  uint32_t nv, nf, ne;
+  double area, volume;          /* cm^2, cm^3 (volume by the divergence theorem) */
+  double edge_min, edge_mean, edge_max;
+  double tri_area_min;
+  double bbox_min[3], bbox_max[3];
+} sessile_surface_stats;
+void sessile_surface_stats_of(const sessile_surface *s, sessile_surface_stats *st);
+
+/* Checks the invariants: indices in range, every edge in exactly two
+ * triangles with opposite directions (closed, consistently oriented
+ * 2-manifold), Euler characteristic V - E + F == euler, no triangle with
+ * area <= min_area, no duplicate triangles, no unreferenced vertices.
+ * Returns SESSILE_OK, or SESSILE_ERR_INTERNAL with a message naming the first
+ * violation. */
+sessile_status sessile_surface_check(const sessile_surface *s, int euler, double min_area);
+
+/* --- remeshing (§4.6) ------------------------------------------------------ */
+typedef struct sessile_remesh_options {
+  double insert_len; /* split edges longer than this (Table 1: 0.6) */
+  double fuse_len;   /* fuse vertices of edges shorter than this (Table 1: 0.5) */
+  double min_area;   /* collapse triangles with a smaller area (Table 1: 0.1) */
+  int max_passes;    /* safety bound on split/collapse sweeps (default 8) */
+} sessile_remesh_options;
+void sessile_remesh_options_default(sessile_remesh_options *o);
+
+typedef struct sessile_remesh_stats {
+  uint32_t splits, fusions, area_collapses, rejected; /* rejected: guarded-out collapses */
+} sessile_remesh_stats;
+
+/* Remeshes in place.  normals: the current vertex normals (3 nv), used to
+ * place inserted vertices on a curve through both ends (not the straight
+ * midpoint); NULL computes them.  The surface stays a closed, consistently
+ * oriented 2-manifold; the reading of the thresholds that cannot oscillate is
+ * in docs/model.md. */
+sessile_status sessile_remesh(sessile_surface *s, const double *normals,
+                              const sessile_remesh_options *o, sessile_remesh_stats *st);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
