@@ -122,7 +122,7 @@ sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box,
   sessile_status st = SESSILE_OK;
   exr_sink sink = {-1, 0};
   exr_context_t ctx = NULL;
-  exr_encode_pipeline_t enc;
+  exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
   int enc_live = 0;
   float **img = calloc((size_t)nchan, sizeof *img);
   SESSILE_CHECK(img, SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
@@ -194,6 +194,7 @@ sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box,
       ch->user_data_type = EXR_PIXEL_FLOAT;
       ch->encode_from_ptr = (const uint8_t *)(img[c] + (size_t)y * w);
     }
+    if (y == 0) EXR_TRY(exr_encoding_choose_default_routines(ctx, part, &enc), "choose_default_routines");
     EXR_TRY(exr_encoding_run(ctx, part, &enc), "encoding_run");
   }
   if (enc_live) exr_encoding_destroy(ctx, &enc);
