@@ -14,7 +14,7 @@
 #include <zlib.h>
 #include "io_internal.h"
 
-enum { VTK_TETRA = 10, ZLEVEL = 6, BLOCK_TARGET = 1 << 18 /* bytes of raw data per block */ };
+enum { VTK_TETRA = 10, ZLEVEL = 1, BLOCK_TARGET = 1 << 18 /* bytes of raw data per block */ };
 
 /* One appended array: ntuples tuples of tuple_bytes bytes, produced by fill. */
 typedef struct vtu_array {

@@ -1,0 +1,189 @@
+#!/usr/bin/env bash
+# The io writers' files opened by readers that share no code with sessile:
+#   .vtu/.pvd  VTK's own XML reader (python3-vtk9) and meshio (python3-meshio)
+#   .exr       exrheader (openexr) and OpenImageIO's oiiotool/iinfo (openimageio-tools)
+#   .ply/.obj  meshio (python3-meshio)
+# io_samples writes files with analytic content (see tests/io/io_samples.c);
+# the expected values are recomputed here from the same formulas.  A missing
+# reader is a failure, not a skip: install it with tools/install.sh.
+set -u
+GEN="$1"
+PY=/usr/bin/python3
+fails=0 passes=0
+check() { # description, command...
+  local what="$1"; shift
+  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi
+}
+
+missing=()
+[ -x "$PY" ] || missing+=("/usr/bin/python3 (apt-get install python3)")
+for m in "vtkmodules.vtkIOXML python3-vtk9" "meshio python3-meshio" "numpy python3-numpy"; do
+  set -- $m
+  "$PY" -c "import $1" 2>/dev/null || missing+=("python module $1 (apt-get install $2)")
+done
+command -v exrheader >/dev/null || missing+=("exrheader (apt-get install openexr)")
+command -v oiiotool >/dev/null || missing+=("oiiotool (apt-get install openimageio-tools)")
+command -v iinfo >/dev/null || missing+=("iinfo (apt-get install openimageio-tools)")
+if [ ${#missing[@]} -gt 0 ]; then
+  for m in "${missing[@]}"; do echo "FAIL missing reader: $m"; done
+  echo "install the readers with tools/install.sh"
+  exit 1
+fi
+
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+if ! "$GEN" "$T/out"; then
+  echo "FAIL io_samples could not write the sample files"
+  exit 1
+fi
+
+# --- EXR: exrheader ------------------------------------------------------------
+exrheader "$T/out/slice_z.exr" >"$T/exrheader.txt" 2>&1
+has() { grep -qF -- "$2" "$1"; }
+check "exrheader reads slice_z.exr" test -s "$T/exrheader.txt"
+check "exrheader: channel c is 32-bit float" has "$T/exrheader.txt" "c, 32-bit floating-point"
+check "exrheader: channel ux is 32-bit float" has "$T/exrheader.txt" "ux, 32-bit floating-point"
+check "exrheader: zip compression" has "$T/exrheader.txt" "compression (type compression): zip"
+check "exrheader: data window 9 x 7" has "$T/exrheader.txt" "dataWindow (type box2i): (0 0) - (8 6)"
+check "exrheader: sessile:plane" has "$T/exrheader.txt" 'sessile:plane (type string): "z=0.6"'
+check "exrheader: sessile:origin" has "$T/exrheader.txt" "sessile:origin (type v3f): (-1 0.5 0.6)"
+check "exrheader: sessile:spacing" has "$T/exrheader.txt" "sessile:spacing (type v2f): (0.25 0.25)"
+check "exrheader: sessile:iteration" has "$T/exrheader.txt" "sessile:iteration (type int): 12"
+
+# --- EXR: OpenImageIO --------------------------------------------------------------
+iinfo -v "$T/out/slice_z.exr" >"$T/iinfo.txt" 2>&1
+check "iinfo: 9 x 7, 2 float channels c, ux" eval 'has "$T/iinfo.txt" "9 x    7, 2 channel, float openexr" && has "$T/iinfo.txt" "channel list: c, ux"'
+check "iinfo: sessile:plane, origin, spacing, iteration" eval 'has "$T/iinfo.txt" "sessile:plane: \"z=0.6\"" &&
+  has "$T/iinfo.txt" "sessile:origin: -1, 0.5, 0.6" && has "$T/iinfo.txt" "sessile:spacing: 0.25, 0.25" &&
+  has "$T/iinfo.txt" "sessile:iteration: 12"'
+oiiotool --dumpdata "$T/out/slice_z.exr" >"$T/dump.txt" 2>&1
+# every pixel (i, j) sits at x = -1 + 0.25 i, y = 0.5 + 0.25 j on the plane z = 0.6
+check "oiiotool --dumpdata: all 63 pixels == c = 1+2x+3y+4z, ux = x-y (rel. 1e-6)" "$PY" - "$T/dump.txt" <<'PYEOF'
+import re, sys
+n, err = 0, 0.0
+for line in open(sys.argv[1]):
+    m = re.match(r"\s*Pixel \((\d+), (\d+)\): (\S+) (\S+)", line)
+    if not m: continue
+    i, j, c, ux = int(m[1]), int(m[2]), float(m[3]), float(m[4])
+    x, y, z = -1 + 0.25 * i, 0.5 + 0.25 * j, 0.6
+    err = max(err, abs(c - (1 + 2 * x + 3 * y + 4 * z)) / 12, abs(ux - (x - y)) / 3)
+    n += 1
+print(f"     {n} pixels, max relative error {err:.2e}")
+sys.exit(0 if n == 63 and err <= 1e-6 else 1)
+PYEOF
+
+# --- VTU / PVD / PLY / OBJ: VTK and meshio ----------------------------------------
+"$PY" - "$T/out" <<'PYEOF'
+import os, sys, xml.etree.ElementTree as ET
+import numpy as np
+import meshio
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+d = sys.argv[1]
+fails = 0
+def check(what, ok, detail=""):
+    global fails
+    print(("PASS " if ok else "FAIL ") + what + (f"  ({detail})" if detail else ""))
+    fails += 0 if ok else 1
+
+def lin(p): return 1 + 2 * p[:, 0] + 3 * p[:, 1] + 4 * p[:, 2]
+N, M = 17 * 13 * 9, 6 * 16 * 12 * 8   # nodes, tets of the 16 x 12 x 8 box, h = 0.125
+
+def read_vtk(path):
+    r = vtkXMLUnstructuredGridReader()
+    r.SetFileName(path)
+    r.Update()
+    return r, r.GetOutput()
+
+def check_vtu(name, step):
+    r, g = read_vtk(os.path.join(d, name))
+    check(f"VTK reads {name} without errors", r.GetErrorCode() == 0 and g is not None)
+    check(f"VTK {name}: {N} points, {M} cells", g.GetNumberOfPoints() == N and g.GetNumberOfCells() == M,
+          f"{g.GetNumberOfPoints()} points, {g.GetNumberOfCells()} cells")
+    pts = vtk_to_numpy(g.GetPoints().GetData())
+    types = vtk_to_numpy(g.GetCellTypesArray())
+    check(f"VTK {name}: every cell is a tetra (type 10)", types.size == M and np.all(types == 10))
+    conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    a, b, c, e = (pts[conn[:, q]] for q in range(4))
+    vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), e - a) / 6
+    check(f"VTK {name}: all tets positively oriented, volumes sum to the box (3.0)",
+          vol.min() > 0 and abs(vol.sum() - 3.0) < 1e-12, f"min {vol.min():.3e}, sum {vol.sum():.15g}")
+    faces = np.sort(np.concatenate([conn[:, [0, 1, 2]], conn[:, [0, 1, 3]], conn[:, [0, 2, 3]], conn[:, [1, 2, 3]]]), axis=1)
+    _, counts = np.unique(faces, axis=0, return_counts=True)
+    bnd = 4 * (16 * 12 + 16 * 8 + 12 * 8)
+    check(f"VTK {name}: conforming (faces shared by 2 tets, {bnd} boundary triangles)",
+          counts.max() == 2 and np.sum(counts == 1) == bnd, f"boundary {np.sum(counts == 1)}")
+    pd = g.GetPointData()
+    cc, u, s = (pd.GetArray(k) for k in ("c", "u", "solid"))
+    check(f"VTK {name}: arrays c Float64, u Float64 x3, solid UInt8",
+          cc is not None and u is not None and s is not None and cc.GetDataTypeAsString() == "double" and
+          u.GetNumberOfComponents() == 3 and u.GetDataTypeAsString() == "double" and
+          s.GetDataTypeAsString() == "unsigned char")
+    if cc is None or u is None or s is None: return pts, None
+    ec = np.abs(vtk_to_numpy(cc) - (lin(pts) + step)).max()
+    eu = np.abs(vtk_to_numpy(u) - np.stack([pts[:, 1], -pts[:, 0], pts[:, 2]], axis=1)).max()
+    check(f"VTK {name}: c == 1+2x+3y+4z+{step} at the points", ec <= 1e-12, f"max abs error {ec:.1e}, tol 1e-12")
+    check(f"VTK {name}: u == (y, -x, z) at the points", eu <= 1e-15, f"max abs error {eu:.1e}")
+    check(f"VTK {name}: solid == (z < 0.5)", np.array_equal(vtk_to_numpy(s), (pts[:, 2] < 0.5).astype(np.uint8)))
+    return pts, conn
+
+pts0, conn0 = check_vtu("fields_0000.vtu", 0)
+
+# meshio: a second reader of the same file
+m = meshio.read(os.path.join(d, "fields_0000.vtu"))
+tet = [cb.data for cb in m.cells if cb.type == "tetra"]
+check("meshio reads fields_0000.vtu: same points and tets as VTK",
+      len(m.cells) == 1 and len(tet) == 1 and np.array_equal(m.points, pts0) and np.array_equal(tet[0], conn0))
+check("meshio fields_0000.vtu: c, u, solid equal the analytic fields",
+      np.abs(m.point_data["c"].reshape(-1) - lin(m.points)).max() <= 1e-12 and
+      np.array_equal(m.point_data["u"], np.stack([m.points[:, 1], -m.points[:, 0], m.points[:, 2]], axis=1)) and
+      np.array_equal(m.point_data["solid"].reshape(-1), (m.points[:, 2] < 0.5).astype(np.uint8)))
+
+# PVD: an XML collection; every data set read with VTK, its c offset = its timestep
+root = ET.parse(os.path.join(d, "series.pvd")).getroot()
+ds = root.findall("./Collection/DataSet")
+check("series.pvd is a VTKFile Collection with 2 data sets",
+      root.tag == "VTKFile" and root.get("type") == "Collection" and len(ds) == 2)
+for e in ds:
+    step = int(e.get("timestep"))
+    r, g = read_vtk(os.path.join(d, e.get("file")))
+    p = vtk_to_numpy(g.GetPoints().GetData())
+    off = vtk_to_numpy(g.GetPointData().GetArray("c")) - lin(p)
+    check(f"series.pvd timestep {step} -> {e.get('file')}: VTK reads it, c - (1+2x+3y+4z) == {step}",
+          g.GetNumberOfCells() == M and np.abs(off - step).max() <= 1e-12)
+
+# PLY and OBJ (meshio); the OBJ holds exact doubles, the PLY float32
+ply = meshio.read(os.path.join(d, "sponge.ply"))
+obj = meshio.read(os.path.join(d, "sponge.obj"))
+center, r = np.array([0.5, -0.25, 1.0]), 0.75
+ptri = [cb.data for cb in ply.cells if cb.type == "triangle"]
+otri = [cb.data for cb in obj.cells if cb.type == "triangle"]
+check("meshio reads sponge.ply: 162 vertices, 320 triangles",
+      ply.points.shape == (162, 3) and len(ptri) == 1 and ptri[0].shape == (320, 3))
+check("meshio reads sponge.obj: 162 vertices, 320 triangles, the PLY's triangles",
+      obj.points.shape == (162, 3) and len(otri) == 1 and np.array_equal(otri[0], ptri[0]))
+rad = np.linalg.norm(obj.points - center, axis=1)
+check("OBJ vertices lie on the sphere (|p - c| == 0.75)", np.abs(rad - r).max() <= 1e-12,
+      f"max error {np.abs(rad - r).max():.1e}")
+check("PLY positions == float32 of the OBJ's", np.abs(ply.points - obj.points).max() <= 6e-8 * 2,
+      f"max abs diff {np.abs(ply.points - obj.points).max():.1e}, tol 1.2e-7")
+pn = np.stack([ply.point_data[k].reshape(-1) for k in ("nx", "ny", "nz")], axis=1)
+on = obj.point_data.get("obj:vn")
+check("PLY normals == OBJ normals (float32), unit length, outward",
+      on is not None and np.abs(pn - on).max() <= 1.2e-7 and np.abs(np.linalg.norm(on, axis=1) - 1).max() <= 1e-12 and
+      np.min(np.einsum("ij,ij->i", on, (obj.points - center) / r)) > 0.99)
+check("PLY extra property c == 1+2x+3y+4z (float32)",
+      np.abs(ply.point_data["c"].reshape(-1) - lin(obj.points)).max() <= 1e-6 * 8,
+      f"max abs diff {np.abs(ply.point_data['c'].reshape(-1) - lin(obj.points)).max():.1e}")
+p = obj.points[otri[0]]
+vol = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6
+check("OBJ triangles are counter-clockwise from outside (enclosed volume > 0, < the sphere's)",
+      0.9 * 4 / 3 * np.pi * r ** 3 < vol < 4 / 3 * np.pi * r ** 3, f"volume {vol:.4f}")
+print(f"python: {fails} failed")
+sys.exit(1 if fails else 0)
+PYEOF
+py=$?
+check "VTK / meshio checks (lines above)" test "$py" -eq 0
+echo "$passes passed, $fails failed"
+[ "$fails" -eq 0 ]
