@@ -20,8 +20,11 @@ extern "C" {
 #endif
 
 /* --- atomic files ------------------------------------------------------------ */
-/* An output file being written: data goes to "<path>.tmp.<pid>" until commit
- * renames it to path (after fflush + fsync); abort removes the temporary. */
+/* An output file being written: data goes to "<path>.tmp.<pid>" (same
+ * folder) until commit renames it to path (after fflush + fsync, then an
+ * fsync of the folder); abort removes the temporary.  Errors are
+ * SESSILE_ERR_IO with the file's name and errno's text.  After commit or
+ * abort the struct holds nothing (both free everything). */
 typedef struct sessile_atomic_file {
   FILE *f;
   char *path, *tmp;
@@ -57,15 +60,20 @@ typedef struct sessile_slice_channel {
 /* Writes an EXR with float32 channels; header attributes "sessile:plane"
  * (string, e.g. "z=3.5"), "sessile:origin" (v3f: the world position of pixel
  * (0,0)), "sessile:spacing" (v2f: cm per pixel along width, height),
- * "sessile:iteration" (int). */
+ * "sessile:iteration" (int).  One scanline part named "slice", ZIP
+ * compression (level 6).  A plane outside the box is SESSILE_ERR_USAGE. */
 sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
                                        double value, int nchan, const sessile_slice_channel *chan,
                                        int iteration);
 
 /* --- volume fields -------------------------------------------------------------- */
-/* VTK XML UnstructuredGrid of the box's tetrahedra (appended raw binary,
- * Float64 points, Int64 connectivity) with scalar point data (double) and
- * optional uint8 point data (e.g. the solid mask). */
+/* VTK XML UnstructuredGrid of the box's tetrahedra (cell type 10, the 6 Kuhn
+ * tets of each cube as sessile_box_tet orders them) with point data: Float64
+ * scalars or 3-vectors, or UInt8 (e.g. the solid mask).  Appended binary,
+ * zlib-compressed blocks (vtkZLibDataCompressor, header_type UInt64, level 1),
+ * Float64 points, Int32 connectivity/offsets (Int64 when 4 * tets > 2^31-1),
+ * UInt8 types.  Output is byte-identical for the same input, whatever the
+ * number of OpenMP threads compressing it.  Sizes: docs/io.md. */
 typedef struct sessile_point_data {
   const char *name;
   const double *f64; /* one per node, or NULL */
