@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include "sessile/surface.h"
 
-static void shape_must(sessile_status s) {
+static inline void shape_must(sessile_status s) {
   if (s == SESSILE_OK) return;
   printf("FAIL building a test shape: %s\n", sessile_error_message());
   exit(1);
@@ -17,7 +17,7 @@ static void shape_must(sessile_status s) {
 /* Unit icosphere rotated about x so icosahedron vertex 5, (0, 1, t)/|.|,
  * lands exactly on +z (and its antipode on -z); the poles are then set to
  * exactly (0, 0, +-1) so they lie on grid lines after scaling. */
-static void shape_unit_polar(int level, sessile_surface *s) {
+static inline void shape_unit_polar(int level, sessile_surface *s) {
   const double c0[3] = {0, 0, 0};
   shape_must(sessile_surface_icosphere(level, 1.0, c0, s));
   const double t = (1.0 + sqrt(5.0)) / 2.0, a = atan2(1.0, t); /* angle of vertex 5 from +z */
@@ -32,7 +32,7 @@ static void shape_unit_polar(int level, sessile_surface *s) {
 }
 
 /* r(theta, phi) * unit direction + centre, for the unit polar icosphere. */
-static void shape_radial(int level, double R, const double c[3],
+static inline void shape_radial(int level, double R, const double c[3],
                          double (*rfun)(double theta, double phi), sessile_surface *s) {
   shape_unit_polar(level, s);
   for (uint32_t v = 0; v < s->nv; v++) {
@@ -43,10 +43,10 @@ static void shape_radial(int level, double R, const double c[3],
   }
 }
 
-static double bumps(double th, double ph) { return 1.0 + 0.4 * sin(3 * th) * cos(4 * ph); }
+static inline double bumps(double th, double ph) { return 1.0 + 0.4 * sin(3 * th) * cos(4 * ph); }
 /* Lobes at the poles and the equator, waists at 45 degrees: vertical lines
  * through the waist region cross the surface 4 times (overhangs). */
-static double star(double th, double ph) {
+static inline double star(double th, double ph) {
   double c = cos(2 * th);
   return 0.5 + 0.5 * c * c;
 }
