@@ -165,6 +165,32 @@ static void test_probe_and_step(const sessile_surface *s) {
       free(rpos), free(rprobed), free(rtr), free(rlen), free(dir), free(rdir);
 }
 
+/* How the probe average depends on S (printed for docs/growth.md): the
+ * average of S samples tends to the integral of w(d) c(d) over [0, 1] as S
+ * grows; report each S's max relative distance from S = 1025. */
+static void measure_samples(const sessile_surface *s) {
+  uint32_t nv = s->nv;
+  double *f = dalloc(sessile_box_nodes(&box)), *nrm = dalloc(3 * nv), *ref = dalloc(nv), *a = dalloc(nv);
+  smooth_field(f);
+  sessile_surface_normals(s, nrm);
+  /* W_S = (1/S) sum_k w(d_k): the probe of a uniform field c = 1. */
+#define WSUM(S, out) do { out = 0; for (uint32_t k = 0; k < (S); k++) out += 1.0 / (20.0 * k / ((S) - 1) + 1); out /= (S); } while (0)
+  double wref, ws;
+  WSUM(1025u, wref);
+  sessile_growth_ref_probe(&box, s->pos, nrm, nv, f, 0.1, 1025, ref);
+  for (uint32_t i = 0; i < nv; i++) ref[i] /= wref;
+  const uint32_t ss[] = {2, 4, 8, 16, 32};
+  for (size_t q = 0; q < sizeof ss / sizeof ss[0]; q++) {
+    sessile_growth_ref_probe(&box, s->pos, nrm, nv, f, 0.1, ss[q], a);
+    WSUM(ss[q], ws);
+    for (uint32_t i = 0; i < nv; i++) a[i] /= ws;
+    printf("MEASURE probe S=%u: weight sum W_S = %.4f (S=1025: %.4f); max relative difference of "
+           "probe/W_S from S=1025: %.3e\n", ss[q], ws, wref, t_relerr(a, ref, nv));
+  }
+#undef WSUM
+  free(f), free(nrm), free(ref), free(a);
+}
+
 static void test_random(void) {
   /* Uniforms in [0, 1): range, mean and per-component independence of the
    * hash (a 30000-sample mean has sd 0.29/sqrt(30000) = 0.0017). */
@@ -356,6 +382,46 @@ static void test_radiate_sphere(void) {
   free(f), free(pos), free(len), free(nrm), free(rpos), free(fl);
 }
 
+/* Timing (printed, never asserted): one step on 10242 vertices with a
+ * 65x65x49 field. */
+static void timing(void) {
+  sessile_box b = {.origin = {0, 0, 0}, .h = 0.25, .n = {65, 65, 49}};
+  sessile_surface s = {0};
+  const double c[3] = {8.03, 7.98, 6.01};
+  shape_radial(6, 5.0, c, bumps, &s);
+  uint32_t nodes = sessile_box_nodes(&b), nv = s.nv;
+  double *f = dalloc(nodes), *pos = dalloc(3 * nv), *rpos = dalloc(3 * nv);
+  for (uint32_t i = 0; i < nodes; i++) {
+    double q[3];
+    sessile_box_node_pos(&b, i, q);
+    f[i] = 0.5 + 0.4 * sin(0.3 * q[0]) * cos(0.2 * q[1]);
+  }
+  sessile_vec *v = NULL;
+  must("vec", sessile_vec_create(la, nodes, &v));
+  must("upload", sessile_vec_upload(v, f));
+  sessile_growth_params p;
+  sessile_growth_params_default(&p);
+  p.halichondrid = 1;
+  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  double best = 1e30;
+  for (int r = 0; r < 3; r++) {
+    double t0 = sessile_wall_seconds();
+    must("step", sessile_growth_gpu_step(gg, &b, v, &p, 3, 1, pos, NULL, NULL, NULL));
+    best = fmin(best, sessile_wall_seconds() - t0);
+  }
+  double t0 = sessile_wall_seconds();
+  must("ref step", sessile_growth_ref_step(&b, &s, f, &p, 3, 1, rpos, NULL, NULL, NULL));
+  double tref = sessile_wall_seconds() - t0;
+  t_check("10242-vertex step: GPU vs reference positions (abs, cm)", maxabs(pos, rpos, 3 * nv),
+          tol(1e-13, 1e-5));
+  printf("TIME growth step (normals, probe S=%u, %d translocation pass, Halichondrid grow), %u "
+         "vertices, 65x65x49 field: GPU call %.4f s (best of 3, downloads included), host "
+         "reference %.4f s\n", p.probe_samples, p.translocate_passes, nv, best, tref);
+  sessile_vec_destroy(v);
+  sessile_surface_free(&s);
+  free(f), free(pos), free(rpos);
+}
+
 static void test_errors(void) {
   sessile_growth_params p;
   sessile_growth_params_default(&p);
@@ -385,10 +451,12 @@ int main(int argc, char **argv) {
   test_normals(&s);
   test_probe_and_step(&s);
   test_random();
+  measure_samples(&s);
   test_chindapol();
   test_translocate(&s);
   test_radiate_sphere();
   test_errors();
+  timing();
   sessile_surface_free(&s);
   sessile_growth_gpu_destroy(gg);
   sessile_la_destroy(la);
