@@ -49,7 +49,7 @@ void sessile_growth_gpu_destroy(sessile_growth_gpu *g);
 sessile_status sessile_growth_gpu_set_surface(sessile_growth_gpu *g, const sessile_surface *s);
 
 /* Marks box nodes inside the closed surface: solid[i] = 1 inside, 0 outside
- * (robust ray parity along +z, see docs/model.md). solid: device buffer of
+ * (robust ray parity along +z, see docs/growth.md). solid: device buffer of
  * sessile_box_nodes(box) uint32. */
 sessile_status sessile_growth_gpu_classify(sessile_growth_gpu *g, const sessile_box *box,
                                            sessile_buffer *solid);
@@ -67,6 +67,14 @@ sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box 
                                        const sessile_vec *c, const sessile_growth_params *p,
                                        uint64_t seed, uint32_t iteration, double *new_pos,
                                        double *probed, double *translocated, double *length);
+
+/* The growth directions of the last step (3 nv: N, or normalize(N + r) for
+ * Halichondrid), e.g. to check the random vectors against the reference. */
+sessile_status sessile_growth_gpu_directions(sessile_growth_gpu *g, double *dir);
+
+/* Seconds of host work plus GPU run of the last classify call (binning
+ * included), for benchmarks. */
+double sessile_growth_gpu_classify_seconds(const sessile_growth_gpu *g);
 
 #ifdef __cplusplus
 }

@@ -37,6 +37,10 @@ void sessile_vec_destroy(sessile_vec *v);
 uint32_t sessile_vec_size(const sessile_vec *v);
 sessile_status sessile_vec_upload(sessile_vec *v, const double *src);   /* n values */
 sessile_status sessile_vec_download(sessile_vec *v, double *dst);       /* n values */
+/* The vector's device buffer (n reals of sessile_la_real_bytes each, padded
+ * with zeros to a multiple of 4), for kernels of other layers; the vector
+ * keeps owning it. */
+sessile_buffer *sessile_vec_buffer(const sessile_vec *v);
 
 /* Each runs on the device and waits (tests, benchmarks, simple callers). */
 sessile_status sessile_vec_fill(sessile_la *la, double value, sessile_vec *y);

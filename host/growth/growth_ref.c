@@ -1,0 +1,173 @@
+/* References of the per-vertex growth kernels (probe, translocate, grow) and
+ * the parameter defaults.  Each mirrors shaders/growth/<name>.comp. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/growth_ref.h"
+
+void sessile_growth_params_default(sessile_growth_params *p) {
+  memset(p, 0, sizeof *p);
+  p->probe_offset = 0.1;      /* Table 1: concentration offset distance */
+  p->probe_samples = 8;       /* ours, docs/growth.md */
+  p->t_give = 0.05;           /* ours: N T < 1 for valences up to 19 */
+  p->translocate_passes = 1;  /* ours */
+  p->nutrient_threshold = 0.0; /* ours: Iroquois off by default */
+  p->growth_threshold = 0.0;  /* Table 1 */
+  p->growth_rate = 5.0;       /* Table 1: Gr */
+  p->l_max = 0.02;            /* ours, cm */
+  p->kinetic_order = 1.4;     /* Table 1: n */
+  p->growth_constant = 1.0;   /* Table 1: K */
+  p->max_growth = 0.1;        /* ours, cm */
+  p->halichondrid = 0;        /* Table 1: radiate accretive */
+  p->normal_offset_radius = 0.02; /* Table 1: R */
+}
+
+sessile_status sessile_growth_params_check(const sessile_growth_params *p) {
+  SESSILE_CHECK(p->probe_samples >= 2 && p->probe_samples <= 1024, SESSILE_ERR_USAGE,
+                "probe samples must be between 2 and 1024 (got %u)", p->probe_samples);
+  SESSILE_CHECK(p->probe_offset >= 0 && isfinite(p->probe_offset), SESSILE_ERR_USAGE,
+                "concentration offset distance must be >= 0 (got %g)", p->probe_offset);
+  SESSILE_CHECK(p->t_give >= 0 && p->t_give <= 1, SESSILE_ERR_USAGE,
+                "translocation coefficient T_give must be in [0, 1] (got %g)", p->t_give);
+  SESSILE_CHECK(p->translocate_passes >= 0 && p->translocate_passes <= 1000, SESSILE_ERR_USAGE,
+                "translocation passes must be between 0 and 1000 (got %d)", p->translocate_passes);
+  SESSILE_CHECK(p->growth_constant > 0 && p->kinetic_order > 0, SESSILE_ERR_USAGE,
+                "Chindapol constant K and kinetic order n must be > 0 (got %g, %g)",
+                p->growth_constant, p->kinetic_order);
+  SESSILE_CHECK(p->max_growth >= 0 && isfinite(p->max_growth), SESSILE_ERR_USAGE,
+                "maxgrowth must be >= 0 (got %g)", p->max_growth);
+  SESSILE_CHECK(p->normal_offset_radius >= 0 && isfinite(p->normal_offset_radius),
+                SESSILE_ERR_USAGE, "normal offset radius must be >= 0 (got %g)",
+                p->normal_offset_radius);
+  SESSILE_CHECK(isfinite(p->growth_rate) && isfinite(p->l_max), SESSILE_ERR_USAGE,
+                "growth rate and Lmax must be finite");
+  return SESSILE_OK;
+}
+
+/* --- probe (eq 6) ------------------------------------------------------------ */
+void sessile_growth_ref_probe(const sessile_box *box, const double *pos, const double *normals,
+                              uint32_t nv, const double *field, double offset, uint32_t samples,
+                              double *probed) {
+  for (uint32_t v = 0; v < nv; v++) {
+    const double *x = pos + 3 * v, *nn = normals + 3 * v;
+    double sum = 0;
+    for (uint32_t k = 0; k < samples; k++) {
+      double d = (double)k / (double)(samples - 1);
+      double s = d * offset, p[3];
+      for (int a = 0; a < 3; a++) p[a] = x[a] + s * nn[a];
+      double w = 1.0 / (20.0 * d + 1.0);
+      sum += w * sessile_box_interpolate(box, field, p);
+    }
+    probed[v] = sum / (double)samples;
+  }
+}
+
+/* --- translocation (eqs 7-8) ------------------------------------------------- */
+static double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
+
+void sessile_growth_ref_translocate(const uint32_t *off, const uint32_t *nbr, uint32_t nv,
+                                    double t, const double *c, double *out) {
+  for (uint32_t v = 0; v < nv; v++) {
+    double s = 0;
+    for (uint32_t q = off[v]; q < off[v + 1]; q++) s += c[nbr[q]];
+    double nn = (double)(off[v + 1] - off[v]);
+    out[v] = clamp01(c[v] - nn * t * c[v] + t * s);
+  }
+}
+
+void sessile_growth_ref_translocate_sequential(const uint32_t *off, const uint32_t *nbr,
+                                               uint32_t nv, double t, double *c) {
+  for (uint32_t v = 0; v < nv; v++) {
+    double give = t * c[v];
+    for (uint32_t q = off[v]; q < off[v + 1]; q++) c[nbr[q]] = clamp01(c[nbr[q]] + give);
+    c[v] = clamp01(c[v] - (double)(off[v + 1] - off[v]) * give);
+  }
+}
+
+/* --- growth (eqs 1-2, 9-10) -------------------------------------------------- */
+double sessile_growth_chindapol(const sessile_growth_params *p, double c) {
+  if (!(c > 0)) return 0;
+  double cn = pow(c, p->kinetic_order);
+  double g = p->growth_rate * p->l_max * cn / (p->growth_constant + cn);
+  return g < 0 ? 0 : (g > p->max_growth ? p->max_growth : g);
+}
+
+/* lowbias32 (C. Wellons' hash-prospector): a strong 32-bit integer mix. */
+static uint32_t mix32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+uint32_t sessile_growth_hash(uint64_t seed, uint32_t iteration, uint32_t vertex, uint32_t component) {
+  uint32_t h = mix32(component + 0x9e3779b9u);
+  h = mix32(h ^ vertex);
+  h = mix32(h ^ iteration);
+  h = mix32(h ^ (uint32_t)(seed >> 32));
+  return mix32(h ^ (uint32_t)seed);
+}
+
+double sessile_growth_uniform(uint64_t seed, uint32_t iteration, uint32_t vertex, uint32_t component) {
+  return (double)(sessile_growth_hash(seed, iteration, vertex, component) >> 8) * 5.9604644775390625e-8;
+}
+
+void sessile_growth_ref_grow(const sessile_box *box, const double *pos, const double *normals,
+                             uint32_t nv, const double *c_tr, const sessile_growth_params *p,
+                             uint64_t seed, uint32_t iteration, double *new_pos, double *length,
+                             double *dir_out) {
+  double mx[3];
+  sessile_box_max(box, mx);
+  const double R = p->normal_offset_radius;
+  for (uint32_t v = 0; v < nv; v++) {
+    double dir[3] = {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]};
+    if (p->halichondrid) {
+      double d[3];
+      for (uint32_t a = 0; a < 3; a++) {
+        double u = sessile_growth_uniform(seed, iteration, v, a);
+        d[a] = dir[a] + R * (2.0 * u - 1.0);
+      }
+      double l = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (l > 0) dir[0] = d[0] / l, dir[1] = d[1] / l, dir[2] = d[2] / l;
+    }
+    double g = sessile_growth_chindapol(p, c_tr[v]);
+    int grows = c_tr[v] > p->nutrient_threshold && g > p->growth_threshold;
+    if (!grows) g = 0;
+    for (int a = 0; a < 3; a++) {
+      double x = pos[3 * v + a] + g * dir[a];
+      x = x < box->origin[a] ? box->origin[a] : (x > mx[a] ? mx[a] : x);
+      new_pos[3 * v + a] = x;
+      if (dir_out) dir_out[3 * v + a] = dir[a];
+    }
+    if (length) length[v] = g;
+  }
+}
+
+sessile_status sessile_growth_ref_step(const sessile_box *box, const sessile_surface *s,
+                                       const double *field, const sessile_growth_params *p,
+                                       uint64_t seed, uint32_t iteration, double *new_pos,
+                                       double *probed, double *translocated, double *length) {
+  SESSILE_CALL(sessile_growth_params_check(p));
+  uint32_t nv = s->nv, *off = NULL, *nbr = NULL;
+  SESSILE_CALL(sessile_surface_vertex_neighbours(s, &off, &nbr));
+  double *nrm = malloc((size_t)nv * 3 * sizeof *nrm + 1);
+  double *a = malloc((size_t)nv * sizeof *a + 1), *b = malloc((size_t)nv * sizeof *b + 1);
+  if (!nrm || !a || !b) {
+    free(off), free(nbr), free(nrm), free(a), free(b);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", nv);
+  }
+  sessile_surface_normals(s, nrm);
+  sessile_growth_ref_probe(box, s->pos, nrm, nv, field, p->probe_offset, p->probe_samples, a);
+  if (probed) memcpy(probed, a, (size_t)nv * sizeof *a);
+  for (int pass = 0; pass < p->translocate_passes; pass++) {
+    sessile_growth_ref_translocate(off, nbr, nv, p->t_give, a, b);
+    double *t = a;
+    a = b, b = t;
+  }
+  if (translocated) memcpy(translocated, a, (size_t)nv * sizeof *a);
+  sessile_growth_ref_grow(box, s->pos, nrm, nv, a, p, seed, iteration, new_pos, length, NULL);
+  free(off), free(nbr), free(nrm), free(a), free(b);
+  return SESSILE_OK;
+}

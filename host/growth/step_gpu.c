@@ -1,0 +1,68 @@
+/* The per-iteration growth chain on the GPU: normals -> probe -> translocate
+ * passes -> grow, recorded in one command buffer (one submit), then the
+ * downloads. */
+#include "growth_internal.h"
+
+sessile_status growth_record_normals(sessile_growth_gpu *g, const sessile_box *box) {
+  growth_push p = growth_push_of(g, box);
+  sessile_buffer *b[6] = {g->params, g->pos, g->tri, g->vf_off, g->vf, g->nrm};
+  return sessile_cmd_dispatch(g->cmd, g->k[GK_NORMALS], growth_groups(g->nv), b, &p);
+}
+
+sessile_status sessile_growth_gpu_normals(sessile_growth_gpu *g, double *normals) {
+  SESSILE_CHECK(g->nv > 0, SESSILE_ERR_USAGE, "normals: no surface uploaded (call set_surface)");
+  /* The normals kernel reads no box parameter: any box will do. */
+  sessile_box box = {.h = 1, .n = {2, 2, 2}};
+  SESSILE_CALL(sessile_cmd_begin(g->cmd));
+  SESSILE_CALL(growth_record_normals(g, &box));
+  SESSILE_CALL(sessile_cmd_end(g->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
+  return growth_download_reals(g, g->nrm, normals, 3 * (size_t)g->nv);
+}
+
+sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box *box,
+                                       const sessile_vec *c, const sessile_growth_params *prm,
+                                       uint64_t seed, uint32_t iteration, double *new_pos,
+                                       double *probed, double *translocated, double *length) {
+  SESSILE_CHECK(g->nv > 0, SESSILE_ERR_USAGE, "growth step: no surface uploaded (call set_surface)");
+  SESSILE_CALL(sessile_growth_params_check(prm));
+  SESSILE_CHECK(sessile_vec_size(c) == sessile_box_nodes(box), SESSILE_ERR_USAGE,
+                "growth step: the nutrient field has %u values, the box has %u nodes",
+                sessile_vec_size(c), sessile_box_nodes(box));
+  growth_set_params(g, box, prm);
+  growth_push p = growth_push_of(g, box);
+  p.samples = prm->probe_samples;
+  p.halichondrid = prm->halichondrid ? 1u : 0u;
+  p.seed_lo = (uint32_t)seed;
+  p.seed_hi = (uint32_t)(seed >> 32);
+  p.iteration = iteration;
+  uint32_t groups = growth_groups(g->nv);
+
+  SESSILE_CALL(sessile_cmd_begin(g->cmd));
+  SESSILE_CALL(growth_record_normals(g, box));
+  sessile_buffer *bp[5] = {g->params, g->pos, g->nrm, sessile_vec_buffer(c), g->probed};
+  SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_PROBE], groups, bp, &p));
+  sessile_buffer *cur = g->probed;
+  for (int pass = 0; pass < prm->translocate_passes; pass++) {
+    sessile_buffer *dst = g->ctr[pass & 1];
+    sessile_buffer *bt[5] = {g->params, g->nbr_off, g->nbr, cur, dst};
+    SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_TRANSLOCATE], groups, bt, &p));
+    cur = dst;
+  }
+  sessile_buffer *bg[7] = {g->params, g->pos, g->nrm, cur, g->new_pos, g->len, g->dir};
+  SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_GROW], groups, bg, &p));
+  SESSILE_CALL(sessile_cmd_end(g->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
+
+  size_t nv = g->nv;
+  SESSILE_CALL(growth_download_reals(g, g->new_pos, new_pos, 3 * nv));
+  if (probed) SESSILE_CALL(growth_download_reals(g, g->probed, probed, nv));
+  if (translocated) SESSILE_CALL(growth_download_reals(g, cur, translocated, nv));
+  if (length) SESSILE_CALL(growth_download_reals(g, g->len, length, nv));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_growth_gpu_directions(sessile_growth_gpu *g, double *dir) {
+  SESSILE_CHECK(g->nv > 0, SESSILE_ERR_USAGE, "directions: no surface uploaded (call set_surface)");
+  return growth_download_reals(g, g->dir, dir, 3 * (size_t)g->nv);
+}

@@ -1,0 +1,101 @@
+/* sessile — plain-C references of the growth kernels (O'Hagan et al.
+ * §4.4-4.5): the same algorithms as the kernels in shaders/growth/, in double, for the
+ * tests to compare the GPU with.  docs/growth.md explains each one.
+ *
+ * Nothing here allocates except where a status is returned; arrays are owned
+ * by the caller. */
+#ifndef SESSILE_GROWTH_REF_H
+#define SESSILE_GROWTH_REF_H
+
+#include <stdint.h>
+#include "sessile/box.h"
+#include "sessile/growth_gpu.h"
+#include "sessile/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Most crossings one vertical line may have with the surface (the GPU kernel
+ * keeps them in a fixed private array; more is an error, never silent). */
+#define SESSILE_GROWTH_MAX_CROSSINGS 64
+
+/* Fills p with the defaults documented in docs/growth.md (Table 1 where it
+ * gives a value, ours otherwise). */
+void sessile_growth_params_default(sessile_growth_params *p);
+/* Checks ranges (samples >= 2, t_give in [0,1], passes >= 0, ...). */
+sessile_status sessile_growth_params_check(const sessile_growth_params *p);
+
+/* --- solid classification ------------------------------------------------ */
+/* Bins the triangles by the box columns (i,j) their xy-projection may cover:
+ * the triangles of column c = i + n0 j are tri_of[off[c] .. off[c+1]).
+ * Triangles with zero xy-area are left out.  The bins are conservative (a
+ * triangle may be listed in a column its projection misses).  Caller frees
+ * off and tri_of with free(). */
+sessile_status sessile_growth_bin_columns(const sessile_box *box, const sessile_surface *s,
+                                          uint32_t **off, uint32_t **tri_of);
+
+/* The crossing heights of the vertical line through (x, y) with the listed
+ * triangles, by the watertight edge-function rule (docs/growth.md), in list
+ * order.  Returns the count, or -1 when there are more than
+ * SESSILE_GROWTH_MAX_CROSSINGS. */
+int sessile_growth_column_crossings(const double *pos, const uint32_t *tri, const uint32_t *list,
+                                    uint32_t count, double x, double y,
+                                    double z[SESSILE_GROWTH_MAX_CROSSINGS]);
+
+/* solid[node] = 1 inside the closed surface, else 0 (a node exactly on the
+ * surface counts the crossing at its own height as below it).  Fails with
+ * SESSILE_ERR_NUMERIC naming the column when a column has too many
+ * crossings. */
+sessile_status sessile_growth_ref_classify(const sessile_box *box, const sessile_surface *s,
+                                           uint32_t *solid);
+
+/* --- per-vertex kernels ---------------------------------------------------- */
+/* Eq 6: probed[v] = (1/S) sum_k w(d_k) c(x_v + d_k offset N_v), d_k = k/(S-1),
+ * w(d) = 1/(20 d + 1), c the P1 interpolant of field on the box. */
+void sessile_growth_ref_probe(const sessile_box *box, const double *pos, const double *normals,
+                              uint32_t nv, const double *field, double offset, uint32_t samples,
+                              double *probed);
+
+/* One order-independent translocation pass (eqs 7-8 summed at once):
+ * out[x] = clamp(c[x] - N_x T c[x] + T sum_{x' in nbr(x)} c[x'], 0, 1). */
+void sessile_growth_ref_translocate(const uint32_t *nbr_off, const uint32_t *nbr, uint32_t nv,
+                                    double t_give, const double *c, double *out);
+/* The paper's sequential form, in place: for x = 0..nv-1 in order, each
+ * neighbour gets clamp(c[x'] + T c[x]), then c[x] = clamp(c[x] - N_x T c[x]),
+ * with the value of c[x] read when x's turn starts. */
+void sessile_growth_ref_translocate_sequential(const uint32_t *nbr_off, const uint32_t *nbr,
+                                               uint32_t nv, double t_give, double *c);
+
+/* Eq 10 (Chindapol): clamp(Gr Lmax C^n / (K + C^n), 0, maxgrowth); C <= 0 gives 0. */
+double sessile_growth_chindapol(const sessile_growth_params *p, double c);
+
+/* The counter-based random numbers of the Halichondrid directions (eqs 1-2):
+ * a uint32 hash of (seed, iteration, vertex, component), the same in GLSL
+ * (shaders/growth/growth_common.glsl), and its uniform in [0, 1) with 24 bits
+ * (exact in float and double). */
+uint32_t sessile_growth_hash(uint64_t seed, uint32_t iteration, uint32_t vertex, uint32_t component);
+double sessile_growth_uniform(uint64_t seed, uint32_t iteration, uint32_t vertex, uint32_t component);
+
+/* Eq 9 with the thresholds: a vertex moves by g(C) along dir (N, or
+ * normalize(N + r) for Halichondrid) when C > nutrient_threshold and g >
+ * growth_threshold, then is clamped into the box.  length[v] = the distance
+ * moved before clamping (0 for a vertex that does not grow); dir (3 nv, may be
+ * NULL) = the growth direction. */
+void sessile_growth_ref_grow(const sessile_box *box, const double *pos, const double *normals,
+                             uint32_t nv, const double *c_tr, const sessile_growth_params *p,
+                             uint64_t seed, uint32_t iteration, double *new_pos, double *length,
+                             double *dir);
+
+/* The whole step as sessile_growth_gpu_step computes it (normals, probe,
+ * translocate passes in the parallel form, grow).  probed, translocated,
+ * length may be NULL. */
+sessile_status sessile_growth_ref_step(const sessile_box *box, const sessile_surface *s,
+                                       const double *field, const sessile_growth_params *p,
+                                       uint64_t seed, uint32_t iteration, double *new_pos,
+                                       double *probed, double *translocated, double *length);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
