@@ -24,8 +24,8 @@ void mesh_sort_u64(uint64_t *keys, uint64_t *tmp, size_t n);
 #include "sessile/surface.h"
 
 /* The position of a vertex inserted on edge (a, b), or of the two fused: the
- * curve midpoint, with every coordinate the two ends share exactly kept (an
- * edge on a box face stays on it), clamped into the box.  Pass the end with
+ * curve midpoint, clamped into the box; an edge whose ends lie on the same
+ * box face keeps its point on that face.  Pass the end with
  * the lower index first so the result does not depend on the edge's direction. */
 void remesh_edge_point(const double *pa, const double *na, const double *pb, const double *nb,
                        const sessile_remesh_options *o, double out[3]);

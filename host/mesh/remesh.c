@@ -33,7 +33,9 @@ void remesh_edge_point(const double *pa, const double *na, const double *pb, con
                        const sessile_remesh_options *o, double out[3]) {
   sessile_surface_curve_midpoint(pa, na, pb, nb, out);
   for (int a = 0; a < 3; a++) {
-    if (pa[a] == pb[a]) out[a] = pa[a];
+    /* Both ends on the same box face: the point stays on that face (the
+     * tilted normals near a crease would lift it off). */
+    if (pa[a] == pb[a] && (pa[a] == o->clamp_lo[a] || pa[a] == o->clamp_hi[a])) out[a] = pa[a];
     if (out[a] < o->clamp_lo[a]) out[a] = o->clamp_lo[a];
     if (out[a] > o->clamp_hi[a]) out[a] = o->clamp_hi[a];
   }

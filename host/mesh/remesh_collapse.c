@@ -29,6 +29,8 @@ typedef struct {
   uint32_t *head, *next, *mark, epoch;
   uint8_t *falive, *valive, *dirty, *ndirty;
   uint32_t *fa, *fb, *fc; /* scratch face lists, nf each */
+  double *nrm;             /* cached vertex normals, valid where nok[v] */
+  uint8_t *nok;
   double L2, cos_turn, deg_area;
 } cctx;
 
@@ -86,6 +88,11 @@ static void vertex_normal(const sessile_surface *s, const uint32_t *faces, uint3
   if (l > 0) out[0] /= l, out[1] /= l, out[2] /= l;
 }
 
+static const double *cached_normal(cctx *c, uint32_t v, const uint32_t *faces, uint32_t n) {
+  if (!c->nok[v]) vertex_normal(c->s, faces, n, c->nrm + 3 * v), c->nok[v] = 1;
+  return c->nrm + 3 * v;
+}
+
 static int on_box_face(const sessile_remesh_options *o, const double *p) {
   for (int a = 0; a < 3; a++)
     if ((isfinite(o->clamp_lo[a]) && p[a] == o->clamp_lo[a]) ||
@@ -113,6 +120,42 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
   }
   if (ns == 0) return 0;
   if (ns != 2 || opp[0] == opp[1]) return -1;
+  const double *plo = s->pos + 3 * lo, *phi = s->pos + 3 * hi;
+  /* (a), cheaply first: the merged point is within |d|/4 of the chord
+   * midpoint m (|t0 - t1|/8 <= |d|/4), so a neighbour farther than
+   * insert_len + |d|/4 from m refuses without computing normals.  Most
+   * refusals on a grown surface end here.  (A box-face vertex kept in
+   * place is |d|/2 from m.) */
+  int flo = on_box_face(c->o, plo), fhi = on_box_face(c->o, phi);
+  {
+    double m[3], slack = (flo != fhi ? 0.5 : 0.25) * sqrt(dist2(plo, phi)) + sqrt(c->L2);
+    for (int k = 0; k < 3; k++) m[k] = 0.5 * (plo[k] + phi[k]);
+    for (int side = 0; side < 2; side++) {
+      const uint32_t *fl = side ? c->fb : c->fa;
+      uint32_t nl = side ? nb : na;
+      for (uint32_t i = 0; i < nl; i++)
+        for (int k = 0; k < 3; k++) {
+          uint32_t w = s->tri[3 * fl[i] + k];
+          if (w != lo && w != hi && dist2(m, s->pos + 3 * w) > slack * slack) return -1;
+        }
+    }
+  }
+  /* The merged position: a vertex on a box face stays where it is when its
+   * partner is off the faces; otherwise the curve midpoint. */
+  double p[3];
+  if (flo != fhi) memcpy(p, flo ? plo : phi, sizeof p);
+  else
+    remesh_edge_point(plo, cached_normal(c, lo, c->fa, na), phi, cached_normal(c, hi, c->fb, nb),
+                      c->o, p);
+  for (int side = 0; side < 2; side++) {
+    const uint32_t *fl = side ? c->fb : c->fa;
+    uint32_t nl = side ? nb : na;
+    for (uint32_t i = 0; i < nl; i++)
+      for (int k = 0; k < 3; k++) {
+        uint32_t w = s->tri[3 * fl[i] + k];
+        if (w != lo && w != hi && dist2(p, s->pos + 3 * w) > c->L2) return -1;
+      }
+  }
   /* (b) no valence-3 pinch, then the link condition: the only common
    * neighbours of lo and hi are the two opposite vertices. */
   if (gather(c, opp[0], c->fc) <= 3 || gather(c, opp[1], c->fc) <= 3) return -1;
@@ -124,19 +167,7 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
       uint32_t w = s->tri[3 * c->fb[i] + k];
       if (w != lo && w != hi && w != opp[0] && w != opp[1] && c->mark[w] == ep) return -1;
     }
-  /* The merged position: a vertex on a box face stays where it is when its
-   * partner is off the faces; otherwise the curve midpoint. */
-  double p[3];
-  const double *plo = s->pos + 3 * lo, *phi = s->pos + 3 * hi;
-  int flo = on_box_face(c->o, plo), fhi = on_box_face(c->o, phi);
-  if (flo != fhi) memcpy(p, flo ? plo : phi, sizeof p);
-  else {
-    double nlo[3], nhi[3];
-    vertex_normal(s, c->fa, na, nlo);
-    vertex_normal(s, c->fb, nb, nhi);
-    remesh_edge_point(plo, nlo, phi, nhi, c->o, p);
-  }
-  /* (a) and (c) over every triangle that survives. */
+  /* (c) over every triangle that survives. */
   for (int side = 0; side < 2; side++) {
     const uint32_t *fl = side ? c->fb : c->fa;
     uint32_t nl = side ? nb : na;
@@ -149,7 +180,6 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
       for (int k = 0; k < 3; k++) {
         const double *src = (t[k] == lo || t[k] == hi) ? p : s->pos + 3 * t[k];
         memcpy(q + 3 * k, src, 3 * sizeof *q);
-        if (t[k] != lo && t[k] != hi && dist2(p, s->pos + 3 * t[k]) > c->L2) return -1;
       }
       mesh_face_cross(s->pos, t, co);
       mesh_face_cross(q, loc, cn);
@@ -173,6 +203,7 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
   for (uint32_t i = 0; i < na; i++)
     for (int k = 0; k < 3; k++) {
       uint32_t w = s->tri[3 * c->fa[i] + k];
+      c->nok[w] = 0; /* the normals of the closed 1-ring changed */
       uint32_t nw = gather(c, w, c->fb);
       for (uint32_t j = 0; j < nw; j++)
         for (int q = 0; q < 3; q++) c->ndirty[s->tri[3 * c->fb[j] + q]] = 1;
@@ -239,10 +270,12 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
   c.fa = malloc((nf + 1) * sizeof *c.fa);
   c.fb = malloc((nf + 1) * sizeof *c.fb);
   c.fc = malloc((nf + 1) * sizeof *c.fc);
+  c.nrm = malloc((nv + 1) * 3 * sizeof *c.nrm);
+  c.nok = calloc(nv + 1, 1);
   cand *ec = malloc((nc + 1) * sizeof *ec), *fcand = malloc((nf + 1) * sizeof *fcand);
   sessile_status r = SESSILE_OK;
   if (!c.head || !c.next || !c.mark || !c.falive || !c.valive || !c.dirty || !c.ndirty || !c.fa ||
-      !c.fb || !c.fc || !ec || !fcand) {
+      !c.fb || !c.fc || !c.nrm || !c.nok || !ec || !fcand) {
     r = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory remeshing %zu triangles", nf);
     goto done;
   }
@@ -301,6 +334,6 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
   r = compact(&c);
 done:
   free(c.head), free(c.next), free(c.mark), free(c.falive), free(c.valive), free(c.dirty);
-  free(c.ndirty), free(c.fa), free(c.fb), free(c.fc), free(ec), free(fcand);
+  free(c.ndirty), free(c.fa), free(c.fb), free(c.fc), free(c.nrm), free(c.nok), free(ec), free(fcand);
   return r;
 }
