@@ -34,13 +34,16 @@ typedef struct {
   double L2, cos_turn, deg_area;
 } cctx;
 
-typedef struct { double key; uint32_t a, b; } cand;
+typedef struct { uint32_t a, b; } cand;
 
-static int cmp_cand(const void *x, const void *y) {
-  const cand *p = x, *q = y;
-  if (p->key != q->key) return p->key < q->key ? -1 : 1;
-  if (p->a != q->a) return p->a < q->a ? -1 : 1;
-  return (p->b > q->b) - (p->b < q->b);
+/* Sort key: the float32 bits of a non-negative length or area (monotone as
+ * an integer) above the candidate's index, which breaks ties in the order
+ * the candidates were listed (triangle order: deterministic). */
+static uint64_t sort_key(double x, size_t i) {
+  float f = (float)x;
+  uint32_t u;
+  memcpy(&u, &f, sizeof u);
+  return (uint64_t)u << 32 | (uint32_t)i;
 }
 
 static double dist2(const double *p, const double *q) {
@@ -273,9 +276,11 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
   c.nrm = malloc((nv + 1) * 3 * sizeof *c.nrm);
   c.nok = calloc(nv + 1, 1);
   cand *ec = malloc((nc + 1) * sizeof *ec), *fcand = malloc((nf + 1) * sizeof *fcand);
+  uint64_t *ekey = malloc((nc + 1) * sizeof *ekey), *fkey = malloc((nf + 1) * sizeof *fkey);
+  uint64_t *ktmp = malloc((nc + 1) * sizeof *ktmp);
   sessile_status r = SESSILE_OK;
   if (!c.head || !c.next || !c.mark || !c.falive || !c.valive || !c.dirty || !c.ndirty || !c.fa ||
-      !c.fb || !c.fc || !c.nrm || !c.nok || !ec || !fcand) {
+      !c.fb || !c.fc || !c.nrm || !c.nok || !ec || !ekey || !fkey || !ktmp || !fcand) {
     r = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory remeshing %zu triangles", nf);
     goto done;
   }
@@ -298,22 +303,28 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
       for (int e = 0; e < 3; e++) {
         uint32_t a = t[e], b = t[(e + 1) % 3];
         double l2 = dist2(s->pos + 3 * a, s->pos + 3 * b);
-        if (a < b && (c.dirty[a] | c.dirty[b]) && l2 < F2) ec[ne++] = (cand){l2, a, b};
+        if (a < b && (c.dirty[a] | c.dirty[b]) && l2 < F2) {
+          ekey[ne] = sort_key(l2, ne);
+          ec[ne++] = (cand){a, b};
+        }
       }
       double ar = face_area(s, f);
-      if (ar < o->min_area) fcand[nfc++] = (cand){ar, f, 0};
+      if (ar < o->min_area) {
+        fkey[nfc] = sort_key(ar, nfc);
+        fcand[nfc++] = (cand){f, 0};
+      }
     }
-    qsort(ec, ne, sizeof *ec, cmp_cand);
-    qsort(fcand, nfc, sizeof *fcand, cmp_cand);
+    mesh_sort_u64(ekey, ktmp, ne);
+    mesh_sort_u64(fkey, ktmp, nfc);
     memset(c.ndirty, 0, nv);
     int changed = 0;
     for (size_t i = 0; i < ne; i++) {
-      uint32_t a = ec[i].a, b = ec[i].b;
+      uint32_t a = ec[(uint32_t)ekey[i]].a, b = ec[(uint32_t)ekey[i]].b;
       if (!c.valive[a] || !c.valive[b] || dist2(s->pos + 3 * a, s->pos + 3 * b) >= F2) continue;
       if (try_collapse(&c, a, b) == 1) st->fusions++, changed = 1;
     }
     for (size_t i = 0; i < nfc; i++) {
-      uint32_t f = fcand[i].a;
+      uint32_t f = fcand[(uint32_t)fkey[i]].a;
       if (!c.falive[f] || face_area(s, f) >= o->min_area) continue;
       if (collapse_face(&c, f)) st->area_collapses++, changed = 1;
     }
@@ -335,5 +346,6 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
 done:
   free(c.head), free(c.next), free(c.mark), free(c.falive), free(c.valive), free(c.dirty);
   free(c.ndirty), free(c.fa), free(c.fb), free(c.fc), free(c.nrm), free(c.nok), free(ec), free(fcand);
+  free(ekey), free(fkey), free(ktmp);
   return r;
 }
