@@ -93,7 +93,9 @@ typedef struct sessile_remesh_options {
 void sessile_remesh_options_default(sessile_remesh_options *o);
 
 typedef struct sessile_remesh_stats {
-  uint32_t splits, fusions, area_collapses, rejected; /* rejected: guarded-out collapses */
+  /* rejected: candidates (short edges + small triangles) left at the end
+   * because a guard refused every collapse of them */
+  uint32_t splits, fusions, area_collapses, rejected;
 } sessile_remesh_stats;
 
 /* Remeshes in place.  normals: the current vertex normals (3 nv), used to
