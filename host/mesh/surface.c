@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "mesh/mesh_internal.h"
 #include "sessile/surface.h"
 
 void sessile_surface_free(sessile_surface *s) {
@@ -190,13 +191,7 @@ sessile_status sessile_surface_vertex_neighbours(const sessile_surface *s, uint3
 /* --- normals and statistics ---------------------------------------------------- */
 
 static void face_cross(const sessile_surface *s, uint32_t f, double c[3]) {
-  const double *a = s->pos + 3 * s->tri[3 * f], *b = s->pos + 3 * s->tri[3 * f + 1],
-               *d = s->pos + 3 * s->tri[3 * f + 2];
-  double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  double v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-  c[0] = u[1] * v[2] - u[2] * v[1];
-  c[1] = u[2] * v[0] - u[0] * v[2];
-  c[2] = u[0] * v[1] - u[1] * v[0];
+  mesh_face_cross(s->pos, s->tri + 3 * f, c);
 }
 
 void sessile_surface_normals(const sessile_surface *s, double *n) {

@@ -67,24 +67,49 @@ void sessile_surface_stats_of(const sessile_surface *s, sessile_surface_stats *s
  * violation. */
 sessile_status sessile_surface_check(const sessile_surface *s, int euler, double min_area);
 
+/* A point on the curve through p0 and p1 that the vertex normals n0, n1 (unit)
+ * define: the midpoint of the cubic Bezier whose end tangents are the chord
+ * projected onto each end's tangent plane (the PN-triangle edge curve),
+ * (p0 + p1) / 2 + (t0 - t1) / 8 with ti = d - (d.ni) ni, d = p1 - p0.  On a
+ * sphere of radius R it lies within about 0.375 R phi^4 of the sphere for an
+ * edge of half-angle phi (the chord midpoint: R phi^2 / 2). */
+void sessile_surface_curve_midpoint(const double p0[3], const double n0[3], const double p1[3],
+                                    const double n1[3], double out[3]);
+
 /* --- remeshing (§4.6) ------------------------------------------------------ */
 typedef struct sessile_remesh_options {
   double insert_len; /* split edges longer than this (Table 1: 0.6) */
   double fuse_len;   /* fuse vertices of edges shorter than this (Table 1: 0.5) */
   double min_area;   /* collapse triangles with a smaller area (Table 1: 0.1) */
-  int max_passes;    /* safety bound on split/collapse sweeps (default 8) */
+  int max_passes;    /* safety bound on split sweeps (default 8: each sweep halves the
+                        longest edges; collapse sweeps always run to a fixed point) */
+  double max_turn_deg; /* a collapse may turn no remaining triangle's normal by more
+                          than this (default 60 degrees) */
+  /* The growth box: inserted and merged vertices are clamped into
+   * [clamp_lo, clamp_hi] (default: unbounded), and a vertex lying on a box
+   * face keeps its position when an edge to a vertex off the faces is fused. */
+  double clamp_lo[3], clamp_hi[3];
 } sessile_remesh_options;
 void sessile_remesh_options_default(sessile_remesh_options *o);
 
 typedef struct sessile_remesh_stats {
-  uint32_t splits, fusions, area_collapses, rejected; /* rejected: guarded-out collapses */
+  /* rejected: candidates (short edges + small triangles) left at the end
+   * because a guard refused every collapse of them */
+  uint32_t splits, fusions, area_collapses, rejected;
 } sessile_remesh_stats;
 
 /* Remeshes in place.  normals: the current vertex normals (3 nv), used to
  * place inserted vertices on a curve through both ends (not the straight
  * midpoint); NULL computes them.  The surface stays a closed, consistently
  * oriented 2-manifold; the reading of the thresholds that cannot oscillate is
- * in docs/model.md. */
+ * in docs/remesh.md.  Splits run first until no edge exceeds insert_len; then
+ * collapses (short edges, small triangles) each guarded so that no edge
+ * exceeds insert_len, the link condition holds, no normal turns more than
+ * max_turn_deg and no triangle degenerates.  Deterministic; the result is a
+ * fixed point (remeshing it again changes nothing); vertex and triangle
+ * arrays are compacted keeping their relative order.  Fails with
+ * SESSILE_ERR_NUMERIC on non-finite positions or when max_passes split
+ * sweeps leave an edge too long. */
 sessile_status sessile_remesh(sessile_surface *s, const double *normals,
                               const sessile_remesh_options *o, sessile_remesh_stats *st);
 
