@@ -156,6 +156,34 @@ static void test_random(void) {
     }
 }
 
+/* SELL-8 storage pads each row to the widest row of its slice of 8: rows of
+ * lengths 0..13 mixed inside slices, empty rows, and a last slice of 3 rows. */
+static void test_ragged_slices(void) {
+  const uint32_t n = 19;
+  uint64_t nnz = 0;
+  for (uint32_t r = 0; r < n; r++) nnz += (r * 5) % 14;
+  sessile_csr a;
+  must("csr_alloc", sessile_csr_alloc(n, n, nnz, &a));
+  uint64_t k = 0;
+  a.rowptr[0] = 0;
+  for (uint32_t r = 0; r < n; r++) {
+    uint32_t len = (r * 5) % 14; /* 0, 5, 10, 1, 6, 11, 2, ... ; row 0 and 14 empty */
+    for (uint32_t j = 0; j < len; j++, k++) {
+      a.col[k] = (r + 2 * j) % n; /* 2 is invertible mod 19: distinct for j < 19 */
+      a.val[k] = 1.0 + 0.25 * (double)j - 0.125 * (double)r;
+    }
+    a.rowptr[r + 1] = k;
+  }
+  int distinct = 1;
+  for (uint32_t r = 0; r < n; r++)
+    for (uint64_t p = a.rowptr[r]; p < a.rowptr[r + 1]; p++)
+      for (uint64_t q = a.rowptr[r]; q < p; q++) distinct &= a.col[p] != a.col[q];
+  t_true("ragged 19 rows: columns distinct within each row", distinct);
+  printf("-- ragged slices: 19 rows of lengths 0..13, rows 0 and 14 empty, last slice 3 rows\n");
+  check_csr("ragged 19 rows", &a, 77);
+  sessile_csr_free(&a);
+}
+
 static void test_structured(void) {
   sessile_csr a;
   printf("-- laplacian7 32^3\n");
@@ -414,6 +442,7 @@ int main(void) {
   tol_jac = fp64 ? 2.3e-16 : 1e-5;
   must("la_create", sessile_la_create(g, &la));
   test_random();
+  test_ragged_slices();
   test_structured();
   test_bcsr4();
   test_errors();
