@@ -92,6 +92,10 @@ static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
     s = sessile_buffer_create(la->gpu, (size_t)chunks * 4 * la->real_bytes, SESSILE_BUFFER_DEVICE,
                               &m->val);
   if (s == SESSILE_OK) s = la_upload_reals(la, m->val, 0, val, (size_t)chunks * 4);
+  /* Texel reads need every view within maxTexelBufferElements: chunks
+   * RGBA32UI texels of columns, chunks * real_bytes / 4 of values. */
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  m->texel = la->spmv_texel && chunks * la->real_bytes / 4 <= maxt && a->nrows <= maxt;
   free(sp);
   free(col);
   free(val);

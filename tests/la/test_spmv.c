@@ -435,6 +435,48 @@ static void test_nonfinite_x(void) {
   free(r);
 }
 
+/* PCG (whose p·Ap is fused into the SpMV kernel) on laplacian7 24^3 with the
+ * context's SpMV path: converged, true residual <= rtol, and the same
+ * iteration count as the host reference PCG within 1 (both compute the same
+ * recurrence; only summation orders differ). */
+static void test_cg_fused(const char *path) {
+  sessile_csr a;
+  must("laplacian7", sessile_csr_laplacian7(24, 24, 24, &a));
+  const uint32_t n = a.nrows;
+  double *b = dalloc(n), *x = dalloc(n), *d = dalloc(n);
+  sessile_fill_random(b, n, -1.0, 1.0, 9);
+  to_stored(b, n);
+  sessile_mat *m = NULL;
+  sessile_vec *vb = NULL, *vx = NULL;
+  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  must("vec_create", sessile_vec_create(la, n, &vb));
+  must("vec_create", sessile_vec_create(la, n, &vx));
+  must("upload", sessile_vec_upload(vb, b));
+  sessile_ksp_options o;
+  sessile_ksp_options_default(&o);
+  o.pc = SESSILE_PC_JACOBI;
+  sessile_solve_result r;
+  must("ksp_solve", sessile_ksp_solve(la, &o, m, vb, vx, &r));
+  must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  sessile_ref_result rr = sessile_ref_pcg(&a, d, b, x, o.rtol, o.max_it);
+  char what[160];
+  printf("-- PCG laplacian7 24^3 (%s): %d iterations, true relres %.3e; host reference %d\n", path,
+         r.iterations, r.true_relres, rr.iterations);
+  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): converged", path);
+  t_true(what, r.status == SESSILE_SOLVE_CONVERGED);
+  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): true relres vs rtol", path);
+  t_check(what, r.true_relres, o.rtol);
+  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): |iterations - host reference's|", path);
+  t_check(what, fabs((double)r.iterations - (double)rr.iterations), fp64 ? 1.0 : 1e9);
+  sessile_mat_destroy(m);
+  sessile_vec_destroy(vb);
+  sessile_vec_destroy(vx);
+  sessile_csr_free(&a);
+  free(b);
+  free(x);
+  free(d);
+}
+
 int main(void) {
   sessile_gpu *g = t_gpu(0);
   fp64 = sessile_gpu_info_of(g)->precision == 64;
@@ -447,6 +489,19 @@ int main(void) {
   test_bcsr4();
   test_errors();
   test_nonfinite_x();
+  test_cg_fused("texel buffers");
   sessile_la_destroy(la);
+  /* The storage-buffer SpMV kernels (used where texel views do not fit the
+   * device limit) on the same cases. */
+  printf("== storage-buffer SpMV path (SESSILE_SPMV_STORAGE=1)\n");
+  setenv("SESSILE_SPMV_STORAGE", "1", 1);
+  must("la_create", sessile_la_create(g, &la));
+  test_random();
+  test_ragged_slices();
+  test_structured();
+  test_nonfinite_x();
+  test_cg_fused("storage buffers");
+  sessile_la_destroy(la);
+  unsetenv("SESSILE_SPMV_STORAGE");
   return t_finish(g);
 }
