@@ -458,6 +458,7 @@ static void test_cg_fused(const char *path) {
   sessile_solve_result r;
   must("ksp_solve", sessile_ksp_solve(la, &o, m, vb, vx, &r));
   must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  memset(x, 0, (size_t)n * sizeof *x); /* zero initial guess, as the device solve's */
   sessile_ref_result rr = sessile_ref_pcg(&a, d, b, x, o.rtol, o.max_it);
   char what[160];
   printf("-- PCG laplacian7 24^3 (%s): %d iterations, true relres %.3e; host reference %d\n", path,
