@@ -467,8 +467,10 @@ static void test_cg_fused(const char *path) {
   t_true(what, r.status == SESSILE_SOLVE_CONVERGED);
   snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): true relres vs rtol", path);
   t_check(what, r.true_relres, o.rtol);
-  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): |iterations - host reference's|", path);
-  t_check(what, fabs((double)r.iterations - (double)rr.iterations), fp64 ? 1.0 : 1e9);
+  if (fp64) { /* fp32 runs refinement cycles: a different iteration count */
+    snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): |iterations - host reference's|", path);
+    t_check(what, fabs((double)r.iterations - (double)rr.iterations), 1.0);
+  }
   sessile_mat_destroy(m);
   sessile_vec_destroy(vb);
   sessile_vec_destroy(vx);
@@ -478,8 +480,9 @@ static void test_cg_fused(const char *path) {
   free(d);
 }
 
-int main(void) {
-  sessile_gpu *g = t_gpu(0);
+int main(int argc, char **argv) {
+  /* --fp32: the fp32 kernels (context precision 32) */
+  sessile_gpu *g = t_gpu(argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0);
   fp64 = sessile_gpu_info_of(g)->precision == 64;
   tol_spmv = fp64 ? 1e-14 : 1e-5;
   tol_jac = fp64 ? 2.3e-16 : 1e-5;
