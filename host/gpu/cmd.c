@@ -26,11 +26,12 @@ static sessile_status add_pool(sessile_cmd *c) {
   SESSILE_CHECK(c->ndpools < MAX_POOLS, SESSILE_ERR_TOO_LARGE,
                 "more than %d dispatches in one recording: submit in smaller pieces",
                 SETS_PER_POOL * MAX_POOLS);
-  VkDescriptorPoolSize size = {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                               .descriptorCount = SETS_PER_POOL * 16};
+  VkDescriptorPoolSize size[2] = {
+      {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = SETS_PER_POOL * 16},
+      {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, .descriptorCount = SETS_PER_POOL * 4}};
   VkDescriptorPoolCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
-                                   .maxSets = SETS_PER_POOL, .poolSizeCount = 1,
-                                   .pPoolSizes = &size};
+                                   .maxSets = SETS_PER_POOL, .poolSizeCount = 2,
+                                   .pPoolSizes = size};
   SESSILE_VK(vkCreateDescriptorPool(c->gpu->device, &ci, NULL, &c->dpools[c->ndpools]));
   c->ndpools++;
   return SESSILE_OK;
@@ -120,6 +121,26 @@ static void barrier(VkCommandBuffer cb, VkPipelineStageFlags dst_stage, VkAccess
                        NULL);
 }
 
+/* The whole-buffer texel view of `b` in format `kind`, made on first use. */
+static sessile_status texel_view(sessile_gpu *g, sessile_buffer *b, uint32_t kind, const char *kname,
+                                 VkBufferView *out) {
+  static const VkFormat fmt[4] = {VK_FORMAT_UNDEFINED, VK_FORMAT_R32_UINT, VK_FORMAT_R32G32_UINT,
+                                  VK_FORMAT_R32G32B32A32_UINT};
+  static const size_t texel_bytes[4] = {1, 4, 8, 16};
+  if (!b->view[kind]) {
+    size_t texels = b->bytes / texel_bytes[kind];
+    SESSILE_CHECK(texels <= g->info.max_texel_buffer_elements, SESSILE_ERR_TOO_LARGE,
+                  "kernel %s: a buffer of %zu texels exceeds maxTexelBufferElements (%u) of %s",
+                  kname, texels, g->info.max_texel_buffer_elements, g->info.name);
+    VkBufferViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO,
+                                 .buffer = b->buffer, .format = fmt[kind], .offset = 0,
+                                 .range = texels * texel_bytes[kind]};
+    SESSILE_VK(vkCreateBufferView(g->device, &vi, NULL, &b->view[kind]));
+  }
+  *out = b->view[kind];
+  return SESSILE_OK;
+}
+
 sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
                                     sessile_buffer *const *buffers, const void *push) {
   SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "dispatch of %s outside a recording", k->name);
@@ -128,6 +149,7 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   SESSILE_CALL(alloc_set(c, k->set_layout, &set));
   VkDescriptorBufferInfo bi[16];
   VkWriteDescriptorSet w[16];
+  VkBufferView views[16];
   for (uint32_t i = 0; i < k->nbuffers; i++) {
     SESSILE_CHECK(buffers[i], SESSILE_ERR_INTERNAL, "kernel %s: binding %u is NULL", k->name, i);
     bi[i] = (VkDescriptorBufferInfo){.buffer = buffers[i]->buffer, .offset = 0,
@@ -136,6 +158,12 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
                                   .dstBinding = i, .descriptorCount = 1,
                                   .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                   .pBufferInfo = &bi[i]};
+    if (k->texel[i]) {
+      SESSILE_CALL(texel_view(c->gpu, buffers[i], k->texel[i], k->name, &views[i]));
+      w[i].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      w[i].pBufferInfo = NULL;
+      w[i].pTexelBufferView = &views[i];
+    }
   }
   vkUpdateDescriptorSets(c->gpu->device, k->nbuffers, w, 0, NULL);
   if (c->ndispatch > 0)

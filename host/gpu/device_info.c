@@ -78,6 +78,7 @@ void sessile_describe_device_(VkPhysicalDevice p, uint32_t index, sessile_gpu_in
   }
   info->float64 = feat.shaderFloat64 ? 1 : 0;
   info->max_storage_buffer_range = props.limits.maxStorageBufferRange;
+  info->max_texel_buffer_elements = props.limits.maxTexelBufferElements;
   info->max_workgroup_invocations = props.limits.maxComputeWorkGroupInvocations;
   info->max_workgroup_count_x = props.limits.maxComputeWorkGroupCount[0];
   info->timestamp_period_ns = props.limits.timestampPeriod;

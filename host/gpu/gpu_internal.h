@@ -28,6 +28,7 @@ struct sessile_buffer {
   size_t bytes;
   void *mapped; /* non-NULL when host-visible */
   int coherent;
+  VkBufferView view[4]; /* whole-buffer texel views by sessile_binding_kind, made on first use */
 };
 
 struct sessile_kernel {
@@ -37,6 +38,7 @@ struct sessile_kernel {
   VkPipelineLayout layout;
   VkPipeline pipeline;
   uint32_t nbuffers, push_bytes, local_size;
+  uint8_t texel[16]; /* sessile_binding_kind of each binding */
   char name[64];
 };
 

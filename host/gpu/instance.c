@@ -1,9 +1,51 @@
 /* Vulkan instance, with the Khronos validation layer on request.  Validation
  * warnings and errors are printed and counted: tests fail on any. */
+#define _GNU_SOURCE /* dl_iterate_phdr, RTLD_NODELETE (sanitizer builds) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "device_info.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SESSILE_PIN_LIBRARIES 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SESSILE_PIN_LIBRARIES 1
+#endif
+#endif
+
+#ifdef SESSILE_PIN_LIBRARIES
+#include <dlfcn.h>
+#include <link.h>
+/* Sanitizer builds only: before the instance goes, mark every loaded library
+ * (the loader's driver and layers among them) never-unloaded.  The driver
+ * keeps process-lifetime caches; once the loader dlcloses it, LeakSanitizer
+ * reports them at exit as "<unknown module>", which no suppression can name.
+ * Pinned, they are reported under libvulkan_lvp.so etc. and tests/lsan.supp
+ * applies.  Names are collected first: dlopen is not called while
+ * dl_iterate_phdr holds the loader's lock. */
+typedef struct { char *name[256]; int n; } lib_list;
+static int collect_library(struct dl_phdr_info *info, size_t size, void *data) {
+  (void)size;
+  lib_list *l = data;
+  if (info->dlpi_name && info->dlpi_name[0] && l->n < 256) {
+    char *c = malloc(strlen(info->dlpi_name) + 1);
+    if (c) l->name[l->n++] = strcpy(c, info->dlpi_name);
+  }
+  return 0;
+}
+static void pin_loaded_libraries(void) {
+  lib_list l = {.n = 0};
+  dl_iterate_phdr(collect_library, &l);
+  for (int i = 0; i < l.n; i++) {
+    void *h = dlopen(l.name[i], RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+    if (h) dlclose(h); /* drops the reference NOLOAD took; NODELETE stays */
+    free(l.name[i]);
+  }
+}
+#else
+static void pin_loaded_libraries(void) {}
+#endif
 
 static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT sev,
                                                  VkDebugUtilsMessageTypeFlagsEXT type,
@@ -104,5 +146,6 @@ void sessile_instance_destroy_(VkInstance inst, VkDebugUtilsMessengerEXT messeng
             inst, "vkDestroyDebugUtilsMessengerEXT");
     if (destroy) destroy(inst, messenger, NULL);
   }
+  pin_loaded_libraries();
   vkDestroyInstance(inst, NULL);
 }

@@ -1,5 +1,6 @@
 /* Compute kernels: one pipeline per embedded SPIR-V module.  Bindings 0..n-1
- * are storage buffers, scalars come as push constants, and the workgroup
+ * are storage buffers (or uniform texel buffers where asked), scalars come as
+ * push constants, and the workgroup
  * size is specialisation constant 0, so one SPIR-V serves every device. */
 #include <stdlib.h>
 #include <string.h>
@@ -13,7 +14,9 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
   VkDescriptorSetLayoutBinding b[16];
   for (uint32_t i = 0; i < k->nbuffers; i++)
     b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
-                                          .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                          .descriptorType = k->texel[i]
+                                                                ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+                                                                : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                           .descriptorCount = 1,
                                           .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT};
   VkDescriptorSetLayoutCreateInfo li = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
@@ -42,6 +45,12 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
 sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
                                      uint32_t push_bytes, uint32_t local_size,
                                      sessile_kernel **out) {
+  return sessile_kernel_create_texel(g, name, nbuffers, push_bytes, local_size, NULL, out);
+}
+
+sessile_status sessile_kernel_create_texel(sessile_gpu *g, const char *name, uint32_t nbuffers,
+                                           uint32_t push_bytes, uint32_t local_size,
+                                           const sessile_binding_kind *texel, sessile_kernel **out) {
   *out = NULL;
   const sessile_spirv *sp = sessile_spirv_find(name);
   SESSILE_CHECK(sp, SESSILE_ERR_INTERNAL, "no embedded kernel named \"%s\"", name);
@@ -58,6 +67,14 @@ sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t 
   k->nbuffers = nbuffers;
   k->push_bytes = push_bytes;
   k->local_size = local_size;
+  for (uint32_t i = 0; texel && i < nbuffers; i++) {
+    if (texel[i] > SESSILE_TEXEL_RGBA32UI) {
+      free(k);
+      return sessile_error_set(SESSILE_ERR_INTERNAL, "kernel %s: binding %u has an unknown kind %d",
+                               name, i, (int)texel[i]);
+    }
+    k->texel[i] = (uint8_t)texel[i];
+  }
   snprintf(k->name, sizeof k->name, "%s", name);
   sessile_status s = build(k, sp);
   if (s != SESSILE_OK) {

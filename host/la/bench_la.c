@@ -147,6 +147,15 @@ static sessile_status bench_spmv(bench *b, const char *name, const sessile_csr *
     double rb = b->la->real_bytes;
     double idx = a ? 4.0 * nnz : 4.0 * (double)bb->nnzb;
     row(b, name, tg, tr, 2 * nnz, nnz * rb + idx + 2.0 * n * rb + 4.0 * n);
+    if (m->kind == MAT_CSR && m->texel) {
+      /* The storage-buffer kernel on the same matrix, for comparison. */
+      char alt[80];
+      snprintf(alt, sizeof alt, "%s (ssbo)", name);
+      m->texel = 0;
+      s = time_gpu(b, rec_spmv_op, &c, &tg);
+      m->texel = 1;
+      if (s == SESSILE_OK) row(b, alt, tg, tr, 2 * nnz, nnz * rb + idx + 2.0 * n * rb + 4.0 * n);
+    }
   }
   sessile_vec_destroy(x);
   sessile_vec_destroy(y);

@@ -26,6 +26,8 @@ sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out) {
   SESSILE_CHECK(la, SESSILE_ERR_NO_MEMORY, "out of host memory");
   la->gpu = g;
   la->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  const char *e = getenv("SESSILE_SPMV_STORAGE");
+  la->spmv_texel = !(e && e[0] == '1');
   sessile_status s = la_init(la);
   if (s != SESSILE_OK) {
     sessile_la_destroy(la);
@@ -55,8 +57,16 @@ sessile_status la_kernel(sessile_la *la, la_kernel_id id, sessile_kernel **out) 
     /* Reductions use a tree over a power-of-two workgroup. */
     uint32_t maxl = sessile_gpu_info_of(la->gpu)->max_workgroup_invocations;
     while (local > maxl) local /= 2;
-    SESSILE_CALL(sessile_kernel_create(la->gpu, name, kinfo[id].nbuf, kinfo[id].push, local,
-                                       &la->k[id]));
+    if (id == K_SPMV_CSR_TEX || id == K_SPMV_CSR_TEX_DOT) {
+      /* columns and values as raw RGBA32UI texels, x as one texel per real */
+      sessile_binding_kind xk = la->real_bytes == 8 ? SESSILE_TEXEL_RG32UI : SESSILE_TEXEL_R32UI;
+      const sessile_binding_kind t[7] = {0, 0, SESSILE_TEXEL_RGBA32UI, SESSILE_TEXEL_RGBA32UI, xk,
+                                         0, 0};
+      SESSILE_CALL(sessile_kernel_create_texel(la->gpu, name, kinfo[id].nbuf, kinfo[id].push,
+                                               local, t, &la->k[id]));
+    } else
+      SESSILE_CALL(sessile_kernel_create(la->gpu, name, kinfo[id].nbuf, kinfo[id].push, local,
+                                         &la->k[id]));
   }
   *out = la->k[id];
   return SESSILE_OK;

@@ -32,6 +32,8 @@ enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
   X(K_SPMV_CSR, "la/spmv_csr", 6, 20, 64)           \
   X(K_SPMV_BCSR4, "la/spmv_bcsr4", 6, 20, 64)       \
   X(K_SPMV_CSR_DOT, "la/spmv_csr_dot", 7, 20, 64)   \
+  X(K_SPMV_CSR_TEX, "la/spmv_csr_tex", 6, 20, 64)   \
+  X(K_SPMV_CSR_TEX_DOT, "la/spmv_csr_tex_dot", 7, 20, 64) \
   X(K_CG_UPDATE, "la/cg_update", 7, 32, 256)        \
   X(K_CG_DIRECTION, "la/cg_direction", 4, 32, 256)  \
   X(K_CG_SCALAR, "la/cg_scalar", 1, 8, 1)           \
@@ -56,6 +58,8 @@ struct sessile_la {
   sessile_buffer *scalars;    /* NSLOTS reals, mapped */
   sessile_buffer *partials;   /* NSETS * MAXG (hi, lo) pairs */
   sessile_cmd *cmd;           /* immediate operations */
+  int spmv_texel;             /* CSR SpMV may read through texel buffers (default
+                                 on; SESSILE_SPMV_STORAGE=1 forces storage buffers) */
 };
 
 struct sessile_vec {
@@ -75,6 +79,8 @@ struct sessile_mat {
   sessile_csr host;        /* CSR: kept for fp32 refinement residuals and Jacobi */
   sessile_bcsr4 hostb;     /* BCSR4: likewise */
   uint32_t rows_per;       /* rows per invocation in the SpMV kernel */
+  int texel;               /* CSR: read through texel buffers (sizes within the
+                              device's maxTexelBufferElements and la->spmv_texel) */
 };
 
 /* A vector inside a buffer: `off4` REAL4 chunks from its start. */

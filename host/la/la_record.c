@@ -44,9 +44,17 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
   return sessile_cmd_dispatch(c, k, nsets, bufs, &p);
 }
 
+/* Texel-buffer SpMV when the matrix allows it and x's whole buffer fits one
+ * texel view (x may live inside a larger work buffer). */
+static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
+  return a->kind == MAT_CSR && a->texel &&
+         sessile_buffer_size(x.buf) / la->real_bytes <=
+             sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+}
+
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard) {
-  la_kernel_id id = a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4;
+  la_kernel_id id = a->kind != MAT_CSR ? K_SPMV_BCSR4 : use_texel(la, a, x) ? K_SPMV_CSR_TEX : K_SPMV_CSR;
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, id, &k));
   sessile_buffer *bufs[6] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf};
@@ -66,12 +74,13 @@ sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a
     return rec_dot(la, c, a->nrows, x, y, 0, guard, count);
   }
   sessile_kernel *k;
-  SESSILE_CALL(la_kernel(la, K_SPMV_CSR_DOT, &k));
+  la_kernel_id id = use_texel(la, a, x) ? K_SPMV_CSR_TEX_DOT : K_SPMV_CSR_DOT;
+  SESSILE_CALL(la_kernel(la, id, &k));
   sessile_buffer *bufs[7] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf, la->partials};
   struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
       a->nrows, x.off4 * 4, y.off4 * 4, guard, a->rows_per};
   uint32_t items = (a->nrows + a->rows_per - 1) / a->rows_per;
-  *count = la_groups(la, K_SPMV_CSR_DOT, items);
+  *count = la_groups(la, id, items);
   if (*count > MAXG) *count = MAXG;
   return sessile_cmd_dispatch(c, k, *count, bufs, &p);
 }

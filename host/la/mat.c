@@ -1,5 +1,7 @@
-/* GPU matrices.  CSR rows are padded to a multiple of 4 entries (column 0,
- * value 0) so the SpMV kernel loads uvec4 columns and REAL4 values; block-CSR
+/* GPU matrices.  CSR is stored as sliced ELL with slices of 8 rows (SELL-8),
+ * each row padded to its slice's width in chunks of 4 entries, so the SpMV
+ * kernel loads uvec4 columns and REAL4 values and the 8 lanes of a subgroup
+ * read consecutive chunks (docs/performance.md has the measurements); block-CSR
  * stores each 4x4 block as four REAL4 rows.  A host copy in double is kept for
  * the Jacobi diagonal and for fp32 iterative-refinement residuals. */
 #include <math.h>
@@ -31,38 +33,58 @@ static sessile_status check_csr(const sessile_csr *a) {
   return SESSILE_OK;
 }
 
+/* SELL-8 upload (see shaders/la/spmv_csr.comp): slice s of rows 8s..8s+7
+ * holds width_s chunks of 4 entries per row, width_s = the widest row's chunk
+ * count; chunk t of row 8s+j sits at ptr[s] + 8t + j. */
 static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
   const sessile_csr *a = &m->host;
-  uint32_t *rp = malloc(((size_t)a->nrows + 1) * sizeof *rp);
-  SESSILE_CHECK(rp, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  uint32_t nsl = (a->nrows + 7) / 8;
+  uint32_t *sp = malloc(((size_t)nsl + 1) * sizeof *sp);
+  SESSILE_CHECK(sp, SESSILE_ERR_NO_MEMORY, "out of host memory");
   uint64_t chunks = 0;
-  rp[0] = 0;
-  for (uint32_t r = 0; r < a->nrows; r++) {
-    chunks += (a->rowptr[r + 1] - a->rowptr[r] + 3) / 4;
-    if (chunks > UINT32_MAX) break;
-    rp[r + 1] = (uint32_t)chunks;
+  sp[0] = 0;
+  for (uint32_t sl = 0; sl < nsl; sl++) {
+    uint64_t w = 0;
+    for (uint32_t r = sl * 8; r < a->nrows && r < sl * 8 + 8; r++) {
+      uint64_t cr = (a->rowptr[r + 1] - a->rowptr[r] + 3) / 4;
+      if (cr > w) w = cr;
+    }
+    chunks += 8 * w;
+    if (chunks > UINT32_MAX - 8) break;
+    sp[sl + 1] = (uint32_t)chunks;
   }
   if (chunks == 0) chunks = 1; /* an all-empty matrix still needs non-empty buffers */
-  uint32_t *col = calloc((size_t)chunks * 4, sizeof *col);
-  double *val = calloc((size_t)chunks * 4, sizeof *val);
+  uint32_t *col = NULL;
+  double *val = NULL;
   sessile_status s = SESSILE_OK;
-  if (chunks > UINT32_MAX)
+  if (chunks > UINT32_MAX - 8)
     s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "matrix has too many entries for 32-bit indices");
-  else if (!col || !val)
-    s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
+  else {
+    col = calloc((size_t)chunks * 4, sizeof *col);
+    val = calloc((size_t)chunks * 4, sizeof *val);
+    if (!col || !val) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
+  }
   /* Padding repeats the row's last column with value 0: the row reads that x
-   * anyway, so an Inf there cannot turn a finite row into NaN (0·Inf). */
+   * anyway, so an Inf there cannot turn a finite row into NaN (0·Inf).  An
+   * empty row pads with its own index (y_r is then NaN only if x_r is not
+   * finite; the reference gives 0 — a matrix with an empty row is singular). */
   for (uint32_t r = 0; s == SESSILE_OK && r < a->nrows; r++) {
-    uint64_t k = (uint64_t)rp[r] * 4, end = (uint64_t)rp[r + 1] * 4;
-    for (uint64_t e = a->rowptr[r]; e < a->rowptr[r + 1]; e++, k++) {
-      col[k] = a->col[e];
-      val[k] = a->val[e];
+    uint32_t sl = r / 8, j = r % 8;
+    uint64_t w = (sp[sl + 1] - sp[sl]) / 8;
+    uint32_t last = a->rowptr[r + 1] > a->rowptr[r] ? a->col[a->rowptr[r + 1] - 1] : r;
+    for (uint64_t q = 0; q < 4 * w; q++) {
+      uint64_t at = ((uint64_t)sp[sl] + 8 * (q / 4) + j) * 4 + q % 4;
+      uint64_t e = a->rowptr[r] + q;
+      if (e < a->rowptr[r + 1]) {
+        col[at] = a->col[e];
+        val[at] = a->val[e];
+      } else
+        col[at] = last;
     }
-    for (; k < end; k++) col[k] = a->col[a->rowptr[r + 1] - 1];
   }
   if (s == SESSILE_OK)
-    s = sessile_buffer_create(la->gpu, ((size_t)a->nrows + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
-  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, rp, ((size_t)a->nrows + 1) * 4);
+    s = sessile_buffer_create(la->gpu, ((size_t)nsl + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, sp, ((size_t)nsl + 1) * 4);
   if (s == SESSILE_OK)
     s = sessile_buffer_create(la->gpu, (size_t)chunks * 16, SESSILE_BUFFER_DEVICE, &m->col);
   if (s == SESSILE_OK) s = sessile_buffer_upload(m->col, 0, col, (size_t)chunks * 16);
@@ -70,7 +92,11 @@ static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
     s = sessile_buffer_create(la->gpu, (size_t)chunks * 4 * la->real_bytes, SESSILE_BUFFER_DEVICE,
                               &m->val);
   if (s == SESSILE_OK) s = la_upload_reals(la, m->val, 0, val, (size_t)chunks * 4);
-  free(rp);
+  /* Texel reads need every view within maxTexelBufferElements: chunks
+   * RGBA32UI texels of columns, chunks * real_bytes / 4 of values. */
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  m->texel = la->spmv_texel && chunks * la->real_bytes / 4 <= maxt && a->nrows <= maxt;
+  free(sp);
   free(col);
   free(val);
   return s;
@@ -85,9 +111,7 @@ sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sess
   m->kind = MAT_CSR;
   m->nrows = a->nrows;
   m->nnz = a->nnz;
-  m->rows_per = 2; /* lavapipe: 2 rows per invocation measured faster than 1 or 4 */
-  const char *e = getenv("SESSILE_SPMV_ROWS");
-  if (e && atoi(e) > 0 && atoi(e) <= 64) m->rows_per = (uint32_t)atoi(e);
+  m->rows_per = 1; /* SELL-8: one row per invocation */
   sessile_status s = copy_csr(a, &m->host);
   if (s == SESSILE_OK) s = upload_csr(la, m);
   if (s != SESSILE_OK) {

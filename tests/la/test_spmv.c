@@ -156,6 +156,34 @@ static void test_random(void) {
     }
 }
 
+/* SELL-8 storage pads each row to the widest row of its slice of 8: rows of
+ * lengths 0..13 mixed inside slices, empty rows, and a last slice of 3 rows. */
+static void test_ragged_slices(void) {
+  const uint32_t n = 19;
+  uint64_t nnz = 0;
+  for (uint32_t r = 0; r < n; r++) nnz += (r * 5) % 14;
+  sessile_csr a;
+  must("csr_alloc", sessile_csr_alloc(n, n, nnz, &a));
+  uint64_t k = 0;
+  a.rowptr[0] = 0;
+  for (uint32_t r = 0; r < n; r++) {
+    uint32_t len = (r * 5) % 14; /* 0, 5, 10, 1, 6, 11, 2, ... ; row 0 and 14 empty */
+    for (uint32_t j = 0; j < len; j++, k++) {
+      a.col[k] = (r + 2 * j) % n; /* 2 is invertible mod 19: distinct for j < 19 */
+      a.val[k] = 1.0 + 0.25 * (double)j - 0.125 * (double)r;
+    }
+    a.rowptr[r + 1] = k;
+  }
+  int distinct = 1;
+  for (uint32_t r = 0; r < n; r++)
+    for (uint64_t p = a.rowptr[r]; p < a.rowptr[r + 1]; p++)
+      for (uint64_t q = a.rowptr[r]; q < p; q++) distinct &= a.col[p] != a.col[q];
+  t_true("ragged 19 rows: columns distinct within each row", distinct);
+  printf("-- ragged slices: 19 rows of lengths 0..13, rows 0 and 14 empty, last slice 3 rows\n");
+  check_csr("ragged 19 rows", &a, 77);
+  sessile_csr_free(&a);
+}
+
 static void test_structured(void) {
   sessile_csr a;
   printf("-- laplacian7 32^3\n");
@@ -407,17 +435,77 @@ static void test_nonfinite_x(void) {
   free(r);
 }
 
-int main(void) {
-  sessile_gpu *g = t_gpu(0);
+/* PCG (whose p·Ap is fused into the SpMV kernel) on laplacian7 24^3 with the
+ * context's SpMV path: converged, true residual <= rtol, and the same
+ * iteration count as the host reference PCG within 1 (both compute the same
+ * recurrence; only summation orders differ). */
+static void test_cg_fused(const char *path) {
+  sessile_csr a;
+  must("laplacian7", sessile_csr_laplacian7(24, 24, 24, &a));
+  const uint32_t n = a.nrows;
+  double *b = dalloc(n), *x = dalloc(n), *d = dalloc(n);
+  sessile_fill_random(b, n, -1.0, 1.0, 9);
+  to_stored(b, n);
+  sessile_mat *m = NULL;
+  sessile_vec *vb = NULL, *vx = NULL;
+  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  must("vec_create", sessile_vec_create(la, n, &vb));
+  must("vec_create", sessile_vec_create(la, n, &vx));
+  must("upload", sessile_vec_upload(vb, b));
+  sessile_ksp_options o;
+  sessile_ksp_options_default(&o);
+  o.pc = SESSILE_PC_JACOBI;
+  sessile_solve_result r;
+  must("ksp_solve", sessile_ksp_solve(la, &o, m, vb, vx, &r));
+  must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  memset(x, 0, (size_t)n * sizeof *x); /* zero initial guess, as the device solve's */
+  sessile_ref_result rr = sessile_ref_pcg(&a, d, b, x, o.rtol, o.max_it);
+  char what[160];
+  printf("-- PCG laplacian7 24^3 (%s): %d iterations, true relres %.3e; host reference %d\n", path,
+         r.iterations, r.true_relres, rr.iterations);
+  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): converged", path);
+  t_true(what, r.status == SESSILE_SOLVE_CONVERGED);
+  snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): true relres vs rtol", path);
+  t_check(what, r.true_relres, o.rtol);
+  if (fp64) { /* fp32 runs refinement cycles: a different iteration count */
+    snprintf(what, sizeof what, "PCG laplacian7 24^3 (%s): |iterations - host reference's|", path);
+    t_check(what, fabs((double)r.iterations - (double)rr.iterations), 1.0);
+  }
+  sessile_mat_destroy(m);
+  sessile_vec_destroy(vb);
+  sessile_vec_destroy(vx);
+  sessile_csr_free(&a);
+  free(b);
+  free(x);
+  free(d);
+}
+
+int main(int argc, char **argv) {
+  /* --fp32: the fp32 kernels (context precision 32) */
+  sessile_gpu *g = t_gpu(argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0);
   fp64 = sessile_gpu_info_of(g)->precision == 64;
   tol_spmv = fp64 ? 1e-14 : 1e-5;
   tol_jac = fp64 ? 2.3e-16 : 1e-5;
   must("la_create", sessile_la_create(g, &la));
   test_random();
+  test_ragged_slices();
   test_structured();
   test_bcsr4();
   test_errors();
   test_nonfinite_x();
+  test_cg_fused("texel buffers");
   sessile_la_destroy(la);
+  /* The storage-buffer SpMV kernels (used where texel views do not fit the
+   * device limit) on the same cases. */
+  printf("== storage-buffer SpMV path (SESSILE_SPMV_STORAGE=1)\n");
+  setenv("SESSILE_SPMV_STORAGE", "1", 1);
+  must("la_create", sessile_la_create(g, &la));
+  test_random();
+  test_ragged_slices();
+  test_structured();
+  test_nonfinite_x();
+  test_cg_fused("storage buffers");
+  sessile_la_destroy(la);
+  unsetenv("SESSILE_SPMV_STORAGE");
   return t_finish(g);
 }

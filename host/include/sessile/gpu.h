@@ -48,6 +48,7 @@ typedef struct sessile_gpu_info {
   int float64;     /* shaderFloat64 */
   int precision;   /* chosen Krylov precision: 32 or 64 */
   uint64_t max_storage_buffer_range;
+  uint32_t max_texel_buffer_elements; /* maxTexelBufferElements */
   uint32_t max_workgroup_invocations;
   uint32_t max_workgroup_count_x;
   double timestamp_period_ns;
@@ -91,6 +92,22 @@ sessile_status sessile_buffer_download(sessile_buffer *b, size_t offset, void *d
 sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
                                      uint32_t push_bytes, uint32_t local_size,
                                      sessile_kernel **out);
+/* The same with some bindings read as uniform texel buffers (texelFetch on a
+ * usamplerBuffer in the shader) instead of storage buffers: texel[i] is the
+ * format of binding i, SESSILE_BINDING_STORAGE for a storage buffer.  A view
+ * of the whole buffer is made on first use and kept with the buffer; the
+ * buffer must hold at most max_texel_buffer_elements texels.  Why: lavapipe
+ * gathers texels with vector loads but scalarises storage-buffer loads per
+ * lane, which made SpMV ~2.5x slower (docs/performance.md). */
+typedef enum sessile_binding_kind {
+  SESSILE_BINDING_STORAGE = 0,
+  SESSILE_TEXEL_R32UI = 1,    /* 4-byte texels */
+  SESSILE_TEXEL_RG32UI = 2,   /* 8-byte texels */
+  SESSILE_TEXEL_RGBA32UI = 3  /* 16-byte texels */
+} sessile_binding_kind;
+sessile_status sessile_kernel_create_texel(sessile_gpu *g, const char *name, uint32_t nbuffers,
+                                           uint32_t push_bytes, uint32_t local_size,
+                                           const sessile_binding_kind *texel, sessile_kernel **out);
 void sessile_kernel_destroy(sessile_kernel *k);
 uint32_t sessile_kernel_local_size(const sessile_kernel *k);
 
