@@ -46,6 +46,7 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
 
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard) {
+  if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, NULL);
   la_kernel_id id = a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4;
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, id, &k));
@@ -61,6 +62,7 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
 
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count) {
+  if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, count);
   if (a->kind != MAT_CSR) { /* block matrices: SpMV, then a separate dot */
     SESSILE_CALL(rec_spmv(la, c, a, x, y, guard));
     return rec_dot(la, c, a->nrows, x, y, 0, guard, count);
