@@ -42,7 +42,10 @@ enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
   X(K_BICG_XR, "la/bicgstab_xr", 9, 32, 256)        \
   X(K_BICG_SCALAR, "la/bicgstab_scalar", 1, 8, 1)   \
   X(K_GMRES_SCALAR, "la/gmres_scalar", 1, 16, 1)    \
-  X(K_GMRES_UPDATE, "la/gmres_update", 4, 32, 256)
+  X(K_GMRES_UPDATE, "la/gmres_update", 4, 32, 256)  \
+  X(K_STENCIL7, "la/stencil7", 4, 32, 64)           \
+  X(K_STENCIL7_DOT, "la/stencil7_dot", 5, 32, 64)   \
+  X(K_STENCIL7_JACOBI, "la/stencil7_jacobi", 4, 32, 64)
 
 typedef enum {
 #define X(id, name, nb, pb, ls) id,
@@ -68,7 +71,7 @@ struct sessile_vec {
   sessile_buffer *buf;
 };
 
-typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1 } mat_kind;
+typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1, MAT_STENCIL7 = 2 } mat_kind;
 
 struct sessile_mat {
   sessile_la *la;
@@ -81,6 +84,9 @@ struct sessile_mat {
   uint32_t rows_per;       /* rows per invocation in the SpMV kernel */
   int texel;               /* CSR: read through texel buffers (sizes within the
                               device's maxTexelBufferElements and la->spmv_texel) */
+  uint32_t grid[3];        /* STENCIL7: nodes per axis */
+  double h;                /* STENCIL7: grid spacing */
+  sessile_buffer *mask;    /* STENCIL7: Dirichlet mask (uint32 per node), not owned */
 };
 
 /* A vector inside a buffer: `off4` REAL4 chunks from its start. */
@@ -114,6 +120,12 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
 /* y = A x with the partial sums of x·y in set 0 (CG's p·Ap). */
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count);
+/* The masked 7-point operator (stencil.c): y = A x, with x·y partials in set 0. */
+sessile_status rec_stencil7(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
+                            int guard, uint32_t *count);
+sessile_status la_stencil7_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
+/* Host copy of the mask for host residuals (fp32 refinement); free() it. */
+sessile_status la_stencil7_host_mask(const sessile_mat *a, uint32_t **mask);
 /* Groups for an element-wise kernel over n reals, and for a reduction. */
 uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
 uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);

@@ -62,6 +62,17 @@ sessile_status sessile_vec_nrm2(sessile_la *la, const sessile_vec *x, double *ou
  * only when Jacobi is later requested (see sessile_mat_jacobi). */
 sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sessile_mat **out);
 sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out);
+/* The P1 Laplacian of the uniform Kuhn box as a matrix-free operator: the
+ * 7-point stencil times h (diagonal 6h, face neighbours -h) on an
+ * nx*ny*nz grid (node i + nx (j + ny k)), with every wall node and every
+ * node whose mask entry is non-zero a Dirichlet node, eliminated
+ * symmetrically (identity row and column), so the operator is SPD.  `mask`
+ * is a device buffer of nx*ny*nz uint32, read at every application (update
+ * it between solves freely); the caller owns it and keeps it alive while the
+ * matrix exists.  Jacobi is computed on the device (1/(6h) free, 1 Dirichlet).
+ * docs/fem.md. */
+sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
+                                           double h, sessile_buffer *mask, sessile_mat **out);
 void sessile_mat_destroy(sessile_mat *m);
 uint32_t sessile_mat_rows(const sessile_mat *m);
 uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */

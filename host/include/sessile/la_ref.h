@@ -27,6 +27,10 @@ double sessile_ref_nrm2(uint64_t n, const double *x);
 
 void sessile_ref_spmv_csr(const sessile_csr *a, const double *x, double *y);     /* y = A x */
 void sessile_ref_spmv_bcsr4(const sessile_bcsr4 *a, const double *x, double *y); /* y = A x */
+/* y = A x for the masked 7-point operator of sessile_mat_create_stencil7
+ * (nx*ny*nz nodes; mask may be NULL: walls only). */
+void sessile_ref_stencil7(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
+                          const double *x, double *y);
 
 /* Inverse diagonal for Jacobi; fails (SESSILE_ERR_NUMERIC, message names the
  * row) on a zero or non-finite diagonal entry. */

@@ -14,6 +14,7 @@
 
 #include "sessile/box.h"
 #include "sessile/la.h"
+#include "sessile/matrix.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -33,6 +34,37 @@ void sessile_nutrient_destroy(sessile_nutrient *nt);
 sessile_status sessile_nutrient_solve(sessile_nutrient *nt, sessile_buffer *solid,
                                       sessile_vec *c, const sessile_ksp_options *opt,
                                       sessile_solve_result *res);
+
+/* The nutrient's wall value at node (i,j,k): 0 on the substratum (z-min,
+ * its edges included), 1 on the other walls, 0 inside the box (unused). */
+static inline double sessile_nutrient_wall_value(const sessile_box *b, uint32_t i, uint32_t j,
+                                                 uint32_t k) {
+  uint32_t t = sessile_box_node_tags(b, i, j, k);
+  return (t == 0 || (t & SESSILE_TAG_SUBSTRATUM)) ? 0.0 : 1.0;
+}
+
+/* The same solve with arbitrary Dirichlet data (tests: patch test,
+ * manufactured solutions): Dirichlet nodes are the wall nodes and the nodes
+ * with mask != 0, their values are taken from `values` (one per node; other
+ * entries ignored).  res->true_relres is the relative residual of the
+ * homogenised system on the free nodes (docs/fem.md). */
+sessile_status sessile_nutrient_solve_dirichlet(sessile_nutrient *nt, sessile_buffer *mask,
+                                                const sessile_vec *values, sessile_vec *c,
+                                                const sessile_ksp_options *opt,
+                                                sessile_solve_result *res);
+
+/* --- host references (double, plain C) ------------------------------------ */
+/* The P1 stiffness matrix of -Laplace on the Kuhn box, assembled element by
+ * element (6 tets per cube, sessile_box_tet) without boundary conditions:
+ * sessile_box_nodes(box) rows, the Kuhn graph (self + 14 neighbours; entries
+ * that cancel are stored as explicit zeros). */
+sessile_status sessile_p1_laplace_assemble(const sessile_box *box, sessile_csr *out);
+
+/* Symmetric Dirichlet elimination of K u = 0: rows and columns of nodes with
+ * dir[i] != 0 become the identity (entries dropped), b_i = g_i there and
+ * b_i = -sum_{j Dirichlet} K_ij g_j on free rows.  b has K's row count. */
+sessile_status sessile_p1_dirichlet(const sessile_csr *k, const uint8_t *dir, const double *g,
+                                    sessile_csr *a, double *b);
 
 #ifdef __cplusplus
 }
