@@ -541,7 +541,15 @@ static void bench(void) {
 
 int main(int argc, char **argv) {
   int do_bench = argc > 1 && strcmp(argv[1], "--bench") == 0;
-  gpu = t_gpu(0);
+  if (do_bench) { /* timings without the validation layer */
+    sessile_gpu_options go;
+    sessile_gpu_options_default(&go);
+    go.validation = 0;
+    must("gpu", sessile_gpu_create(&go, &gpu));
+    printf("device: %s, driver %s\n", sessile_gpu_info_of(gpu)->name, sessile_gpu_info_of(gpu)->driver);
+  } else {
+    gpu = t_gpu(0);
+  }
   must("la", sessile_la_create(gpu, &la));
   if (do_bench) {
     bench();
