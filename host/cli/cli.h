@@ -26,4 +26,6 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
 
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 #endif

@@ -15,8 +15,10 @@ static const char *help =
     "(GPU, or the CPU through Mesa lavapipe).\n"
     "\n"
     "commands:\n"
+    "  grow        grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'\n"
     "  devices     list the Vulkan devices and the one sessile uses\n"
     "  bench la    time the GPU linear algebra against the plain-C reference\n"
+    "  bench grow  time each stage of the growth loop\n"
     "  help        this text; 'sessile COMMAND --help' explains a command\n"
     "  version     print the version\n"
     "\n"
@@ -60,5 +62,6 @@ int main(int argc, char **argv) {
   }
   if (strcmp(cmd, "devices") == 0) return cmd_devices(sub_argc, sub_argv, &g);
   if (strcmp(cmd, "bench") == 0) return cmd_bench(sub_argc, sub_argv, &g);
-  return cli_usage_error(NULL, "unknown command '%s' (commands: devices, bench, help, version)", cmd);
+  if (strcmp(cmd, "grow") == 0) return cmd_grow(sub_argc, sub_argv, &g);
+  return cli_usage_error(NULL, "unknown command '%s' (commands: grow, devices, bench, help, version)", cmd);
 }

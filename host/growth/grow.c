@@ -1,0 +1,292 @@
+/* The growth loop (O'Hagan et al., Figure 2): per iteration classify the box
+ * nodes inside the sponge, solve the nutrient field (warm-started), run the
+ * growth kernels (normals, probe, translocate, grow), remesh on the host. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "grow_internal.h"
+
+const char *sessile_grow_stage_name(int stage) {
+  static const char *names[] = {
+#define X(n) #n,
+      SESSILE_GROW_STAGES(X)
+#undef X
+  };
+  return stage >= 0 && stage < SESSILE_STAGE_COUNT ? names[stage] : "?";
+}
+
+void sessile_grow_options_default(sessile_grow_options *o) {
+  memset(o, 0, sizeof *o);
+  o->preset = "radiate";
+  o->iterations = 50;
+  o->seed = 1;
+  o->every = 10;
+  o->slices = "x,y,z";
+  o->fields = 1;
+  o->check_every_iteration = 1;
+}
+
+uint64_t grow_splitmix64(uint64_t *state) {
+  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+/* Uniform in [-1, 1] from the top 53 bits. */
+static double uniform_pm1(uint64_t *state) {
+  return (double)(grow_splitmix64(state) >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+}
+
+static sessile_status setup(grow_run *r) {
+  const sessile_params *p = r->p;
+  const double origin[3] = {0, 0, 0};
+  const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
+                             (uint32_t)p->box_cells_z};
+  SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->box_resolution, &r->box));
+  double mx[3];
+  sessile_box_max(&r->box, mx);
+  /* The sponge sits on the substratum (its lowest point touches z = 0) at the
+   * chosen x/y, shifted by the seeded jitter (§4.7); the shift is clamped so
+   * the sponge stays one cell inside the side walls. */
+  uint64_t st = r->o->seed ^ 0x5EED5EED5EED5EEDull;
+  double jx = p->position_jitter * uniform_pm1(&st), jy = p->position_jitter * uniform_pm1(&st);
+  r->center[0] = (p->sponge_x < 0 ? mx[0] / 2 : p->sponge_x) + jx;
+  r->center[1] = (p->sponge_y < 0 ? mx[1] / 2 : p->sponge_y) + jy;
+  r->center[2] = p->sponge_radius;
+  for (int a = 0; a < 2; a++) {
+    double lo = p->sponge_radius + r->box.h, hi = mx[a] - p->sponge_radius - r->box.h;
+    if (r->center[a] < lo) r->center[a] = lo;
+    if (r->center[a] > hi) r->center[a] = hi;
+  }
+  SESSILE_CALL(sessile_surface_icosphere(p->sponge_resolution, p->sponge_radius, r->center, &r->surf));
+  SESSILE_CALL(sessile_la_create(r->gpu, &r->la));
+  SESSILE_CALL(sessile_nutrient_create(r->la, &r->box, &r->nutrient));
+  SESSILE_CALL(sessile_growth_gpu_create(r->la, &r->growth));
+  uint32_t nodes = sessile_box_nodes(&r->box);
+  SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nodes * 4, SESSILE_BUFFER_DEVICE, &r->solid));
+  SESSILE_CALL(sessile_vec_create(r->la, nodes, &r->c));
+  /* Start from c = 1 (the far field); the first solve fixes the rest. */
+  SESSILE_CALL(sessile_vec_fill(r->la, 1.0, r->c));
+  r->sum.box_nodes = nodes;
+  return SESSILE_OK;
+}
+
+static void teardown(grow_run *r) {
+  sessile_vec_destroy(r->c);
+  sessile_buffer_destroy(r->solid);
+  sessile_growth_gpu_destroy(r->growth);
+  sessile_nutrient_destroy(r->nutrient);
+  sessile_la_destroy(r->la);
+  sessile_surface_free(&r->surf);
+  for (int i = 0; i < r->nvtu; i++) free(r->vtu_files[i]);
+  free(r->vtu_files);
+  free(r->vtu_steps);
+  cJSON_Delete(r->manifest);
+}
+
+static void growth_params(const sessile_params *p, sessile_growth_params *g) {
+  memset(g, 0, sizeof *g);
+  g->probe_offset = p->concentration_offset_distance;
+  g->probe_samples = (uint32_t)p->probe_samples;
+  g->t_give = p->t_give;
+  g->translocate_passes = p->translocate_passes;
+  g->nutrient_threshold = p->nutrient_threshold;
+  g->growth_threshold = p->growth_threshold;
+  g->growth_rate = p->growth_rate;
+  g->l_max = p->l_max;
+  g->kinetic_order = p->kinetic_order;
+  g->growth_constant = p->growth_constant;
+  g->max_growth = p->max_growth;
+  g->halichondrid = p->skeletal_growth == SESSILE_SKELETON_HALICHONDRID;
+  g->normal_offset_radius = p->normal_offset_radius;
+}
+
+/* A progress line: rewritten in place on a terminal, one line per iteration
+ * otherwise (logs). */
+static void progress(grow_run *r, int it, const char *stage, int done) {
+  if (r->o->quiet) return;
+  double el = sessile_wall_seconds() - r->t_start;
+  double left = it > 1 || done ? el / (done ? it : it - 1) * (r->o->iterations - (done ? it : it - 1)) : 0;
+  if (isatty(2)) {
+    fprintf(stderr, "\r\033[K[%d/%d] %-9s %4.0f s elapsed, ~%.0f s left", it, r->o->iterations, stage,
+            el, left);
+    if (done && it == r->o->iterations) fputc('\n', stderr);
+  } else if (done) {
+    fprintf(stderr, "iteration %d/%d: %u vertices, %u triangles, %.1f s elapsed, ~%.0f s left\n", it,
+            r->o->iterations, r->surf.nv, r->surf.nf, el, left);
+  }
+}
+
+static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *gp, double **normals,
+                              double **newpos) {
+  cJSON *rec = grow_manifest_iteration(r, it);
+  double t[SESSILE_STAGE_COUNT + 1];
+  int nv = (int)r->surf.nv;
+
+  progress(r, it, "upload", 0);
+  t[0] = sessile_wall_seconds();
+  SESSILE_CALL(sessile_growth_gpu_set_surface(r->growth, &r->surf));
+  t[1] = sessile_wall_seconds();
+  progress(r, it, "classify", 0);
+  SESSILE_CALL(sessile_growth_gpu_classify(r->growth, &r->box, r->solid));
+  t[2] = sessile_wall_seconds();
+
+  progress(r, it, "nutrient", 0);
+  sessile_ksp_options ko;
+  sessile_ksp_options_default(&ko);
+  ko.type = SESSILE_KSP_CG;
+  ko.pc = SESSILE_PC_JACOBI;
+  ko.rtol = r->p->linear_rtol;
+  ko.max_it = r->p->linear_max_iterations;
+  sessile_solve_result res;
+  SESSILE_CALL(sessile_nutrient_solve(r->nutrient, r->solid, r->c, &ko, &res));
+  t[3] = sessile_wall_seconds();
+  cJSON *ns = cJSON_AddObjectToObject(rec, "nutrient_solve");
+  cJSON_AddStringToObject(ns, "solver", "pcg+jacobi");
+  cJSON_AddNumberToObject(ns, "iterations", res.iterations);
+  cJSON_AddNumberToObject(ns, "true_relres", res.true_relres);
+  cJSON_AddStringToObject(ns, "status", sessile_solve_status_name(res.status));
+  cJSON_AddStringToObject(ns, "reason", res.reason);
+  cJSON_AddNumberToObject(ns, "seconds", res.seconds);
+  r->sum.solver_iterations += res.iterations;
+  if (res.true_relres > r->sum.worst_relres) r->sum.worst_relres = res.true_relres;
+  SESSILE_CHECK(res.status != SESSILE_SOLVE_BREAKDOWN, SESSILE_ERR_NUMERIC,
+                "iteration %d: the nutrient solve broke down (%s); the run stops here, its "
+                "files so far are whole", it, res.reason);
+  if (res.status != SESSILE_SOLVE_CONVERGED && !r->o->quiet)
+    fprintf(stderr, "\nsessile grow: warning: iteration %d: nutrient solve stopped at %d iterations "
+                    "with true relative residual %.2e (%s); raise linear_max_iterations\n",
+            it, res.iterations, res.true_relres, res.reason);
+
+  progress(r, it, "growth", 0);
+  double *np = realloc(*newpos, (size_t)nv * 3 * sizeof *np);
+  SESSILE_CHECK(np, SESSILE_ERR_NO_MEMORY, "out of host memory for %d vertices", nv);
+  *newpos = np;
+  double *pv = malloc((size_t)nv * 3 * sizeof *pv);
+  SESSILE_CHECK(pv, SESSILE_ERR_NO_MEMORY, "out of host memory for %d vertices", nv);
+  sessile_status gs = sessile_growth_gpu_step(r->growth, &r->box, r->c, gp, r->o->seed, (uint32_t)it,
+                                              np, pv, pv + nv, pv + 2 * nv);
+  if (gs == SESSILE_OK) {
+    /* Per-vertex summaries: what the surface saw and how much it grew. */
+    const char *names[3] = {"probed_nutrient", "translocated_nutrient", "growth_length_cm"};
+    cJSON *gr = cJSON_AddObjectToObject(rec, "growth");
+    for (int a = 0; a < 3; a++) {
+      double lo = INFINITY, hi = -INFINITY, sum = 0;
+      for (int v = 0; v < nv; v++) {
+        double x = pv[a * nv + v];
+        lo = x < lo ? x : lo, hi = x > hi ? x : hi, sum += x;
+      }
+      cJSON *st = cJSON_AddObjectToObject(gr, names[a]);
+      cJSON_AddNumberToObject(st, "min", nv ? lo : 0);
+      cJSON_AddNumberToObject(st, "mean", nv ? sum / nv : 0);
+      cJSON_AddNumberToObject(st, "max", nv ? hi : 0);
+    }
+    int growing = 0;
+    for (int v = 0; v < nv; v++) growing += pv[2 * nv + v] > 0;
+    cJSON_AddNumberToObject(gr, "growing_vertices", growing);
+  }
+  free(pv);
+  SESSILE_CALL(gs);
+  memcpy(r->surf.pos, np, (size_t)nv * 3 * sizeof *np);
+  t[4] = sessile_wall_seconds();
+
+  progress(r, it, "remesh", 0);
+  double *nn = realloc(*normals, (size_t)r->surf.nv * 3 * sizeof *nn);
+  SESSILE_CHECK(nn, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", r->surf.nv);
+  *normals = nn;
+  sessile_surface_normals(&r->surf, nn);
+  sessile_remesh_options ro;
+  sessile_remesh_options_default(&ro);
+  ro.insert_len = r->p->vertex_insertion_threshold;
+  ro.fuse_len = r->p->vertex_fusion_threshold;
+  ro.min_area = r->p->triangle_area_deletion_threshold;
+  /* Vertices clamped onto a box face stay on it through remeshing. */
+  memcpy(ro.clamp_lo, r->box.origin, sizeof ro.clamp_lo);
+  sessile_box_max(&r->box, ro.clamp_hi);
+  sessile_remesh_stats rs;
+  SESSILE_CALL(sessile_remesh(&r->surf, nn, &ro, &rs));
+  if (r->o->check_every_iteration) {
+    sessile_status cs = sessile_surface_check(&r->surf, 2, 0.0);
+    if (cs != SESSILE_OK)
+      return sessile_error_set(SESSILE_ERR_INTERNAL, "iteration %d: the remeshed surface is broken (%s)",
+                               it, sessile_error_message());
+  }
+  if (r->o->check_every_iteration) cJSON_AddStringToObject(rec, "surface_check", "passed");
+  cJSON *rm = cJSON_AddObjectToObject(rec, "remesh");
+  cJSON_AddNumberToObject(rm, "splits", rs.splits);
+  cJSON_AddNumberToObject(rm, "fusions", rs.fusions);
+  cJSON_AddNumberToObject(rm, "area_collapses", rs.area_collapses);
+  cJSON_AddNumberToObject(rm, "rejected_collapses", rs.rejected);
+  t[5] = sessile_wall_seconds();
+
+  progress(r, it, "output", 0);
+  int snap = r->o->every > 0 && it % r->o->every == 0;
+  nn = realloc(*normals, (size_t)r->surf.nv * 3 * sizeof *nn);
+  SESSILE_CHECK(nn, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", r->surf.nv);
+  *normals = nn;
+  sessile_surface_normals(&r->surf, nn);
+  if (r->o->out_dir && snap) SESSILE_CALL(grow_write_snapshot(r, it, nn));
+  t[6] = sessile_wall_seconds();
+
+  cJSON *ts = cJSON_AddObjectToObject(rec, "seconds");
+  for (int s = 0; s < SESSILE_STAGE_COUNT; s++) {
+    r->sum.stage_seconds[s] += t[s + 1] - t[s];
+    cJSON_AddNumberToObject(ts, sessile_grow_stage_name(s), t[s + 1] - t[s]);
+  }
+  cJSON_AddNumberToObject(ts, "total", t[SESSILE_STAGE_COUNT] - t[0]);
+  grow_manifest_surface_stats(cJSON_AddObjectToObject(rec, "surface"), &r->surf);
+  r->sum.iterations = it;
+  if (r->o->out_dir) SESSILE_CALL(grow_manifest_write(r, "running"));
+  progress(r, it, "done", 1);
+  return SESSILE_OK;
+}
+
+sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
+                                const sessile_grow_options *o, sessile_surface *final,
+                                sessile_grow_summary *summary) {
+  SESSILE_CALL(sessile_params_validate(p));
+  SESSILE_CHECK(o->iterations >= 0, SESSILE_ERR_USAGE, "iterations must be >= 0");
+  grow_run r;
+  memset(&r, 0, sizeof r);
+  r.p = p;
+  r.o = o;
+  r.gpu = g;
+  r.t_start = sessile_wall_seconds();
+  double *normals = NULL, *newpos = NULL;
+  sessile_status s = setup(&r);
+  if (s == SESSILE_OK) s = grow_parse_planes(&r);
+  if (s == SESSILE_OK && o->out_dir) s = grow_prepare_outdir(&r);
+  if (s == SESSILE_OK) s = grow_manifest_begin(&r);
+  sessile_growth_params gp;
+  growth_params(p, &gp);
+  for (int it = 1; s == SESSILE_OK && it <= o->iterations; it++) s = iterate(&r, it, &gp, &normals, &newpos);
+  if (s == SESSILE_OK && o->out_dir) {
+    normals = realloc(normals, (size_t)(r.surf.nv ? r.surf.nv : 1) * 3 * sizeof *normals);
+    if (!normals) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+    else {
+      sessile_surface_normals(&r.surf, normals);
+      s = grow_write_final(&r, normals);
+    }
+  }
+  r.sum.total_seconds = sessile_wall_seconds() - r.t_start;
+  r.sum.final_vertices = r.surf.nv;
+  r.sum.final_triangles = r.surf.nf;
+  if (o->out_dir && r.manifest) {
+    /* Record how the run ended, even when it failed (keep the first error). */
+    char msg[1024];
+    snprintf(msg, sizeof msg, "%s", s == SESSILE_OK ? "" : sessile_error_message());
+    if (s != SESSILE_OK) cJSON_AddStringToObject(r.manifest, "error", msg);
+    sessile_status ms = grow_manifest_write(&r, s == SESSILE_OK ? "complete" : "failed");
+    if (s == SESSILE_OK) s = ms;
+    else sessile_error_set(s, "%s", msg);
+  }
+  if (s == SESSILE_OK && final) s = sessile_surface_copy(&r.surf, final);
+  if (summary) *summary = r.sum;
+  free(normals);
+  free(newpos);
+  teardown(&r);
+  return s;
+}

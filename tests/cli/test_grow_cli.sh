@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# `sessile grow` as a user meets it: --help and --print-config answer; bad
+# input (malformed JSON, unknown key, wrong type, negative or NaN value, an
+# unwritable output folder) gives one clear line, exit 2 and no files; a short
+# run writes every promised file atomically (no temporaries left); the same
+# seed gives a byte-identical final.ply and two seeds give different crella
+# meshes.  Runs use a coarse box (box_resolution=1) to keep the suite short.
+set -u
+S="$1"
+fails=0 passes=0
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+check() { local what="$1"; shift
+  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi; }
+run() { "$S" "$@" >"$T/out" 2>"$T/err"; echo $? >"$T/rc"; }
+rc_is() { [ "$(cat "$T/rc")" = "$1" ]; }
+one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err"; }
+COARSE="--set box_resolution=1 --quiet"
+
+run grow --help
+check "'sessile grow --help' answers" eval 'rc_is 0 && grep -q "usage: sessile grow" "$T/out" && grep -q -- "--print-config" "$T/out"'
+run grow --print-config
+check "--print-config lists parameters with units and sources" eval \
+  'rc_is 0 && grep -q "^vertex_insertion_threshold *0.6 *cm *Table 1" "$T/out" && grep -q "^t_give .* ours" "$T/out"'
+run grow --preset crella --print-config
+check "--preset crella selects Halichondrid" eval 'rc_is 0 && grep -q "^skeletal_growth *halichondrid" "$T/out"'
+run grow --set t_give=0.2 --print-config
+check "--set overrides a parameter" eval 'rc_is 0 && grep -q "^t_give *0.2 " "$T/out"'
+printf '{"t_give": 0.25, "skeletal_growth": "halichondrid", "diffusion_limited": true}\n' >"$T/good.json"
+run grow --config "$T/good.json" --print-config
+check "--config applies a JSON file" eval 'rc_is 0 && grep -q "^t_give *0.25 " "$T/out" && grep -q "^skeletal_growth *halichondrid" "$T/out"'
+
+bad() { # description, expected message regex, args...
+  local what="$1" msg="$2"; shift 2
+  rm -rf "$T/o"
+  run grow --out "$T/o" $COARSE --iterations 1 "$@"
+  check "$what: exit 2, one line naming it, nothing written" eval \
+    'rc_is 2 && one_line_error && grep -q -- "$msg" "$T/err" && [ ! -e "$T/o" ]'
+}
+printf '{"t_give": 0.1,,}\n' >"$T/malformed.json"
+printf '{"no_such_key": 1}\n' >"$T/unknown.json"
+printf '{"t_give": "lots"}\n' >"$T/type.json"
+printf '[1, 2]\n' >"$T/array.json"
+printf '{"l_max": -3}\n' >"$T/negative.json"
+bad "malformed JSON" "not valid JSON" --config "$T/malformed.json"
+bad "unknown key in JSON" "unknown parameter 'no_such_key'" --config "$T/unknown.json"
+bad "wrong type in JSON" "t_give must be a number" --config "$T/type.json"
+bad "JSON that is not an object" "one JSON object" --config "$T/array.json"
+bad "negative value in JSON" "l_max" --config "$T/negative.json"
+bad "missing config file" "cannot read config file" --config "$T/none.json"
+bad "negative --set value" "t_give" --set t_give=-1
+bad "NaN --set value" "l_max" --set l_max=nan
+bad "unknown --set key" "unknown parameter 'wat'" --set wat=1
+bad "non-integer resolution" "box_resolution" --set box_resolution=1.5
+bad "bad enum" "radiate, halichondrid" --set skeletal_growth=axinellid
+bad "unknown preset" "unknown preset" --preset coral
+bad "bad slice plane" "slices" --slices "w=3"
+bad "sponge outside the box" "does not fit" --set sponge_radius=40
+echo "not a folder" >"$T/file"
+run grow --out "$T/file/run" $COARSE --iterations 1
+check "an unwritable output folder: exit 2, one line" eval 'rc_is 2 && one_line_error && grep -q "output folder" "$T/err"'
+
+# A short run writes every promised file, atomically.
+run grow --out "$T/r1" $COARSE --preset crella --seed 7 --iterations 2 --every 1
+check "a 2-iteration crella run succeeds" rc_is 0
+for f in manifest.json sponge/iter_0001.ply sponge/iter_0002.ply sponge/final.ply sponge/final.obj \
+         slices/iter_0002_x.exr slices/iter_0002_y.exr slices/iter_0002_z.exr \
+         fields/iter_0001.vtu fields/iter_0002.vtu fields/series.pvd; do
+  check "run directory holds $f" test -s "$T/r1/$f"
+done
+check "no temporary files are left behind" eval '[ -z "$(find "$T/r1" -name "*.tmp*")" ]'
+check "the manifest says complete, with seed, device and per-iteration solves" eval \
+  'grep -q "\"state\":.*\"complete\"" "$T/r1/manifest.json" && grep -q "\"seed\":.*\"7\"" "$T/r1/manifest.json" && grep -q "true_relres" "$T/r1/manifest.json" && grep -q "\"driver\"" "$T/r1/manifest.json"'
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
+check "same seed, same device: byte-identical final.ply" cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"
+run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0
+check "two seeds give different crella meshes" eval '! cmp -s "$T/r1/sponge/final.ply" "$T/r3/sponge/final.ply"'
+
+echo "$passes passed, $fails failed"
+[ "$fails" -eq 0 ]
