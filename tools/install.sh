@@ -14,6 +14,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   python3-vtk9 python3-meshio python3-numpy openimageio-tools >/dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
-# The main job on its embedded default (until `sessile grow` exists):
+# The main job on its embedded default: the device in use, then a Crella
+# incrustans sponge grown for 50 iterations (Table 1 + the crella preset).
 ./build/sessile devices
-./build/sessile bench la --size 48 --repeat 5
+./build/sessile grow --preset crella --iterations 50 --seed 7 --out runs/crella

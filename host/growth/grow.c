@@ -55,13 +55,18 @@ static sessile_status setup(grow_run *r) {
   double jx = p->position_jitter * uniform_pm1(&st), jy = p->position_jitter * uniform_pm1(&st);
   r->center[0] = (p->sponge_x < 0 ? mx[0] / 2 : p->sponge_x) + jx;
   r->center[1] = (p->sponge_y < 0 ? mx[1] / 2 : p->sponge_y) + jy;
-  r->center[2] = p->sponge_radius;
+  r->center[2] = p->sponge_z;
   for (int a = 0; a < 2; a++) {
     double lo = p->sponge_radius + r->box.h, hi = mx[a] - p->sponge_radius - r->box.h;
     if (r->center[a] < lo) r->center[a] = lo;
     if (r->center[a] > hi) r->center[a] = hi;
   }
   SESSILE_CALL(sessile_surface_icosphere(p->sponge_resolution, p->sponge_radius, r->center, &r->surf));
+  /* A sponge grows attached to the rock: the part of the sphere below the
+   * substratum is projected onto it (a flat base; its triangles keep their
+   * downward orientation, so the surface stays closed and consistent). */
+  for (uint32_t v = 0; v < r->surf.nv; v++)
+    if (r->surf.pos[3 * v + 2] < r->box.origin[2]) r->surf.pos[3 * v + 2] = r->box.origin[2];
   SESSILE_CALL(sessile_la_create(r->gpu, &r->la));
   SESSILE_CALL(sessile_nutrient_create(r->la, &r->box, &r->nutrient));
   SESSILE_CALL(sessile_growth_gpu_create(r->la, &r->growth));

@@ -56,9 +56,10 @@ sessile_status sessile_params_preset(sessile_params *p, const char *name) {
   sessile_params_default(p);
   if (strcmp(name, "radiate") == 0) return SESSILE_OK;
   if (strcmp(name, "crella") == 0) {
-    /* Halichondrid skeleton + randomised x/y position (§4.7); the radius and
-     * the jitter are ours (docs/model.md explains the choice). */
+    /* Halichondrid skeleton (eqs 1-2) + randomised x/y position (§4.7); the
+     * normal offset radius and the jitter are ours (docs/model.md says why). */
     p->skeletal_growth = SESSILE_SKELETON_HALICHONDRID;
+    p->normal_offset_radius = 0.5;
     p->position_jitter = 4.0;
     return SESSILE_OK;
   }
@@ -190,6 +191,10 @@ sessile_status sessile_params_load_json(sessile_params *p, const char *path) {
 sessile_status sessile_params_validate(const sessile_params *p) {
   double top = p->box_base_cell * p->box_cells_z;
   double sx = p->box_base_cell * p->box_cells_x, sy = p->box_base_cell * p->box_cells_y;
+  SESSILE_CHECK(p->sponge_z + p->sponge_radius < top && p->sponge_z < p->sponge_radius, SESSILE_ERR_USAGE,
+                "the sponge (centre height sponge_z = %g cm, radius %g cm) does not fit under the "
+                "box top (%g cm) or does not touch the substratum (sponge_z must be below the radius)",
+                p->sponge_z, p->sponge_radius, top);
   SESSILE_CHECK(2 * p->sponge_radius < top && 2 * p->sponge_radius < sx && 2 * p->sponge_radius < sy,
                 SESSILE_ERR_USAGE,
                 "the sponge (radius %g cm) does not fit the box (%g x %g x %g cm); enlarge the box "

@@ -37,15 +37,17 @@ extern "C" {
   X(sponge_radius, REAL, 6, 0.01, 1000, "cm", "paper §4.1", "radius of the initial icosphere")     \
   X(sponge_x, REAL, -1, -1, 1e6, "cm", "ours", "initial centre x; -1 = the box centre")            \
   X(sponge_y, REAL, -1, -1, 1e6, "cm", "ours", "initial centre y; -1 = the box centre")            \
+  X(sponge_z, REAL, 0, 0, 1e6, "cm", "ours",                                                       \
+    "initial centre height; the part below the substratum is flattened onto it (0: a dome)")     \
   X(position_jitter, REAL, 0, 0, 1e6, "cm", "ours (§4.7)",                                         \
     "random x/y shift of the sponge, uniform in [-j, j] from the seed (crella: 4)")                \
   X(growth_rate, REAL, 5, 0, 1e6, "", "Table 1", "Gr in the Chindapol growth function (eq 10)")    \
-  X(l_max, REAL, 2.0, 0, 1e6, "cm", "ours", "Lmax, asymptotic maximum growth (eq 10)")            \
+  X(l_max, REAL, 10.0, 0, 1e6, "cm", "ours", "Lmax, asymptotic maximum growth (eq 10)")            \
   X(max_growth, REAL, 0.3, 0, 1e6, "cm", "ours", "maxgrowth: clampMG's upper bound (eq 10)")       \
   X(kinetic_order, REAL, 1.4, 0, 100, "", "Table 1", "Chindapol kinetic order n (eq 10)")         \
   X(growth_constant, REAL, 1, 0, 1e6, "", "Table 1", "Chindapol characteristic growth constant K") \
   X(growth_threshold, REAL, 0, 0, 1e6, "cm", "Table 1", "growth length a vertex needs to grow")    \
-  X(nutrient_threshold, REAL, 0.01, 0, 1, "", "ours", "Iroquois: grow only where translocated C exceeds it") \
+  X(nutrient_threshold, REAL, 0.003, 0, 1, "", "ours", "Iroquois: grow only where translocated C exceeds it") \
   X(t_give, REAL, 0.05, 0, 1, "", "ours", "translocation: share given to each neighbour (eqs 7-8)") \
   X(translocate_passes, INT, 1, 0, 100, "", "ours", "translocation sweeps per iteration (0: off)") \
   X(skeletal_growth, ENUM_SKELETON, 0, 0, 1, "", "Table 1",                                        \
