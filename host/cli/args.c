@@ -68,3 +68,13 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   if (o->validation) go.validation = 1;
   return sessile_gpu_create(&go, g);
 }
+
+sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {
+  char key[128];
+  const char *eq = strchr(kv, '=');
+  if (!eq || eq == kv || (size_t)(eq - kv) >= sizeof key)
+    return sessile_error_set(SESSILE_ERR_USAGE, "--set '%s' must be KEY=VALUE", kv);
+  memcpy(key, kv, (size_t)(eq - kv));
+  key[eq - kv] = 0;
+  return sessile_params_set(p, key, eq + 1);
+}

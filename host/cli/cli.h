@@ -2,6 +2,7 @@
 #ifndef SESSILE_CLI_H
 #define SESSILE_CLI_H
 #include "sessile/gpu.h"
+#include "sessile/params.h"
 
 enum { EXIT_OK = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
 
@@ -23,6 +24,8 @@ int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned l
  * --validation); returns 1 if consumed, 0 if not one, -1 on a usage error. */
 int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts *o);
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
+/* Applies one --set KEY=VALUE to p (SESSILE_ERR_USAGE with a message on bad input). */
+sessile_status cli_params_set_kv(sessile_params *p, const char *kv);
 
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);

@@ -50,17 +50,7 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
     } else { free(sets); return cli_usage_error("bench grow", "unknown option '%s'", a); }
   }
   sessile_status s = sessile_params_preset(&p, preset);
-  for (int k = 0; s == SESSILE_OK && k < nsets; k++) {
-    char key[128];
-    const char *eq = strchr(sets[k], '=');
-    if (!eq || eq == sets[k] || (size_t)(eq - sets[k]) >= sizeof key) {
-      s = sessile_error_set(SESSILE_ERR_USAGE, "--set '%s' must be KEY=VALUE", sets[k]);
-      break;
-    }
-    memcpy(key, sets[k], (size_t)(eq - sets[k]));
-    key[eq - sets[k]] = 0;
-    s = sessile_params_set(&p, key, eq + 1);
-  }
+  for (int k = 0; s == SESSILE_OK && k < nsets; k++) s = cli_params_set_kv(&p, sets[k]);
   free(sets);
   if (s == SESSILE_OK) s = sessile_params_validate(&p);
   if (s != SESSILE_OK) return cli_fail(s);

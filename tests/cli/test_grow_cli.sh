@@ -71,6 +71,30 @@ done
 check "no temporary files are left behind" eval '[ -z "$(find "$T/r1" -name "*.tmp*")" ]'
 check "the manifest says complete, with seed, device and per-iteration solves" eval \
   'grep -q "\"state\":.*\"complete\"" "$T/r1/manifest.json" && grep -q "\"seed\":.*\"7\"" "$T/r1/manifest.json" && grep -q "true_relres" "$T/r1/manifest.json" && grep -q "\"driver\"" "$T/r1/manifest.json"'
+# The run's own files through independent readers (VTK, meshio, exrheader).
+check "VTK reads the run's VTU: one point per box node, c in [0,1], c = 0 on solid nodes" \
+  /usr/bin/python3 - "$T/r1/fields/iter_0002.vtu" "$T/r1/manifest.json" <<'PYEOF'
+import json, sys
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+r = vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update()
+g = r.GetOutput(); m = json.load(open(sys.argv[2]))
+c = vtk_to_numpy(g.GetPointData().GetArray("c")); solid = vtk_to_numpy(g.GetPointData().GetArray("solid"))
+ok = g.GetNumberOfPoints() == m["box"]["nodes"] and g.GetNumberOfCells() == m["box"]["tetrahedra"]
+ok = ok and c.min() >= -1e-9 and c.max() <= 1 + 1e-9 and solid.sum() > 0 and abs(c[solid == 1]).max() == 0
+print("points", g.GetNumberOfPoints(), "cells", g.GetNumberOfCells(), "solid", int(solid.sum()), "c range", c.min(), c.max())
+sys.exit(0 if ok else 1)
+PYEOF
+check "meshio reads final.ply and final.obj with the manifest's vertex count" \
+  /usr/bin/python3 - "$T/r1/sponge/final.ply" "$T/r1/sponge/final.obj" "$T/r1/manifest.json" <<'PYEOF'
+import json, sys, meshio
+m = json.load(open(sys.argv[3])); nv = m["iterations"][-1]["surface"]["vertices"]
+a = meshio.read(sys.argv[1]); b = meshio.read(sys.argv[2])
+print("ply", len(a.points), "obj", len(b.points), "manifest", nv)
+sys.exit(0 if len(a.points) == nv == len(b.points) and abs(a.points - b.points).max() < 1e-5 else 1)
+PYEOF
+check "exrheader reads a slice with its sessile attributes" eval \
+  'exrheader "$T/r1/slices/iter_0002_z.exr" | grep -q "sessile:iteration (type int): 2"'
 run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
 check "same seed, same device: byte-identical final.ply" cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"
 run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0
