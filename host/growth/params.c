@@ -9,7 +9,7 @@
 #include <strings.h>
 #include "sessile/params.h"
 
-typedef enum { T_REAL, T_INT, T_BOOL, T_ENUM_SKELETON } ptype;
+typedef enum { T_REAL, T_INT, T_BOOL, T_ENUM_SKELETON, T_ENUM_DOMAIN } ptype;
 
 typedef struct {
   const char *name;
@@ -27,7 +27,13 @@ static const pdef table[] = {
 };
 enum { NPARAMS = sizeof table / sizeof table[0] };
 
-static const char *skeleton_names[] = {"radiate", "halichondrid"};
+static const char *skeleton_names[] = {"radiate", "halichondrid", NULL};
+static const char *domain_names[] = {"immersed", "conforming", NULL};
+
+/* The names of an enum parameter's values (index = value), NULL-terminated. */
+static const char *const *enum_names(ptype t) {
+  return t == T_ENUM_SKELETON ? skeleton_names : t == T_ENUM_DOMAIN ? domain_names : NULL;
+}
 
 static double get(const sessile_params *p, const pdef *d) {
   const char *base = (const char *)p + d->offset;
@@ -93,14 +99,17 @@ sessile_status sessile_params_set(sessile_params *p, const char *key, const char
     else return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not true or false", key, value);
     return SESSILE_OK;
   }
-  if (d->type == T_ENUM_SKELETON) {
-    for (int i = 0; i < 2; i++)
-      if (!strcasecmp(value, skeleton_names[i])) {
+  const char *const *names = enum_names(d->type);
+  if (names) {
+    char list[128] = "";
+    for (int i = 0; names[i]; i++) {
+      if (!strcasecmp(value, names[i])) {
         put(p, d, i);
         return SESSILE_OK;
       }
-    return sessile_error_set(SESSILE_ERR_USAGE,
-                             "parameter %s: '%s' is not one of radiate, halichondrid", key, value);
+      snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", names[i]);
+    }
+    return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not one of %s", key, value, list);
   }
   char *end = NULL;
   errno = 0;
@@ -164,11 +173,10 @@ sessile_status sessile_params_load_json(sessile_params *p, const char *path) {
           break;
         }
         put(p, d, cJSON_IsTrue(it));
-      } else if (d->type == T_ENUM_SKELETON) {
+      } else if (enum_names(d->type)) {
         if (!cJSON_IsString(it)) {
-          s = sessile_error_set(SESSILE_ERR_USAGE,
-                                "config file '%s': %s must be a string (radiate or halichondrid)",
-                                path, d->name);
+          s = sessile_error_set(SESSILE_ERR_USAGE, "config file '%s': %s must be a string (%s, ...)",
+                                path, d->name, enum_names(d->type)[0]);
           break;
         }
         s = sessile_params_set(p, d->name, it->valuestring);
@@ -217,14 +225,14 @@ int sessile_params_count(void) { return NPARAMS; }
 
 void sessile_params_get(const sessile_params *p, int i, sessile_param_info *info) {
   const pdef *d = &table[i];
-  static const char *tn[] = {"real", "integer", "bool", "enum"};
+  static const char *tn[] = {"real", "integer", "bool", "enum", "enum"};
   info->name = d->name;
   info->type = tn[d->type];
   info->unit = d->unit;
   info->source = d->source;
   info->description = d->desc;
   info->value = get(p, d);
-  info->text = d->type == T_ENUM_SKELETON ? skeleton_names[(int)info->value ? 1 : 0] : NULL;
+  info->text = enum_names(d->type) ? enum_names(d->type)[(int)info->value] : NULL;
 }
 
 void sessile_params_print(const sessile_params *p, FILE *out) {

@@ -18,7 +18,7 @@ extern "C" {
 #endif
 
 /* X(name, type, default, min, max, unit, source, description)
- * type: REAL (double), INT (int, range checked), BOOL (0/1), ENUM_SKELETON. */
+ * type: REAL (double), INT (int, range checked), BOOL (0/1), ENUM_* (names in params.c). */
 #define SESSILE_PARAMS(X)                                                                          \
   X(diffusion_limited, BOOL, 1, 0, 1, "", "Table 1",                                               \
     "velocity set to 0 in the nutrient equation (Laplace); false needs the fluid solve")           \
@@ -69,6 +69,7 @@ typedef struct sessile_params {
 #define SESSILE_PARAM_FIELD_INT(n) int n;
 #define SESSILE_PARAM_FIELD_BOOL(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SKELETON(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_DOMAIN(n) int n;
 #define X(name, type, def, lo, hi, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
