@@ -36,7 +36,7 @@ static inline uint64_t slot(const sessile_csr *a, uint32_t i, uint32_t j) {
 }
 
 /* Gradients of the 4 barycentric functions (1/m) and the volume (m^3). */
-static double tet_gradients(const double x[4][3], double g[4][3]) {
+static double tet_gradients(double x[4][3], double g[4][3]) {
   double e[3][3];
   for (int r = 0; r < 3; r++)
     for (int c = 0; c < 3; c++) e[r][c] = x[r + 1][c] - x[0][c];
