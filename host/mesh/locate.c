@@ -129,8 +129,10 @@ uint32_t sessile_locator_find(const sessile_locator *l, const double p[3], doubl
   uint32_t c[3];
   for (int k = 0; k < 3; k++) {
     double x = (p[k] - l->lo[k]) * l->inv_h[k];
-    if (!(x >= 0 && x < (double)l->dims[k])) return SESSILE_LOCATE_OUTSIDE; /* NaN too */
-    c[k] = (uint32_t)x;
+    /* a margin of 1e-3 bin, clamped: points on the bounding box's faces
+     * still find their bin when lo and inv_h are rounded to fp32 */
+    if (!(x >= -1e-3 && x <= (double)l->dims[k] + 1e-3)) return SESSILE_LOCATE_OUTSIDE; /* NaN too */
+    c[k] = x <= 0 ? 0 : x >= (double)(l->dims[k] - 1) ? l->dims[k] - 1 : (uint32_t)x;
   }
   uint32_t b = c[0] + l->dims[0] * (c[1] + l->dims[1] * c[2]);
   const sessile_tetmesh *m = l->m;

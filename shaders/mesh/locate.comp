@@ -56,8 +56,9 @@ void main() {
   bool inside = true;
   for (int k = 0; k < 3; k++) {
     precise REAL x = (p[k] - gp[k]) * gp[3 + k];
-    if (!(x >= REAL(0) && x < REAL(dims[k]))) inside = false;
-    c[k] = inside ? uint(x) : 0u;
+    if (!(x >= REAL(-1e-3) && x <= REAL(dims[k]) + REAL(1e-3))) inside = false;
+    REAL top = REAL(dims[k] - 1u);
+    c[k] = !inside || x <= REAL(0) ? 0u : x >= top ? dims[k] - 1u : uint(x);
   }
   uint hit = OUTSIDE;
   REAL value = gp[7];
