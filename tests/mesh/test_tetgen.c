@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "sessile/locate.h"
 #include "sessile/tetgen.h"
 #include "testutil.h"
 
@@ -139,7 +140,32 @@ static void measure(int level, double radius, const char *what) {
     t_ok(what, st);
     printf("MEASURE %s (%u vertices, %u triangles), -q%.3g: %.2f s, %u nodes, %u tets, %u boundary faces\n",
            what, s.nv, s.nf, o.radius_edge, t1 - t0, m.nnodes, m.ntets, m.nbfaces);
-    if (!pass) check_mesh(what, &box, &s, &m, SESSILE_TAG_SUBSTRATUM, footprint(&s, 2, 0));
+    if (!pass) {
+      check_mesh(what, &box, &s, &m, SESSILE_TAG_SUBSTRATUM, footprint(&s, 2, 0));
+      /* the locator on it: build time and host queries per second */
+      sessile_locator *l = NULL;
+      t0 = sessile_wall_seconds();
+      t_ok("locator", sessile_locator_build(&m, 0, &l));
+      t1 = sessile_wall_seconds();
+      sessile_locator_grid g;
+      sessile_locator_grid_of(l, &g);
+      uint64_t r = 12345;
+      int found = 0, nq = 200000;
+      double t2 = sessile_wall_seconds();
+      for (int i = 0; i < nq; i++) {
+        double p[3], w[4];
+        for (int k = 0; k < 3; k++) {
+          r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+          p[k] = (double)(r >> 11) / 9007199254740992.0 * 38.4 * (k == 2 ? 0.75 : 1.0);
+        }
+        found += sessile_locator_find(l, p, w) != SESSILE_LOCATE_OUTSIDE;
+      }
+      double t3 = sessile_wall_seconds();
+      printf("MEASURE locator: build %.3f s, %u bins, %.1f tets per bin (max %u); %d host queries %.3f s "
+             "(%.2f M/s), %d found\n", t1 - t0, g.nbins, g.mean_per_bin, g.max_per_bin, nq, t3 - t2,
+             nq / (t3 - t2) / 1e6, found);
+      sessile_locator_destroy(l);
+    }
     sessile_tetmesh_free(&m);
   }
   sessile_surface_free(&s);
