@@ -61,7 +61,9 @@ void sessile_locate_gpu_destroy(sessile_locate_gpu *lg);
 /* Records the kernel into c: for each of the n points (3 n reals in the
  * context precision), the holding tet into tets (n uint32, or
  * SESSILE_LOCATE_OUTSIDE) and the interpolated field (nnodes reals) into
- * values (n reals; outside_value where outside). */
+ * values (n reals; outside_value where outside).  outside_value sits in the
+ * locator's one parameter slot: the last recorded value applies to every
+ * recording of lg. */
 sessile_status sessile_locate_gpu_record(sessile_locate_gpu *lg, sessile_cmd *c, sessile_buffer *points,
                                          uint32_t n, sessile_buffer *field, sessile_buffer *values,
                                          sessile_buffer *tets, double outside_value);
