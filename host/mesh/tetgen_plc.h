@@ -1,0 +1,48 @@
+/* Internal: the piecewise linear complex handed to TetGen and TetGen's
+ * result, as plain C arrays, so that the only C++ (tetgen_shim.cpp) is a thin
+ * copy into tetgenio, the call and a copy back. */
+#ifndef SESSILE_TETGEN_PLC_H
+#define SESSILE_TETGEN_PLC_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tg_plc {
+  int npoints;
+  double *xyz;  /* 3 npoints */
+  double *size; /* npoints target edge lengths (TetGen -m point metric), or NULL */
+  int nfacets;
+  int *facet_poly; /* nfacets + 1: polygons of facet f are facet_poly[f] .. facet_poly[f+1] */
+  int *poly_vert;  /* npolys + 1: vertices of polygon p are verts[poly_vert[p] .. poly_vert[p+1]] */
+  int *verts;
+  int *facet_hole; /* nfacets + 1: facet hole points (3 doubles each) */
+  double *fholes;
+  int *facet_marker; /* nfacets */
+  int nholes;
+  double *holes; /* 3 nholes: volume hole seeds */
+} tg_plc;
+
+typedef struct tg_result {
+  int npoints, ntets, nfaces;
+  double *xyz;      /* 3 npoints */
+  int *tet;         /* 4 ntets */
+  int *face;        /* 3 nfaces: boundary (facet) subfaces */
+  int *face_marker; /* nfaces */
+} tg_result;
+
+/* Runs tetrahedralize(switches, plc) and copies the output into malloc'd
+ * arrays.  Returns 0, or TetGen's error code (1 out of memory, 2 internal
+ * error, 3 self-intersection, 4 small feature, 5 close facets, 10 input
+ * error), -1 for another exception, -2 when copying the output ran out of
+ * memory; msg receives a sentence saying which. Never throws. */
+int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_result *out, char *msg,
+                      size_t msglen);
+void tg_result_free(tg_result *r);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
