@@ -1,4 +1,4 @@
-/* BiCGSTAB on the device with right Jacobi preconditioning (van der Vorst):
+/* BiCGSTAB on the device with right preconditioning M (Jacobi or ILU(0)) (van der Vorst):
  *   β = (ρ'/ρ)(α/ω); p = r + β(p − ω v); p̂ = M p; v = A p̂; α = ρ/(r̂0·v);
  *   s = r − α v; ŝ = M s; t = A ŝ; ω = (t·s)/(t·t); x += α p̂ + ω ŝ; r = s − ω t
  * Converged on ‖r‖ (or already on ‖s‖, the half step). */
@@ -35,7 +35,7 @@ static sessile_status record_start(sessile_la *la, sessile_cmd *c, const sessile
 }
 
 static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const sessile_mat *a,
-                                        const sessile_vec *x, const sessile_vec *dinv,
+                                        const sessile_vec *x, const la_pc *pc,
                                         bi_work *w, int k) {
   uint32_t n = a->nrows, n4 = w->r->n4, cnt;
   vref none = {0};
@@ -45,7 +45,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
     SESSILE_CALL(scalar_op(la, c, 1));
     sessile_buffer *pb[4] = {la->scalars, w->r->buf, w->v->buf, w->p->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_BICG_P], la_groups(la, K_BICG_P, n4), pb, &vp));
-    SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(dinv), vref_of(w->p), vref_of(w->ph), -1, 0, S_STOP));
+    SESSILE_CALL(rec_pc(la, c, pc, n, vref_of(w->p), vref_of(w->ph), S_STOP));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->ph), vref_of(w->v), S_STOP));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r0), vref_of(w->v), 0, S_STOP, &cnt));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, BI_R0V, 0, S_STOP));
@@ -53,7 +53,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
     sessile_buffer *sbuf[5] = {la->scalars, w->r->buf, w->v->buf, w->sv->buf, la->partials};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_BICG_S], cnt, sbuf, &vp));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, BI_SS, 0, S_STOP));
-    SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(dinv), vref_of(w->sv), vref_of(w->sh), -1, 0, S_STOP));
+    SESSILE_CALL(rec_pc(la, c, pc, n, vref_of(w->sv), vref_of(w->sh), S_STOP));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->sh), vref_of(w->t), S_STOP));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->t), vref_of(w->sv), 0, S_STOP, &cnt));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->t), vref_of(w->t), 1, S_STOP, &cnt));
@@ -70,7 +70,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
 }
 
 static sessile_status bi_run(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                             const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                             const sessile_vec *b, sessile_vec *x, const la_pc *pc,
                              bi_work *w, sessile_cmd *iter, sessile_solve_result *res) {
   sessile_kernel *k;
   static const la_kernel_id ids[] = {K_BICG_SCALAR, K_BICG_P, K_BICG_S, K_BICG_XR, K_DOT,
@@ -80,14 +80,14 @@ static sessile_status bi_run(sessile_la *la, const sessile_ksp_options *o, const
   la_solver_reset(la, o);
   SESSILE_CALL(record_start(la, la->cmd, a, b, x, w));
   SESSILE_CALL(sessile_cmd_submit_wait(la->cmd));
-  SESSILE_CALL(record_iterations(la, iter, a, x, dinv, w, o->check_every));
+  SESSILE_CALL(record_iterations(la, iter, a, x, pc, w, o->check_every));
   SESSILE_CALL(la_solver_loop(la, iter, o->check_every, o->max_it, o->monitor, "bicgstab", BI_RR, 1));
   la_solver_outcome(la, res, sqrt(fmax(la_scalar_read(la, BI_RR), 0) / la_scalar_read(la, S_BB)));
   return SESSILE_OK;
 }
 
 sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                           const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                           const sessile_vec *b, sessile_vec *x, const la_pc *pc,
                            sessile_solve_result *res) {
   bi_work w = {0};
   sessile_vec **v[] = {&w.r, &w.r0, &w.p, &w.v, &w.ph, &w.sv, &w.sh, &w.t};
@@ -96,7 +96,7 @@ sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const s
   for (size_t i = 0; s == SESSILE_OK && i < sizeof v / sizeof v[0]; i++)
     s = sessile_vec_create(la, a->nrows, v[i]);
   if (s == SESSILE_OK) s = sessile_cmd_create(la->gpu, &iter);
-  if (s == SESSILE_OK) s = bi_run(la, o, a, b, x, dinv, &w, iter, res);
+  if (s == SESSILE_OK) s = bi_run(la, o, a, b, x, pc, &w, iter, res);
   sessile_cmd_destroy(iter);
   for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) sessile_vec_destroy(*v[i]);
   return s;

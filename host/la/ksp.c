@@ -1,5 +1,5 @@
-/* Krylov solve driver: options, the zero right-hand side, the Jacobi
- * preconditioner, restarts when the true residual lags the recursive one,
+/* Krylov solve driver: options, the zero right-hand side, the Jacobi and
+ * ILU(0) preconditioners, restarts when the true residual lags the recursive one,
  * and mixed-precision iterative refinement on fp32 devices. */
 #include <math.h>
 #include <stdio.h>
@@ -84,12 +84,12 @@ static sessile_status true_residual(sessile_la *la, const sessile_mat *a, const 
 }
 
 static sessile_status run_type(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                               const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                               const sessile_vec *b, sessile_vec *x, const la_pc *pc,
                                sessile_solve_result *res) {
   switch (o->type) {
-  case SESSILE_KSP_CG: return la_cg(la, o, a, b, x, dinv, res);
-  case SESSILE_KSP_BICGSTAB: return la_bicgstab(la, o, a, b, x, dinv, res);
-  case SESSILE_KSP_GMRES: return la_gmres(la, o, a, b, x, dinv, res);
+  case SESSILE_KSP_CG: return la_cg(la, o, a, b, x, pc->dinv, res);
+  case SESSILE_KSP_BICGSTAB: return la_bicgstab(la, o, a, b, x, pc, res);
+  case SESSILE_KSP_GMRES: return la_gmres(la, o, a, b, x, pc, res);
   }
   return sessile_error_set(SESSILE_ERR_USAGE, "unknown solver type %d", (int)o->type);
 }
@@ -98,13 +98,13 @@ static sessile_status run_type(sessile_la *la, const sessile_ksp_options *o, con
  * recursive residual drifts from it in finite precision). */
 static sessile_status solve_device(sessile_la *la, const sessile_ksp_options *o,
                                    const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
-                                   const sessile_vec *dinv, sessile_vec *q, double bnorm,
+                                   const la_pc *pc, sessile_vec *q, double bnorm,
                                    sessile_solve_result *res) {
   sessile_ksp_options oo = *o;
   for (int attempt = 0; attempt < 4; attempt++) {
     oo.max_it = o->max_it - res->iterations;
     if (oo.max_it <= 0) { res->status = SESSILE_SOLVE_MAX_ITER; break; }
-    SESSILE_CALL(run_type(la, &oo, a, b, x, dinv, res));
+    SESSILE_CALL(run_type(la, &oo, a, b, x, pc, res));
     double rn;
     SESSILE_CALL(true_residual(la, a, b, x, q, &rn));
     res->true_relres = rn / bnorm;
@@ -139,7 +139,7 @@ static void host_residual(const sessile_mat *a, const uint32_t *mask, const doub
  * in fp32), so it is honest about what fp32 storage allows. */
 static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o,
                                     const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
-                                    const sessile_vec *dinv, sessile_vec *q,
+                                    const la_pc *pc, sessile_vec *q,
                                     sessile_solve_result *res) {
   uint32_t n = a->nrows;
   double *bh = malloc((size_t)n * 3 * sizeof(double));
@@ -177,7 +177,7 @@ static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o
     if ((s = sessile_vec_upload(q, rh)) != SESSILE_OK) break;
     if ((s = sessile_vec_fill(la, 0.0, d)) != SESSILE_OK) break;
     inner.max_it = o->max_it - res->iterations;
-    if ((s = run_type(la, &inner, a, q, d, dinv, res)) != SESSILE_OK) break;
+    if ((s = run_type(la, &inner, a, q, d, pc, res)) != SESSILE_OK) break;
     res->refinements++;
     if (res->status == SESSILE_SOLVE_BREAKDOWN) break;
     if ((s = sessile_vec_download(d, rh)) != SESSILE_OK) break;
@@ -214,6 +214,11 @@ sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
   SESSILE_CHECK(o.max_it > 0, SESSILE_ERR_USAGE, "max_it must be positive, got %d", o.max_it);
   SESSILE_CHECK(o.restart >= 1 && o.restart <= 64, SESSILE_ERR_USAGE,
                 "GMRES restart must be in 1..64, got %d", o.restart);
+  SESSILE_CHECK(o.pc == SESSILE_PC_NONE || o.pc == SESSILE_PC_JACOBI || o.pc == SESSILE_PC_ILU0,
+                SESSILE_ERR_USAGE, "unknown preconditioner %d", (int)o.pc);
+  SESSILE_CHECK(o.pc != SESSILE_PC_ILU0 || o.type != SESSILE_KSP_CG, SESSILE_ERR_USAGE,
+                "ILU0 is a nonsymmetric preconditioner and CG needs a symmetric one: use "
+                "bicgstab or gmres with ILU0, or CG with Jacobi");
   if (o.check_every < 1) o.check_every = 1;
   double t0 = sessile_wall_seconds();
   double bnorm;
@@ -233,13 +238,17 @@ sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
     return SESSILE_OK;
   }
   sessile_vec *dinv = NULL, *q = NULL;
-  sessile_status s = sessile_vec_create(la, a->nrows, &dinv);
+  la_pc pc = {o.pc, NULL, NULL};
+  sessile_status s = SESSILE_OK;
+  if (o.pc == SESSILE_PC_ILU0) s = la_ilu_get(la, a, &pc.ilu); /* once per matrix */
+  if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &dinv);
   if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &q);
   if (s == SESSILE_OK)
     s = o.pc == SESSILE_PC_JACOBI ? sessile_mat_jacobi(la, a, dinv) : sessile_vec_fill(la, 1.0, dinv);
+  pc.dinv = dinv;
   if (s == SESSILE_OK)
-    s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, dinv, q, bnorm, res)
-                            : solve_refined(la, &o, a, b, x, dinv, q, res);
+    s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, &pc, q, bnorm, res)
+                            : solve_refined(la, &o, a, b, x, &pc, q, res);
   sessile_vec_destroy(q);
   sessile_vec_destroy(dinv);
   res->seconds = sessile_wall_seconds() - t0;

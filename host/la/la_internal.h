@@ -45,7 +45,9 @@ enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
   X(K_GMRES_UPDATE, "la/gmres_update", 4, 32, 256)  \
   X(K_STENCIL7, "la/stencil7", 4, 32, 64)           \
   X(K_STENCIL7_DOT, "la/stencil7_dot", 5, 32, 64)   \
-  X(K_STENCIL7_JACOBI, "la/stencil7_jacobi", 4, 32, 64)
+  X(K_STENCIL7_JACOBI, "la/stencil7_jacobi", 4, 32, 64) \
+  X(K_ILU_CSR, "la/ilu_csr", 7, 24, 64)             \
+  X(K_ILU_BCSR4, "la/ilu_bcsr4", 7, 24, 64)
 
 typedef enum {
 #define X(id, name, nb, pb, ls) id,
@@ -87,6 +89,7 @@ struct sessile_mat {
   uint32_t grid[3];        /* STENCIL7: nodes per axis */
   double h;                /* STENCIL7: grid spacing */
   sessile_buffer *mask;    /* STENCIL7: Dirichlet mask (uint32 per node), not owned */
+  struct la_ilu *ilu;      /* ILU(0) factors, computed on first use (ilu.c) */
 };
 
 /* A vector inside a buffer: `off4` REAL4 chunks from its start. */
@@ -136,15 +139,36 @@ sessile_status la_upload_reals(sessile_la *la, sessile_buffer *b, size_t offset_
 sessile_status la_download_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
                                  double *dst, size_t n);
 
+/* ILU(0) on the device (ilu.c): the factors of `a`, computed once and cached
+ * in the matrix; z = (LU)⁻¹ r as one dispatch per level of L and of U. */
+typedef struct la_ilu la_ilu;
+sessile_status la_ilu_get(sessile_la *la, const sessile_mat *a, const la_ilu **out);
+void la_ilu_destroy(la_ilu *f);
+sessile_status rec_ilu(sessile_la *la, sessile_cmd *c, const la_ilu *f, vref r, vref z, int guard);
+/* Inverse of a bs x bs row-major block (bs <= 4) by Gauss-Jordan with partial
+ * pivoting; 0 when singular to working precision or not finite (ref_ilu.c). */
+int la_block_inverse(int bs, const double *a, double *inv);
+
+/* The preconditioner a solver applies: z = M r.  Jacobi and none are the
+ * element-wise product with dinv (ones for none); ILU0 the level-scheduled
+ * triangular solves. */
+typedef struct {
+  sessile_pc_type type;
+  const sessile_vec *dinv;
+  const la_ilu *ilu;
+} la_pc;
+sessile_status rec_pc(sessile_la *la, sessile_cmd *c, const la_pc *pc, uint32_t n, vref r, vref z,
+                      int guard);
+
 /* Solvers (one file each); run on the device in the context precision. */
 sessile_status la_cg(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
                      const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
                      sessile_solve_result *res);
 sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                           const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                           const sessile_vec *b, sessile_vec *x, const la_pc *pc,
                            sessile_solve_result *res);
 sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                        const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                        const sessile_vec *b, sessile_vec *x, const la_pc *pc,
                         sessile_solve_result *res);
 /* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,

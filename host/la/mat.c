@@ -173,6 +173,7 @@ void sessile_mat_destroy(sessile_mat *m) {
   sessile_buffer_destroy(m->rowptr);
   sessile_buffer_destroy(m->col);
   sessile_buffer_destroy(m->val);
+  la_ilu_destroy(m->ilu);
   if (m->kind == MAT_CSR) sessile_csr_free(&m->host);
   else sessile_bcsr4_free(&m->hostb);
   free(m);

@@ -82,9 +82,32 @@ sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sess
 /* The Jacobi preconditioner: dinv = 1/diag(A) (fails on a zero diagonal, naming the row). */
 sessile_status sessile_mat_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
 
+/* ILU(0) preconditioner of an assembled CSR or BCSR4 matrix (not the
+ * matrix-free stencil): factorised once on the host in double (O(nnz) work,
+ * sessile_ref_ilu0_*), stored on the device in the context precision with the
+ * rows of L and of U grouped by level (level scheduling), and applied as one
+ * dispatch per level.  The factors are cached inside the matrix (computed on
+ * first use, freed with it): a const matrix is only logically const here.
+ * Fails with SESSILE_ERR_NUMERIC naming the row on a zero or singular pivot.
+ * docs/design.md ("ILU(0)"). */
+typedef struct sessile_ilu0_info {
+  uint32_t levels_lower, levels_upper; /* dispatches per application: their sum */
+  double seconds;                      /* host factorisation, levels and upload */
+} sessile_ilu0_info;
+sessile_status sessile_mat_ilu0(sessile_la *la, const sessile_mat *a, sessile_ilu0_info *info);
+/* z = (L U)⁻¹ r on the device (factorises first when needed); waits. */
+sessile_status sessile_mat_ilu0_apply(sessile_la *la, const sessile_mat *a, const sessile_vec *r,
+                                      sessile_vec *z);
+
 /* --- Krylov solvers --------------------------------------------------------- */
 typedef enum sessile_ksp_type { SESSILE_KSP_CG = 0, SESSILE_KSP_BICGSTAB = 1, SESSILE_KSP_GMRES = 2 } sessile_ksp_type;
-typedef enum sessile_pc_type { SESSILE_PC_NONE = 0, SESSILE_PC_JACOBI = 1 } sessile_pc_type;
+/* ILU0: right preconditioning for BiCGSTAB and GMRES only (CG needs a
+ * symmetric preconditioner and refuses it); CSR and BCSR4 matrices only. */
+typedef enum sessile_pc_type {
+  SESSILE_PC_NONE = 0,
+  SESSILE_PC_JACOBI = 1,
+  SESSILE_PC_ILU0 = 2
+} sessile_pc_type;
 
 typedef struct sessile_ksp_options {
   sessile_ksp_type type;

@@ -39,6 +39,21 @@ sessile_status sessile_ref_jacobi_csr(const sessile_csr *a, double *dinv);
  * diagonal, i.e. of the diagonals of the diagonal blocks). */
 sessile_status sessile_ref_jacobi_bcsr4(const sessile_bcsr4 *a, double *dinv);
 
+/* ILU(0): incomplete LU factorisation on A's own sparsity pattern (block
+ * ILU(0) for BCSR4: 4x4 pivot blocks inverted densely), IKJ order in double.
+ * `lu` receives A's nnz values (16*nnzb for blocks) in A's pattern: the
+ * strict lower part holds L (unit diagonal implied), the diagonal and upper
+ * part hold U, so (L U)_ij = A_ij wherever A has an entry.  Fails with
+ * SESSILE_ERR_NUMERIC, naming the row, on a missing, zero, singular or
+ * non-finite pivot.  Sequential (row i needs rows < i). */
+sessile_status sessile_ref_ilu0_csr(const sessile_csr *a, double *lu);
+sessile_status sessile_ref_ilu0_bcsr4(const sessile_bcsr4 *a, double *lu);
+/* z = (L U)⁻¹ r with the factors above: forward then backward substitution in
+ * natural row order (the 4x4 pivots solved by Gaussian elimination). */
+void sessile_ref_ilu0_solve_csr(const sessile_csr *a, const double *lu, const double *r, double *z);
+void sessile_ref_ilu0_solve_bcsr4(const sessile_bcsr4 *a, const double *lu, const double *r,
+                                  double *z);
+
 /* ‖b − A x‖ / ‖b‖ (‖r‖ when b = 0). */
 double sessile_ref_true_relres(const sessile_csr *a, const double *b, const double *x);
 
