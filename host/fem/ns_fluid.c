@@ -440,10 +440,22 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     res->solve_s += st->solve_s;
     res->lin_iterations += st->lin_iterations;
     res->nsteps = it + 1;
-    for (size_t k = 0; k < n4; k++) up[k] += du[k];
+    /* backtracking on ||R||: halve the step while the residual does not
+     * decrease (at most 6 times); a full step near the solution (quadratic) */
+    double lam = 1.0;
+    for (int ls = 0; ls < 7; ls++) {
+      for (size_t k = 0; k < n4; k++) up[k] += lam * du[k];
+      if (ls == 6) break;
+      assemble(fl, p, up, 1.0, 0, r);
+      double rt = apply_bc_rows(fl, bc, 0, r);
+      if (isfinite(rt) && rt < (1.0 - 1e-4 * lam) * rn) break;
+      for (size_t k = 0; k < n4; k++) up[k] -= lam * du[k];
+      lam *= 0.5;
+    }
+    st->step_length = lam;
     if (p->verbose)
-      fprintf(stderr, "fluid %s %d: |R| %.3e (rel %.2e)  lin %d it relres %.2e %s  asm %.2f s solve %.2f s\n",
-              picard ? "picard" : "newton", it, rn, rn / res->residual0, st->lin_iterations,
+      fprintf(stderr, "fluid %s %d: |R| %.3e (rel %.2e)  step %.3g  lin %d it relres %.2e %s  asm %.2f s solve %.2f s\n",
+              picard ? "picard" : "newton", it, rn, rn / res->residual0, lam, st->lin_iterations,
               st->lin_relres, sessile_solve_status_name(st->lin_status), tass, st->solve_s);
   }
   if (s == SESSILE_OK && p->verbose)

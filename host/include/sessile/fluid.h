@@ -78,6 +78,7 @@ enum { SESSILE_FLUID_MAX_STEPS = 128 };
 typedef struct sessile_fluid_step {
   double residual;       /* ||R|| of the free rows before this step's update */
   int picard;            /* 1 for a Picard step */
+  double step_length;    /* backtracking factor taken (1 = full Newton step) */
   int lin_iterations;
   double lin_relres;     /* true relative residual of the linear solve */
   sessile_solve_status lin_status;
