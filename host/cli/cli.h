@@ -31,4 +31,5 @@ int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
 #endif

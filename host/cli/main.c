@@ -19,6 +19,7 @@ static const char *help =
     "  devices     list the Vulkan devices and the one sessile uses\n"
     "  bench la    time the GPU linear algebra against the plain-C reference\n"
     "  bench grow  time each stage of the growth loop\n"
+    "  bench fluid time the Navier-Stokes solve (Newton steps, linear iterations)\n"
     "  help        this text; 'sessile COMMAND --help' explains a command\n"
     "  version     print the version\n"
     "\n"

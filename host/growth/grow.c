@@ -61,7 +61,8 @@ static sessile_status setup(grow_run *r) {
     if (r->center[a] < lo) r->center[a] = lo;
     if (r->center[a] > hi) r->center[a] = hi;
   }
-  SESSILE_CALL(sessile_surface_icosphere(p->sponge_resolution, p->sponge_radius, r->center, &r->surf));
+  if (r->o->initial) SESSILE_CALL(sessile_surface_copy(r->o->initial, &r->surf));
+  else SESSILE_CALL(sessile_surface_icosphere(p->sponge_resolution, p->sponge_radius, r->center, &r->surf));
   /* A sponge grows attached to the rock: the part of the sphere below the
    * substratum is projected onto it (a flat base; its triangles keep their
    * downward orientation, so the surface stays closed and consistent). */
@@ -80,6 +81,7 @@ static sessile_status setup(grow_run *r) {
 }
 
 static void teardown(grow_run *r) {
+  grow_flow_teardown(r);
   sessile_vec_destroy(r->c);
   sessile_buffer_destroy(r->solid);
   sessile_growth_gpu_destroy(r->growth);
@@ -139,6 +141,29 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   SESSILE_CALL(sessile_growth_gpu_classify(r->growth, &r->box, r->solid));
   t[2] = sessile_wall_seconds();
 
+  /* The flow feeds the nutrient unless diffusion limited; then it is solved
+   * only for snapshots (or every iteration on request). */
+  int snap = r->o->every > 0 && it % r->o->every == 0;
+  int advect = !r->p->diffusion_limited;
+  r->flow_valid = 0;
+  if (advect || r->p->fluid_every_iteration || (snap && r->o->out_dir && r->p->fluid_at_snapshots)) {
+    progress(r, it, "fluid", 0);
+    sessile_status fs = grow_flow_solve(r, it, rec);
+    if (fs != SESSILE_OK && advect) return fs;
+    if (fs != SESSILE_OK) {
+      /* Diffusion limited: the flow is output only, so its failure costs the
+       * flow channels of this snapshot, not the run. */
+      cJSON *fl = cJSON_GetObjectItem(rec, "fluid");
+      if (!fl) fl = cJSON_AddObjectToObject(rec, "fluid");
+      cJSON_AddStringToObject(fl, "error", sessile_error_message());
+      if (!r->o->quiet)
+        fprintf(stderr, "\nsessile grow: warning: iteration %d: the flow solve failed (%s); this "
+                        "snapshot has no flow channels\n", it, sessile_error_message());
+      r->flow_valid = 0;
+    }
+  }
+  t[3] = sessile_wall_seconds();
+
   progress(r, it, "nutrient", 0);
   sessile_ksp_options ko;
   sessile_ksp_options_default(&ko);
@@ -147,10 +172,13 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   ko.rtol = r->p->linear_rtol;
   ko.max_it = r->p->linear_max_iterations;
   sessile_solve_result res;
-  SESSILE_CALL(sessile_nutrient_solve(r->nutrient, r->solid, r->c, &ko, &res));
-  t[3] = sessile_wall_seconds();
+  if (advect) SESSILE_CALL(grow_nutrient_advected(r, &res));
+  else SESSILE_CALL(sessile_nutrient_solve(r->nutrient, r->solid, r->c, &ko, &res));
+  t[4] = sessile_wall_seconds();
   cJSON *ns = cJSON_AddObjectToObject(rec, "nutrient_solve");
-  cJSON_AddStringToObject(ns, "solver", "pcg+jacobi");
+  cJSON_AddStringToObject(ns, "equation", advect ? "advection-diffusion (SUPG), u from the flow"
+                                                 : "Laplace (diffusion limited)");
+  cJSON_AddStringToObject(ns, "solver", advect ? "bicgstab+jacobi" : "pcg+jacobi");
   cJSON_AddNumberToObject(ns, "iterations", res.iterations);
   cJSON_AddNumberToObject(ns, "true_relres", res.true_relres);
   cJSON_AddStringToObject(ns, "status", sessile_solve_status_name(res.status));
@@ -196,7 +224,7 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   free(pv);
   SESSILE_CALL(gs);
   memcpy(r->surf.pos, np, (size_t)nv * 3 * sizeof *np);
-  t[4] = sessile_wall_seconds();
+  t[5] = sessile_wall_seconds();
 
   progress(r, it, "remesh", 0);
   double *nn = realloc(*normals, (size_t)r->surf.nv * 3 * sizeof *nn);
@@ -225,16 +253,15 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   cJSON_AddNumberToObject(rm, "fusions", rs.fusions);
   cJSON_AddNumberToObject(rm, "area_collapses", rs.area_collapses);
   cJSON_AddNumberToObject(rm, "rejected_collapses", rs.rejected);
-  t[5] = sessile_wall_seconds();
+  t[6] = sessile_wall_seconds();
 
   progress(r, it, "output", 0);
-  int snap = r->o->every > 0 && it % r->o->every == 0;
   nn = realloc(*normals, (size_t)r->surf.nv * 3 * sizeof *nn);
   SESSILE_CHECK(nn, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", r->surf.nv);
   *normals = nn;
   sessile_surface_normals(&r->surf, nn);
   if (r->o->out_dir && snap) SESSILE_CALL(grow_write_snapshot(r, it, nn));
-  t[6] = sessile_wall_seconds();
+  t[7] = sessile_wall_seconds();
 
   cJSON *ts = cJSON_AddObjectToObject(rec, "seconds");
   for (int s = 0; s < SESSILE_STAGE_COUNT; s++) {

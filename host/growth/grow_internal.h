@@ -10,6 +10,9 @@
 #include "sessile/la.h"
 #include "sessile/nutrient.h"
 #include "sessile/surface.h"
+#include "sessile/advdiff.h"
+#include "sessile/fluid.h"
+#include "sessile/tetmesh.h"
 
 typedef struct grow_plane {
   int axis;     /* 0 x, 1 y, 2 z */
@@ -35,6 +38,22 @@ typedef struct grow_run {
   int nvtu;
   int *vtu_steps;
   char **vtu_files;
+  /* The flow (grow_flow.c).  Immersed: on fbox (box level fluid_resolution)
+   * with its own solid mask; conforming: on TetGen's mesh of the latest
+   * surface.  ufine/pfine: the flow at the nutrient box's nodes. */
+  int flow_ready, flow_valid;
+  sessile_box fbox;
+  sessile_tetmesh fmesh, cmesh;
+  sessile_fluid *fluid;
+  sessile_buffer *fsolid;
+  double *up, *cup;       /* warm starts: immersed (4/fbox node), conforming (4/cmesh node) */
+  double *ufine, *pfine;  /* 3 and 1 per nutrient box node */
+  const char *flow_domain; /* "immersed" or "conforming" for the current flow */
+  /* The advected nutrient on the nutrient box (grow_flow.c). */
+  sessile_tetmesh nmesh;
+  sessile_advdiff *ad;
+  uint8_t *nmask, *nsolid;
+  double *nval, *nc;
   cJSON *manifest, *iters;
   double t_start;
   sessile_grow_summary sum;
@@ -52,6 +71,12 @@ sessile_status grow_prepare_outdir(grow_run *r);
 sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals);
 /* Writes sponge/final.ply and final.obj. */
 sessile_status grow_write_final(grow_run *r, const double *normals);
+
+/* The flow of iteration it (records it under "fluid" in rec), with ufine
+ * and pfine filled; the advected nutrient into r->c. */
+sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec);
+sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res);
+void grow_flow_teardown(grow_run *r);
 
 /* Manifest: created at start, one record per iteration, rewritten (atomically)
  * after every iteration so an interrupted run still says what it did. */

@@ -89,7 +89,14 @@ sessile_status grow_manifest_begin(grow_run *r) {
     cJSON_AddNumberToObject(pl, "value_cm", r->planes[i].value);
     cJSON_AddItemToArray(planes, pl);
   }
-  cJSON_AddStringToObject(m, "fluid", "not computed: diffusion_limited = true, the nutrient is a Laplace problem");
+  cJSON_AddStringToObject(m, "fluid",
+                          !r->p->diffusion_limited ? "solved every iteration: it advects the nutrient"
+                          : r->p->fluid_every_iteration
+                              ? "solved every iteration on request; it does not feed the growth "
+                                "(diffusion_limited = true: the nutrient is a Laplace problem)"
+                              : "solved only at snapshot iterations, for the slices and fields; it does "
+                                "not feed the growth (diffusion_limited = true: the nutrient is a "
+                                "Laplace problem)");
   r->iters = cJSON_AddArrayToObject(m, "iterations");
   SESSILE_CHECK(r->iters, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
   return SESSILE_OK;

@@ -94,19 +94,42 @@ sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
   if (!c || !solid || !mask) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a snapshot");
   if (s == SESSILE_OK) s = sessile_vec_download(r->c, c);
   if (s == SESSILE_OK) s = sessile_buffer_download(r->solid, 0, solid, (size_t)nodes * 4);
-  for (int i = 0; s == SESSILE_OK && i < r->nplanes; i++) {
-    sessile_slice_channel ch = {"c", c};
-    snprintf(path, sizeof path, "%s/slices/iter_%04d_%s.exr", out, it, r->planes[i].name);
-    s = sessile_write_slice_exr(path, &r->box, (sessile_axis)r->planes[i].axis, r->planes[i].value, 1,
-                                &ch, it);
+  /* The flow's channels (m/s, Pa) when this iteration solved it. */
+  double *uc = NULL;
+  int flow = r->flow_valid;
+  if (s == SESSILE_OK && flow) {
+    uc = malloc((size_t)nodes * 4 * sizeof *uc);
+    if (!uc) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a snapshot");
+    for (uint32_t i = 0; uc && i < nodes; i++) {
+      const double *u = r->ufine + 3 * (size_t)i;
+      uc[i] = u[0], uc[nodes + i] = u[1], uc[2 * (size_t)nodes + i] = u[2];
+      uc[3 * (size_t)nodes + i] = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    }
   }
+  for (int i = 0; s == SESSILE_OK && i < r->nplanes; i++) {
+    sessile_slice_channel ch[6] = {{"c", c}};
+    int nch = 1;
+    if (flow) {
+      ch[1] = (sessile_slice_channel){"ux", uc};
+      ch[2] = (sessile_slice_channel){"uy", uc + nodes};
+      ch[3] = (sessile_slice_channel){"uz", uc + 2 * (size_t)nodes};
+      ch[4] = (sessile_slice_channel){"umag", uc + 3 * (size_t)nodes};
+      ch[5] = (sessile_slice_channel){"p", r->pfine};
+      nch = 6;
+    }
+    snprintf(path, sizeof path, "%s/slices/iter_%04d_%s.exr", out, it, r->planes[i].name);
+    s = sessile_write_slice_exr(path, &r->box, (sessile_axis)r->planes[i].axis, r->planes[i].value, nch,
+                                ch, it);
+  }
+  free(uc);
   if (s == SESSILE_OK && r->o->fields) {
     for (uint32_t i = 0; i < nodes; i++) mask[i] = solid[i] != 0;
-    sessile_point_data pd[2] = {{"c", c, NULL, 1}, {"solid", NULL, mask, 1}};
+    sessile_point_data pd[4] = {{"c", c, NULL, 1}, {"solid", NULL, mask, 1}, {"u", r->ufine, NULL, 3},
+                                {"p", r->pfine, NULL, 1}};
     char name[64];
     snprintf(name, sizeof name, "iter_%04d.vtu", it);
     snprintf(path, sizeof path, "%s/fields/%s", out, name);
-    s = sessile_write_vtu(path, &r->box, 2, pd);
+    s = sessile_write_vtu(path, &r->box, flow ? 4 : 2, pd);
     if (s == SESSILE_OK) {
       int *steps = realloc(r->vtu_steps, (size_t)(r->nvtu + 1) * sizeof *steps);
       if (steps) r->vtu_steps = steps;

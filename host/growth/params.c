@@ -215,9 +215,9 @@ sessile_status sessile_params_validate(const sessile_params *p) {
   SESSILE_CHECK(p->vertex_insertion_threshold > p->vertex_fusion_threshold, SESSILE_ERR_USAGE,
                 "vertex_insertion_threshold (%g) must exceed vertex_fusion_threshold (%g)",
                 p->vertex_insertion_threshold, p->vertex_fusion_threshold);
-  SESSILE_CHECK(p->diffusion_limited, SESSILE_ERR_USAGE,
-                "diffusion_limited=false needs the Navier-Stokes fluid solve, which this version "
-                "does not have yet; keep diffusion_limited=true");
+  SESSILE_CHECK(p->fluid_resolution <= p->box_resolution, SESSILE_ERR_USAGE,
+                "fluid_resolution (%d) must not exceed box_resolution (%d)", p->fluid_resolution,
+                p->box_resolution);
   return SESSILE_OK;
 }
 

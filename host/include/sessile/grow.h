@@ -18,7 +18,7 @@ extern "C" {
 
 /* Stages timed per iteration (also the names in the manifest and bench). */
 #define SESSILE_GROW_STAGES(X) \
-  X(upload) X(classify) X(nutrient) X(growth) X(remesh) X(output)
+  X(upload) X(classify) X(fluid) X(nutrient) X(growth) X(remesh) X(output)
 typedef enum {
 #define X(n) SESSILE_STAGE_##n,
   SESSILE_GROW_STAGES(X)
@@ -37,6 +37,9 @@ typedef struct sessile_grow_options {
   int fields;           /* write fields/iter_NNNN.vtu at snapshots (default 1) */
   int quiet;            /* no progress output */
   int check_every_iteration; /* run the surface invariant check after every remesh (default 1) */
+  /* The starting surface (copied; clamped into the box), or NULL for the
+   * icosphere the parameters describe. */
+  const sessile_surface *initial;
 } sessile_grow_options;
 void sessile_grow_options_default(sessile_grow_options *o);
 

@@ -21,7 +21,7 @@ extern "C" {
  * type: REAL (double), INT (int, range checked), BOOL (0/1), ENUM_* (names in params.c). */
 #define SESSILE_PARAMS(X)                                                                          \
   X(diffusion_limited, BOOL, 1, 0, 1, "", "Table 1",                                               \
-    "velocity set to 0 in the nutrient equation (Laplace); false needs the fluid solve")           \
+    "velocity set to 0 in the nutrient equation (Laplace); false: the flow advects it")           \
   X(concentration_offset_distance, REAL, 0.1, 0, 100, "cm", "Table 1",                             \
     "how far along the vertex normal the nutrient is probed")                                      \
   X(probe_samples, INT, 8, 2, 256, "", "ours",                                                     \
@@ -58,11 +58,30 @@ extern "C" {
   X(vertex_fusion_threshold, REAL, 0.5, 0, 1e6, "cm", "Table 1", "fuse edges shorter than this")  \
   X(triangle_area_deletion_threshold, REAL, 0.1, 0, 1e6, "cm^2", "Table 1",                        \
     "collapse triangles smaller than this (shortest edge)")                                        \
+  X(domain, ENUM_DOMAIN, 0, 0, 1, "", "ours (DESIGN)",                                            \
+    "water mesh of the flow: immersed (the box, sponge as solid nodes; the paper's way) or "      \
+    "conforming (TetGen, the sponge as a hole; falls back to immersed when TetGen fails)")       \
+  X(fluid_resolution, INT, 1, 1, 6, "", "ours",                                                    \
+    "box level of the immersed flow (<= box_resolution; velocities interpolated to the box)")    \
+  X(fluid_every_iteration, BOOL, 0, 0, 1, "", "ours",                                              \
+    "with diffusion_limited, solve the flow every iteration too (else only for snapshots)")      \
+  X(fluid_at_snapshots, BOOL, 0, 0, 1, "", "ours",                                                 \
+    "with diffusion_limited, also solve the flow at snapshots (slices, fields); off: slow for now")   \
+  X(fluid_density, REAL, 1000, 0, 1e5, "kg/m^3", "paper §4.2", "rho in the Navier-Stokes equations (eq 3)") \
+  X(fluid_viscosity, REAL, 5.0e-2, 1e-9, 1e5, "Pa s", "paper §4.2", "eta in the Navier-Stokes equations (eq 3)") \
+  X(inlet_velocity, REAL, 0.05, 0, 100, "m/s", "paper §4.2", "inflow at x-min, along +x")        \
+  X(max_nvs_iterations, INT, 100, 1, 10000, "", "Table 1", "Newton iterations of the fluid solve at most") \
+  X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, "", "paper §4.2", "Newton's relative tolerance on the residual") \
+  X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, "m^2/s", "ours",                                 \
+    "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
+  X(conforming_quality, REAL, 1.5, 1.05, 10, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
+  X(conforming_size_far, REAL, 2.4, 0.1, 100, "cm", "ours", "TetGen target edge length far from the sponge") \
   X(linear_rtol, REAL, 1e-6, 1e-14, 0.1, "", "paper (linear tolerance)",                           \
     "true relative residual the nutrient solve must reach")                                        \
   X(linear_max_iterations, INT, 5000, 1, 1000000, "", "ours", "iteration bound of the nutrient solve")
 
 typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 } sessile_skeleton;
+typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sessile_domain;
 
 typedef struct sessile_params {
 #define SESSILE_PARAM_FIELD_REAL(n) double n;

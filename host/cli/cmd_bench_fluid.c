@@ -1,0 +1,157 @@
+/* `sessile bench fluid`: the stationary Navier-Stokes solve on the default
+ * scene (the initial dome on the immersed box at the fluid resolution): a
+ * full solve from rest, then a warm-started re-solve after the sponge grew
+ * a little, with assembly, every Newton step, linear iterations and times. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli.h"
+#include "sessile/fluid.h"
+#include "sessile/growth_ref.h"
+#include "sessile/tetmesh.h"
+
+static const char *help =
+    "usage: sessile bench fluid [--resolution R] [--pc jacobi|ilu0] [--ksp gmres|bicgstab]\n"
+    "                           [--set KEY=VALUE]... [--device D]\n"
+    "\n"
+    "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
+    "Newton; docs/fluid.md) on the default box at box level R (default: the\n"
+    "fluid_resolution parameter, 1) around the initial sponge dome: first from\n"
+    "rest, then warm-started after the sponge grew by 0.3 cm (a growth\n"
+    "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
+    "true linear residual, assembly and solve time.  Figures are for the record\n"
+    "(docs/performance.md), never pass/fail.\n";
+
+static void print_result(const char *what, const sessile_fluid_result *r) {
+  printf("%s: %s after %d steps, residual %.3e -> %.3e, %d linear iterations, %.2f s "
+         "(assembly %.2f s, linear solves %.2f s)\n",
+         what, r->converged ? "converged" : "NOT converged", r->nsteps, r->residual0, r->residual,
+         r->lin_iterations, r->seconds, r->assembly_s, r->solve_s);
+  printf("  %4s %-7s %12s %8s %12s %-12s %10s %10s\n", "step", "kind", "residual", "lin its",
+         "lin relres", "lin status", "assembly s", "solve s");
+  for (int k = 0; k < r->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
+    const sessile_fluid_step *s = &r->step[k];
+    printf("  %4d %-7s %12.4e %8d %12.3e %-12s %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
+           s->residual, s->lin_iterations, s->lin_relres, sessile_solve_status_name(s->lin_status),
+           s->assembly_s, s->solve_s);
+  }
+}
+
+static sessile_status dome_mask(const sessile_box *b, double radius, double cx, double cy, uint8_t *solid) {
+  sessile_surface s = {0};
+  const double c[3] = {cx, cy, 0};
+  SESSILE_CALL(sessile_surface_icosphere(4, radius, c, &s));
+  for (uint32_t v = 0; v < s.nv; v++)
+    if (s.pos[3 * v + 2] < 0) s.pos[3 * v + 2] = 0;
+  uint32_t n = sessile_box_nodes(b);
+  uint32_t *m = malloc((size_t)n * 4);
+  sessile_status st = m ? sessile_growth_ref_classify(b, &s, m)
+                        : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t i = 0; st == SESSILE_OK && i < n; i++) solid[i] = m[i] != 0;
+  free(m);
+  sessile_surface_free(&s);
+  return st;
+}
+
+int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
+  cli_gpu_opts go = *global;
+  sessile_params p;
+  sessile_params_default(&p);
+  unsigned res = 0;
+  int pc = -1, ksp = -1;
+  sessile_status s = SESSILE_OK;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    int r = cli_gpu_option("bench fluid", argc, argv, &i, &go);
+    if (r < 0) return EXIT_USAGE;
+    if (r > 0) continue;
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      fputs(help, stdout);
+      return EXIT_OK;
+    }
+    if (i + 1 >= argc) return cli_usage_error("bench fluid", "%s needs a value (or is unknown)", a);
+    const char *v = argv[++i];
+    if (!strcmp(a, "--resolution")) {
+      if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
+    } else if (!strcmp(a, "--pc")) {
+      if (!strcmp(v, "jacobi")) pc = SESSILE_PC_JACOBI;
+      else if (!strcmp(v, "ilu0")) pc = SESSILE_PC_ILU0;
+      else return cli_usage_error("bench fluid", "--pc: '%s' is not jacobi or ilu0", v);
+    } else if (!strcmp(a, "--ksp")) {
+      if (!strcmp(v, "gmres")) ksp = SESSILE_KSP_GMRES;
+      else if (!strcmp(v, "bicgstab")) ksp = SESSILE_KSP_BICGSTAB;
+      else return cli_usage_error("bench fluid", "--ksp: '%s' is not gmres or bicgstab", v);
+    } else if (!strcmp(a, "--set")) {
+      s = cli_params_set_kv(&p, v);
+      if (s != SESSILE_OK) return cli_fail(s);
+    } else return cli_usage_error("bench fluid", "unknown option '%s'", a);
+  }
+  if (!res) res = (unsigned)p.fluid_resolution;
+  sessile_box box;
+  const double origin[3] = {0, 0, 0};
+  const uint32_t cells[3] = {(uint32_t)p.box_cells_x, (uint32_t)p.box_cells_y, (uint32_t)p.box_cells_z};
+  s = sessile_box_make(origin, p.box_base_cell, cells, (int)res, &box);
+  if (s != SESSILE_OK) return cli_fail(s);
+  double mx[3];
+  sessile_box_max(&box, mx);
+
+  sessile_gpu *g = NULL;
+  sessile_la *la = NULL;
+  sessile_fluid *fl = NULL;
+  sessile_tetmesh mesh = {0};
+  uint32_t n = sessile_box_nodes(&box);
+  uint8_t *solid = malloc(n);
+  double *up = calloc((size_t)n * 4, sizeof *up);
+  if (!solid || !up) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if (s == SESSILE_OK) s = cli_gpu_create(&go, &g);
+  if (s == SESSILE_OK) s = sessile_la_create(g, &la);
+  double t0 = sessile_wall_seconds();
+  if (s == SESSILE_OK) s = sessile_tetmesh_from_box(&box, &mesh);
+  if (s == SESSILE_OK) s = sessile_fluid_create(la, &mesh, &fl);
+  double t_setup = sessile_wall_seconds() - t0;
+  sessile_fluid_params fp;
+  sessile_fluid_params_default(&fp);
+  fp.rho = p.fluid_density;
+  fp.eta = p.fluid_viscosity;
+  fp.inlet[0] = p.inlet_velocity;
+  fp.newton_max = p.max_nvs_iterations;
+  fp.newton_rtol = p.nvs_rtol;
+  if (pc >= 0) fp.pc = (sessile_pc_type)pc;
+  if (ksp >= 0) fp.ksp = (sessile_ksp_type)ksp;
+  if (s == SESSILE_OK) {
+    const sessile_gpu_info *gi = sessile_gpu_info_of(g);
+    printf("sessile bench fluid: device %s (%s), driver %s, fp%d\n", gi->name, gi->type, gi->driver,
+           gi->precision);
+    printf("box level %u: %u x %u x %u = %u nodes (%u unknowns), %u tets, spacing %.3g cm; "
+           "%s + %s, Re = rho U L / eta = %.0f (L = 12 cm)\n",
+           res, box.n[0], box.n[1], box.n[2], n, 4 * n, mesh.ntets, box.h,
+           sessile_ksp_type_name(fp.ksp), fp.pc == SESSILE_PC_ILU0 ? "ILU(0)" : "Jacobi",
+           p.fluid_density * p.inlet_velocity * 0.12 / p.fluid_viscosity);
+    printf("mesh and solver setup: %.2f s\n\n", t_setup);
+    fflush(stdout);
+    s = dome_mask(&box, p.sponge_radius, mx[0] / 2, mx[1] / 2, solid);
+  }
+  sessile_fluid_result r1, r2;
+  if (s == SESSILE_OK) s = sessile_fluid_solve(fl, solid, &fp, up, &r1);
+  if (s == SESSILE_OK) {
+    print_result("full solve from rest", &r1);
+    fflush(stdout);
+    s = dome_mask(&box, p.sponge_radius + p.max_growth, mx[0] / 2, mx[1] / 2, solid);
+  }
+  if (s == SESSILE_OK) {
+    for (uint32_t i = 0; i < n; i++)
+      if (solid[i]) up[4 * i] = up[4 * i + 1] = up[4 * i + 2] = 0;
+    s = sessile_fluid_solve(fl, solid, &fp, up, &r2);
+  }
+  if (s == SESSILE_OK) {
+    printf("\n");
+    print_result("warm-started re-solve (sponge radius +0.3 cm)", &r2);
+  }
+  sessile_fluid_destroy(fl);
+  sessile_tetmesh_free(&mesh);
+  sessile_la_destroy(la);
+  sessile_gpu_destroy(g);
+  free(solid);
+  free(up);
+  return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
+}
