@@ -14,7 +14,9 @@ static const char *help =
     "traffic) and the ratio C time / GPU time (> 1: the device is faster).\n"
     "  --size N      grid edge: vectors of N^3, 7-point and P1-tet matrices on N^3 (default 64)\n"
     "  --repeat R    repetitions per kernel (default 20)\n"
-    "  --no-solvers  skip PCG (7-point N^3), BiCGSTAB and GMRES(30) (conv-diff (N/2)^3)\n"
+    "  --no-solvers  skip the solves: PCG (7-point N^3); BiCGSTAB and GMRES(30) with Jacobi\n"
+    "                and with ILU(0) (conv-diff (N/2)^3 at cell Peclet 2 and 10; the Jacobi\n"
+    "                variants are the in-run baseline of the ILU(0) lines)\n"
     "Figures are for the record (docs/performance.md), never pass/fail.\n";
 
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {

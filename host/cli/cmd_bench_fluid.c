@@ -11,7 +11,7 @@
 #include "sessile/tetmesh.h"
 
 static const char *help =
-    "usage: sessile bench fluid [--resolution R] [--pc jacobi|ilu0] [--ksp gmres|bicgstab]\n"
+    "usage: sessile bench fluid [--resolution R] [--pc jacobi|ilu0] [--ksp gmres|bicgstab] [--block-scale]\n"
     "                           [--set KEY=VALUE]... [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
@@ -20,7 +20,8 @@ static const char *help =
     "rest, then warm-started after the sponge grew by 0.3 cm (a growth\n"
     "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
     "true linear residual, assembly and solve time.  Figures are for the record\n"
-    "(docs/performance.md), never pass/fail.\n";
+    "(docs/performance.md), never pass/fail.  --block-scale multiplies each block row by\n"
+    "the inverse of its 4x4 diagonal block before the Krylov solve.\n";
 
 static void print_result(const char *what, const sessile_fluid_result *r) {
   printf("%s: %s after %d steps, residual %.3e -> %.3e, %d linear iterations, %.2f s "
@@ -58,7 +59,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int pc = -1, ksp = -1;
+  int pc = -1, ksp = -1, block_scale = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -68,6 +69,10 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(help, stdout);
       return EXIT_OK;
+    }
+    if (!strcmp(a, "--block-scale")) {
+      block_scale = 1;
+      continue;
     }
     if (i + 1 >= argc) return cli_usage_error("bench fluid", "%s needs a value (or is unknown)", a);
     const char *v = argv[++i];
@@ -118,6 +123,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.newton_rtol = p.nvs_rtol;
   if (pc >= 0) fp.pc = (sessile_pc_type)pc;
   if (ksp >= 0) fp.ksp = (sessile_ksp_type)ksp;
+  fp.block_jacobi = block_scale;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
     printf("sessile bench fluid: device %s (%s), driver %s, fp%d\n", gi->name, gi->type, gi->driver,
