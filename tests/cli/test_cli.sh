@@ -4,16 +4,8 @@
 # `bench la` runs, and nothing says a word from the validation layer.
 set -u
 S="$1"
-fails=0 passes=0
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
+. "$(dirname "$0")/../common/harness.sh"
 
-check() { # description, command...
-  local what="$1"; shift
-  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi
-}
-run() { "$S" "$@" >"$T/out" 2>"$T/err"; echo $? >"$T/rc"; }
-rc_is() { [ "$(cat "$T/rc")" = "$1" ]; }
 one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" && [ ! -s "$T/out" ]; }
 no_validation() { ! grep -qi "validation \(error\|warning\)" "$T/err"; }
 
@@ -44,5 +36,4 @@ check "bench under the validation layer is silent" no_validation
 run --precision 32 bench la --size 8 --repeat 1 --no-solvers
 check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
 
-echo "$passes passed, $fails failed"
-[ "$fails" -eq 0 ]
+finish

@@ -7,13 +7,7 @@
 # meshes.  Runs use a coarse box (box_resolution=1) to keep the suite short.
 set -u
 S="$1"
-fails=0 passes=0
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-check() { local what="$1"; shift
-  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi; }
-run() { "$S" "$@" >"$T/out" 2>"$T/err"; echo $? >"$T/rc"; }
-rc_is() { [ "$(cat "$T/rc")" = "$1" ]; }
+. "$(dirname "$0")/../common/harness.sh"
 one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err"; }
 COARSE="--set box_resolution=1 --quiet"
 
@@ -100,5 +94,4 @@ check "same seed, same device: byte-identical final.ply" cmp -s "$T/r1/sponge/fi
 run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0
 check "two seeds give different crella meshes" eval '! cmp -s "$T/r1/sponge/final.ply" "$T/r3/sponge/final.ply"'
 
-echo "$passes passed, $fails failed"
-[ "$fails" -eq 0 ]
+finish

@@ -10,11 +10,7 @@
 # uz, umag, p, the VTU's u and p, and the manifest's Newton records.
 set -u
 S="$1"
-fails=0 passes=0
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-check() { local what="$1"; shift
-  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi; }
+. "$(dirname "$0")/../common/harness.sh"
 SMALL="--set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3
        --set box_resolution=1 --set max_nvs_iterations=4 --iterations 8 --quiet --seed 3"
 "$S" grow $SMALL --every 0 --out "$T/dl" 2>"$T/dl.err"; check "diffusion-limited control run" [ $? -eq 0 ]
@@ -66,5 +62,4 @@ inlet = x[:, 0] == x[:, 0].min(); inner = inlet & (x[:, 2] > x[:, 2].min())
 print("u", u.shape, "inlet ux", u[inner, 0].min(), u[inner, 0].max(), "p range", p.min(), p.max())
 sys.exit(0 if u.shape[1] == 3 and abs(u[inner, 0] - 0.05).max() < 1e-9 and p.shape[0] == g.GetNumberOfPoints() else 1)
 PYEOF
-echo "$passes passed, $fails failed"
-[ "$fails" -eq 0 ]
+finish

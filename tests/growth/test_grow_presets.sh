@@ -8,11 +8,7 @@
 # 2 cores with lavapipe).
 set -u
 S="$1"
-fails=0 passes=0
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-check() { local what="$1"; shift
-  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi; }
+. "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 for preset in radiate crella; do
   "$S" grow --preset "$preset" --seed 7 --iterations 50 --every 0 \
@@ -33,5 +29,4 @@ print("iterations %d, volume %.1f -> %.1f cm^3, vertices %d -> %d" % (len(its), 
 sys.exit(0 if ok and v1 > 1.2 * v0 else 1)
 PYEOF
 done
-echo "$passes passed, $fails failed"
-[ "$fails" -eq 0 ]
+finish
