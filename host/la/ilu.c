@@ -50,7 +50,7 @@ static sessile_status upload_u32(sessile_la *la, const uint32_t *v, size_t n, se
 /* Builds one triangle (upper = 0: strict lower part; 1: inverse pivot and
  * strict upper part) from the factors `lu` in the pattern (rowptr, col). */
 static sessile_status build_tri(sessile_la *la, la_ilu *f, int upper, const uint64_t *rowptr,
-                                const uint32_t *col, const double *lu, ilu_tri *t) {
+                                const uint32_t *col, const double *lu, uint64_t limit, ilu_tri *t) {
   const uint32_t n = f->n;
   const int b2 = f->bs * f->bs;
   uint32_t *lev = malloc(((size_t)n + 1) * sizeof *lev);
@@ -78,6 +78,18 @@ static sessile_status build_tri(sessile_la *la, la_ilu *f, int upper, const uint
   if (upper) total += n; /* the inverse pivots */
   if (s == SESSILE_OK && total >= UINT32_MAX / 16)
     s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "ILU(0): too many entries for 32-bit indices");
+  /* The factors are not split into row chunks (their level-scheduled solves
+   * would need a chunk lookup per row): refuse what exceeds the matrix's
+   * per-buffer limit rather than fail inside buffer creation. */
+  if (s == SESSILE_OK && (uint64_t)total * b2 * la->real_bytes > limit)
+    s = sessile_error_set(SESSILE_ERR_TOO_LARGE,
+                          "ILU(0): the %s factor needs %llu bytes of values, over the per-buffer "
+                          "limit of %llu bytes (maxStorageBufferRange, or "
+                          "SESSILE_MAX_MATRIX_CHUNK_BYTES when set); ILU(0) factors are not split "
+                          "into row chunks: use Jacobi for this matrix",
+                          upper ? "upper" : "lower",
+                          (unsigned long long)((uint64_t)total * b2 * la->real_bytes),
+                          (unsigned long long)limit);
   if (s == SESSILE_OK) {
     cnt = calloc((size_t)nlev + 2, sizeof *cnt);
     c = malloc((size_t)(total ? total : 1) * sizeof *c);
@@ -154,8 +166,8 @@ static sessile_status ilu_build(sessile_la *la, const sessile_mat *a, la_ilu **o
   sessile_status s = lu ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "ILU(0): out of host memory");
   if (s == SESSILE_OK)
     s = a->kind == MAT_CSR ? sessile_ref_ilu0_csr(&a->host, lu) : sessile_ref_ilu0_bcsr4(&a->hostb, lu);
-  if (s == SESSILE_OK) s = build_tri(la, f, 0, rowptr, col, lu, &f->t[0]);
-  if (s == SESSILE_OK) s = build_tri(la, f, 1, rowptr, col, lu, &f->t[1]);
+  if (s == SESSILE_OK) s = build_tri(la, f, 0, rowptr, col, lu, a->chunk_limit, &f->t[0]);
+  if (s == SESSILE_OK) s = build_tri(la, f, 1, rowptr, col, lu, a->chunk_limit, &f->t[1]);
   free(lu);
   if (s != SESSILE_OK) {
     la_ilu_destroy(f);

@@ -75,12 +75,24 @@ struct sessile_vec {
 
 typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1, MAT_STENCIL7 = 2 } mat_kind;
 
+/* A row range of an assembled matrix with its own buffers: row pointers
+ * rebased to the chunk, columns global (x is read whole), values of the
+ * chunk's rows.  A matrix whose arrays exceed the per-buffer limit
+ * (maxStorageBufferRange, or SESSILE_MAX_MATRIX_CHUNK_BYTES for tests) is
+ * stored as several chunks and every SpMV dispatches once per chunk. */
+typedef struct {
+  uint32_t row0, nrows;    /* CSR: scalar rows (row0 a multiple of 8); BCSR4: block rows */
+  sessile_buffer *rowptr, *col, *val;
+} mat_chunk;
+
 struct sessile_mat {
   sessile_la *la;
   mat_kind kind;
   uint32_t nrows;          /* scalar rows */
   uint64_t nnz;            /* scalar entries before padding */
-  sessile_buffer *rowptr, *col, *val;
+  uint32_t nchunks;        /* CSR, BCSR4: >= 1; STENCIL7: 0 */
+  mat_chunk *chunk;
+  uint64_t chunk_limit;    /* bytes per matrix buffer (also bounds the ILU(0) factors) */
   sessile_csr host;        /* CSR: kept for fp32 refinement residuals and Jacobi */
   sessile_bcsr4 hostb;     /* BCSR4: likewise */
   uint32_t rows_per;       /* rows per invocation in the SpMV kernel */

@@ -52,33 +52,40 @@ static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
              sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
 }
 
+/* One dispatch per row chunk (mat.c): the chunk's rows of y, x read whole. */
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard) {
   if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, NULL);
   la_kernel_id id = a->kind != MAT_CSR ? K_SPMV_BCSR4 : use_texel(la, a, x) ? K_SPMV_CSR_TEX : K_SPMV_CSR;
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, id, &k));
-  sessile_buffer *bufs[6] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf};
-  uint32_t rows = a->kind == MAT_CSR ? a->nrows : a->nrows / 4;
   uint32_t per = a->kind == MAT_CSR ? a->rows_per : 1;
   uint32_t scale = a->kind == MAT_CSR ? 4 : 1; /* CSR offsets in reals, BCSR in REAL4 */
-  struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
-      rows, x.off4 * scale, y.off4 * scale, guard, per};
-  uint32_t items = (rows + per - 1) / per;
-  return sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p);
+  for (uint32_t i = 0; i < a->nchunks; i++) {
+    const mat_chunk *ch = &a->chunk[i];
+    sessile_buffer *bufs[6] = {la->scalars, ch->rowptr, ch->col, ch->val, x.buf, y.buf};
+    struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
+        ch->nrows, x.off4 * scale, y.off4 * scale + ch->row0, guard, per};
+    uint32_t items = (ch->nrows + per - 1) / per;
+    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p));
+  }
+  return SESSILE_OK;
 }
 
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count) {
   if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, count);
-  if (a->kind != MAT_CSR) { /* block matrices: SpMV, then a separate dot */
+  /* Block or split matrices: SpMV, then a separate dot (the fused kernel's
+   * partials cover one dispatch). */
+  if (a->kind != MAT_CSR || a->nchunks > 1) {
     SESSILE_CALL(rec_spmv(la, c, a, x, y, guard));
     return rec_dot(la, c, a->nrows, x, y, 0, guard, count);
   }
   sessile_kernel *k;
   la_kernel_id id = use_texel(la, a, x) ? K_SPMV_CSR_TEX_DOT : K_SPMV_CSR_DOT;
   SESSILE_CALL(la_kernel(la, id, &k));
-  sessile_buffer *bufs[7] = {la->scalars, a->rowptr, a->col, a->val, x.buf, y.buf, la->partials};
+  const mat_chunk *ch = &a->chunk[0];
+  sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, x.buf, y.buf, la->partials};
   struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
       a->nrows, x.off4 * 4, y.off4 * 4, guard, a->rows_per};
   uint32_t items = (a->nrows + a->rows_per - 1) / a->rows_per;

@@ -33,46 +33,61 @@ static sessile_status check_csr(const sessile_csr *a) {
   return SESSILE_OK;
 }
 
-/* SELL-8 upload (see shaders/la/spmv_csr.comp): slice s of rows 8s..8s+7
- * holds width_s chunks of 4 entries per row, width_s = the widest row's chunk
- * count; chunk t of row 8s+j sits at ptr[s] + 8t + j. */
-static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
-  const sessile_csr *a = &m->host;
-  uint32_t nsl = (a->nrows + 7) / 8;
+/* The per-buffer limit of a matrix's arrays: the device's
+ * maxStorageBufferRange, lowered by SESSILE_MAX_MATRIX_CHUNK_BYTES when set
+ * (a testing knob: it makes small matrices split into many chunks). */
+static uint64_t chunk_limit(sessile_la *la) {
+  uint64_t lim = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range;
+  const char *e = getenv("SESSILE_MAX_MATRIX_CHUNK_BYTES");
+  if (e && *e) {
+    char *end;
+    unsigned long long v = strtoull(e, &end, 10);
+    if (*end == '\0' && v > 0 && v < lim) lim = v;
+  }
+  return lim;
+}
+
+#define LIMIT_TEXT "the per-buffer limit of %llu bytes (maxStorageBufferRange, or " \
+                   "SESSILE_MAX_MATRIX_CHUNK_BYTES when set)"
+
+static sessile_status alloc_chunks(sessile_mat *m, uint32_t n) {
+  m->chunk = calloc(n, sizeof *m->chunk);
+  SESSILE_CHECK(m->chunk, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  m->nchunks = n;
+  return SESSILE_OK;
+}
+
+/* SELL-8 upload of the rows of slices s0..s1-1 (see shaders/la/spmv_csr.comp):
+ * slice s of rows 8s..8s+7 holds width_s chunks of 4 entries per row,
+ * width_s = w[s] (the widest row's chunk count); chunk t of row 8s+j sits at
+ * ptr[s] + 8t + j, ptr counted from the chunk's first slice. */
+static sessile_status upload_csr_chunk(sessile_la *la, const sessile_csr *a, const uint32_t *w,
+                                       uint32_t s0, uint32_t s1, mat_chunk *ch) {
+  uint32_t nsl = s1 - s0;
+  ch->row0 = s0 * 8;
+  ch->nrows = (s1 * 8 < a->nrows ? s1 * 8 : a->nrows) - ch->row0;
   uint32_t *sp = malloc(((size_t)nsl + 1) * sizeof *sp);
   SESSILE_CHECK(sp, SESSILE_ERR_NO_MEMORY, "out of host memory");
   uint64_t chunks = 0;
   sp[0] = 0;
   for (uint32_t sl = 0; sl < nsl; sl++) {
-    uint64_t w = 0;
-    for (uint32_t r = sl * 8; r < a->nrows && r < sl * 8 + 8; r++) {
-      uint64_t cr = (a->rowptr[r + 1] - a->rowptr[r] + 3) / 4;
-      if (cr > w) w = cr;
-    }
-    chunks += 8 * w;
-    if (chunks > UINT32_MAX - 8) break;
-    sp[sl + 1] = (uint32_t)chunks;
+    chunks += 8 * (uint64_t)w[s0 + sl];
+    sp[sl + 1] = (uint32_t)chunks; /* < 2^32: chunks * 16 bytes is within the limit */
   }
-  if (chunks == 0) chunks = 1; /* an all-empty matrix still needs non-empty buffers */
-  uint32_t *col = NULL;
-  double *val = NULL;
+  if (chunks == 0) chunks = 1; /* an all-empty chunk still needs non-empty buffers */
+  uint32_t *col = calloc((size_t)chunks * 4, sizeof *col);
+  double *val = calloc((size_t)chunks * 4, sizeof *val);
   sessile_status s = SESSILE_OK;
-  if (chunks > UINT32_MAX - 8)
-    s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "matrix has too many entries for 32-bit indices");
-  else {
-    col = calloc((size_t)chunks * 4, sizeof *col);
-    val = calloc((size_t)chunks * 4, sizeof *val);
-    if (!col || !val) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
-  }
+  if (!col || !val) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory padding the matrix");
   /* Padding repeats the row's last column with value 0: the row reads that x
    * anyway, so an Inf there cannot turn a finite row into NaN (0·Inf).  An
    * empty row pads with its own index (y_r is then NaN only if x_r is not
    * finite; the reference gives 0 — a matrix with an empty row is singular). */
-  for (uint32_t r = 0; s == SESSILE_OK && r < a->nrows; r++) {
-    uint32_t sl = r / 8, j = r % 8;
-    uint64_t w = (sp[sl + 1] - sp[sl]) / 8;
+  for (uint32_t rl = 0; s == SESSILE_OK && rl < ch->nrows; rl++) {
+    uint32_t r = ch->row0 + rl, sl = rl / 8, j = rl % 8;
+    uint64_t wd = (sp[sl + 1] - sp[sl]) / 8;
     uint32_t last = a->rowptr[r + 1] > a->rowptr[r] ? a->col[a->rowptr[r + 1] - 1] : r;
-    for (uint64_t q = 0; q < 4 * w; q++) {
+    for (uint64_t q = 0; q < 4 * wd; q++) {
       uint64_t at = ((uint64_t)sp[sl] + 8 * (q / 4) + j) * 4 + q % 4;
       uint64_t e = a->rowptr[r] + q;
       if (e < a->rowptr[r + 1]) {
@@ -83,22 +98,81 @@ static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
     }
   }
   if (s == SESSILE_OK)
-    s = sessile_buffer_create(la->gpu, ((size_t)nsl + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
-  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, sp, ((size_t)nsl + 1) * 4);
+    s = sessile_buffer_create(la->gpu, ((size_t)nsl + 1) * 4, SESSILE_BUFFER_DEVICE, &ch->rowptr);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(ch->rowptr, 0, sp, ((size_t)nsl + 1) * 4);
   if (s == SESSILE_OK)
-    s = sessile_buffer_create(la->gpu, (size_t)chunks * 16, SESSILE_BUFFER_DEVICE, &m->col);
-  if (s == SESSILE_OK) s = sessile_buffer_upload(m->col, 0, col, (size_t)chunks * 16);
+    s = sessile_buffer_create(la->gpu, (size_t)chunks * 16, SESSILE_BUFFER_DEVICE, &ch->col);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(ch->col, 0, col, (size_t)chunks * 16);
   if (s == SESSILE_OK)
     s = sessile_buffer_create(la->gpu, (size_t)chunks * 4 * la->real_bytes, SESSILE_BUFFER_DEVICE,
-                              &m->val);
-  if (s == SESSILE_OK) s = la_upload_reals(la, m->val, 0, val, (size_t)chunks * 4);
-  /* Texel reads need every view within maxTexelBufferElements: chunks
-   * RGBA32UI texels of columns, chunks * real_bytes / 4 of values. */
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  m->texel = la->spmv_texel && chunks * la->real_bytes / 4 <= maxt && a->nrows <= maxt;
+                              &ch->val);
+  if (s == SESSILE_OK) s = la_upload_reals(la, ch->val, 0, val, (size_t)chunks * 4);
   free(sp);
   free(col);
   free(val);
+  return s;
+}
+
+/* Splits the SELL-8 slices greedily into row chunks whose row pointers,
+ * columns and values each fit m->chunk_limit, then uploads each chunk. */
+static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
+  const sessile_csr *a = &m->host;
+  const uint64_t lim = m->chunk_limit;
+  const uint64_t unit = 32 * (uint64_t)(la->real_bytes > 4 ? la->real_bytes : 4); /* bytes of the
+                                      larger array (columns or values) per unit of slice width */
+  uint32_t nsl = (a->nrows + 7) / 8;
+  uint32_t *w = malloc((size_t)nsl * sizeof *w), *first = malloc(((size_t)nsl + 1) * sizeof *first);
+  sessile_status s = w && first ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t sl = 0; s == SESSILE_OK && sl < nsl; sl++) {
+    uint64_t wd = 0;
+    for (uint32_t r = sl * 8; r < a->nrows && r < sl * 8 + 8; r++) {
+      uint64_t cr = (a->rowptr[r + 1] - a->rowptr[r] + 3) / 4;
+      if (cr > wd) wd = cr;
+    }
+    if (wd * unit > lim) { /* (lim < 2^32, so slice pointers fit 32 bits) */
+      uint32_t rmax = sl * 8;
+      for (uint32_t r = sl * 8; r < a->nrows && r < sl * 8 + 8; r++)
+        if (a->rowptr[r + 1] - a->rowptr[r] > a->rowptr[rmax + 1] - a->rowptr[rmax]) rmax = r;
+      s = sessile_error_set(SESSILE_ERR_TOO_LARGE,
+                            "CSR row %u has %llu entries: its 8-row slice alone needs %llu bytes, "
+                            "over " LIMIT_TEXT ", so the matrix cannot be split into row chunks",
+                            rmax, (unsigned long long)(a->rowptr[rmax + 1] - a->rowptr[rmax]),
+                            (unsigned long long)(wd * unit),
+                            (unsigned long long)lim);
+    }
+    w[sl] = (uint32_t)wd;
+  }
+  /* first[c]: the first slice of chunk c. */
+  uint32_t n = 0;
+  for (uint32_t sl = 0; s == SESSILE_OK && sl < nsl;) {
+    uint64_t wsum = 0;
+    uint32_t s0 = sl;
+    for (; sl < nsl; sl++) {
+      uint64_t nw = wsum + w[sl];
+      if ((nw ? nw : 1) * unit > lim || (uint64_t)(sl - s0 + 2) * 4 > lim) break;
+      wsum = nw;
+    }
+    if (sl == s0) { /* only when the row pointers of one slice exceed the limit */
+      s = sessile_error_set(SESSILE_ERR_TOO_LARGE, "matrix chunk: " LIMIT_TEXT " is too small",
+                            (unsigned long long)lim);
+      break;
+    }
+    first[n++] = s0;
+  }
+  if (s == SESSILE_OK) {
+    first[n] = nsl;
+    s = alloc_chunks(m, n);
+  }
+  for (uint32_t c = 0; s == SESSILE_OK && c < n; c++)
+    s = upload_csr_chunk(la, a, w, first[c], first[c + 1], &m->chunk[c]);
+  /* Texel reads need every view within maxTexelBufferElements: chunks
+   * RGBA32UI texels of columns, chunks * real_bytes / 4 of values. */
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  m->texel = s == SESSILE_OK && la->spmv_texel && a->nrows <= maxt;
+  for (uint32_t c = 0; m->texel && c < n; c++)
+    if (sessile_buffer_size(m->chunk[c].val) / 16 > maxt) m->texel = 0;
+  free(w);
+  free(first);
   return s;
 }
 
@@ -112,6 +186,7 @@ sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sess
   m->nrows = a->nrows;
   m->nnz = a->nnz;
   m->rows_per = 1; /* SELL-8: one row per invocation */
+  m->chunk_limit = chunk_limit(la);
   sessile_status s = copy_csr(a, &m->host);
   if (s == SESSILE_OK) s = upload_csr(la, m);
   if (s != SESSILE_OK) {
@@ -120,6 +195,64 @@ sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sess
   }
   *out = m;
   return SESSILE_OK;
+}
+
+/* Block rows r0..r1-1 of `a` into one chunk (row pointers rebased). */
+static sessile_status upload_bcsr4_chunk(sessile_la *la, const sessile_bcsr4 *a, uint32_t r0,
+                                         uint32_t r1, mat_chunk *ch) {
+  ch->row0 = r0;
+  ch->nrows = r1 - r0;
+  uint64_t k0 = a->rowptr[r0], nnzb = a->rowptr[r1] - k0;
+  size_t nb = nnzb ? (size_t)nnzb : 1;
+  uint32_t *rp = malloc(((size_t)ch->nrows + 1) * sizeof *rp);
+  SESSILE_CHECK(rp, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t r = r0; r <= r1; r++) rp[r - r0] = (uint32_t)(a->rowptr[r] - k0);
+  sessile_status s =
+      sessile_buffer_create(la->gpu, ((size_t)ch->nrows + 1) * 4, SESSILE_BUFFER_DEVICE, &ch->rowptr);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(ch->rowptr, 0, rp, ((size_t)ch->nrows + 1) * 4);
+  if (s == SESSILE_OK) s = sessile_buffer_create(la->gpu, nb * 4, SESSILE_BUFFER_DEVICE, &ch->col);
+  if (s == SESSILE_OK && nnzb) s = sessile_buffer_upload(ch->col, 0, a->col + k0, (size_t)nnzb * 4);
+  if (s == SESSILE_OK)
+    s = sessile_buffer_create(la->gpu, nb * 16 * la->real_bytes, SESSILE_BUFFER_DEVICE, &ch->val);
+  if (s == SESSILE_OK && nnzb) s = la_upload_reals(la, ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16);
+  free(rp);
+  return s;
+}
+
+/* Greedy split into block-row chunks whose arrays each fit m->chunk_limit
+ * (the values, 16 reals per block, are the largest), then the uploads. */
+static sessile_status upload_bcsr4(sessile_la *la, sessile_mat *m) {
+  const sessile_bcsr4 *a = &m->hostb;
+  const uint64_t lim = m->chunk_limit, per = 16 * (uint64_t)la->real_bytes;
+  uint32_t *first = malloc(((size_t)a->nbrows + 1) * sizeof *first);
+  SESSILE_CHECK(first, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_status s = SESSILE_OK;
+  uint32_t n = 0;
+  for (uint32_t r = 0; r < a->nbrows;) {
+    uint32_t r0 = r;
+    for (; r < a->nbrows; r++) {
+      uint64_t nb = a->rowptr[r + 1] - a->rowptr[r0];
+      if ((nb ? nb : 1) * per > lim || (uint64_t)(r - r0 + 2) * 4 > lim) break;
+    }
+    if (r == r0) {
+      uint64_t nb = a->rowptr[r0 + 1] - a->rowptr[r0];
+      s = sessile_error_set(SESSILE_ERR_TOO_LARGE,
+                            "block row %u has %llu blocks (%llu bytes of values), over " LIMIT_TEXT
+                            ", so the matrix cannot be split into row chunks",
+                            r0, (unsigned long long)nb, (unsigned long long)(nb * per),
+                            (unsigned long long)lim);
+      break;
+    }
+    first[n++] = r0;
+  }
+  if (s == SESSILE_OK) {
+    first[n] = a->nbrows;
+    s = alloc_chunks(m, n);
+  }
+  for (uint32_t c = 0; s == SESSILE_OK && c < n; c++)
+    s = upload_bcsr4_chunk(la, a, first[c], first[c + 1], &m->chunk[c]);
+  free(first);
+  return s;
 }
 
 sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out) {
@@ -140,26 +273,14 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   m->nrows = a->nbrows * 4;
   m->nnz = a->nnzb * 16;
   m->rows_per = 1;
-  size_t nb = a->nnzb ? (size_t)a->nnzb : 1;
-  uint32_t *rp = malloc(((size_t)a->nbrows + 1) * sizeof *rp);
-  sessile_status s = rp ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
-  if (s == SESSILE_OK) {
-    for (uint32_t r = 0; r <= a->nbrows; r++) rp[r] = (uint32_t)a->rowptr[r];
-    s = sessile_bcsr4_alloc(a->nbrows, a->nbcols, a->nnzb, &m->hostb);
-  }
+  m->chunk_limit = chunk_limit(la);
+  sessile_status s = sessile_bcsr4_alloc(a->nbrows, a->nbcols, a->nnzb, &m->hostb);
   if (s == SESSILE_OK) {
     memcpy(m->hostb.rowptr, a->rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr);
     memcpy(m->hostb.col, a->col, (size_t)a->nnzb * sizeof *a->col);
     memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
-    s = sessile_buffer_create(la->gpu, ((size_t)a->nbrows + 1) * 4, SESSILE_BUFFER_DEVICE, &m->rowptr);
+    s = upload_bcsr4(la, m);
   }
-  if (s == SESSILE_OK) s = sessile_buffer_upload(m->rowptr, 0, rp, ((size_t)a->nbrows + 1) * 4);
-  if (s == SESSILE_OK) s = sessile_buffer_create(la->gpu, nb * 4, SESSILE_BUFFER_DEVICE, &m->col);
-  if (s == SESSILE_OK && a->nnzb) s = sessile_buffer_upload(m->col, 0, a->col, (size_t)a->nnzb * 4);
-  if (s == SESSILE_OK)
-    s = sessile_buffer_create(la->gpu, nb * 16 * la->real_bytes, SESSILE_BUFFER_DEVICE, &m->val);
-  if (s == SESSILE_OK && a->nnzb) s = la_upload_reals(la, m->val, 0, a->val, (size_t)a->nnzb * 16);
-  free(rp);
   if (s != SESSILE_OK) {
     sessile_mat_destroy(m);
     return s;
@@ -170,9 +291,12 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
 
 void sessile_mat_destroy(sessile_mat *m) {
   if (!m) return;
-  sessile_buffer_destroy(m->rowptr);
-  sessile_buffer_destroy(m->col);
-  sessile_buffer_destroy(m->val);
+  for (uint32_t c = 0; c < m->nchunks; c++) {
+    sessile_buffer_destroy(m->chunk[c].rowptr);
+    sessile_buffer_destroy(m->chunk[c].col);
+    sessile_buffer_destroy(m->chunk[c].val);
+  }
+  free(m->chunk);
   la_ilu_destroy(m->ilu);
   if (m->kind == MAT_CSR) sessile_csr_free(&m->host);
   else sessile_bcsr4_free(&m->hostb);
@@ -181,6 +305,7 @@ void sessile_mat_destroy(sessile_mat *m) {
 
 uint32_t sessile_mat_rows(const sessile_mat *m) { return m->nrows; }
 uint64_t sessile_mat_nnz(const sessile_mat *m) { return m->nnz; }
+uint32_t sessile_mat_chunks(const sessile_mat *m) { return m->nchunks; }
 
 sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,
                                 sessile_vec *y) {

@@ -76,6 +76,10 @@ sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t
 void sessile_mat_destroy(sessile_mat *m);
 uint32_t sessile_mat_rows(const sessile_mat *m);
 uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */
+/* Row chunks the matrix is stored in (1 unless its arrays exceed
+ * maxStorageBufferRange, or SESSILE_MAX_MATRIX_CHUNK_BYTES when set; 0 for the
+ * matrix-free 7-point operator). */
+uint32_t sessile_mat_chunks(const sessile_mat *m);
 /* y = A x on the device. */
 sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,
                                 sessile_vec *y);
