@@ -12,6 +12,7 @@
 
 static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc jacobi|ilu0] [--ksp gmres|bicgstab] [--block-scale]\n"
+    "                           [--picard K] [--restart M] [--no-lsic]\n"
     "                           [--set KEY=VALUE]... [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
@@ -21,7 +22,9 @@ static const char *help =
     "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
     "true linear residual, assembly and solve time.  Figures are for the record\n"
     "(docs/performance.md), never pass/fail.  --block-scale multiplies each block row by\n"
-    "the inverse of its 4x4 diagonal block before the Krylov solve.\n";
+    "the inverse of its 4x4 diagonal block before the Krylov solve; --picard K takes\n"
+    "K Picard (Oseen) steps before Newton; --restart M is GMRES(M); --no-lsic drops the\n"
+    "grad-div term.  SESSILE_FLUID_VERBOSE=1 prints each step to stderr as it goes.\n";
 
 static void print_result(const char *what, const sessile_fluid_result *r) {
   printf("%s: %s after %d steps, residual %.3e -> %.3e, %d linear iterations, %.2f s "
@@ -59,7 +62,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int pc = -1, ksp = -1, block_scale = 0;
+  int pc = -1, ksp = -1, block_scale = -1, picard = -1, restart = -1, lsic = -1;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -70,14 +73,26 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       fputs(help, stdout);
       return EXIT_OK;
     }
-    if (!strcmp(a, "--block-scale")) {
-      block_scale = 1;
+    if (!strcmp(a, "--block-scale") || !strcmp(a, "--no-block-scale")) {
+      block_scale = !strcmp(a, "--block-scale");
+      continue;
+    }
+    if (!strcmp(a, "--no-lsic")) {
+      lsic = 0;
       continue;
     }
     if (i + 1 >= argc) return cli_usage_error("bench fluid", "%s needs a value (or is unknown)", a);
     const char *v = argv[++i];
     if (!strcmp(a, "--resolution")) {
       if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
+    } else if (!strcmp(a, "--picard")) {
+      unsigned u;
+      if (cli_parse_uint("bench fluid", a, v, 0, SESSILE_FLUID_MAX_STEPS, &u)) return EXIT_USAGE;
+      picard = (int)u;
+    } else if (!strcmp(a, "--restart")) {
+      unsigned u;
+      if (cli_parse_uint("bench fluid", a, v, 1, 1000, &u)) return EXIT_USAGE;
+      restart = (int)u;
     } else if (!strcmp(a, "--pc")) {
       if (!strcmp(v, "jacobi")) pc = SESSILE_PC_JACOBI;
       else if (!strcmp(v, "ilu0")) pc = SESSILE_PC_ILU0;
@@ -123,7 +138,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.newton_rtol = p.nvs_rtol;
   if (pc >= 0) fp.pc = (sessile_pc_type)pc;
   if (ksp >= 0) fp.ksp = (sessile_ksp_type)ksp;
-  fp.block_jacobi = block_scale;
+  if (block_scale >= 0) fp.block_jacobi = block_scale;
+  if (picard >= 0) fp.picard_steps = picard;
+  if (restart >= 0) fp.restart = restart;
+  if (lsic >= 0) fp.lsic = lsic;
+  fp.verbose = getenv("SESSILE_FLUID_VERBOSE") != NULL;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
     printf("sessile bench fluid: device %s (%s), driver %s, fp%d\n", gi->name, gi->type, gi->driver,
