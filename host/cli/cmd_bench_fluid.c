@@ -91,7 +91,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       picard = (int)u;
     } else if (!strcmp(a, "--restart")) {
       unsigned u;
-      if (cli_parse_uint("bench fluid", a, v, 1, 1000, &u)) return EXIT_USAGE;
+      if (cli_parse_uint("bench fluid", a, v, 1, 64, &u)) return EXIT_USAGE; /* GMRES(m), m <= 64 */
       restart = (int)u;
     } else if (!strcmp(a, "--pc")) {
       if (!strcmp(v, "jacobi")) pc = SESSILE_PC_JACOBI;
