@@ -20,7 +20,7 @@ sessile_status sessile_growth_gpu_classify(sessile_growth_gpu *g, const sessile_
   if (st == SESSILE_OK) {
     s.nv = g->nv;
     s.nf = g->nf;
-    st = growth_download_reals(g, g->pos, s.pos, 3 * (size_t)g->nv);
+    st = sessile_buffer_download_reals(g->pos, 0, s.pos, 3 * (size_t)g->nv);
   }
   if (st == SESSILE_OK) st = sessile_buffer_download(g->tri, 0, s.tri, (size_t)g->nf * 12);
   if (st == SESSILE_OK) st = sessile_growth_bin_columns(box, &s, &off, &list);

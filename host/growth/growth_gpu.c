@@ -81,28 +81,6 @@ growth_push growth_push_of(const sessile_growth_gpu *g, const sessile_box *box) 
   return p;
 }
 
-sessile_status growth_upload_reals(sessile_growth_gpu *g, sessile_buffer *b, const double *src,
-                                   size_t n) {
-  if (g->real_bytes == 8) return sessile_buffer_upload(b, 0, src, n * sizeof *src);
-  float *t = malloc(n * sizeof *t + 1);
-  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory converting %zu values", n);
-  for (size_t i = 0; i < n; i++) t[i] = (float)src[i];
-  sessile_status s = sessile_buffer_upload(b, 0, t, n * sizeof *t);
-  free(t);
-  return s;
-}
-
-sessile_status growth_download_reals(sessile_growth_gpu *g, sessile_buffer *b, double *dst,
-                                     size_t n) {
-  if (g->real_bytes == 8) return sessile_buffer_download(b, 0, dst, n * sizeof *dst);
-  float *t = malloc(n * sizeof *t + 1);
-  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory converting %zu values", n);
-  sessile_status s = sessile_buffer_download(b, 0, t, n * sizeof *t);
-  for (size_t i = 0; s == SESSILE_OK && i < n; i++) dst[i] = t[i];
-  free(t);
-  return s;
-}
-
 sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t *have, size_t bytes) {
   if (bytes < 16) bytes = 16;
   if (*b && *have >= bytes) return SESSILE_OK;
@@ -151,7 +129,7 @@ sessile_status sessile_growth_gpu_set_surface(sessile_growth_gpu *g, const sessi
       if (bytes) st = sessile_buffer_upload(*spec[i].b, 0, spec[i].u32, bytes);
     }
   }
-  if (st == SESSILE_OK) st = growth_upload_reals(g, g->pos, s->pos, 3 * nv);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(g->pos, 0, s->pos, 3 * nv);
   free(vf_off), free(vf), free(nb_off), free(nb);
   if (st != SESSILE_OK) return st;
   g->nv = s->nv;

@@ -54,8 +54,6 @@ struct sessile_growth_gpu {
 /* growth_gpu.c */
 void growth_set_params(sessile_growth_gpu *g, const sessile_box *box, const sessile_growth_params *p);
 growth_push growth_push_of(const sessile_growth_gpu *g, const sessile_box *box);
-sessile_status growth_upload_reals(sessile_growth_gpu *g, sessile_buffer *b, const double *src, size_t n);
-sessile_status growth_download_reals(sessile_growth_gpu *g, sessile_buffer *b, double *dst, size_t n);
 /* (Re)creates *b when it is missing or smaller than bytes; *have tracks its size. */
 sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t *have, size_t bytes);
 uint32_t growth_groups(uint32_t items);

@@ -17,7 +17,7 @@ sessile_status sessile_growth_gpu_normals(sessile_growth_gpu *g, double *normals
   SESSILE_CALL(growth_record_normals(g, &box));
   SESSILE_CALL(sessile_cmd_end(g->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
-  return growth_download_reals(g, g->nrm, normals, 3 * (size_t)g->nv);
+  return sessile_buffer_download_reals(g->nrm, 0, normals, 3 * (size_t)g->nv);
 }
 
 sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box *box,
@@ -55,14 +55,14 @@ sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box 
   SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
 
   size_t nv = g->nv;
-  SESSILE_CALL(growth_download_reals(g, g->new_pos, new_pos, 3 * nv));
-  if (probed) SESSILE_CALL(growth_download_reals(g, g->probed, probed, nv));
-  if (translocated) SESSILE_CALL(growth_download_reals(g, cur, translocated, nv));
-  if (length) SESSILE_CALL(growth_download_reals(g, g->len, length, nv));
+  SESSILE_CALL(sessile_buffer_download_reals(g->new_pos, 0, new_pos, 3 * nv));
+  if (probed) SESSILE_CALL(sessile_buffer_download_reals(g->probed, 0, probed, nv));
+  if (translocated) SESSILE_CALL(sessile_buffer_download_reals(cur, 0, translocated, nv));
+  if (length) SESSILE_CALL(sessile_buffer_download_reals(g->len, 0, length, nv));
   return SESSILE_OK;
 }
 
 sessile_status sessile_growth_gpu_directions(sessile_growth_gpu *g, double *dir) {
   SESSILE_CHECK(g->nv > 0, SESSILE_ERR_USAGE, "directions: no surface uploaded (call set_surface)");
-  return growth_download_reals(g, g->dir, dir, 3 * (size_t)g->nv);
+  return sessile_buffer_download_reals(g->dir, 0, dir, 3 * (size_t)g->nv);
 }

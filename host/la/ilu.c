@@ -134,7 +134,7 @@ static sessile_status build_tri(sessile_la *la, la_ilu *f, int upper, const uint
   if (s == SESSILE_OK) {
     size_t nr = (size_t)(total ? total : 1) * b2;
     s = sessile_buffer_create(la->gpu, nr * la->real_bytes, SESSILE_BUFFER_DEVICE, &t->val);
-    if (s == SESSILE_OK && total) s = la_upload_reals(la, t->val, 0, v, (size_t)total * b2);
+    if (s == SESSILE_OK && total) s = sessile_buffer_upload_reals(t->val, 0, v, (size_t)total * b2);
   }
   free(lev);
   free(order);

@@ -146,10 +146,6 @@ uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
 uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);
 
 /* Host <-> device transfers in the stored precision (vec.c). */
-sessile_status la_upload_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
-                               const double *src, size_t n);
-sessile_status la_download_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
-                                 double *dst, size_t n);
 
 /* ILU(0) on the device (ilu.c): the factors of `a`, computed once and cached
  * in the matrix; z = (LU)⁻¹ r as one dispatch per level of L and of U. */

@@ -106,7 +106,7 @@ static sessile_status upload_csr_chunk(sessile_la *la, const sessile_csr *a, con
   if (s == SESSILE_OK)
     s = sessile_buffer_create(la->gpu, (size_t)chunks * 4 * la->real_bytes, SESSILE_BUFFER_DEVICE,
                               &ch->val);
-  if (s == SESSILE_OK) s = la_upload_reals(la, ch->val, 0, val, (size_t)chunks * 4);
+  if (s == SESSILE_OK) s = sessile_buffer_upload_reals(ch->val, 0, val, (size_t)chunks * 4);
   free(sp);
   free(col);
   free(val);
@@ -214,7 +214,7 @@ static sessile_status upload_bcsr4_chunk(sessile_la *la, const sessile_bcsr4 *a,
   if (s == SESSILE_OK && nnzb) s = sessile_buffer_upload(ch->col, 0, a->col + k0, (size_t)nnzb * 4);
   if (s == SESSILE_OK)
     s = sessile_buffer_create(la->gpu, nb * 16 * la->real_bytes, SESSILE_BUFFER_DEVICE, &ch->val);
-  if (s == SESSILE_OK && nnzb) s = la_upload_reals(la, ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16);
+  if (s == SESSILE_OK && nnzb) s = sessile_buffer_upload_reals(ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16);
   free(rp);
   return s;
 }

@@ -29,36 +29,11 @@ void sessile_vec_destroy(sessile_vec *v) {
 
 uint32_t sessile_vec_size(const sessile_vec *v) { return v->n; }
 
-/* Converts between the host's doubles and the stored precision. */
-sessile_status la_upload_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
-                               const double *src, size_t n) {
-  if (la->real_bytes == 8)
-    return sessile_buffer_upload(b, offset_reals * 8, src, n * sizeof(double));
-  float *t = malloc(n * sizeof *t);
-  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory converting %zu values", n);
-  for (size_t i = 0; i < n; i++) t[i] = (float)src[i];
-  sessile_status s = sessile_buffer_upload(b, offset_reals * 4, t, n * sizeof *t);
-  free(t);
-  return s;
-}
-
-sessile_status la_download_reals(sessile_la *la, sessile_buffer *b, size_t offset_reals,
-                                 double *dst, size_t n) {
-  if (la->real_bytes == 8)
-    return sessile_buffer_download(b, offset_reals * 8, dst, n * sizeof(double));
-  float *t = malloc(n * sizeof *t);
-  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory converting %zu values", n);
-  sessile_status s = sessile_buffer_download(b, offset_reals * 4, t, n * sizeof *t);
-  for (size_t i = 0; s == SESSILE_OK && i < n; i++) dst[i] = t[i];
-  free(t);
-  return s;
-}
-
 sessile_status sessile_vec_upload(sessile_vec *v, const double *src) {
-  return la_upload_reals(v->la, v->buf, 0, src, v->n);
+  return sessile_buffer_upload_reals(v->buf, 0, src, v->n);
 }
 sessile_status sessile_vec_download(sessile_vec *v, double *dst) {
-  return la_download_reals(v->la, v->buf, 0, dst, v->n);
+  return sessile_buffer_download_reals(v->buf, 0, dst, v->n);
 }
 
 static sessile_status check_sizes(const sessile_vec *a, const sessile_vec *b, const char *op) {

@@ -25,16 +25,6 @@ void sessile_locate_gpu_destroy(sessile_locate_gpu *lg) {
 }
 
 /* Uploads n doubles in the context precision. */
-static sessile_status upload_reals(int real_bytes, sessile_buffer *b, const double *src, size_t n) {
-  if (real_bytes == 8) return sessile_buffer_upload(b, 0, src, n * sizeof *src);
-  float *t = malloc(n * sizeof *t + 1);
-  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory converting %zu values", n);
-  for (size_t i = 0; i < n; i++) t[i] = (float)src[i];
-  sessile_status s = sessile_buffer_upload(b, 0, t, n * sizeof *t);
-  free(t);
-  return s;
-}
-
 static sessile_status make_buffer(sessile_gpu *g, size_t bytes, sessile_buffer **b) {
   return sessile_buffer_create(g, bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE, b);
 }
@@ -56,7 +46,7 @@ sessile_status sessile_locate_gpu_create(sessile_gpu *gpu, const sessile_locator
   if (s == SESSILE_OK) s = make_buffer(gpu, (size_t)4 * m->ntets * sizeof(uint32_t), &lg->tet);
   if (s == SESSILE_OK) s = make_buffer(gpu, ((size_t)l->nbins + 1) * sizeof(uint32_t), &lg->off);
   if (s == SESSILE_OK) s = make_buffer(gpu, (size_t)l->nentries * sizeof(uint32_t), &lg->cell);
-  if (s == SESSILE_OK) s = upload_reals(lg->real_bytes, lg->xyz, m->xyz, (size_t)3 * m->nnodes);
+  if (s == SESSILE_OK) s = sessile_buffer_upload_reals(lg->xyz, 0, m->xyz, (size_t)3 * m->nnodes);
   if (s == SESSILE_OK) s = sessile_buffer_upload(lg->tet, 0, m->tet, (size_t)4 * m->ntets * sizeof(uint32_t));
   if (s == SESSILE_OK)
     s = sessile_buffer_upload(lg->off, 0, l->cell_off, ((size_t)l->nbins + 1) * sizeof(uint32_t));
@@ -64,7 +54,7 @@ sessile_status sessile_locate_gpu_create(sessile_gpu *gpu, const sessile_locator
     s = sessile_buffer_upload(lg->cell, 0, l->cell_tet, (size_t)l->nentries * sizeof(uint32_t));
   if (s == SESSILE_OK) {
     double pr[8] = {l->lo[0], l->lo[1], l->lo[2], l->inv_h[0], l->inv_h[1], l->inv_h[2], lg->eps, 0};
-    s = upload_reals(lg->real_bytes, lg->params, pr, 8);
+    s = sessile_buffer_upload_reals(lg->params, 0, pr, 8);
   }
   if (s != SESSILE_OK) {
     sessile_locate_gpu_destroy(lg);

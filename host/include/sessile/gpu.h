@@ -83,6 +83,13 @@ void *sessile_buffer_host_ptr(sessile_buffer *b);
 /* Blocking transfers (wait for the device to be idle with respect to them). */
 sessile_status sessile_buffer_upload(sessile_buffer *b, size_t offset, const void *src, size_t bytes);
 sessile_status sessile_buffer_download(sessile_buffer *b, size_t offset, void *dst, size_t bytes);
+/* n reals at real offset offset_reals, in the context's precision (8-byte
+ * doubles on fp64 contexts, 4-byte floats on fp32 ones, converted here); the
+ * host side is always double. */
+sessile_status sessile_buffer_upload_reals(sessile_buffer *b, size_t offset_reals, const double *src,
+                                           size_t n);
+sessile_status sessile_buffer_download_reals(sessile_buffer *b, size_t offset_reals, double *dst,
+                                             size_t n);
 
 /* --- kernels ----------------------------------------------------------- */
 /* A compute pipeline from the embedded SPIR-V named `name` (e.g. "la/axpy.f64").
