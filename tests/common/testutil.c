@@ -56,3 +56,20 @@ double t_relerr(const double *a, const double *b, size_t n) {
   }
   return num / den;
 }
+
+void t_must(const char *what, sessile_status s) {
+  if (s == SESSILE_OK) return;
+  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
+  exit(1);
+}
+
+void *t_xalloc(size_t bytes) {
+  void *p = calloc(bytes ? bytes : 1, 1);
+  if (!p) {
+    printf("FAIL out of host memory\n");
+    exit(1);
+  }
+  return p;
+}
+
+double *t_dalloc(size_t n) { return t_xalloc(n * sizeof(double)); }

@@ -20,6 +20,12 @@ sessile_gpu *t_gpu(int precision);
 /* Destroys g, adds a failed check if validation reported anything, prints the
  * summary line and returns the exit code. */
 int t_finish(sessile_gpu *g);
+/* Stops the test (exit 1, with the library's message) when s != SESSILE_OK:
+ * for set-up steps whose failure makes the rest meaningless. */
+void t_must(const char *what, sessile_status s);
+/* Zero-filled allocations that stop the test when the host is out of memory. */
+void *t_xalloc(size_t bytes);
+double *t_dalloc(size_t n);
 /* max_i |a_i - b_i| / max(max_i |b_i|, tiny) */
 double t_relerr(const double *a, const double *b, size_t n);
 #endif

@@ -36,21 +36,6 @@ static const double PI = 3.14159265358979323846;
 static sessile_gpu *gpu;
 static sessile_la *la;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static void *xalloc(size_t bytes) {
-  void *p = calloc(bytes ? bytes : 1, 1);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 static sessile_box box_of(uint32_t cx, uint32_t cy, uint32_t cz, double h) {
   sessile_box b = {{0, 0, 0}, h, {cx + 1, cy + 1, cz + 1}};
   return b;
@@ -77,12 +62,12 @@ static layer_out layer(double pe, double tau_scale, uint32_t cs, int dir_sides) 
   const uint32_t nx = 20;
   sessile_box b = box_of(nx, cs, cs, 1.0 / nx);
   sessile_tetmesh m;
-  must("mesh", sessile_tetmesh_from_box(&b, &m));
+  t_must("mesh", sessile_tetmesh_from_box(&b, &m));
   uint32_t n = m.nnodes;
   const double L = 0.01, D = 1e-5, U = pe * D / L; /* 1 cm in SI */
-  double *vel = xalloc(3 * (size_t)n * sizeof *vel), *g = xalloc(n * sizeof *g),
-         *c = xalloc(n * sizeof *c);
-  uint8_t *mask = xalloc(n);
+  double *vel = t_xalloc(3 * (size_t)n * sizeof *vel), *g = t_xalloc(n * sizeof *g),
+         *c = t_xalloc(n * sizeof *c);
+  uint8_t *mask = t_xalloc(n);
   for (uint32_t i = 0; i < n; i++) {
     uint32_t ix = i % b.n[0];
     vel[3 * i] = U;
@@ -90,11 +75,11 @@ static layer_out layer(double pe, double tau_scale, uint32_t cs, int dir_sides) 
     g[i] = expm1(pe * m.xyz[3 * i]) / expm1(pe);
   }
   sessile_advdiff *ad;
-  must("advdiff create", sessile_advdiff_create(la, &m, &ad));
+  t_must("advdiff create", sessile_advdiff_create(la, &m, &ad));
   sessile_advdiff_set_tau_scale(ad, tau_scale);
   sessile_ksp_options o = tight(1e-12);
   sessile_solve_result r;
-  must("advdiff solve", sessile_advdiff_solve(ad, vel, D, mask, g, &o, c, &r));
+  t_must("advdiff solve", sessile_advdiff_solve(ad, vel, D, mask, g, &o, c, &r));
   layer_out out = {0, 0, 0, r.iterations};
   for (uint32_t i = 0; i < n; i++) {
     out.err = fmax(out.err, fabs(c[i] - g[i]));
@@ -140,17 +125,17 @@ static double lin(const double *p) { return 1.0 + 2.0 * p[0] - p[1] + 0.5 * p[2]
 static void test_patch(void) {
   sessile_box b = box_of(6, 5, 4, 0.25);
   sessile_tetmesh m;
-  must("mesh", sessile_tetmesh_from_box(&b, &m));
+  t_must("mesh", sessile_tetmesh_from_box(&b, &m));
   uint32_t n = m.nnodes;
   /* perturb interior nodes by up to 0.1 h (deterministic): a general mesh */
-  double *rnd = xalloc(3 * (size_t)n * sizeof *rnd);
+  double *rnd = t_xalloc(3 * (size_t)n * sizeof *rnd);
   sessile_fill_random(rnd, 3 * (uint64_t)n, -0.1 * b.h, 0.1 * b.h, 7);
   for (uint32_t i = 0; i < n; i++)
     if (!m.node_tags[i])
       for (int a = 0; a < 3; a++) m.xyz[3 * i + a] += rnd[3 * i + a];
-  double *g = xalloc(n * sizeof *g), *c = xalloc(n * sizeof *c), *vel = xalloc(3 * (size_t)n * sizeof *vel),
-         *f = xalloc(n * sizeof *f);
-  uint8_t *mask = xalloc(n);
+  double *g = t_xalloc(n * sizeof *g), *c = t_xalloc(n * sizeof *c), *vel = t_xalloc(3 * (size_t)n * sizeof *vel),
+         *f = t_xalloc(n * sizeof *f);
+  uint8_t *mask = t_xalloc(n);
   const double u[3] = {2e-3, -1e-3, 5e-4}; /* m/s */
   for (uint32_t i = 0; i < n; i++) {
     mask[i] = m.node_tags[i] != 0;
@@ -160,26 +145,26 @@ static void test_patch(void) {
     f[i] = 100.0 * (u[0] * 2.0 - u[1] * 1.0 + u[2] * 0.5);
   }
   sessile_advdiff *ad;
-  must("advdiff create", sessile_advdiff_create(la, &m, &ad));
+  t_must("advdiff create", sessile_advdiff_create(la, &m, &ad));
   sessile_ksp_options o = tight(1e-12);
   sessile_solve_result r;
   double err = 0;
-  must("advdiff solve u = 0", sessile_advdiff_solve(ad, NULL, 1e-4, mask, g, &o, c, &r));
+  t_must("advdiff solve u = 0", sessile_advdiff_solve(ad, NULL, 1e-4, mask, g, &o, c, &r));
   for (uint32_t i = 0; i < n; i++) err = fmax(err, fabs(c[i] - lin(m.xyz + 3 * i)));
   printf("  patch u = 0: %d it, relres %.2e\n", r.iterations, r.true_relres);
   t_check("u = 0, perturbed mesh: linear field reproduced (max error)", err, 1e-8);
   /* Laplace does not depend on D */
   memset(c, 0, n * sizeof *c);
   o.type = SESSILE_KSP_CG;
-  must("advdiff solve u = 0, CG", sessile_advdiff_solve(ad, NULL, 3e-7, mask, g, &o, c, &r));
+  t_must("advdiff solve u = 0, CG", sessile_advdiff_solve(ad, NULL, 3e-7, mask, g, &o, c, &r));
   err = 0;
   for (uint32_t i = 0; i < n; i++) err = fmax(err, fabs(c[i] - lin(m.xyz + 3 * i)));
   t_check("u = 0, other D, CG: linear field reproduced", err, 1e-8);
   /* uniform flow, SUPG, constant source u . grad c: still exact */
   o.type = SESSILE_KSP_GMRES;
-  must("set source", sessile_advdiff_set_source(ad, f));
+  t_must("set source", sessile_advdiff_set_source(ad, f));
   memset(c, 0, n * sizeof *c);
-  must("advdiff solve uniform u", sessile_advdiff_solve(ad, vel, 1e-6, mask, g, &o, c, &r));
+  t_must("advdiff solve uniform u", sessile_advdiff_solve(ad, vel, 1e-6, mask, g, &o, c, &r));
   err = 0;
   for (uint32_t i = 0; i < n; i++) err = fmax(err, fabs(c[i] - lin(m.xyz + 3 * i)));
   printf("  patch uniform u (cell Pe ~%.1f), GMRES: %d it, relres %.2e\n",
@@ -221,11 +206,11 @@ static double ms_f(const double *p) {
 static double ms_solve(uint32_t cells, int *iters) {
   sessile_box b = box_of(cells, cells, cells, 1.0 / cells);
   sessile_tetmesh m;
-  must("mesh", sessile_tetmesh_from_box(&b, &m));
+  t_must("mesh", sessile_tetmesh_from_box(&b, &m));
   uint32_t n = m.nnodes;
-  double *g = xalloc(n * sizeof *g), *c = xalloc(n * sizeof *c), *vel = xalloc(3 * (size_t)n * sizeof *vel),
-         *f = xalloc(n * sizeof *f);
-  uint8_t *mask = xalloc(n);
+  double *g = t_xalloc(n * sizeof *g), *c = t_xalloc(n * sizeof *c), *vel = t_xalloc(3 * (size_t)n * sizeof *vel),
+         *f = t_xalloc(n * sizeof *f);
+  uint8_t *mask = t_xalloc(n);
   for (uint32_t i = 0; i < n; i++) {
     const double *p = m.xyz + 3 * i;
     mask[i] = m.node_tags[i] != 0;
@@ -234,11 +219,11 @@ static double ms_solve(uint32_t cells, int *iters) {
     for (int a = 0; a < 3; a++) vel[3 * i + a] = MS_U * MS_DIR[a];
   }
   sessile_advdiff *ad;
-  must("advdiff create", sessile_advdiff_create(la, &m, &ad));
-  must("set source", sessile_advdiff_set_source(ad, f));
+  t_must("advdiff create", sessile_advdiff_create(la, &m, &ad));
+  t_must("set source", sessile_advdiff_set_source(ad, f));
   sessile_ksp_options o = tight(1e-10);
   sessile_solve_result r;
-  must("advdiff solve", sessile_advdiff_solve(ad, vel, MS_D, mask, g, &o, c, &r));
+  t_must("advdiff solve", sessile_advdiff_solve(ad, vel, MS_D, mask, g, &o, c, &r));
   *iters = r.iterations;
   /* L2 error (cm^3 units; only ratios matter): 4-point degree-2 rule */
   const double qa = 0.5854101966249685, qb = 0.1381966011250105;
@@ -291,10 +276,10 @@ static void test_convergence(void) {
 static void test_bc(void) {
   sessile_box b = box_of(5, 4, 3, 0.5);
   sessile_tetmesh m;
-  must("mesh", sessile_tetmesh_from_box(&b, &m));
+  t_must("mesh", sessile_tetmesh_from_box(&b, &m));
   uint32_t n = m.nnodes;
-  uint8_t *solid = xalloc(n), *mask = xalloc(n);
-  double *val = xalloc(n * sizeof *val);
+  uint8_t *solid = t_xalloc(n), *mask = t_xalloc(n);
+  double *val = t_xalloc(n * sizeof *val);
   /* two interior solid nodes, one interior node tagged as sponge surface */
   uint32_t s1 = sessile_box_index(&b, 2, 2, 1), s2 = sessile_box_index(&b, 3, 2, 1),
            sp = sessile_box_index(&b, 2, 1, 2);
@@ -343,12 +328,12 @@ static void bench_one(int res, sessile_ksp_type type) {
   const double o0[3] = {0, 0, 0};
   const uint32_t cells[3] = {32, 32, 24};
   sessile_box b;
-  must("box", sessile_box_make(o0, 1.2, cells, res, &b));
+  t_must("box", sessile_box_make(o0, 1.2, cells, res, &b));
   sessile_tetmesh m;
-  must("mesh", sessile_tetmesh_from_box(&b, &m));
+  t_must("mesh", sessile_tetmesh_from_box(&b, &m));
   uint32_t n = m.nnodes;
-  double *vel = xalloc(3 * (size_t)n * sizeof *vel), *g = xalloc(n * sizeof *g), *c = xalloc(n * sizeof *c);
-  uint8_t *solid = xalloc(n), *mask = xalloc(n);
+  double *vel = t_xalloc(3 * (size_t)n * sizeof *vel), *g = t_xalloc(n * sizeof *g), *c = t_xalloc(n * sizeof *c);
+  uint8_t *solid = t_xalloc(n), *mask = t_xalloc(n);
   for (uint32_t i = 0; i < n; i++) {
     const double *p = m.xyz + 3 * i;
     vel[3 * i] = 0.05;
@@ -357,7 +342,7 @@ static void bench_one(int res, sessile_ksp_type type) {
   }
   double t0 = sessile_wall_seconds();
   sessile_advdiff *ad;
-  must("advdiff create", sessile_advdiff_create(la, &m, &ad));
+  t_must("advdiff create", sessile_advdiff_create(la, &m, &ad));
   double tc = sessile_wall_seconds() - t0;
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
@@ -372,7 +357,7 @@ static void bench_one(int res, sessile_ksp_type type) {
       }
     sessile_advdiff_nutrient_bc(&m, solid, mask, g);
     sessile_solve_result r;
-    must("advdiff solve", sessile_advdiff_solve(ad, vel, SESSILE_ADVDIFF_DEFAULT_D, mask, g, &o, c, &r));
+    t_must("advdiff solve", sessile_advdiff_solve(ad, vel, SESSILE_ADVDIFF_DEFAULT_D, mask, g, &o, c, &r));
     double ta, tu, ts, cmin = INFINITY, cmax = -INFINITY;
     sessile_advdiff_timing(ad, &ta, &tu, &ts);
     for (uint32_t i = 0; i < n; i++) cmin = fmin(cmin, c[i]), cmax = fmax(cmax, c[i]);
@@ -398,12 +383,12 @@ int main(int argc, char **argv) {
     sessile_gpu_options go;
     sessile_gpu_options_default(&go);
     go.validation = 0;
-    must("gpu", sessile_gpu_create(&go, &gpu));
+    t_must("gpu", sessile_gpu_create(&go, &gpu));
     printf("device: %s, driver %s\n", sessile_gpu_info_of(gpu)->name, sessile_gpu_info_of(gpu)->driver);
   } else {
     gpu = t_gpu(0);
   }
-  must("la", sessile_la_create(gpu, &la));
+  t_must("la", sessile_la_create(gpu, &la));
   if (do_bench) {
     int res_max = argc > 2 ? atoi(argv[2]) : 2;
     for (int res = 1; res <= res_max; res++) {

@@ -42,21 +42,6 @@
 static sessile_gpu *gpu;
 static sessile_la *la;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static void *xalloc(size_t bytes) {
-  void *p = calloc(bytes ? bytes : 1, 1);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 static double urand(uint64_t *s) {
   *s = *s * 6364136223846793005ull + 1442695040888963407ull;
   return (double)(*s >> 11) / 9007199254740992.0;
@@ -65,8 +50,8 @@ static double urand(uint64_t *s) {
 static void make_mesh(const double origin[3], double h, uint32_t cx, uint32_t cy, uint32_t cz,
                       sessile_box *box, sessile_tetmesh *m) {
   uint32_t cells[3] = {cx, cy, cz};
-  must("box", sessile_box_make(origin, h, cells, 1, box));
-  must("tetmesh", sessile_tetmesh_from_box(box, m));
+  t_must("box", sessile_box_make(origin, h, cells, 1, box));
+  t_must("tetmesh", sessile_tetmesh_from_box(box, m));
 }
 
 static sessile_fluid_params test_params(void) {
@@ -140,10 +125,10 @@ static double poiseuille(int k, double *grad_err) {
   p.velocity_fn = pois_u;
   p.bc_ctx = &c;
   sessile_fluid *fl = NULL;
-  must("fluid create", sessile_fluid_create(la, &m, &fl));
-  double *up = xalloc((size_t)m.nnodes * 4 * sizeof *up);
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+  double *up = t_xalloc((size_t)m.nnodes * 4 * sizeof *up);
   sessile_fluid_result r;
-  must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
+  t_must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
   double err = 0, G = 8 * c.eta * c.U / (c.H * c.H), gerr = 0;
   for (uint32_t i = 0; i < m.nnodes; i++) {
     double x[3] = {0.01 * m.xyz[3 * i], 0.01 * m.xyz[3 * i + 1], 0.01 * m.xyz[3 * i + 2]}, u[3];
@@ -197,7 +182,7 @@ static void stokes_sphere(int k, double *drag_err, double *u_rms) {
   p.velocity_fn = sph_u;
   p.pressure_fn = sph_p;
   p.bc_ctx = &c;
-  uint8_t *solid = xalloc(m.nnodes);
+  uint8_t *solid = t_xalloc(m.nnodes);
   uint32_t nsolid = 0;
   for (uint32_t i = 0; i < m.nnodes; i++) {
     const double *x = m.xyz + 3 * i;
@@ -205,11 +190,11 @@ static void stokes_sphere(int k, double *drag_err, double *u_rms) {
     nsolid += solid[i];
   }
   sessile_fluid *fl = NULL;
-  must("fluid create", sessile_fluid_create(la, &m, &fl));
-  double *up = xalloc((size_t)m.nnodes * 4 * sizeof *up), *rr = xalloc((size_t)m.nnodes * 4 * sizeof *rr);
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+  double *up = t_xalloc((size_t)m.nnodes * 4 * sizeof *up), *rr = t_xalloc((size_t)m.nnodes * 4 * sizeof *rr);
   sessile_fluid_result r;
-  must("fluid solve", sessile_fluid_solve(fl, solid, &p, up, &r));
-  must("fluid residual", sessile_fluid_residual(fl, &p, up, rr));
+  t_must("fluid solve", sessile_fluid_solve(fl, solid, &p, up, &r));
+  t_must("fluid residual", sessile_fluid_residual(fl, &p, up, rr));
   double F[3] = {0, 0, 0}, se = 0;
   uint32_t nf = 0;
   for (uint32_t i = 0; i < m.nnodes; i++) {
@@ -293,10 +278,10 @@ static void mms(int k, double *eu, double *ep) {
   mms_ctx c;
   mms_setup(k, 0.001, &m, &p, &c); /* Re 0.2 */
   sessile_fluid *fl = NULL;
-  must("fluid create", sessile_fluid_create(la, &m, &fl));
-  double *up = xalloc((size_t)m.nnodes * 4 * sizeof *up);
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+  double *up = t_xalloc((size_t)m.nnodes * 4 * sizeof *up);
   sessile_fluid_result r;
-  must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
+  t_must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
   /* L2 errors by the degree-2 rule; the mean pressure is fixed by the outlet data */
   double su = 0, sp = 0;
   for (uint32_t t = 0; t < m.ntets; t++) {
@@ -342,10 +327,10 @@ static void newton_quadratic(void) {
   p.linear_rtol = 1e-13;
   p.linear_max = 4000;
   sessile_fluid *fl = NULL;
-  must("fluid create", sessile_fluid_create(la, &m, &fl));
-  double *up = xalloc((size_t)m.nnodes * 4 * sizeof *up);
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+  double *up = t_xalloc((size_t)m.nnodes * 4 * sizeof *up);
   sessile_fluid_result r;
-  must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
+  t_must("fluid solve", sessile_fluid_solve(fl, NULL, &p, up, &r));
   printf("  Newton from rest, Poiseuille channel h = H/2, Re 10, relative residuals:");
   double rel[SESSILE_FLUID_MAX_STEPS + 1];
   int n = r.nsteps;
@@ -377,7 +362,7 @@ static void scene(const double origin[3], double h, uint32_t cx, uint32_t cy, ui
   double mx[3];
   sessile_box_max(&box, mx);
   double ctr[2] = {0.5 * (origin[0] + mx[0]), 0.5 * (origin[1] + mx[1])};
-  uint8_t *solid = xalloc(m.nnodes);
+  uint8_t *solid = t_xalloc(m.nnodes);
   for (uint32_t i = 0; i < m.nnodes; i++) {
     const double *x = m.xyz + 3 * i;
     double dx = x[0] - ctr[0], dy = x[1] - ctr[1], dz = x[2] - origin[2];
@@ -385,13 +370,13 @@ static void scene(const double origin[3], double h, uint32_t cx, uint32_t cy, ui
   }
   double t0 = sessile_wall_seconds();
   sessile_fluid *fl = NULL;
-  must("fluid create", sessile_fluid_create(la, &m, &fl));
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
   double tc = sessile_wall_seconds() - t0;
-  double *up = xalloc((size_t)m.nnodes * 4 * sizeof *up);
+  double *up = t_xalloc((size_t)m.nnodes * 4 * sizeof *up);
   sessile_fluid_result r;
   sessile_fluid_params q = *p;
   q.verbose = verbose;
-  must("fluid solve", sessile_fluid_solve(fl, solid, &q, up, &r));
+  t_must("fluid solve", sessile_fluid_solve(fl, solid, &q, up, &r));
   printf("  scene %u x %u x %u nodes (%u tets), dome R %.1f cm: setup %.2f s; %s in %d steps, %d linear "
          "iterations, assembly %.2f s, solves %.2f s, total %.2f s, rel residual %.2e\n",
          box.n[0], box.n[1], box.n[2], m.ntets, R, tc, r.converged ? "converged" : "NOT converged",
@@ -411,7 +396,7 @@ static void scene(const double origin[3], double h, uint32_t cx, uint32_t cy, ui
     solid[i] = dx * dx + dy * dy + dz * dz <= (R + 0.5 * h) * (R + 0.5 * h);
   }
   sessile_fluid_result w;
-  must("fluid warm solve", sessile_fluid_solve(fl, solid, &q, up, &w));
+  t_must("fluid warm solve", sessile_fluid_solve(fl, solid, &q, up, &w));
   printf("  warm re-solve (dome R + h/2): %s in %d steps, %d linear iterations, total %.2f s\n",
          w.converged ? "converged" : "NOT converged", w.nsteps, w.lin_iterations, w.seconds);
   free(up);
@@ -425,7 +410,7 @@ int main(int argc, char **argv) {
   double tstart = sessile_wall_seconds();
   int bench = argc > 1 && strcmp(argv[1], "--bench") == 0;
   gpu = t_gpu(0);
-  must("la", sessile_la_create(gpu, &la));
+  t_must("la", sessile_la_create(gpu, &la));
   if (bench) {
     int res = argc > 2 ? atoi(argv[2]) : 1;
     double o[3] = {0, 0, 0}, h = 1.2 / (1 << (res - 1));

@@ -46,21 +46,6 @@
 static sessile_gpu *gpu;
 static sessile_la *la;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static void *xalloc(size_t bytes) {
-  void *p = calloc(bytes ? bytes : 1, 1);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 static sessile_box box_of(uint32_t nx, uint32_t ny, uint32_t nz, double h, const double o[3]) {
   sessile_box b = {{o[0], o[1], o[2]}, h, {nx, ny, nz}};
   return b;
@@ -85,8 +70,8 @@ static void ball_mask(const sessile_box *b, const double c[3], double r, uint32_
 static sessile_buffer *mask_buffer(const sessile_box *b, const uint32_t *mask) {
   sessile_buffer *m;
   size_t bytes = (size_t)sessile_box_nodes(b) * 4;
-  must("mask buffer", sessile_buffer_create(gpu, bytes, SESSILE_BUFFER_DEVICE, &m));
-  must("mask upload", sessile_buffer_upload(m, 0, mask, bytes));
+  t_must("mask buffer", sessile_buffer_create(gpu, bytes, SESSILE_BUFFER_DEVICE, &m));
+  t_must("mask upload", sessile_buffer_upload(m, 0, mask, bytes));
   return m;
 }
 
@@ -118,7 +103,7 @@ static void test_assembly(void) {
   t_check("6 tets of a cube fill it: |sum vol - h^3| / h^3", vol_err, 1e-14);
 
   sessile_csr K;
-  must("assemble", sessile_p1_laplace_assemble(&b, &K));
+  t_must("assemble", sessile_p1_laplace_assemble(&b, &K));
   double rowsum = 0, stencil = 0;
   uint32_t s1 = b.n[0], s2 = b.n[0] * b.n[1];
   for (uint32_t r = 0; r < K.nrows; r++) {
@@ -158,10 +143,10 @@ static void test_spmv(void) {
   const double o[3] = {0, 0, 0}, h = 0.6;
   sessile_box b = box_of(13, 11, 9, h, o);
   uint32_t n = sessile_box_nodes(&b);
-  uint32_t *mask = xalloc(n * 4);
-  uint8_t *dir = xalloc(n);
-  double *x = xalloc(n * 8), *g = xalloc(n * 8), *bb = xalloc(n * 8);
-  double *y1 = xalloc(n * 8), *y2 = xalloc(n * 8), *yr = xalloc(n * 8), *d = xalloc(n * 8);
+  uint32_t *mask = t_xalloc(n * 4);
+  uint8_t *dir = t_xalloc(n);
+  double *x = t_xalloc(n * 8), *g = t_xalloc(n * 8), *bb = t_xalloc(n * 8);
+  double *y1 = t_xalloc(n * 8), *y2 = t_xalloc(n * 8), *yr = t_xalloc(n * 8), *d = t_xalloc(n * 8);
   sessile_fill_random(x, n, -1, 1, 11);
   sessile_fill_random(g, n, 0, 1, 12);
   for (uint32_t i = 0; i < n; i++) {
@@ -169,26 +154,26 @@ static void test_spmv(void) {
     dir[i] = mask[i] || is_wall(&b, i);
   }
   sessile_csr K, A;
-  must("assemble", sessile_p1_laplace_assemble(&b, &K));
-  must("eliminate", sessile_p1_dirichlet(&K, dir, g, &A, bb));
+  t_must("assemble", sessile_p1_laplace_assemble(&b, &K));
+  t_must("eliminate", sessile_p1_dirichlet(&K, dir, g, &A, bb));
   sessile_buffer *mb = mask_buffer(&b, mask);
   sessile_mat *st, *csr;
   sessile_vec *vx, *vy, *vd;
-  must("stencil", sessile_mat_create_stencil7(la, b.n[0], b.n[1], b.n[2], h, mb, &st));
-  must("csr", sessile_mat_create_csr(la, &A, &csr));
-  must("vec", sessile_vec_create(la, n, &vx));
-  must("vec", sessile_vec_create(la, n, &vy));
-  must("vec", sessile_vec_create(la, n, &vd));
-  must("upload", sessile_vec_upload(vx, x));
-  must("stencil mult", sessile_mat_mult(la, st, vx, vy));
-  must("download", sessile_vec_download(vy, y1));
-  must("csr mult", sessile_mat_mult(la, csr, vx, vy));
-  must("download", sessile_vec_download(vy, y2));
+  t_must("stencil", sessile_mat_create_stencil7(la, b.n[0], b.n[1], b.n[2], h, mb, &st));
+  t_must("csr", sessile_mat_create_csr(la, &A, &csr));
+  t_must("vec", sessile_vec_create(la, n, &vx));
+  t_must("vec", sessile_vec_create(la, n, &vy));
+  t_must("vec", sessile_vec_create(la, n, &vd));
+  t_must("upload", sessile_vec_upload(vx, x));
+  t_must("stencil mult", sessile_mat_mult(la, st, vx, vy));
+  t_must("download", sessile_vec_download(vy, y1));
+  t_must("csr mult", sessile_mat_mult(la, csr, vx, vy));
+  t_must("download", sessile_vec_download(vy, y2));
   sessile_ref_stencil7(b.n[0], b.n[1], b.n[2], h, mask, x, yr);
   t_check("GPU stencil7 vs GPU CSR SpMV of the eliminated P1 matrix", rowwise(&A, x, y1, y2), 1e-13);
   t_check("GPU stencil7 vs sessile_ref_stencil7", rowwise(&A, x, y1, yr), 1e-13);
-  must("jacobi", sessile_mat_jacobi(la, st, vd));
-  must("download", sessile_vec_download(vd, d));
+  t_must("jacobi", sessile_mat_jacobi(la, st, vd));
+  t_must("download", sessile_vec_download(vd, d));
   double jerr = 0;
   for (uint32_t i = 0; i < n; i++)
     for (uint64_t k = A.rowptr[i]; k < A.rowptr[i + 1]; k++)
@@ -214,8 +199,8 @@ static sessile_solve_result solve_with(const sessile_box *b, const uint32_t *mas
                                        double rtol, double *c) {
   uint32_t n = sessile_box_nodes(b);
   uint32_t *m0 = NULL;
-  if (!mask) mask = m0 = xalloc(n * 4);
-  double *gv = xalloc(n * 8);
+  if (!mask) mask = m0 = t_xalloc(n * 4);
+  double *gv = t_xalloc(n * 8);
   for (uint32_t i = 0; i < n; i++) {
     double p[3];
     sessile_box_node_pos(b, i, p);
@@ -224,17 +209,17 @@ static sessile_solve_result solve_with(const sessile_box *b, const uint32_t *mas
   sessile_nutrient *nt;
   sessile_vec *vg, *vc;
   sessile_buffer *mb = mask_buffer(b, mask);
-  must("nutrient", sessile_nutrient_create(la, b, &nt));
-  must("vec", sessile_vec_create(la, n, &vg));
-  must("vec", sessile_vec_create(la, n, &vc));
-  must("upload", sessile_vec_upload(vg, gv));
+  t_must("nutrient", sessile_nutrient_create(la, b, &nt));
+  t_must("vec", sessile_vec_create(la, n, &vg));
+  t_must("vec", sessile_vec_create(la, n, &vc));
+  t_must("upload", sessile_vec_upload(vg, gv));
   sessile_ksp_options opt;
   sessile_ksp_options_default(&opt);
   opt.rtol = rtol;
   opt.max_it = 5000;
   sessile_solve_result res;
-  must("solve", sessile_nutrient_solve_dirichlet(nt, mb, vg, vc, &opt, &res));
-  must("download", sessile_vec_download(vc, c));
+  t_must("solve", sessile_nutrient_solve_dirichlet(nt, mb, vg, vc, &opt, &res));
+  t_must("download", sessile_vec_download(vc, c));
   sessile_vec_destroy(vg);
   sessile_vec_destroy(vc);
   sessile_nutrient_destroy(nt);
@@ -250,9 +235,9 @@ static void test_patch(void) {
   const double o[3] = {0.1, -0.2, 0.0}, h = 0.25, ctr[3] = {1.35, 0.8, 0.9};
   sessile_box b = box_of(11, 9, 8, h, o);
   uint32_t n = sessile_box_nodes(&b);
-  uint32_t *mask = xalloc(n * 4);
+  uint32_t *mask = t_xalloc(n * 4);
   ball_mask(&b, ctr, 0.6, mask);
-  double *c = xalloc(n * 8), e = 0, umax = 0;
+  double *c = t_xalloc(n * 8), e = 0, umax = 0;
   sessile_solve_result res = solve_with(&b, mask, linear, 1e-10, c);
   for (uint32_t i = 0; i < n; i++) {
     double p[3];
@@ -313,7 +298,7 @@ static void test_convergence(void) {
   for (int r = 0; r < 3; r++) {
     uint32_t cells = 8u << r;
     sessile_box b = box_of(cells + 1, cells + 1, cells + 1, 1.0 / cells, o);
-    double *c = xalloc((size_t)sessile_box_nodes(&b) * 8);
+    double *c = t_xalloc((size_t)sessile_box_nodes(&b) * 8);
     sessile_solve_result res = solve_with(&b, NULL, harmonic, 1e-10, c);
     errors(&b, c, &l2[r], &li[r]);
     printf("  h = 1/%u: %d iterations, L2 error %.4e, max nodal error %.4e\n", cells,
@@ -342,9 +327,9 @@ typedef struct {
 static void nutrient_case_make(nutrient_case *nc, const sessile_box *b, const double ctr[3], double r) {
   nc->b = *b;
   nc->n = sessile_box_nodes(b);
-  nc->mask = xalloc(nc->n * 4);
-  nc->dir = xalloc(nc->n);
-  nc->g = xalloc(nc->n * 8);
+  nc->mask = t_xalloc(nc->n * 4);
+  nc->dir = t_xalloc(nc->n);
+  nc->g = t_xalloc(nc->n * 8);
   ball_mask(b, ctr, r, nc->mask);
   for (uint32_t i = 0; i < nc->n; i++) {
     uint32_t x = i % b->n[0], y = (i / b->n[0]) % b->n[1], z = i / (b->n[0] * b->n[1]);
@@ -359,7 +344,7 @@ static void nutrient_case_free(nutrient_case *nc) {
 
 /* ||(b - A c)_free|| / ||b_free|| on the host. */
 static double free_relres(const sessile_csr *A, const double *bb, const uint8_t *dir, const double *c) {
-  double *r = xalloc((size_t)A->nrows * 8), rn = 0, bn = 0;
+  double *r = t_xalloc((size_t)A->nrows * 8), rn = 0, bn = 0;
   sessile_ref_spmv_csr(A, c, r);
   for (uint32_t i = 0; i < A->nrows; i++)
     if (!dir[i]) {
@@ -379,16 +364,16 @@ static void test_nutrient_bcs(void) {
   uint32_t n = big.n;
   sessile_nutrient *nt;
   sessile_vec *vc;
-  must("nutrient", sessile_nutrient_create(la, &b, &nt));
-  must("vec", sessile_vec_create(la, n, &vc));
+  t_must("nutrient", sessile_nutrient_create(la, &b, &nt));
+  t_must("vec", sessile_vec_create(la, n, &vc));
   sessile_buffer *ms = mask_buffer(&b, small.mask), *mb = mask_buffer(&b, big.mask);
   sessile_solve_result rs, warm, cold;
-  must("solve small", sessile_nutrient_solve(nt, ms, vc, NULL, &rs));
-  must("solve warm", sessile_nutrient_solve(nt, mb, vc, NULL, &warm));
-  double *c = xalloc(n * 8), *c0 = xalloc(n * 8), *cr = xalloc(n * 8), *bb = xalloc(n * 8);
-  must("download", sessile_vec_download(vc, c));
-  must("zero", sessile_vec_fill(la, 0.0, vc));
-  must("solve cold", sessile_nutrient_solve(nt, mb, vc, NULL, &cold));
+  t_must("solve small", sessile_nutrient_solve(nt, ms, vc, NULL, &rs));
+  t_must("solve warm", sessile_nutrient_solve(nt, mb, vc, NULL, &warm));
+  double *c = t_xalloc(n * 8), *c0 = t_xalloc(n * 8), *cr = t_xalloc(n * 8), *bb = t_xalloc(n * 8);
+  t_must("download", sessile_vec_download(vc, c));
+  t_must("zero", sessile_vec_fill(la, 0.0, vc));
+  t_must("solve cold", sessile_nutrient_solve(nt, mb, vc, NULL, &cold));
   printf("  small ball: %d it; bigger ball: warm start %d it (relres %.2e), cold start %d it "
          "(relres %.2e)\n", rs.iterations, warm.iterations, warm.true_relres, cold.iterations,
          cold.true_relres);
@@ -412,20 +397,20 @@ static void test_nutrient_bcs(void) {
   t_check("maximum principle: max c - 1", hi, 1e-6);
 
   sessile_csr K, A;
-  must("assemble", sessile_p1_laplace_assemble(&b, &K));
-  must("eliminate", sessile_p1_dirichlet(&K, big.dir, big.g, &A, bb));
+  t_must("assemble", sessile_p1_laplace_assemble(&b, &K));
+  t_must("eliminate", sessile_p1_dirichlet(&K, big.dir, big.g, &A, bb));
   t_check("host-recomputed free-row relative residual (warm)", free_relres(&A, bb, big.dir, c), 1e-6);
 
   /* Reference: la's plain-C PCG on the assembled CSR, both at rtol 1e-10. */
-  double *dinv = xalloc(n * 8);
-  must("ref jacobi", sessile_ref_jacobi_csr(&A, dinv));
+  double *dinv = t_xalloc(n * 8);
+  t_must("ref jacobi", sessile_ref_jacobi_csr(&A, dinv));
   sessile_ref_result rr = sessile_ref_pcg(&A, dinv, bb, cr, 1e-10, 5000);
   sessile_ksp_options opt;
   sessile_ksp_options_default(&opt);
   opt.rtol = 1e-10;
   sessile_solve_result tight;
-  must("solve tight", sessile_nutrient_solve(nt, mb, vc, &opt, &tight));
-  must("download", sessile_vec_download(vc, c0));
+  t_must("solve tight", sessile_nutrient_solve(nt, mb, vc, &opt, &tight));
+  t_must("download", sessile_vec_download(vc, c0));
   printf("  reference PCG %d it, GPU %d it (warm from rtol 1e-6 field)\n", rr.iterations, tight.iterations);
   t_true("reference PCG converged", rr.status == SESSILE_REF_CONVERGED);
   t_check("GPU nutrient (rtol 1e-10) vs reference PCG on the P1 CSR (max)", t_relerr(c0, cr, n), 1e-7);
@@ -438,14 +423,14 @@ static void test_nutrient_bcs(void) {
     sessile_nutrient *nt32;
     sessile_vec *v32;
     sessile_buffer *m32;
-    must("la32", sessile_la_create(g32, &la32));
-    must("nutrient32", sessile_nutrient_create(la32, &b, &nt32));
-    must("vec32", sessile_vec_create(la32, n, &v32));
-    must("mask32", sessile_buffer_create(g32, (size_t)n * 4, SESSILE_BUFFER_DEVICE, &m32));
-    must("mask32", sessile_buffer_upload(m32, 0, big.mask, (size_t)n * 4));
+    t_must("la32", sessile_la_create(g32, &la32));
+    t_must("nutrient32", sessile_nutrient_create(la32, &b, &nt32));
+    t_must("vec32", sessile_vec_create(la32, n, &v32));
+    t_must("mask32", sessile_buffer_create(g32, (size_t)n * 4, SESSILE_BUFFER_DEVICE, &m32));
+    t_must("mask32", sessile_buffer_upload(m32, 0, big.mask, (size_t)n * 4));
     sessile_solve_result r32;
-    must("solve fp32", sessile_nutrient_solve(nt32, m32, v32, NULL, &r32));
-    must("download", sessile_vec_download(v32, c0));
+    t_must("solve fp32", sessile_nutrient_solve(nt32, m32, v32, NULL, &r32));
+    t_must("download", sessile_vec_download(v32, c0));
     printf("  fp32: %s, %d iterations in %d refinements, true relres %.2e\n",
            sessile_solve_status_name(r32.status), r32.iterations, r32.refinements, r32.true_relres);
     t_true("fp32 nutrient solve converged", r32.status == SESSILE_SOLVE_CONVERGED);
@@ -483,45 +468,45 @@ static void bench(void) {
   uint32_t n = cur.n;
   sessile_nutrient *nt;
   sessile_vec *vc, *vb, *vx;
-  must("nutrient", sessile_nutrient_create(la, &b, &nt));
-  must("vec", sessile_vec_create(la, n, &vc));
-  must("vec", sessile_vec_create(la, n, &vb));
-  must("vec", sessile_vec_create(la, n, &vx));
+  t_must("nutrient", sessile_nutrient_create(la, &b, &nt));
+  t_must("vec", sessile_vec_create(la, n, &vc));
+  t_must("vec", sessile_vec_create(la, n, &vb));
+  t_must("vec", sessile_vec_create(la, n, &vx));
   sessile_buffer *mp = mask_buffer(&b, prev.mask), *mc = mask_buffer(&b, cur.mask);
   sessile_solve_result r;
-  must("warm-up", sessile_nutrient_solve(nt, mc, vc, NULL, &r)); /* pipelines compiled */
-  must("zero", sessile_vec_fill(la, 0.0, vc));
-  must("cold", sessile_nutrient_solve(nt, mc, vc, NULL, &r));
+  t_must("warm-up", sessile_nutrient_solve(nt, mc, vc, NULL, &r)); /* pipelines compiled */
+  t_must("zero", sessile_vec_fill(la, 0.0, vc));
+  t_must("cold", sessile_nutrient_solve(nt, mc, vc, NULL, &r));
   printf("bench %ux%ux%u: cold solve %d it, %.3f s, relres %.2e\n", b.n[0], b.n[1], b.n[2],
          r.iterations, r.seconds, r.true_relres);
-  must("zero", sessile_vec_fill(la, 0.0, vc));
-  must("prev", sessile_nutrient_solve(nt, mp, vc, NULL, &r));
-  must("warm", sessile_nutrient_solve(nt, mc, vc, NULL, &r));
+  t_must("zero", sessile_vec_fill(la, 0.0, vc));
+  t_must("prev", sessile_nutrient_solve(nt, mp, vc, NULL, &r));
+  t_must("warm", sessile_nutrient_solve(nt, mc, vc, NULL, &r));
   printf("bench: warm solve (from the 5.7 cm ball's field) %d it, %.3f s, relres %.2e\n",
          r.iterations, r.seconds, r.true_relres);
 
   /* Operator application: stencil vs the CSR of the eliminated P1 matrix. */
   sessile_csr K, A;
-  double *bb = xalloc(n * 8);
-  must("assemble", sessile_p1_laplace_assemble(&b, &K));
-  must("eliminate", sessile_p1_dirichlet(&K, cur.dir, cur.g, &A, bb));
+  double *bb = t_xalloc(n * 8);
+  t_must("assemble", sessile_p1_laplace_assemble(&b, &K));
+  t_must("eliminate", sessile_p1_dirichlet(&K, cur.dir, cur.g, &A, bb));
   sessile_mat *st, *csr;
-  must("stencil", sessile_mat_create_stencil7(la, b.n[0], b.n[1], b.n[2], h, mc, &st));
-  must("csr", sessile_mat_create_csr(la, &A, &csr));
+  t_must("stencil", sessile_mat_create_stencil7(la, b.n[0], b.n[1], b.n[2], h, mc, &st));
+  t_must("csr", sessile_mat_create_csr(la, &A, &csr));
   const int reps = 20;
   for (int m = 0; m < 2; m++) {
     sessile_mat *a = m ? csr : st;
-    must("mult", sessile_mat_mult(la, a, vc, vx));
+    t_must("mult", sessile_mat_mult(la, a, vc, vx));
     double t0 = sessile_wall_seconds();
-    for (int i = 0; i < reps; i++) must("mult", sessile_mat_mult(la, a, vc, vx));
+    for (int i = 0; i < reps; i++) t_must("mult", sessile_mat_mult(la, a, vc, vx));
     printf("bench: %s application %.2f ms (incl. one submit-and-wait each)\n",
            m ? "CSR SpMV (P1, eliminated)" : "stencil7", 1e3 * (sessile_wall_seconds() - t0) / reps);
   }
   for (uint32_t i = 0; i < n; i++) /* the homogenised system, as the stencil solve */
     if (cur.dir[i]) bb[i] = 0;
-  must("b", sessile_vec_upload(vb, bb));
-  must("zero", sessile_vec_fill(la, 0.0, vx));
-  must("csr solve", sessile_ksp_solve(la, NULL, csr, vb, vx, &r));
+  t_must("b", sessile_vec_upload(vb, bb));
+  t_must("zero", sessile_vec_fill(la, 0.0, vx));
+  t_must("csr solve", sessile_ksp_solve(la, NULL, csr, vb, vx, &r));
   printf("bench: CSR PCG cold solve (homogenised, as the stencil solve) %d it, %.3f s, relres %.2e\n",
          r.iterations, r.seconds, r.true_relres);
   sessile_mat_destroy(st);
@@ -545,12 +530,12 @@ int main(int argc, char **argv) {
     sessile_gpu_options go;
     sessile_gpu_options_default(&go);
     go.validation = 0;
-    must("gpu", sessile_gpu_create(&go, &gpu));
+    t_must("gpu", sessile_gpu_create(&go, &gpu));
     printf("device: %s, driver %s\n", sessile_gpu_info_of(gpu)->name, sessile_gpu_info_of(gpu)->driver);
   } else {
     gpu = t_gpu(0);
   }
-  must("la", sessile_la_create(gpu, &la));
+  t_must("la", sessile_la_create(gpu, &la));
   if (do_bench) {
     bench();
   } else {

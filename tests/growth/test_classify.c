@@ -33,12 +33,6 @@ static sessile_growth_gpu *gg;
  * reference (6 cm * 6e-8 rounding, amplified by the edge functions). */
 static double fp32_band = 0;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
 /* Squared distance from p to triangle abc (Ericson, Real-Time Collision
  * Detection, 5.1.5). */
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -145,12 +139,12 @@ static void check_shape(const char *name, const sessile_box *b, const sessile_su
   uint32_t nodes = sessile_box_nodes(b);
   uint32_t *ref = malloc(nodes * sizeof *ref), *gpu = malloc(nodes * sizeof *gpu);
   sessile_buffer *solid = NULL;
-  must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), (size_t)nodes * 4,
+  t_must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), (size_t)nodes * 4,
                                              SESSILE_BUFFER_DEVICE, &solid));
-  must("reference classify", sessile_growth_ref_classify(b, s, ref));
-  must("set_surface", sessile_growth_gpu_set_surface(gg, s));
-  must("gpu classify", sessile_growth_gpu_classify(gg, b, solid));
-  must("download mask", sessile_buffer_download(solid, 0, gpu, (size_t)nodes * 4));
+  t_must("reference classify", sessile_growth_ref_classify(b, s, ref));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
+  t_must("gpu classify", sessile_growth_gpu_classify(gg, b, solid));
+  t_must("download mask", sessile_buffer_download(solid, 0, gpu, (size_t)nodes * 4));
   uint32_t diff = mask_diff(b, s, gpu, ref), inside = 0;
   for (uint32_t i = 0; i < nodes; i++) inside += ref[i];
   printf("-- %s: %u nodes, %u triangles, %u solid nodes\n", name, nodes, s->nf, inside);
@@ -204,7 +198,7 @@ static void shapes(void) {
   check_shape("sphere flattened on the box floor", &b, &s, 1);
   /* the flat bottom's nodes at z = 0 under the sponge count as solid */
   uint32_t *m = malloc(sessile_box_nodes(&b) * sizeof *m);
-  must("classify", sessile_growth_ref_classify(&b, &s, m));
+  t_must("classify", sessile_growth_ref_classify(&b, &s, m));
   t_true("floor node under the flattened sphere (3, 3, 0) is solid",
          m[sessile_box_index(&b, 12, 12, 0)] == 1);
   t_true("floor node outside it (0.5, 0.5, 0) is fluid", m[sessile_box_index(&b, 2, 2, 0)] == 0);
@@ -229,8 +223,8 @@ static void too_many(void) {
   t_true("reference: > 64 crossings in a column is SESSILE_ERR_NUMERIC", st == SESSILE_ERR_NUMERIC);
   printf("   message: %s\n", sessile_error_message());
   sessile_buffer *solid = NULL;
-  must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), 27 * 4, SESSILE_BUFFER_DEVICE, &solid));
-  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  t_must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), 27 * 4, SESSILE_BUFFER_DEVICE, &solid));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
   st = sessile_growth_gpu_classify(gg, &b, solid);
   t_true("GPU: > 64 crossings in a column is SESSILE_ERR_NUMERIC", st == SESSILE_ERR_NUMERIC);
   printf("   message: %s\n", sessile_error_message());
@@ -246,19 +240,19 @@ static void timing(int level) {
   uint32_t nodes = sessile_box_nodes(&b);
   uint32_t *ref = malloc(nodes * sizeof *ref), *gpu = malloc(nodes * sizeof *gpu);
   sessile_buffer *solid = NULL;
-  must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), (size_t)nodes * 4,
+  t_must("solid buffer", sessile_buffer_create(sessile_la_gpu(la), (size_t)nodes * 4,
                                              SESSILE_BUFFER_DEVICE, &solid));
-  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
   double best = 1e30;
   for (int r = 0; r < 3; r++) {
-    must("gpu classify", sessile_growth_gpu_classify(gg, &b, solid));
+    t_must("gpu classify", sessile_growth_gpu_classify(gg, &b, solid));
     double t = sessile_growth_gpu_classify_seconds(gg);
     best = t < best ? t : best;
   }
   double t0 = sessile_wall_seconds();
-  must("reference classify", sessile_growth_ref_classify(&b, &s, ref));
+  t_must("reference classify", sessile_growth_ref_classify(&b, &s, ref));
   double tref = sessile_wall_seconds() - t0;
-  must("download", sessile_buffer_download(solid, 0, gpu, (size_t)nodes * 4));
+  t_must("download", sessile_buffer_download(solid, 0, gpu, (size_t)nodes * 4));
   uint32_t diff = mask_diff(&b, &s, gpu, ref);
   char what[160];
   snprintf(what, sizeof what, "65x65x49 nodes, %u triangles: GPU vs reference, differing nodes", s.nf);
@@ -274,8 +268,8 @@ int main(int argc, char **argv) {
   int prec = argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0;
   sessile_gpu *g = t_gpu(prec);
   if (sessile_gpu_info_of(g)->precision == 32) fp32_band = 1e-5;
-  must("la", sessile_la_create(g, &la));
-  must("growth gpu", sessile_growth_gpu_create(la, &gg));
+  t_must("la", sessile_la_create(g, &la));
+  t_must("growth gpu", sessile_growth_gpu_create(la, &gg));
   shapes();
   too_many();
   timing(5);

@@ -34,19 +34,6 @@ static sessile_la *la;
 static sessile_growth_gpu *gg;
 static double tolx = 1; /* tolerance multiplier: 1 for fp64, large for fp32 */
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-static double *dalloc(size_t n) {
-  double *p = calloc(n ? n : 1, sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
 static double maxabs(const double *a, const double *b, size_t n) {
   double m = 0;
   for (size_t i = 0; i < n; i++) {
@@ -62,8 +49,8 @@ static const sessile_box box = {.origin = {0, 0, 0}, .h = 0.25, .n = {33, 33, 29
 
 static sessile_vec *field_vec(const double *f) {
   sessile_vec *v = NULL;
-  must("vec_create", sessile_vec_create(la, sessile_box_nodes(&box), &v));
-  must("vec_upload", sessile_vec_upload(v, f));
+  t_must("vec_create", sessile_vec_create(la, sessile_box_nodes(&box), &v));
+  t_must("vec_upload", sessile_vec_upload(v, f));
   return v;
 }
 
@@ -77,10 +64,10 @@ static void smooth_field(double *f) {
 }
 
 static void test_normals(const sessile_surface *s) {
-  double *ref = dalloc(3 * s->nv), *gpu = dalloc(3 * s->nv);
+  double *ref = t_dalloc(3 * s->nv), *gpu = t_dalloc(3 * s->nv);
   sessile_surface_normals(s, ref);
-  must("set_surface", sessile_growth_gpu_set_surface(gg, s));
-  must("normals", sessile_growth_gpu_normals(gg, gpu));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
+  t_must("normals", sessile_growth_gpu_normals(gg, gpu));
   t_check("normals: GPU vs sessile_surface_normals (abs)", maxabs(gpu, ref, 3 * s->nv),
           tol(1e-14, 1e-6));
   free(ref), free(gpu);
@@ -88,12 +75,12 @@ static void test_normals(const sessile_surface *s) {
 
 static void test_probe_and_step(const sessile_surface *s) {
   uint32_t nv = s->nv, nodes = sessile_box_nodes(&box);
-  double *f = dalloc(nodes), *nrm = dalloc(3 * nv);
+  double *f = t_dalloc(nodes), *nrm = t_dalloc(3 * nv);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
   p.translocate_passes = 0;
-  double *pos = dalloc(3 * nv), *probed = dalloc(nv), *ref = dalloc(nv);
-  must("set_surface", sessile_growth_gpu_set_surface(gg, s));
+  double *pos = t_dalloc(3 * nv), *probed = t_dalloc(nv), *ref = t_dalloc(nv);
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
 
   /* Linear field: the closed form (1/S) sum_k w_k (a + b.x + d_k o b.N). */
   const double a0 = 0.2, bb[3] = {0.03, -0.02, 0.05};
@@ -103,7 +90,7 @@ static void test_probe_and_step(const sessile_surface *s) {
     f[i] = a0 + bb[0] * q[0] + bb[1] * q[1] + bb[2] * q[2];
   }
   sessile_vec *v = field_vec(f);
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, probed, NULL, NULL));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, probed, NULL, NULL));
   sessile_surface_normals(s, nrm);
   for (uint32_t i = 0; i < nv; i++) {
     double bx = 0, bn = 0, sum = 0;
@@ -125,16 +112,16 @@ static void test_probe_and_step(const sessile_surface *s) {
   p.t_give = 0.04;
   p.halichondrid = 1;
   p.l_max = 0.05;
-  double *tr = dalloc(nv), *len = dalloc(nv), *rpos = dalloc(3 * nv), *rprobed = dalloc(nv),
-         *rtr = dalloc(nv), *rlen = dalloc(nv), *dir = dalloc(3 * nv), *rdir = dalloc(3 * nv);
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 7, pos, probed, tr, len));
-  must("ref step", sessile_growth_ref_step(&box, s, f, &p, 42, 7, rpos, rprobed, rtr, rlen));
+  double *tr = t_dalloc(nv), *len = t_dalloc(nv), *rpos = t_dalloc(3 * nv), *rprobed = t_dalloc(nv),
+         *rtr = t_dalloc(nv), *rlen = t_dalloc(nv), *dir = t_dalloc(3 * nv), *rdir = t_dalloc(3 * nv);
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 7, pos, probed, tr, len));
+  t_must("ref step", sessile_growth_ref_step(&box, s, f, &p, 42, 7, rpos, rprobed, rtr, rlen));
   t_check("step: probed GPU vs reference (rel)", t_relerr(probed, rprobed, nv), tol(1e-13, 1e-5));
   t_check("step: translocated GPU vs reference (rel)", t_relerr(tr, rtr, nv), tol(1e-12, 1e-5));
   t_check("step: growth length GPU vs reference (rel)", t_relerr(len, rlen, nv), tol(1e-13, 1e-5));
   t_check("step: new positions GPU vs reference (abs, cm)", maxabs(pos, rpos, 3 * nv), tol(1e-13, 1e-5));
   /* Directions: the random vectors themselves. */
-  must("directions", sessile_growth_gpu_directions(gg, dir));
+  t_must("directions", sessile_growth_gpu_directions(gg, dir));
   sessile_growth_ref_grow(&box, s->pos, nrm, nv, rtr, &p, 42, 7, rpos, rlen, rdir);
   t_check("Halichondrid directions GPU vs reference (abs)", maxabs(dir, rdir, 3 * nv), tol(1e-14, 1e-6));
   /* Chindapol lengths from the GPU's own translocated values. */
@@ -151,13 +138,13 @@ static void test_probe_and_step(const sessile_surface *s) {
   t_true("some vertices grew", grew > 0);
 
   /* Determinism and seeds. */
-  double *pos2 = dalloc(3 * nv);
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 7, pos2, NULL, NULL, NULL));
+  double *pos2 = t_dalloc(3 * nv);
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 7, pos2, NULL, NULL, NULL));
   t_true("Halichondrid: same seed and iteration -> bitwise identical positions",
          memcmp(pos, pos2, 3 * nv * sizeof *pos) == 0);
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 43, 7, pos2, NULL, NULL, NULL));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 43, 7, pos2, NULL, NULL, NULL));
   t_true("Halichondrid: different seeds -> different positions", maxabs(pos, pos2, 3 * nv) > 1e-6);
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 8, pos2, NULL, NULL, NULL));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 42, 8, pos2, NULL, NULL, NULL));
   t_true("Halichondrid: different iterations -> different positions", maxabs(pos, pos2, 3 * nv) > 1e-6);
 
   sessile_vec_destroy(v);
@@ -170,7 +157,7 @@ static void test_probe_and_step(const sessile_surface *s) {
  * grows; report each S's max relative distance from S = 1025. */
 static void measure_samples(const sessile_surface *s) {
   uint32_t nv = s->nv;
-  double *f = dalloc(sessile_box_nodes(&box)), *nrm = dalloc(3 * nv), *ref = dalloc(nv), *a = dalloc(nv);
+  double *f = t_dalloc(sessile_box_nodes(&box)), *nrm = t_dalloc(3 * nv), *ref = t_dalloc(nv), *a = t_dalloc(nv);
   smooth_field(f);
   sessile_surface_normals(s, nrm);
   /* W_S = (1/S) sum_k w(d_k): the probe of a uniform field c = 1. */
@@ -235,8 +222,8 @@ static void test_chindapol(void) {
 
 static void test_translocate(const sessile_surface *s) {
   uint32_t nv = s->nv, *off, *nbr;
-  must("neighbours", sessile_surface_vertex_neighbours(s, &off, &nbr));
-  double *c = dalloc(nv), *a = dalloc(nv), *b = dalloc(nv), *seq = dalloc(nv);
+  t_must("neighbours", sessile_surface_vertex_neighbours(s, &off, &nbr));
+  double *c = t_dalloc(nv), *a = t_dalloc(nv), *b = t_dalloc(nv), *seq = t_dalloc(nv);
   /* Conservation with no clamp active: c in [0.1, 0.3], T = 0.02, N <= 6. */
   for (uint32_t i = 0; i < nv; i++) c[i] = 0.1 + 0.2 * sessile_growth_uniform(5, 0, i, 0);
   double s0 = 0, s1 = 0;
@@ -252,15 +239,15 @@ static void test_translocate(const sessile_surface *s) {
 
   /* GPU vs parallel reference through the step with a uniform field of
    * value chosen so probed = C0; compare 5 passes of a realistic field. */
-  double *f = dalloc(sessile_box_nodes(&box)), *tr = dalloc(nv), *pr = dalloc(nv), *pos = dalloc(3 * nv);
+  double *f = t_dalloc(sessile_box_nodes(&box)), *tr = t_dalloc(nv), *pr = t_dalloc(nv), *pos = t_dalloc(3 * nv);
   smooth_field(f);
   sessile_vec *v = field_vec(f);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
   p.translocate_passes = 5;
   p.t_give = 0.05;
-  must("set_surface", sessile_growth_gpu_set_surface(gg, s));
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, pr, tr, NULL));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, pr, tr, NULL));
   memcpy(a, pr, nv * sizeof *a);
   for (int q = 0; q < 5; q++) {
     sessile_growth_ref_translocate(off, nbr, nv, p.t_give, a, b);
@@ -300,16 +287,16 @@ static void test_translocate(const sessile_surface *s) {
 static void test_radiate_sphere(void) {
   sessile_surface s = {0};
   const double c[3] = {4.0, 4.0, 3.5};
-  must("icosphere", sessile_surface_icosphere(4, 2.0, c, &s));
+  t_must("icosphere", sessile_surface_icosphere(4, 2.0, c, &s));
   uint32_t nv = s.nv, nodes = sessile_box_nodes(&box);
-  double *f = dalloc(nodes), *pos = dalloc(3 * nv), *len = dalloc(nv), *nrm = dalloc(3 * nv);
+  double *f = t_dalloc(nodes), *pos = t_dalloc(3 * nv), *len = t_dalloc(nv), *nrm = t_dalloc(3 * nv);
   for (uint32_t i = 0; i < nodes; i++) f[i] = 0.8;
   sessile_vec *v = field_vec(f);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
   p.translocate_passes = 2;
-  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
   sessile_surface_normals(&s, nrm);
   double g0 = len[0], dev_len = 0, dev_par = 0, rmin = 1e9, rmax = 0, rmean = 0, emax = 0;
   for (uint32_t i = 0; i < nv; i++) {
@@ -342,16 +329,16 @@ static void test_radiate_sphere(void) {
 
   /* Clamping: a sphere touching the box's x-max wall grows by maxgrowth. */
   const double c2[3] = {6.0, 4.0, 3.5};
-  must("icosphere", sessile_surface_icosphere(3, 2.0, c2, &s));
+  t_must("icosphere", sessile_surface_icosphere(3, 2.0, c2, &s));
   nv = s.nv;
-  double *rpos = dalloc(3 * nv), *fl = dalloc(nodes);
+  double *rpos = t_dalloc(3 * nv), *fl = t_dalloc(nodes);
   p.growth_rate = 100;
   p.max_growth = 0.3;
   p.translocate_passes = 0;
-  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, NULL));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, NULL));
   for (uint32_t i = 0; i < nodes; i++) fl[i] = 0.8;
-  must("ref step", sessile_growth_ref_step(&box, &s, fl, &p, 1, 0, rpos, NULL, NULL, NULL));
+  t_must("ref step", sessile_growth_ref_step(&box, &s, fl, &p, 1, 0, rpos, NULL, NULL, NULL));
   double mx[3], out = 0;
   uint32_t on_wall = 0;
   sessile_box_max(&box, mx);
@@ -367,14 +354,14 @@ static void test_radiate_sphere(void) {
 
   /* Thresholds: a nutrient threshold above the field stops all growth. */
   p.nutrient_threshold = 0.9;
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
   double moved = maxabs(pos, s.pos, 3 * nv), lsum = 0;
   for (uint32_t i = 0; i < nv; i++) lsum += len[i];
   t_check("Iroquois threshold above C: no vertex moves (abs, fp64 exact)", moved, tol(0, 1e-6));
   t_check("Iroquois threshold above C: all lengths 0", lsum, 0);
   p.nutrient_threshold = 0;
   p.growth_threshold = 1.0; /* above maxgrowth */
-  must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
   t_check("growth threshold above g: no vertex moves", maxabs(pos, s.pos, 3 * nv), tol(0, 1e-6));
 
   sessile_vec_destroy(v);
@@ -390,27 +377,27 @@ static void timing(void) {
   const double c[3] = {8.03, 7.98, 6.01};
   shape_radial(6, 5.0, c, bumps, &s);
   uint32_t nodes = sessile_box_nodes(&b), nv = s.nv;
-  double *f = dalloc(nodes), *pos = dalloc(3 * nv), *rpos = dalloc(3 * nv);
+  double *f = t_dalloc(nodes), *pos = t_dalloc(3 * nv), *rpos = t_dalloc(3 * nv);
   for (uint32_t i = 0; i < nodes; i++) {
     double q[3];
     sessile_box_node_pos(&b, i, q);
     f[i] = 0.5 + 0.4 * sin(0.3 * q[0]) * cos(0.2 * q[1]);
   }
   sessile_vec *v = NULL;
-  must("vec", sessile_vec_create(la, nodes, &v));
-  must("upload", sessile_vec_upload(v, f));
+  t_must("vec", sessile_vec_create(la, nodes, &v));
+  t_must("upload", sessile_vec_upload(v, f));
   sessile_growth_params p;
   sessile_growth_params_default(&p);
   p.halichondrid = 1;
-  must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
+  t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
   double best = 1e30;
   for (int r = 0; r < 3; r++) {
     double t0 = sessile_wall_seconds();
-    must("step", sessile_growth_gpu_step(gg, &b, v, &p, 3, 1, pos, NULL, NULL, NULL));
+    t_must("step", sessile_growth_gpu_step(gg, &b, v, &p, 3, 1, pos, NULL, NULL, NULL));
     best = fmin(best, sessile_wall_seconds() - t0);
   }
   double t0 = sessile_wall_seconds();
-  must("ref step", sessile_growth_ref_step(&b, &s, f, &p, 3, 1, rpos, NULL, NULL, NULL));
+  t_must("ref step", sessile_growth_ref_step(&b, &s, f, &p, 3, 1, rpos, NULL, NULL, NULL));
   double tref = sessile_wall_seconds() - t0;
   t_check("10242-vertex step: GPU vs reference positions (abs, cm)", maxabs(pos, rpos, 3 * nv),
           tol(1e-13, 1e-5));
@@ -431,7 +418,7 @@ static void test_errors(void) {
   p.probe_samples = 1;
   t_true("1 probe sample is a usage error", sessile_growth_params_check(&p) == SESSILE_ERR_USAGE);
   sessile_vec *v = NULL;
-  must("vec", sessile_vec_create(la, 10, &v));
+  t_must("vec", sessile_vec_create(la, 10, &v));
   double pos[3 * 642];
   sessile_growth_params_default(&p);
   t_true("field of the wrong size is a usage error",
@@ -443,8 +430,8 @@ int main(int argc, char **argv) {
   int prec = argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0;
   sessile_gpu *g = t_gpu(prec);
   if (sessile_gpu_info_of(g)->precision == 32) tolx = 1e6;
-  must("la", sessile_la_create(g, &la));
-  must("growth gpu", sessile_growth_gpu_create(la, &gg));
+  t_must("la", sessile_la_create(g, &la));
+  t_must("growth gpu", sessile_growth_gpu_create(la, &gg));
   sessile_surface s = {0};
   const double c[3] = {4.05, 3.95, 3.4};
   shape_radial(4, 2.2, c, bumps, &s);

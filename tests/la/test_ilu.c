@@ -29,21 +29,6 @@ static sessile_la *la;
 static int fp32;
 static const double rtol = 1e-6;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static double *dalloc(size_t n) {
-  double *p = calloc(n ? n : 1, sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 /* A generic view of CSR (bs 1) and BCSR4 (bs 4). */
 typedef struct {
   int bs;
@@ -60,7 +45,7 @@ static pat pat_bcsr4(const sessile_bcsr4 *a) { return (pat){4, a->nbrows, a->row
  * row i of the factors (L_ik, k < i, plus k = i) and row k's U entries. */
 static double ilu_property(pat p, const double *lu) {
   const int bs = p.bs, b2 = bs * bs;
-  double *prod = dalloc((size_t)p.n * b2); /* one row of L U, dense in the block column */
+  double *prod = t_dalloc((size_t)p.n * b2); /* one row of L U, dense in the block column */
   uint8_t *in = calloc(p.n, 1);
   double amax = 0, err = 0;
   for (uint64_t k = 0; k < p.rowptr[p.n] * b2; k++) amax = fmax(amax, fabs(p.val[k]));
@@ -102,10 +87,10 @@ static double ilu_property(pat p, const double *lu) {
 static void check_apply(const char *name, const sessile_csr *a, const sessile_bcsr4 *b) {
   pat p = a ? pat_csr(a) : pat_bcsr4(b);
   uint32_t n = p.n * (uint32_t)p.bs;
-  double *lu = dalloc((size_t)p.rowptr[p.n] * p.bs * p.bs);
-  double *r = dalloc(n), *z = dalloc(n), *zr = dalloc(n);
+  double *lu = t_dalloc((size_t)p.rowptr[p.n] * p.bs * p.bs);
+  double *r = t_dalloc(n), *z = t_dalloc(n), *zr = t_dalloc(n);
   char what[160];
-  must("ref ilu0", a ? sessile_ref_ilu0_csr(a, lu) : sessile_ref_ilu0_bcsr4(b, lu));
+  t_must("ref ilu0", a ? sessile_ref_ilu0_csr(a, lu) : sessile_ref_ilu0_bcsr4(b, lu));
   snprintf(what, sizeof what, "%s: ILU(0) property max|LU - A|/max|A| on A's pattern", name);
   t_check(what, ilu_property(p, lu), 1e-12);
 
@@ -116,22 +101,22 @@ static void check_apply(const char *name, const sessile_csr *a, const sessile_bc
   else sessile_ref_ilu0_solve_bcsr4(b, lu, r, zr);
   sessile_mat *m = NULL;
   sessile_vec *vr = NULL, *vz = NULL;
-  must("mat", a ? sessile_mat_create_csr(la, a, &m) : sessile_mat_create_bcsr4(la, b, &m));
-  must("vec", sessile_vec_create(la, n, &vr));
-  must("vec", sessile_vec_create(la, n, &vz));
-  must("upload", sessile_vec_upload(vr, r));
+  t_must("mat", a ? sessile_mat_create_csr(la, a, &m) : sessile_mat_create_bcsr4(la, b, &m));
+  t_must("vec", sessile_vec_create(la, n, &vr));
+  t_must("vec", sessile_vec_create(la, n, &vz));
+  t_must("upload", sessile_vec_upload(vr, r));
   sessile_ilu0_info info;
-  must("ilu0", sessile_mat_ilu0(la, m, &info));
-  must("ilu0 apply", sessile_mat_ilu0_apply(la, m, vr, vz));
-  must("download", sessile_vec_download(vz, z));
+  t_must("ilu0", sessile_mat_ilu0(la, m, &info));
+  t_must("ilu0 apply", sessile_mat_ilu0_apply(la, m, vr, vz));
+  t_must("download", sessile_vec_download(vz, z));
   printf("   %s: %u rows, %u + %u levels, factorised in %.3f s\n", name, n, info.levels_lower,
          info.levels_upper, info.seconds);
   snprintf(what, sizeof what, "%s: device (LU)^-1 r vs C reference, max rel", name);
   t_check(what, t_relerr(z, zr, n), fp32 ? 1e-4 : 1e-11);
   /* A second application reuses the cached factors and gives the same z. */
-  double *z2 = dalloc(n);
-  must("ilu0 apply 2", sessile_mat_ilu0_apply(la, m, vr, vz));
-  must("download", sessile_vec_download(vz, z2));
+  double *z2 = t_dalloc(n);
+  t_must("ilu0 apply 2", sessile_mat_ilu0_apply(la, m, vr, vz));
+  t_must("download", sessile_vec_download(vz, z2));
   snprintf(what, sizeof what, "%s: second application identical", name);
   t_check(what, t_relerr(z2, z, n), 0);
   free(z2);
@@ -148,18 +133,18 @@ static void test_apply(void) {
   printf("-- factor property and device application\n");
   sessile_csr a = {0}, cd = {0}, pt = {0};
   sessile_bcsr4 b = {0};
-  must("random", sessile_csr_random(2000, 9, 1.5, 42, &a));
+  t_must("random", sessile_csr_random(2000, 9, 1.5, 42, &a));
   check_apply("random CSR n=2000", &a, NULL);
-  must("convdiff", sessile_csr_convdiff(12, 10, 9, 2.0, &cd));
+  t_must("convdiff", sessile_csr_convdiff(12, 10, 9, 2.0, &cd));
   check_apply("conv-diff Pe=2 12x10x9", &cd, NULL);
   sessile_csr_free(&cd);
-  must("convdiff", sessile_csr_convdiff(12, 10, 9, 10.0, &cd));
+  t_must("convdiff", sessile_csr_convdiff(12, 10, 9, 10.0, &cd));
   check_apply("conv-diff Pe=10 12x10x9", &cd, NULL);
-  must("p1tet", sessile_csr_p1tet(6, 5, 4, 1.0, 1.0, 1.0, &pt));
-  must("bcsr4", sessile_bcsr4_random_on(&pt, 5, &b));
+  t_must("p1tet", sessile_csr_p1tet(6, 5, 4, 1.0, 1.0, 1.0, &pt));
+  t_must("bcsr4", sessile_bcsr4_random_on(&pt, 5, &b));
   check_apply("random BCSR4 on P1-tet 6x5x4", NULL, &b);
   sessile_bcsr4_free(&b);
-  must("bcsr4", sessile_bcsr4_random_on(&a, 6, &b));
+  t_must("bcsr4", sessile_bcsr4_random_on(&a, 6, &b));
   check_apply("random BCSR4 on random pattern n=2000", NULL, &b);
   sessile_csr_free(&a);
   sessile_csr_free(&cd);
@@ -173,10 +158,10 @@ static int solve(const char *name, const sessile_mat *m, const double *b, uint32
                  sessile_ksp_type type, sessile_pc_type pc, const sessile_csr *a,
                  const sessile_bcsr4 *bb) {
   sessile_vec *vb = NULL, *vx = NULL;
-  double *x = dalloc(n), *r = dalloc(n);
-  must("vec", sessile_vec_create(la, n, &vb));
-  must("vec", sessile_vec_create(la, n, &vx));
-  must("upload", sessile_vec_upload(vb, b));
+  double *x = t_dalloc(n), *r = t_dalloc(n);
+  t_must("vec", sessile_vec_create(la, n, &vb));
+  t_must("vec", sessile_vec_create(la, n, &vx));
+  t_must("upload", sessile_vec_upload(vb, b));
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
   o.type = type;
@@ -184,8 +169,8 @@ static int solve(const char *name, const sessile_mat *m, const double *b, uint32
   o.rtol = rtol;
   o.max_it = 3000;
   sessile_solve_result res;
-  must("solve", sessile_ksp_solve(la, &o, m, vb, vx, &res));
-  must("download", sessile_vec_download(vx, x));
+  t_must("solve", sessile_ksp_solve(la, &o, m, vb, vx, &res));
+  t_must("download", sessile_vec_download(vx, x));
   if (a) sessile_ref_spmv_csr(a, x, r);
   else sessile_ref_spmv_bcsr4(bb, x, r);
   for (uint32_t i = 0; i < n; i++) r[i] = b[i] - r[i];
@@ -205,12 +190,12 @@ static int solve(const char *name, const sessile_mat *m, const double *b, uint32
 
 static void compare(const char *name, const sessile_csr *a, const sessile_bcsr4 *bb) {
   uint32_t n = a ? a->nrows : 4 * bb->nbrows;
-  double *b = dalloc(n);
+  double *b = t_dalloc(n);
   sessile_fill_random(b, n, -1, 1, 9);
   if (fp32)
     for (uint32_t i = 0; i < n; i++) b[i] = (double)(float)b[i];
   sessile_mat *m = NULL;
-  must("mat", a ? sessile_mat_create_csr(la, a, &m) : sessile_mat_create_bcsr4(la, bb, &m));
+  t_must("mat", a ? sessile_mat_create_csr(la, a, &m) : sessile_mat_create_bcsr4(la, bb, &m));
   static const sessile_ksp_type types[2] = {SESSILE_KSP_GMRES, SESSILE_KSP_BICGSTAB};
   for (int t = 0; t < 2; t++) {
     int ij = solve(name, m, b, n, types[t], SESSILE_PC_JACOBI, a, bb);
@@ -231,7 +216,7 @@ static void test_convdiff(void) {
     sessile_csr a = {0};
     char name[64];
     uint32_t g = 16;
-    must("convdiff", sessile_csr_convdiff(g, g, g, pe[k], &a));
+    t_must("convdiff", sessile_csr_convdiff(g, g, g, pe[k], &a));
     snprintf(name, sizeof name, "conv-diff Pe=%g %u^3", pe[k], g);
     compare(name, &a, NULL);
     sessile_csr_free(&a);
@@ -246,9 +231,9 @@ static void test_coupled_bcsr4(void) {
   printf("-- coupled BCSR4 system (4 conv-diff components)\n");
   sessile_csr c = {0};
   const uint32_t g = 10;
-  must("convdiff", sessile_csr_convdiff(g, g, g, 2.0, &c));
+  t_must("convdiff", sessile_csr_convdiff(g, g, g, 2.0, &c));
   sessile_bcsr4 b = {0};
-  must("alloc", sessile_bcsr4_alloc(c.nrows, c.nrows, c.nnz, &b));
+  t_must("alloc", sessile_bcsr4_alloc(c.nrows, c.nrows, c.nnz, &b));
   double R[16], K[16];
   sessile_fill_random(R, 16, -1, 1, 3);
   sessile_fill_random(K, 16, -1.5, 1.5, 4);
@@ -273,7 +258,7 @@ static void test_pivots(void) {
   printf("-- zero and singular pivots\n");
   /* [[1 1 0] [1 1 1] [0 1 2]]: u_11 = 1 − 1·1 = 0 at row 1. */
   sessile_csr a = {0};
-  must("alloc", sessile_csr_alloc(3, 3, 7, &a));
+  t_must("alloc", sessile_csr_alloc(3, 3, 7, &a));
   const uint64_t rp[4] = {0, 2, 5, 7};
   const uint32_t col[7] = {0, 1, 0, 1, 2, 1, 2};
   const double val[7] = {1, 1, 1, 1, 1, 1, 2};
@@ -289,10 +274,10 @@ static void test_pivots(void) {
   /* Through the solver: the same error, nothing leaked. */
   sessile_mat *m = NULL;
   sessile_vec *vb = NULL, *vx = NULL;
-  must("mat", sessile_mat_create_csr(la, &a, &m));
-  must("vec", sessile_vec_create(la, 3, &vb));
-  must("vec", sessile_vec_create(la, 3, &vx));
-  must("fill", sessile_vec_fill(la, 1.0, vb));
+  t_must("mat", sessile_mat_create_csr(la, &a, &m));
+  t_must("vec", sessile_vec_create(la, 3, &vb));
+  t_must("vec", sessile_vec_create(la, 3, &vx));
+  t_must("fill", sessile_vec_fill(la, 1.0, vb));
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
   o.type = SESSILE_KSP_GMRES;
@@ -319,7 +304,7 @@ static void test_pivots(void) {
   sessile_csr_free(&a);
   /* Block: a singular 4x4 pivot (two equal rows) in block row 1 of 2. */
   sessile_bcsr4 b = {0};
-  must("alloc", sessile_bcsr4_alloc(2, 2, 2, &b));
+  t_must("alloc", sessile_bcsr4_alloc(2, 2, 2, &b));
   b.rowptr[0] = 0, b.rowptr[1] = 1, b.rowptr[2] = 2;
   b.col[0] = 0, b.col[1] = 1;
   for (int q = 0; q < 16; q++) {
@@ -347,7 +332,7 @@ int main(int argc, char **argv) {
   sessile_gpu *g = t_gpu(want32 ? 32 : 0);
   fp32 = sessile_gpu_info_of(g)->precision == 32;
   if (want32) t_true("--fp32: the context precision is 32", fp32);
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   double t0 = sessile_wall_seconds();
   test_apply();
   test_pivots();

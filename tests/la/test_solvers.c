@@ -36,21 +36,6 @@ static sessile_la *la;
 static int fp32;
 static const double rtol = 1e-6;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static double *dalloc(size_t n) {
-  double *p = malloc((n ? n : 1) * sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 static void fill(double *v, size_t n, double a) {
   for (size_t i = 0; i < n; i++) v[i] = a;
 }
@@ -78,7 +63,7 @@ static void rhs(double *b, uint32_t n, uint64_t seed) {
 /* ||b - A x|| / ||b|| for a block matrix (the CSR one is sessile_ref_true_relres). */
 static double relres_bcsr4(const sessile_bcsr4 *a, const double *b, const double *x) {
   uint32_t n = 4 * a->nbrows;
-  double *r = dalloc(n);
+  double *r = t_dalloc(n);
   sessile_ref_spmv_bcsr4(a, x, r);
   for (uint32_t i = 0; i < n; i++) r[i] = b[i] - r[i];
   double q = sessile_ref_nrm2(n, r) / sessile_ref_nrm2(n, b);
@@ -92,13 +77,13 @@ static sessile_status solve(const sessile_ksp_options *o, const sessile_mat *m, 
                             double *x, sessile_solve_result *res) {
   uint32_t n = sessile_mat_rows(m);
   sessile_vec *vb = NULL, *vx = NULL;
-  must("vec_create", sessile_vec_create(la, n, &vb));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("upload b", sessile_vec_upload(vb, b));
-  must("upload x", sessile_vec_upload(vx, x));
+  t_must("vec_create", sessile_vec_create(la, n, &vb));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("upload b", sessile_vec_upload(vb, b));
+  t_must("upload x", sessile_vec_upload(vx, x));
   memset(res, 0, sizeof *res);
   sessile_status s = sessile_ksp_solve(la, o, m, vb, vx, res);
-  must("download x", sessile_vec_download(vx, x));
+  t_must("download x", sessile_vec_download(vx, x));
   sessile_vec_destroy(vb);
   sessile_vec_destroy(vx);
   return s;
@@ -145,13 +130,13 @@ static void test_pcg_laplacian(void) {
   snprintf(name, sizeof name, "PCG(Jacobi) laplacian7 %u^3", g);
   printf("-- %s%s\n", name, fp32 ? " (32^3 instead of 64^3 in the fp32 run, to save time)" : "");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(g, g, g, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(g, g, g, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   rhs(b, n, 64);
   fill(x, n, 0.0);
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   sessile_ksp_options o = opts(SESSILE_KSP_CG, SESSILE_PC_JACOBI, 1000);
   sessile_solve_result r;
   sessile_status s = solve(&o, m, b, x, &r);
@@ -195,13 +180,13 @@ static void test_pcg_laplacian(void) {
 static void test_convdiff(void) {
   printf("-- convdiff 32^3, cell Peclet 2 (nonsymmetric)\n");
   sessile_csr a;
-  must("convdiff", sessile_csr_convdiff(32, 32, 32, 2.0, &a));
+  t_must("convdiff", sessile_csr_convdiff(32, 32, 32, 2.0, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n), *d = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n), *d = t_dalloc(n);
   rhs(b, n, 32);
-  must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  t_must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   const sessile_ksp_type ts[2] = {SESSILE_KSP_BICGSTAB, SESSILE_KSP_GMRES};
   for (int k = 0; k < 2; k++) {
     char name[96];
@@ -230,12 +215,12 @@ static void test_convdiff(void) {
 static void test_p1tet(void) {
   printf("-- PCG(Jacobi) on P1-tet K+M, 32^3 cubes\n");
   sessile_csr a;
-  must("p1tet", sessile_csr_p1tet(32, 32, 32, 1.0 / 32, 1.0 / 32, 1.0 / 32, &a));
+  t_must("p1tet", sessile_csr_p1tet(32, 32, 32, 1.0 / 32, 1.0 / 32, 1.0 / 32, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n), *d = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n), *d = t_dalloc(n);
   rhs(b, n, 33);
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   sessile_ksp_options o = opts(SESSILE_KSP_CG, SESSILE_PC_JACOBI, 2000);
   sessile_solve_result r;
   fill(x, n, 0.0);
@@ -243,7 +228,7 @@ static void test_p1tet(void) {
   check_converged("PCG(Jacobi) p1tet 32^3 (n = 33^3)", s, &r, sessile_ref_true_relres(&a, b, x));
   /* The same algorithm and stopping rule on the host: PCG's iteration count
    * is insensitive to rounding, so it must agree closely (fp64). */
-  must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  t_must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
   fill(x, n, 0.0);
   sessile_ref_result rr = sessile_ref_pcg(&a, d, b, x, rtol, 2000);
   printf("   host reference PCG: %d iterations, relres %.3e\n", rr.iterations, rr.true_relres);
@@ -264,16 +249,16 @@ static void test_bcsr4(void) {
   printf("-- GMRES(30)(Jacobi) on bcsr4_random_on(laplacian7 16^3)\n");
   sessile_csr pat;
   sessile_bcsr4 a;
-  must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &pat));
-  must("bcsr4_random_on", sessile_bcsr4_random_on(&pat, 99, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &pat));
+  t_must("bcsr4_random_on", sessile_bcsr4_random_on(&pat, 99, &a));
   if (fp32)
     for (uint64_t i = 0; i < 16 * a.nnzb; i++) a.val[i] = (double)(float)a.val[i];
   const uint32_t n = 4 * a.nbrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   rhs(b, n, 16);
   fill(x, n, 0.0);
   sessile_mat *m = NULL;
-  must("mat_create_bcsr4", sessile_mat_create_bcsr4(la, &a, &m));
+  t_must("mat_create_bcsr4", sessile_mat_create_bcsr4(la, &a, &m));
   sessile_ksp_options o = opts(SESSILE_KSP_GMRES, SESSILE_PC_JACOBI, 1000);
   sessile_solve_result r;
   sessile_error_clear();
@@ -292,12 +277,12 @@ static void test_bcsr4(void) {
 static void test_zero_rhs(void) {
   printf("-- zero right-hand side\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   fill(b, n, 0.0);
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   for (int t = 0; t < 3; t++) {
     char what[200];
     sessile_ksp_options o = opts((sessile_ksp_type)t, SESSILE_PC_JACOBI, 100);
@@ -322,15 +307,15 @@ static void test_zero_rhs(void) {
 static void test_indefinite(void) {
   printf("-- indefinite: laplacian7 16^3 with the diagonal shifted by -10\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
   for (uint32_t i = 0; i < a.nrows; i++)
     for (uint64_t p = a.rowptr[i]; p < a.rowptr[i + 1]; p++)
       if (a.col[p] == i) a.val[p] -= 10.0;
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   rhs(b, n, 10);
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   char what[256];
 
   sessile_ksp_options o = opts(SESSILE_KSP_CG, SESSILE_PC_JACOBI, 500);
@@ -364,13 +349,13 @@ static void test_indefinite(void) {
 static void test_singular(void) {
   printf("-- singular: laplacian7 8^3 with every value of row 0 set to 0\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
   for (uint64_t p = a.rowptr[0]; p < a.rowptr[1]; p++) a.val[p] = 0.0;
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   rhs(b, n, 8); /* b_0 != 0: A x = b has no solution */
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   char what[300];
 
   sessile_ksp_options o = opts(SESSILE_KSP_CG, SESSILE_PC_JACOBI, 200);
@@ -414,11 +399,11 @@ static void test_singular(void) {
 static void test_nan(void) {
   printf("-- NaN in the right-hand side or the matrix\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n);
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   char what[300];
   for (int t = 0; t < 3; t++) {
     sessile_ksp_options o = opts((sessile_ksp_type)t, SESSILE_PC_JACOBI, 200);
@@ -441,7 +426,7 @@ static void test_nan(void) {
   uint32_t row = 1000;
   uint64_t p = a.rowptr[row];
   a.val[p] = NAN;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   for (int t = 0; t < 3; t++) {
     sessile_ksp_options o = opts((sessile_ksp_type)t, SESSILE_PC_JACOBI, 200);
     sessile_solve_result r;
@@ -468,13 +453,13 @@ static void test_check_every(void) {
   for (int c = 0; c < 2; c++) {
     sessile_csr a;
     int g = cases[c].grid;
-    if (cases[c].conv) must("convdiff", sessile_csr_convdiff(g, g, g, 2.0, &a));
-    else must("laplacian7", sessile_csr_laplacian7(g, g, g, &a));
+    if (cases[c].conv) t_must("convdiff", sessile_csr_convdiff(g, g, g, 2.0, &a));
+    else t_must("laplacian7", sessile_csr_laplacian7(g, g, g, &a));
     const uint32_t n = a.nrows;
-    double *b = dalloc(n), *x1 = dalloc(n), *x64 = dalloc(n);
+    double *b = t_dalloc(n), *x1 = t_dalloc(n), *x64 = t_dalloc(n);
     rhs(b, n, 1234);
     sessile_mat *m = NULL;
-    must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+    t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
     sessile_ksp_options o = opts(cases[c].t, SESSILE_PC_JACOBI, 1000);
     sessile_solve_result r1, r64;
     o.check_every = 1;
@@ -508,14 +493,14 @@ static void test_check_every(void) {
 static void test_usage(void) {
   printf("-- ksp_solve usage errors\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(4, 4, 4, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(4, 4, 4, &a));
   sessile_mat *m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   sessile_vec *b = NULL, *x = NULL, *short_x = NULL;
-  must("vec_create", sessile_vec_create(la, a.nrows, &b));
-  must("vec_create", sessile_vec_create(la, a.nrows, &x));
-  must("vec_create", sessile_vec_create(la, a.nrows - 1, &short_x));
-  must("fill", sessile_vec_fill(la, 1.0, b));
+  t_must("vec_create", sessile_vec_create(la, a.nrows, &b));
+  t_must("vec_create", sessile_vec_create(la, a.nrows, &x));
+  t_must("vec_create", sessile_vec_create(la, a.nrows - 1, &short_x));
+  t_must("fill", sessile_vec_fill(la, 1.0, b));
   sessile_solve_result r;
   sessile_ksp_options o = opts(SESSILE_KSP_CG, SESSILE_PC_JACOBI, 100);
   t_true("x of the wrong length -> SESSILE_ERR_USAGE",
@@ -547,7 +532,7 @@ int main(int argc, char **argv) {
   sessile_gpu *g = t_gpu(want32 ? 32 : 0);
   fp32 = sessile_gpu_info_of(g)->precision == 32;
   if (want32) t_true("--fp32: the context precision is 32", fp32);
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   double t0 = sessile_wall_seconds();
   test_pcg_laplacian();
   test_convdiff();

@@ -30,21 +30,6 @@ static int fp64;
 static double tol_spmv;
 static const double rtol = 1e-6;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static double *dalloc(size_t n) {
-  double *p = malloc((n ? n : 1) * sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 /* The chunk limit for matrices created next (0: the device's). */
 static void set_limit(unsigned bytes) {
   if (bytes) {
@@ -64,16 +49,16 @@ static void to_stored(double *v, uint64_t n) {
 static void create_pair(const sessile_csr *a, const sessile_bcsr4 *b, unsigned limit,
                         sessile_mat **whole, sessile_mat **split) {
   set_limit(0);
-  must("mat_create", a ? sessile_mat_create_csr(la, a, whole) : sessile_mat_create_bcsr4(la, b, whole));
+  t_must("mat_create", a ? sessile_mat_create_csr(la, a, whole) : sessile_mat_create_bcsr4(la, b, whole));
   set_limit(limit);
-  must("mat_create (split)",
+  t_must("mat_create (split)",
        a ? sessile_mat_create_csr(la, a, split) : sessile_mat_create_bcsr4(la, b, split));
   set_limit(0);
 }
 
 static double time_mults(const sessile_mat *m, const sessile_vec *x, sessile_vec *y, int reps) {
   double t0 = sessile_wall_seconds();
-  for (int i = 0; i < reps; i++) must("mat_mult", sessile_mat_mult(la, m, x, y));
+  for (int i = 0; i < reps; i++) t_must("mat_mult", sessile_mat_mult(la, m, x, y));
   return (sessile_wall_seconds() - t0) / reps;
 }
 
@@ -84,13 +69,13 @@ static void check_spmv(const char *name, const sessile_csr *a, const sessile_bcs
   sessile_bcsr4 bc = {0};
   /* Values rounded to the stored precision so the reference uses the device's operands. */
   if (a) {
-    must("csr_alloc", sessile_csr_alloc(a->nrows, a->ncols, a->nnz, &ac));
+    t_must("csr_alloc", sessile_csr_alloc(a->nrows, a->ncols, a->nnz, &ac));
     memcpy(ac.rowptr, a->rowptr, ((size_t)a->nrows + 1) * sizeof *a->rowptr);
     memcpy(ac.col, a->col, (size_t)a->nnz * sizeof *a->col);
     memcpy(ac.val, a->val, (size_t)a->nnz * sizeof *a->val);
     to_stored(ac.val, ac.nnz);
   } else {
-    must("bcsr4_alloc", sessile_bcsr4_alloc(b->nbrows, b->nbcols, b->nnzb, &bc));
+    t_must("bcsr4_alloc", sessile_bcsr4_alloc(b->nbrows, b->nbcols, b->nnzb, &bc));
     memcpy(bc.rowptr, b->rowptr, ((size_t)b->nbrows + 1) * sizeof *b->rowptr);
     memcpy(bc.col, b->col, (size_t)b->nnzb * sizeof *b->col);
     memcpy(bc.val, b->val, (size_t)b->nnzb * 16 * sizeof *b->val);
@@ -105,13 +90,13 @@ static void check_spmv(const char *name, const sessile_csr *a, const sessile_bcs
   snprintf(what, sizeof what, "%s: unsplit is 1 chunk, split is > 1 chunk", name);
   t_true(what, sessile_mat_chunks(mw) == 1 && sessile_mat_chunks(ms) > 1);
 
-  double *x = dalloc(n), *y = dalloc(n), *yw = dalloc(n), *r = dalloc(n), *s = dalloc(n);
+  double *x = t_dalloc(n), *y = t_dalloc(n), *yw = t_dalloc(n), *r = t_dalloc(n), *s = t_dalloc(n);
   sessile_fill_random(x, n, -1.0, 1.0, 7);
   to_stored(x, n);
   if (a) sessile_ref_spmv_csr(&ac, x, r);
   else sessile_ref_spmv_bcsr4(&bc, x, r);
   /* s_i = sum_j |a_ij x_j|: the reference on |A| and |x|. */
-  double *ax = dalloc(n);
+  double *ax = t_dalloc(n);
   for (uint32_t i = 0; i < n; i++) ax[i] = fabs(x[i]);
   if (a) {
     for (uint64_t k = 0; k < ac.nnz; k++) ac.val[k] = fabs(ac.val[k]);
@@ -121,13 +106,13 @@ static void check_spmv(const char *name, const sessile_csr *a, const sessile_bcs
     sessile_ref_spmv_bcsr4(&bc, ax, s);
   }
   sessile_vec *vx, *vy;
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("vec_create", sessile_vec_create(la, n, &vy));
-  must("upload x", sessile_vec_upload(vx, x));
-  must("mat_mult split", sessile_mat_mult(la, ms, vx, vy));
-  must("download", sessile_vec_download(vy, y));
-  must("mat_mult unsplit", sessile_mat_mult(la, mw, vx, vy));
-  must("download", sessile_vec_download(vy, yw));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("vec_create", sessile_vec_create(la, n, &vy));
+  t_must("upload x", sessile_vec_upload(vx, x));
+  t_must("mat_mult split", sessile_mat_mult(la, ms, vx, vy));
+  t_must("download", sessile_vec_download(vy, y));
+  t_must("mat_mult unsplit", sessile_mat_mult(la, mw, vx, vy));
+  t_must("download", sessile_vec_download(vy, yw));
   double e = 0, d = 0;
   for (uint32_t i = 0; i < n; i++) {
     double q = fabs(y[i] - r[i]) / (s[i] > 0 ? s[i] : 1.0);
@@ -152,18 +137,18 @@ static void check_spmv(const char *name, const sessile_csr *a, const sessile_bcs
 
 static void spmv_cases(void) {
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(16, 16, 16, &a));
   check_spmv("laplacian7 16^3", &a, NULL, 4096);
   sessile_csr_free(&a);
-  must("p1tet", sessile_csr_p1tet(12, 12, 12, 1.0 / 12, 1.0 / 12, 1.0 / 12, &a));
+  t_must("p1tet", sessile_csr_p1tet(12, 12, 12, 1.0 / 12, 1.0 / 12, 1.0 / 12, &a));
   check_spmv("p1tet 12^3", &a, NULL, 4096);
   sessile_csr_free(&a);
-  must("convdiff", sessile_csr_convdiff(16, 16, 16, 2.0, &a));
+  t_must("convdiff", sessile_csr_convdiff(16, 16, 16, 2.0, &a));
   check_spmv("convdiff 16^3", &a, NULL, 4096);
   sessile_csr_free(&a);
   sessile_bcsr4 b;
-  must("laplacian7", sessile_csr_laplacian7(10, 10, 10, &a));
-  must("bcsr4_random_on", sessile_bcsr4_random_on(&a, 99, &b));
+  t_must("laplacian7", sessile_csr_laplacian7(10, 10, 10, &a));
+  t_must("bcsr4_random_on", sessile_bcsr4_random_on(&a, 99, &b));
   check_spmv("bcsr4 on laplacian7 10^3", NULL, &b, 16384);
   sessile_bcsr4_free(&b);
   sessile_csr_free(&a);
@@ -174,7 +159,7 @@ static double relres(const sessile_csr *a, const sessile_bcsr4 *b, const double 
                      const double *x) {
   if (a) return sessile_ref_true_relres(a, rhs, x);
   uint32_t n = 4 * b->nbrows;
-  double *r = dalloc(n);
+  double *r = t_dalloc(n);
   sessile_ref_spmv_bcsr4(b, x, r);
   for (uint32_t i = 0; i < n; i++) r[i] = rhs[i] - r[i];
   double q = sessile_ref_nrm2(n, r) / sessile_ref_nrm2(n, rhs);
@@ -186,11 +171,11 @@ static int solve(sessile_ksp_type t, const sessile_mat *m, const double *rhs, do
                  sessile_solve_result *res) {
   uint32_t n = sessile_mat_rows(m);
   sessile_vec *vb, *vx;
-  must("vec_create", sessile_vec_create(la, n, &vb));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("upload b", sessile_vec_upload(vb, rhs));
+  t_must("vec_create", sessile_vec_create(la, n, &vb));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("upload b", sessile_vec_upload(vb, rhs));
   for (uint32_t i = 0; i < n; i++) x[i] = 0;
-  must("upload x", sessile_vec_upload(vx, x));
+  t_must("upload x", sessile_vec_upload(vx, x));
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
   o.type = t;
@@ -199,7 +184,7 @@ static int solve(sessile_ksp_type t, const sessile_mat *m, const double *rhs, do
   o.max_it = 2000;
   memset(res, 0, sizeof *res);
   sessile_status s = sessile_ksp_solve(la, &o, m, vb, vx, res);
-  must("download x", sessile_vec_download(vx, x));
+  t_must("download x", sessile_vec_download(vx, x));
   sessile_vec_destroy(vb);
   sessile_vec_destroy(vx);
   return s == SESSILE_OK && res->status == SESSILE_SOLVE_CONVERGED;
@@ -210,7 +195,7 @@ static void check_solver(const char *name, sessile_ksp_type t, const sessile_csr
   sessile_mat *mw, *ms;
   create_pair(a, b, limit, &mw, &ms);
   uint32_t n = sessile_mat_rows(ms);
-  double *rhs = dalloc(n), *x = dalloc(n);
+  double *rhs = t_dalloc(n), *x = t_dalloc(n);
   sessile_fill_random(rhs, n, -1.0, 1.0, 32);
   to_stored(rhs, n);
   sessile_solve_result rw, rs;
@@ -235,16 +220,16 @@ static void check_solver(const char *name, sessile_ksp_type t, const sessile_csr
 
 static void solver_cases(void) {
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(20, 20, 20, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(20, 20, 20, &a));
   check_solver("PCG(Jacobi) laplacian7 20^3", SESSILE_KSP_CG, &a, NULL, 8192);
   sessile_csr_free(&a);
-  must("convdiff", sessile_csr_convdiff(16, 16, 16, 2.0, &a));
+  t_must("convdiff", sessile_csr_convdiff(16, 16, 16, 2.0, &a));
   check_solver("BiCGSTAB(Jacobi) convdiff 16^3", SESSILE_KSP_BICGSTAB, &a, NULL, 8192);
   check_solver("GMRES(30)(Jacobi) convdiff 16^3", SESSILE_KSP_GMRES, &a, NULL, 8192);
   sessile_csr_free(&a);
   sessile_bcsr4 b;
-  must("laplacian7", sessile_csr_laplacian7(10, 10, 10, &a));
-  must("bcsr4_random_on", sessile_bcsr4_random_on(&a, 99, &b));
+  t_must("laplacian7", sessile_csr_laplacian7(10, 10, 10, &a));
+  t_must("bcsr4_random_on", sessile_bcsr4_random_on(&a, 99, &b));
   check_solver("BiCGSTAB(Jacobi) bcsr4 10^3", SESSILE_KSP_BICGSTAB, NULL, &b, 16384);
   check_solver("GMRES(30)(Jacobi) bcsr4 10^3", SESSILE_KSP_GMRES, NULL, &b, 16384);
   sessile_bcsr4_free(&b);
@@ -266,7 +251,7 @@ static void error_cases(void) {
    * 4 KB of fp64 values), the others diagonal. */
   const uint32_t n = 64;
   sessile_csr a;
-  must("csr_alloc", sessile_csr_alloc(n, n, 2 * n - 1, &a));
+  t_must("csr_alloc", sessile_csr_alloc(n, n, 2 * n - 1, &a));
   uint64_t k = 0;
   for (uint32_t r = 0; r < n; r++) {
     a.rowptr[r] = k;
@@ -284,7 +269,7 @@ static void error_cases(void) {
 
   /* BCSR4: block row 3 with 16 blocks (2 KB in fp64, 1 KB in fp32) at 512 bytes. */
   sessile_bcsr4 b;
-  must("bcsr4_alloc", sessile_bcsr4_alloc(16, 16, 31, &b));
+  t_must("bcsr4_alloc", sessile_bcsr4_alloc(16, 16, 31, &b));
   k = 0;
   for (uint32_t r = 0; r < 16; r++) {
     b.rowptr[r] = k;
@@ -304,9 +289,9 @@ static void error_cases(void) {
   sessile_bcsr4_free(&b);
 
   /* ILU(0) of a split matrix whose factors exceed the chunk limit. */
-  must("convdiff", sessile_csr_convdiff(8, 8, 8, 2.0, &a));
+  t_must("convdiff", sessile_csr_convdiff(8, 8, 8, 2.0, &a));
   set_limit(1024);
-  must("mat_create_csr (split)", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr (split)", sessile_mat_create_csr(la, &a, &m));
   set_limit(0);
   sessile_ilu0_info info;
   check_refused("ILU(0) of a split convdiff 8^3 at 1024 bytes", sessile_mat_ilu0(la, m, &info),
@@ -320,7 +305,7 @@ int main(int argc, char **argv) {
   sessile_gpu *g = t_gpu(argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0);
   fp64 = sessile_gpu_info_of(g)->precision == 64;
   tol_spmv = fp64 ? 1e-14 : 1e-5;
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   printf("== SpMV, texel-buffer path\n");
   spmv_cases();
   printf("== solvers\n");
@@ -330,7 +315,7 @@ int main(int argc, char **argv) {
   sessile_la_destroy(la);
   printf("== SpMV, storage-buffer path (SESSILE_SPMV_STORAGE=1)\n");
   setenv("SESSILE_SPMV_STORAGE", "1", 1);
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   spmv_cases();
   sessile_la_destroy(la);
   unsetenv("SESSILE_SPMV_STORAGE");

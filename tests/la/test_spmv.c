@@ -26,21 +26,6 @@ static sessile_la *la;
 static int fp64;
 static double tol_spmv, tol_jac;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static double *dalloc(size_t n) {
-  double *p = malloc((n ? n : 1) * sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 /* Rounds host values to what an fp32 context stores, so that the reference
  * computes with exactly the device's operands. */
 static void to_stored(double *v, uint64_t n) {
@@ -65,20 +50,20 @@ static void check_csr(const char *name, sessile_csr *a, uint64_t seed) {
   char what[160];
   const uint32_t n = a->nrows;
   to_stored(a->val, a->nnz);
-  double *x = dalloc(n), *y = dalloc(n), *r = dalloc(n), *s = dalloc(n);
+  double *x = t_dalloc(n), *y = t_dalloc(n), *r = t_dalloc(n), *s = t_dalloc(n);
   sessile_fill_random(x, n, -1.0, 1.0, seed);
   to_stored(x, n);
   sessile_mat *m = NULL;
   sessile_vec *vx = NULL, *vy = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, a, &m));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("vec_create", sessile_vec_create(la, n, &vy));
-  must("upload", sessile_vec_upload(vx, x));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, a, &m));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("vec_create", sessile_vec_create(la, n, &vy));
+  t_must("upload", sessile_vec_upload(vx, x));
   snprintf(what, sizeof what, "%s: mat_rows = %u, mat_nnz = %" PRIu64 " (before padding)", name, n,
            a->nnz);
   t_true(what, sessile_mat_rows(m) == n && sessile_mat_nnz(m) == a->nnz);
-  must("mat_mult", sessile_mat_mult(la, m, vx, vy));
-  must("download", sessile_vec_download(vy, y));
+  t_must("mat_mult", sessile_mat_mult(la, m, vx, vy));
+  t_must("download", sessile_vec_download(vy, y));
   sessile_ref_spmv_csr(a, x, r);
   for (uint32_t i = 0; i < n; i++) {
     s[i] = 0;
@@ -89,9 +74,9 @@ static void check_csr(const char *name, sessile_csr *a, uint64_t seed) {
 
   /* A second product into the same y overwrites it completely. */
   for (uint32_t i = 0; i < n; i++) x[i] = stored(-0.5 * x[i]);
-  must("upload", sessile_vec_upload(vx, x));
-  must("mat_mult", sessile_mat_mult(la, m, vx, vy));
-  must("download", sessile_vec_download(vy, y));
+  t_must("upload", sessile_vec_upload(vx, x));
+  t_must("mat_mult", sessile_mat_mult(la, m, vx, vy));
+  t_must("download", sessile_vec_download(vy, y));
   sessile_ref_spmv_csr(a, x, r);
   for (uint32_t i = 0; i < n; i++) s[i] *= 0.5;
   snprintf(what, sizeof what, "%s: second SpMV (x *= -0.5) into the same y", name);
@@ -110,14 +95,14 @@ static void check_csr(const char *name, sessile_csr *a, uint64_t seed) {
 static void check_jacobi_csr(const char *name, const sessile_csr *a) {
   char what[160];
   const uint32_t n = a->nrows;
-  double *d = dalloc(n), *r = dalloc(n);
+  double *d = t_dalloc(n), *r = t_dalloc(n);
   sessile_mat *m = NULL;
   sessile_vec *v = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, a, &m));
-  must("vec_create", sessile_vec_create(la, n, &v));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, a, &m));
+  t_must("vec_create", sessile_vec_create(la, n, &v));
   t_ok("mat_jacobi", sessile_mat_jacobi(la, m, v));
-  must("download", sessile_vec_download(v, d));
-  must("ref_jacobi_csr", sessile_ref_jacobi_csr(a, r));
+  t_must("download", sessile_vec_download(v, d));
+  t_must("ref_jacobi_csr", sessile_ref_jacobi_csr(a, r));
   snprintf(what, sizeof what, "%s: Jacobi vs ref_jacobi_csr (max rel.)", name);
   double e = 0;
   for (uint32_t i = 0; i < n; i++) {
@@ -137,7 +122,7 @@ static void test_random(void) {
     for (size_t j = 0; j < 3; j++) {
       char name[96];
       sessile_csr a;
-      must("csr_random", sessile_csr_random(ns[i], per[j], 1.5, 31 * i + j + 1, &a));
+      t_must("csr_random", sessile_csr_random(ns[i], per[j], 1.5, 31 * i + j + 1, &a));
       /* Row lengths seen, to show that the padding cases are covered. */
       uint64_t lmin = UINT64_MAX, lmax = 0, mod[4] = {0};
       for (uint32_t r = 0; r < a.nrows; r++) {
@@ -163,7 +148,7 @@ static void test_ragged_slices(void) {
   uint64_t nnz = 0;
   for (uint32_t r = 0; r < n; r++) nnz += (r * 5) % 14;
   sessile_csr a;
-  must("csr_alloc", sessile_csr_alloc(n, n, nnz, &a));
+  t_must("csr_alloc", sessile_csr_alloc(n, n, nnz, &a));
   uint64_t k = 0;
   a.rowptr[0] = 0;
   for (uint32_t r = 0; r < n; r++) {
@@ -187,20 +172,20 @@ static void test_ragged_slices(void) {
 static void test_structured(void) {
   sessile_csr a;
   printf("-- laplacian7 32^3\n");
-  must("laplacian7", sessile_csr_laplacian7(32, 32, 32, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(32, 32, 32, &a));
   check_csr("laplacian7 32^3", &a, 7);
   check_jacobi_csr("laplacian7 32^3", &a);
   sessile_csr_free(&a);
 
   printf("-- p1tet K+M on 32^3 cubes (33^3 = 35937 rows)\n");
-  must("p1tet", sessile_csr_p1tet(32, 32, 32, 1.0 / 32, 1.0 / 32, 1.0 / 32, &a));
+  t_must("p1tet", sessile_csr_p1tet(32, 32, 32, 1.0 / 32, 1.0 / 32, 1.0 / 32, &a));
   t_true("p1tet 32^3 has 33^3 rows", a.nrows == 33u * 33u * 33u);
   check_csr("p1tet 32^3", &a, 8);
   check_jacobi_csr("p1tet 32^3", &a);
   sessile_csr_free(&a);
 
   printf("-- convdiff 32^3 Pe=2 (nonsymmetric)\n");
-  must("convdiff", sessile_csr_convdiff(32, 32, 32, 2.0, &a));
+  t_must("convdiff", sessile_csr_convdiff(32, 32, 32, 2.0, &a));
   check_csr("convdiff 32^3", &a, 9);
   sessile_csr_free(&a);
 }
@@ -210,24 +195,24 @@ static void test_bcsr4(void) {
   char what[160];
   sessile_csr pat;
   sessile_bcsr4 b;
-  must("p1tet", sessile_csr_p1tet(16, 16, 16, 1.0 / 16, 1.0 / 16, 1.0 / 16, &pat));
-  must("bcsr4_random_on", sessile_bcsr4_random_on(&pat, 4242, &b));
+  t_must("p1tet", sessile_csr_p1tet(16, 16, 16, 1.0 / 16, 1.0 / 16, 1.0 / 16, &pat));
+  t_must("bcsr4_random_on", sessile_bcsr4_random_on(&pat, 4242, &b));
   to_stored(b.val, 16 * b.nnzb);
   const uint32_t n = 4 * b.nbrows;
-  double *x = dalloc(n), *y = dalloc(n), *r = dalloc(n), *s = dalloc(n);
+  double *x = t_dalloc(n), *y = t_dalloc(n), *r = t_dalloc(n), *s = t_dalloc(n);
   sessile_fill_random(x, n, -1.0, 1.0, 11);
   to_stored(x, n);
   sessile_mat *m = NULL;
   sessile_vec *vx = NULL, *vy = NULL;
-  must("mat_create_bcsr4", sessile_mat_create_bcsr4(la, &b, &m));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("vec_create", sessile_vec_create(la, n, &vy));
-  must("upload", sessile_vec_upload(vx, x));
+  t_must("mat_create_bcsr4", sessile_mat_create_bcsr4(la, &b, &m));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("vec_create", sessile_vec_create(la, n, &vy));
+  t_must("upload", sessile_vec_upload(vx, x));
   snprintf(what, sizeof what, "bcsr4 p1tet 16^3: mat_rows = %u (4 x %u), mat_nnz = 16 x %" PRIu64,
            n, b.nbrows, b.nnzb);
   t_true(what, sessile_mat_rows(m) == n && sessile_mat_nnz(m) == 16 * b.nnzb);
-  must("mat_mult", sessile_mat_mult(la, m, vx, vy));
-  must("download", sessile_vec_download(vy, y));
+  t_must("mat_mult", sessile_mat_mult(la, m, vx, vy));
+  t_must("download", sessile_vec_download(vy, y));
   sessile_ref_spmv_bcsr4(&b, x, r);
   for (uint32_t br = 0; br < b.nbrows; br++)
     for (int i = 0; i < 4; i++) {
@@ -241,10 +226,10 @@ static void test_bcsr4(void) {
 
   /* Point Jacobi of the block matrix vs ref_jacobi_bcsr4. */
   sessile_vec *vd = NULL;
-  must("vec_create", sessile_vec_create(la, n, &vd));
+  t_must("vec_create", sessile_vec_create(la, n, &vd));
   t_ok("mat_jacobi bcsr4", sessile_mat_jacobi(la, m, vd));
-  must("download", sessile_vec_download(vd, y));
-  must("ref_jacobi_bcsr4", sessile_ref_jacobi_bcsr4(&b, r));
+  t_must("download", sessile_vec_download(vd, y));
+  t_must("ref_jacobi_bcsr4", sessile_ref_jacobi_bcsr4(&b, r));
   double e = 0;
   for (uint32_t i = 0; i < n; i++) {
     double q = fabs(y[i] - r[i]) / fabs(r[i]);
@@ -254,7 +239,7 @@ static void test_bcsr4(void) {
 
   /* Wrong vector lengths are usage errors. */
   sessile_vec *small = NULL;
-  must("vec_create", sessile_vec_create(la, n - 4, &small));
+  t_must("vec_create", sessile_vec_create(la, n - 4, &small));
   sessile_status st = sessile_mat_mult(la, m, small, vy);
   t_true("mat_mult with x of the wrong length -> SESSILE_ERR_USAGE", st == SESSILE_ERR_USAGE);
   st = sessile_mat_mult(la, m, vx, small);
@@ -301,7 +286,7 @@ static void test_errors(void) {
   printf("-- matrix errors\n");
   char what[256];
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
 
   /* Zero diagonal: creation is fine, Jacobi fails naming the row. */
   uint64_t p = diag_at(&a, 77);
@@ -309,7 +294,7 @@ static void test_errors(void) {
   sessile_mat *m = NULL;
   sessile_vec *d = NULL;
   t_ok("mat_create_csr with a zero diagonal", sessile_mat_create_csr(la, &a, &m));
-  must("vec_create", sessile_vec_create(la, a.nrows, &d));
+  t_must("vec_create", sessile_vec_create(la, a.nrows, &d));
   sessile_error_clear();
   sessile_status s = m ? sessile_mat_jacobi(la, m, d) : SESSILE_ERR_INTERNAL;
   snprintf(what, sizeof what, "zero diagonal in row 77: mat_jacobi -> %s (\"%s\")",
@@ -329,12 +314,12 @@ static void test_errors(void) {
 
   /* A row without a stored diagonal is a zero diagonal too. */
   sessile_csr nd;
-  must("csr_alloc", sessile_csr_alloc(3, 3, 3, &nd));
+  t_must("csr_alloc", sessile_csr_alloc(3, 3, 3, &nd));
   nd.rowptr[0] = 0, nd.rowptr[1] = 1, nd.rowptr[2] = 2, nd.rowptr[3] = 3;
   nd.col[0] = 0, nd.col[1] = 0, nd.col[2] = 2; /* row 1 has only column 0 */
   nd.val[0] = 1, nd.val[1] = 1, nd.val[2] = 1;
   sessile_vec *d3 = NULL;
-  must("vec_create", sessile_vec_create(la, 3, &d3));
+  t_must("vec_create", sessile_vec_create(la, 3, &d3));
   t_ok("mat_create_csr 3x3 without a_11", sessile_mat_create_csr(la, &nd, &m));
   s = m ? sessile_mat_jacobi(la, m, d3) : SESSILE_ERR_INTERNAL;
   snprintf(what, sizeof what, "row 1 without a stored diagonal: mat_jacobi -> %s (\"%s\")",
@@ -347,7 +332,7 @@ static void test_errors(void) {
 
   /* Non-square. */
   sessile_csr ns;
-  must("csr_alloc", sessile_csr_alloc(4, 5, 4, &ns));
+  t_must("csr_alloc", sessile_csr_alloc(4, 5, 4, &ns));
   for (uint32_t r = 0; r < 4; r++) ns.rowptr[r + 1] = r + 1, ns.col[r] = r, ns.val[r] = 1;
   m = (sessile_mat *)&m;
   sessile_error_clear();
@@ -378,9 +363,9 @@ static void test_errors(void) {
 
   /* SpMV with wrong lengths. */
   m = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
   sessile_vec *v5 = NULL;
-  must("vec_create", sessile_vec_create(la, 5, &v5));
+  t_must("vec_create", sessile_vec_create(la, 5, &v5));
   s = sessile_mat_mult(la, m, v5, d);
   t_true("csr mat_mult with x of length 5 for 512 rows -> SESSILE_ERR_USAGE", s == SESSILE_ERR_USAGE);
   sessile_mat_destroy(m);
@@ -394,20 +379,20 @@ static void test_errors(void) {
 static void test_nonfinite_x(void) {
   printf("-- non-finite entry in x\n");
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(8, 8, 8, &a));
   const uint32_t n = a.nrows;
-  double *x = dalloc(n), *y = dalloc(n), *r = dalloc(n);
+  double *x = t_dalloc(n), *y = t_dalloc(n), *r = t_dalloc(n);
   sessile_fill_random(x, n, -1.0, 1.0, 5);
   to_stored(x, n);
   x[0] = INFINITY;
   sessile_mat *m = NULL;
   sessile_vec *vx = NULL, *vy = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("vec_create", sessile_vec_create(la, n, &vy));
-  must("upload", sessile_vec_upload(vx, x));
-  must("mat_mult", sessile_mat_mult(la, m, vx, vy));
-  must("download", sessile_vec_download(vy, y));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("vec_create", sessile_vec_create(la, n, &vy));
+  t_must("upload", sessile_vec_upload(vx, x));
+  t_must("mat_mult", sessile_mat_mult(la, m, vx, vy));
+  t_must("download", sessile_vec_download(vy, y));
   sessile_ref_spmv_csr(&a, x, r);
   uint32_t bad = 0, first = UINT32_MAX, refnf = 0;
   for (uint32_t i = 0; i < n; i++) {
@@ -441,23 +426,23 @@ static void test_nonfinite_x(void) {
  * recurrence; only summation orders differ). */
 static void test_cg_fused(const char *path) {
   sessile_csr a;
-  must("laplacian7", sessile_csr_laplacian7(24, 24, 24, &a));
+  t_must("laplacian7", sessile_csr_laplacian7(24, 24, 24, &a));
   const uint32_t n = a.nrows;
-  double *b = dalloc(n), *x = dalloc(n), *d = dalloc(n);
+  double *b = t_dalloc(n), *x = t_dalloc(n), *d = t_dalloc(n);
   sessile_fill_random(b, n, -1.0, 1.0, 9);
   to_stored(b, n);
   sessile_mat *m = NULL;
   sessile_vec *vb = NULL, *vx = NULL;
-  must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
-  must("vec_create", sessile_vec_create(la, n, &vb));
-  must("vec_create", sessile_vec_create(la, n, &vx));
-  must("upload", sessile_vec_upload(vb, b));
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  t_must("vec_create", sessile_vec_create(la, n, &vb));
+  t_must("vec_create", sessile_vec_create(la, n, &vx));
+  t_must("upload", sessile_vec_upload(vb, b));
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
   o.pc = SESSILE_PC_JACOBI;
   sessile_solve_result r;
-  must("ksp_solve", sessile_ksp_solve(la, &o, m, vb, vx, &r));
-  must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
+  t_must("ksp_solve", sessile_ksp_solve(la, &o, m, vb, vx, &r));
+  t_must("ref_jacobi", sessile_ref_jacobi_csr(&a, d));
   memset(x, 0, (size_t)n * sizeof *x); /* zero initial guess, as the device solve's */
   sessile_ref_result rr = sessile_ref_pcg(&a, d, b, x, o.rtol, o.max_it);
   char what[160];
@@ -486,7 +471,7 @@ int main(int argc, char **argv) {
   fp64 = sessile_gpu_info_of(g)->precision == 64;
   tol_spmv = fp64 ? 1e-14 : 1e-5;
   tol_jac = fp64 ? 2.3e-16 : 1e-5;
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   test_random();
   test_ragged_slices();
   test_structured();
@@ -499,7 +484,7 @@ int main(int argc, char **argv) {
    * device limit) on the same cases. */
   printf("== storage-buffer SpMV path (SESSILE_SPMV_STORAGE=1)\n");
   setenv("SESSILE_SPMV_STORAGE", "1", 1);
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   test_random();
   test_ragged_slices();
   test_structured();

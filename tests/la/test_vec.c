@@ -29,25 +29,10 @@
 static sessile_la *la;
 static int fp64;
 
-static void must(const char *what, sessile_status s) {
-  if (s == SESSILE_OK) return;
-  printf("FAIL %s: %s: %s\n", what, sessile_status_name(s), sessile_error_message());
-  exit(1);
-}
-
-static double *dalloc(size_t n) {
-  double *p = malloc((n ? n : 1) * sizeof *p);
-  if (!p) {
-    printf("FAIL out of host memory\n");
-    exit(1);
-  }
-  return p;
-}
-
 static sessile_vec *vec_from(uint32_t n, const double *v) {
   sessile_vec *x = NULL;
-  must("vec_create", sessile_vec_create(la, n, &x));
-  if (v) must("vec_upload", sessile_vec_upload(x, v));
+  t_must("vec_create", sessile_vec_create(la, n, &x));
+  if (v) t_must("vec_upload", sessile_vec_upload(x, v));
   return x;
 }
 
@@ -64,7 +49,7 @@ static double stored(double x) { return fp64 ? x : (double)(float)x; }
 static void test_length(uint32_t n) {
   char what[128];
   const double tol = fp64 ? 1e-15 : 1e-5, tol_dot = fp64 ? 1e-12 : 1e-5;
-  double *x = dalloc(n), *y = dalloc(n), *w = dalloc(n), *r = dalloc(n), *t = dalloc(n);
+  double *x = t_dalloc(n), *y = t_dalloc(n), *w = t_dalloc(n), *r = t_dalloc(n), *t = t_dalloc(n);
   sessile_fill_random(x, n, -1.0, 1.0, 100 + n);
   sessile_fill_random(y, n, -2.0, 3.0, 200 + n);
   /* Compare with what the device can hold, so fp32 contexts test the
@@ -235,7 +220,7 @@ static void test_errors(void) {
 int main(void) {
   sessile_gpu *g = t_gpu(0);
   fp64 = sessile_gpu_info_of(g)->precision == 64;
-  must("la_create", sessile_la_create(g, &la));
+  t_must("la_create", sessile_la_create(g, &la));
   t_true("la_real_bytes matches the context precision",
          sessile_la_real_bytes(la) == (fp64 ? 8u : 4u) && sessile_la_gpu(la) == g);
   const uint32_t sizes[] = {1, 3, 4, 5, 1000, 32 * 32 * 32, 100003};
