@@ -21,22 +21,26 @@ static const char *help =
     "rest, then warm-started after the sponge grew by 0.3 cm (a growth\n"
     "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
     "true linear residual, assembly and solve time.  Figures are for the record\n"
-    "(docs/performance.md), never pass/fail.  --block-scale multiplies each block row by\n"
+    "(docs/performance.md), never pass/fail.  --pc: ILU(0) by default (Jacobi where the\n"
+    "matrix exceeds maxStorageBufferRange and is stored in chunks; the pc column says\n"
+    "which ran).  --block-scale multiplies each block row by\n"
     "the inverse of its 4x4 diagonal block before the Krylov solve; --picard K takes\n"
     "K Picard (Oseen) steps before Newton; --restart M is GMRES(M); --no-lsic drops the\n"
     "grad-div term.  SESSILE_FLUID_VERBOSE=1 prints each step to stderr as it goes.\n";
 
 static void print_result(const char *what, const sessile_fluid_result *r) {
-  printf("%s: %s after %d steps, residual %.3e -> %.3e, %d linear iterations, %.2f s "
+  printf("%s: %s after %d steps, residual %.3e -> %.3e (rest state %.3e), %d linear iterations, %.2f s "
          "(assembly %.2f s, linear solves %.2f s)\n",
          what, r->converged ? "converged" : "NOT converged", r->nsteps, r->residual0, r->residual,
+         r->residual_rest,
          r->lin_iterations, r->seconds, r->assembly_s, r->solve_s);
-  printf("  %4s %-7s %12s %8s %12s %-12s %10s %10s\n", "step", "kind", "residual", "lin its",
-         "lin relres", "lin status", "assembly s", "solve s");
+  printf("  %4s %-7s %12s %8s %12s %-12s %-6s %10s %10s\n", "step", "kind", "residual", "lin its",
+         "lin relres", "lin status", "pc", "assembly s", "solve s");
   for (int k = 0; k < r->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *s = &r->step[k];
-    printf("  %4d %-7s %12.4e %8d %12.3e %-12s %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
+    printf("  %4d %-7s %12.4e %8d %12.3e %-12s %-6s %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
            s->residual, s->lin_iterations, s->lin_relres, sessile_solve_status_name(s->lin_status),
+           s->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi",
            s->assembly_s, s->solve_s);
   }
 }

@@ -3,7 +3,9 @@
  *
  * Weak form, per element, test functions (v, q), unknowns (u, p):
  *   Galerkin   rho (u.grad u, v) + eta (grad u, grad v) - (p, div v) + (q, div u) - (f, v)
- *   SUPG       rho^2 tp (u.grad v, r)          r = rho u.grad u + grad p - f
+ *   SUPG       rho tp (u.grad v, r)            r = rho u.grad u + grad p - f
+ *              (= tau_t (u.grad v, r) with tau_t = rho tp in seconds: the
+ *              same units as the Galerkin term)
  *   PSPG       tp (grad q, r)                  (eta Lap u = 0 for P1)
  *   LSIC       tc (div u, div v)
  * with tp = tau/rho = [ (2 rho |u_c| / h)^2 + 9 (4 eta / h^2)^2 ]^(-1/2)
@@ -88,10 +90,10 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
     }
   }
 
-  const double r2 = rho * rho;
+  const double ts = rho * tp; /* the SUPG weight tau_t (seconds) */
   for (int a = 0; a < 4; a++) {
     for (int i = 0; i < 3; i++)
-      Re[4 * a + i] = rho * dot3(L[i], Mv[a]) - Fp[a][i] + r2 * tp * Sv[a][i] +
+      Re[4 * a + i] = rho * dot3(L[i], Mv[a]) - Fp[a][i] + ts * Sv[a][i] +
                       V * eta * dot3(G[a], L[i]) - V * pbar * G[a][i] + V * tc * div * G[a][i];
     Re[4 * a + 3] = w * div + tp * dot3(G[a], Rb);
   }
@@ -115,13 +117,13 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
       for (int i = 0; i < 3; i++) {
         for (int j = 0; j < 3; j++) {
           double v = rho * nw * L[i][j] * mab +
-                     r2 * (0.25 * dtp[j] * Sv[a][i] + nw * tp * G[a][j] * Tv[b][i] +
-                           tp * rho * nw * L[i][j] * mg[b][a]) +
+                     rho * (0.25 * dtp[j] * Sv[a][i] + nw * tp * G[a][j] * Tv[b][i] +
+                            tp * rho * nw * L[i][j] * mg[b][a]) +
                      V * (0.25 * dtc[j] * div * G[a][i] + tc * G[a][i] * G[b][j]);
-          if (i == j) v += rho * mg[a][b] + r2 * tp * rho * P[a][b] + V * eta * GG[a][b];
+          if (i == j) v += rho * mg[a][b] + ts * rho * P[a][b] + V * eta * GG[a][b];
           K[16 * i + j] = v;
         }
-        K[16 * i + 3] = r2 * tp * V * ucG[a] * G[b][i] - w * G[a][i];
+        K[16 * i + 3] = ts * V * ucG[a] * G[b][i] - w * G[a][i];
       }
       for (int j = 0; j < 3; j++)
         K[16 * 3 + j] = w * G[b][j] + 0.25 * dtp[j] * dot3(G[a], Rb) +

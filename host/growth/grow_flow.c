@@ -79,6 +79,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
   cJSON_AddNumberToObject(fl, "nodes", nodes);
   cJSON_AddBoolToObject(fl, "converged", res->converged);
   cJSON_AddNumberToObject(fl, "newton_steps", res->nsteps);
+  cJSON_AddNumberToObject(fl, "residual_rest", res->residual_rest);
   cJSON_AddNumberToObject(fl, "residual_initial", res->residual0);
   cJSON_AddNumberToObject(fl, "residual_final", res->residual);
   cJSON_AddNumberToObject(fl, "linear_iterations", res->lin_iterations);
@@ -94,6 +95,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
     cJSON_AddNumberToObject(o, "linear_true_relres", st->lin_relres);
     cJSON_AddStringToObject(o, "linear_status", sessile_solve_status_name(st->lin_status));
+    cJSON_AddStringToObject(o, "preconditioner", st->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi");
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);
     cJSON_AddNumberToObject(o, "solve_seconds", st->solve_s);
     cJSON_AddItemToArray(steps, o);
@@ -224,8 +226,9 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   record_fluid(fl, &res, !strcmp(r->flow_domain, "immersed") ? sessile_box_nodes(&r->fbox) : r->cmesh.nnodes);
   if (!res.converged && !r->o->quiet)
     fprintf(stderr, "\nsessile grow: warning: iteration %d: Navier-Stokes stopped after %d Newton steps "
-                    "at residual %.2e of %.2e (not converged to %g); see manifest.json\n",
-            it, res.nsteps, res.residual, res.residual0, r->p->nvs_rtol);
+                    "at residual %.2e, %.2e of the rest state's (not converged to %g); see manifest.json\n",
+            it, res.nsteps, res.residual,
+            res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
   r->flow_valid = 1;
   return SESSILE_OK;
 }

@@ -59,7 +59,8 @@ typedef struct sessile_fluid_params {
   double linear_rtol;  /* default 1e-6 */
   int linear_max;      /* default 100 */
   sessile_ksp_type ksp;/* default GMRES */
-  sessile_pc_type pc;  /* default the best la offers (Jacobi now) */
+  sessile_pc_type pc;  /* default ILU(0); Jacobi is used instead on a matrix
+                          stored in several chunks (la's ILU(0) needs one) */
   int restart;         /* GMRES(m), default 50 */
   int block_jacobi;    /* scale each block row by its inverse 4x4 diagonal block
                           before the solve (default 0: tried, no better than point Jacobi; docs/fluid.md) */
@@ -82,6 +83,7 @@ typedef struct sessile_fluid_step {
   int lin_iterations;
   double lin_relres;     /* true relative residual of the linear solve */
   sessile_solve_status lin_status;
+  sessile_pc_type lin_pc;  /* the preconditioner used (see params.pc) */
   double assembly_s, solve_s;
 } sessile_fluid_step;
 
@@ -89,6 +91,8 @@ typedef struct sessile_fluid_result {
   int nsteps;                 /* Newton/Picard updates taken */
   sessile_fluid_step step[SESSILE_FLUID_MAX_STEPS];
   double residual0, residual; /* initial and final ||R|| */
+  double residual_rest;       /* ||R|| of the rest state (boundary values,
+                                 zero elsewhere): Newton's reference */
   int converged;
   int lin_iterations;         /* totals */
   double assembly_s, solve_s, seconds;
@@ -98,7 +102,11 @@ sessile_status sessile_fluid_create(sessile_la *la, const sessile_tetmesh *mesh,
 void sessile_fluid_destroy(sessile_fluid *fl);
 
 /* Solves for up (4 per node: ux, uy, uz in m/s, p in Pa): warm start in,
- * solution out.  solid (nnodes, non-zero = solid) may be NULL.  Returns
+ * solution out.  Converged when ||R|| <= newton_rtol * ||R(rest)||, the
+ * residual of the rest state (the boundary values with zero velocity and
+ * pressure elsewhere): from rest that is the paper's relative tolerance, and
+ * a warm start stops at the same absolute accuracy instead of chasing 1e-3
+ * of an already small residual (docs/fluid.md).  solid (nnodes, non-zero = solid) may be NULL.  Returns
  * SESSILE_OK whenever the iteration ran; res->converged says whether Newton
  * met its tolerance.  Non-finite residuals are SESSILE_ERR_NUMERIC. */
 sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid,
