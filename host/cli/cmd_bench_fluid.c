@@ -34,13 +34,13 @@ static void print_result(const char *what, const sessile_fluid_result *r) {
          what, r->converged ? "converged" : "NOT converged", r->nsteps, r->residual0, r->residual,
          r->residual_rest,
          r->lin_iterations, r->seconds, r->assembly_s, r->solve_s);
-  printf("  %4s %-7s %12s %8s %12s %-12s %-6s %10s %10s\n", "step", "kind", "residual", "lin its",
-         "lin relres", "lin status", "pc", "assembly s", "solve s");
+  printf("  %4s %-7s %12s %8s %12s %-14s %-6s %6s %10s %10s\n", "step", "kind", "residual", "lin its",
+         "lin relres", "lin status", "pc", "chunks", "assembly s", "solve s");
   for (int k = 0; k < r->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *s = &r->step[k];
-    printf("  %4d %-7s %12.4e %8d %12.3e %-12s %-6s %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
+    printf("  %4d %-7s %12.4e %8d %12.3e %-14s %-6s %6u %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
            s->residual, s->lin_iterations, s->lin_relres, sessile_solve_status_name(s->lin_status),
-           s->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi",
+           s->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi", s->lin_chunks,
            s->assembly_s, s->solve_s);
   }
 }

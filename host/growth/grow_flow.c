@@ -20,10 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
-#include "sessile/locate.h"
-#include "sessile/tetgen.h"
 
-static void fluid_params(const grow_run *r, sessile_fluid_params *fp) {
+void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
   sessile_fluid_params_default(fp);
   fp->rho = r->p->fluid_density;
   fp->eta = r->p->fluid_viscosity;
@@ -96,6 +94,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "linear_true_relres", st->lin_relres);
     cJSON_AddStringToObject(o, "linear_status", sessile_solve_status_name(st->lin_status));
     cJSON_AddStringToObject(o, "preconditioner", st->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi");
+    cJSON_AddNumberToObject(o, "matrix_chunks", st->lin_chunks);
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);
     cJSON_AddNumberToObject(o, "solve_seconds", st->solve_s);
     cJSON_AddItemToArray(steps, o);
@@ -114,7 +113,7 @@ static sessile_status flow_immersed(grow_run *r, sessile_fluid_result *res) {
   for (uint32_t i = 0; s == SESSILE_OK && i < nf; i++)
     if (solid[i]) r->up[4 * i] = r->up[4 * i + 1] = r->up[4 * i + 2] = 0;
   sessile_fluid_params fp;
-  fluid_params(r, &fp);
+  grow_fluid_params(r, &fp);
   if (s == SESSILE_OK) s = sessile_fluid_solve(r->fluid, solid, &fp, r->up, res);
   free(solid);
   SESSILE_CALL(s);
@@ -134,77 +133,6 @@ static sessile_status flow_immersed(grow_run *r, sessile_fluid_result *res) {
   return SESSILE_OK;
 }
 
-/* Conforming flow on TetGen's mesh of the current surface.  Returns
- * SESSILE_OK with *fell_back = 1 (and the reason in rec) when TetGen
- * rejected the surface. */
-static sessile_status flow_conforming(grow_run *r, sessile_fluid_result *res, cJSON *fl, int *fell_back) {
-  *fell_back = 0;
-  sessile_tetgen_options to;
-  sessile_tetgen_options_default(&to);
-  to.radius_edge = r->p->conforming_quality;
-  to.size_far = r->p->conforming_size_far;
-  sessile_tetmesh m = {0};
-  double t0 = sessile_wall_seconds();
-  sessile_status s = sessile_tetgen_conforming(&r->box, &r->surf, &to, &m);
-  cJSON_AddNumberToObject(fl, "tetgen_seconds", sessile_wall_seconds() - t0);
-  if (s != SESSILE_OK) {
-    *fell_back = 1;
-    cJSON_AddStringToObject(fl, "fallback", sessile_error_message());
-    return SESSILE_OK;
-  }
-  cJSON_AddNumberToObject(fl, "tetrahedra", m.ntets);
-  /* Warm start: the previous conforming flow interpolated onto the new mesh
-   * (nodes that were inside the old sponge start at rest). */
-  double *up = calloc((size_t)m.nnodes * 4, sizeof *up);
-  sessile_locator *loc = NULL;
-  if (!up) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for the conforming flow");
-  if (s == SESSILE_OK && r->cup && r->cmesh.nnodes) {
-    s = sessile_locator_build(&r->cmesh, 0, &loc);
-    for (uint32_t i = 0; s == SESSILE_OK && i < m.nnodes; i++) {
-      double w[4];
-      uint32_t t = sessile_locator_find(loc, m.xyz + 3 * i, w);
-      if (t == SESSILE_LOCATE_OUTSIDE) continue;
-      for (int a = 0; a < 4; a++)
-        for (int q = 0; q < 4; q++) up[4 * i + a] += w[q] * r->cup[4 * r->cmesh.tet[4 * t + q] + a];
-    }
-    sessile_locator_destroy(loc);
-    loc = NULL;
-  }
-  sessile_fluid *fluid = NULL;
-  sessile_fluid_params fp;
-  fluid_params(r, &fp);
-  if (s == SESSILE_OK) s = sessile_fluid_create(r->la, &m, &fluid);
-  if (s == SESSILE_OK) s = sessile_fluid_solve(fluid, NULL, &fp, up, res);
-  sessile_fluid_destroy(fluid);
-  if (s != SESSILE_OK) {
-    free(up);
-    sessile_tetmesh_free(&m);
-    return s;
-  }
-  /* Keep this mesh and flow for the next warm start. */
-  sessile_tetmesh_free(&r->cmesh);
-  r->cmesh = m;
-  free(r->cup);
-  r->cup = up;
-  /* To the nutrient box's nodes: zero inside the sponge (outside the water). */
-  uint32_t nb = sessile_box_nodes(&r->box);
-  s = sessile_locator_build(&r->cmesh, 0, &loc);
-  for (uint32_t i = 0; s == SESSILE_OK && i < nb; i++) {
-    double x[3], w[4];
-    sessile_box_node_pos(&r->box, i, x);
-    uint32_t t = sessile_locator_find(loc, x, w);
-    double v[4] = {0, 0, 0, 0};
-    if (t != SESSILE_LOCATE_OUTSIDE)
-      for (int a = 0; a < 4; a++)
-        for (int q = 0; q < 4; q++) v[a] += w[q] * r->cup[4 * r->cmesh.tet[4 * t + q] + a];
-    memcpy(r->ufine + 3 * (size_t)i, v, 3 * sizeof *v);
-    r->pfine[i] = v[3];
-  }
-  sessile_locator_destroy(loc);
-  r->flow_domain = "conforming";
-  return s;
-}
-
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   SESSILE_CALL(flow_setup(r));
   cJSON *fl = cJSON_AddObjectToObject(rec, "fluid");
@@ -215,7 +143,7 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   memset(&res, 0, sizeof res);
   int fell_back = 0;
   if (r->p->domain == SESSILE_DOMAIN_CONFORMING) {
-    SESSILE_CALL(flow_conforming(r, &res, fl, &fell_back));
+    SESSILE_CALL(grow_flow_conforming(r, &res, fl, &fell_back));
     if (fell_back && !r->o->quiet)
       fprintf(stderr, "\nsessile grow: warning: iteration %d: TetGen rejected the sponge surface (%s); "
                       "this iteration's flow uses the immersed domain\n",

@@ -77,6 +77,13 @@ sessile_status grow_write_final(grow_run *r, const double *normals);
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec);
 sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res);
 void grow_flow_teardown(grow_run *r);
+/* The run's fluid parameters (grow_flow.c). */
+void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp);
+/* The conforming flow (grow_flow_conforming.c): TetGen's mesh of the box
+ * minus the current surface, solved warm, interpolated to ufine/pfine by the
+ * GPU locator.  *fell_back = 1 (reason under "fallback" in fl) when TetGen
+ * rejected the surface; then nothing else changed. */
+sessile_status grow_flow_conforming(grow_run *r, sessile_fluid_result *res, cJSON *fl, int *fell_back);
 
 /* Manifest: created at start, one record per iteration, rewritten (atomically)
  * after every iteration so an interrupted run still says what it did. */

@@ -65,8 +65,8 @@ extern "C" {
     "box level of the immersed flow (<= box_resolution; velocities interpolated to the box)")    \
   X(fluid_every_iteration, BOOL, 0, 0, 1, "", "ours",                                              \
     "with diffusion_limited, solve the flow every iteration too (else only for snapshots)")      \
-  X(fluid_at_snapshots, BOOL, 0, 0, 1, "", "ours",                                                 \
-    "with diffusion_limited, also solve the flow at snapshots (slices, fields); off: slow for now")   \
+  X(fluid_at_snapshots, BOOL, 1, 0, 1, "", "ours",                                                 \
+    "with diffusion_limited, solve the flow at snapshots for their slices and fields (off: none)") \
   X(fluid_density, REAL, 1000, 0, 1e5, "kg/m^3", "paper §4.2", "rho in the Navier-Stokes equations (eq 3)") \
   X(fluid_viscosity, REAL, 5.0e-2, 1e-9, 1e5, "Pa s", "paper §4.2", "eta in the Navier-Stokes equations (eq 3)") \
   X(inlet_velocity, REAL, 0.05, 0, 100, "m/s", "paper §4.2", "inflow at x-min, along +x")        \
