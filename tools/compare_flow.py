@@ -66,7 +66,10 @@ def main():
             print(f"{name:28s} {sel.sum():8d} nodes: |u_A - u_B| / U  RMS {np.sqrt((d[sel]**2).mean()):.4f}"
                   f"  max {d[sel].max():.4f}")
     if a.png:
-        from PIL import Image
+        try:
+            from PIL import Image
+        except ImportError:
+            sys.exit("compare_flow: --png needs PIL (apt-get install python3-pil)")
         yc = np.median(xa[solid][:, 1]) if solid.any() else np.median(xa[:, 1])
         ys = np.unique(xa[:, 1])
         y0 = ys[np.abs(ys - yc).argmin()]

@@ -7,7 +7,8 @@
 # 1.2 cm cells), a 3 cm sponge, 8 iterations and at most 4 Newton steps per
 # flow solve keep the test short; the flow solver's accuracy is tested in
 # tests/fem/test_ns.c.  Also checks the flow's outputs: EXR channels ux, uy,
-# uz, umag, p, the VTU's u and p, and the manifest's Newton records.
+# uz, umag, p, the VTU's u and p, the manifest's Newton records, and
+# tools/compare_flow.py (a run against itself: 0; two domains: not 0).
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -62,4 +63,11 @@ inlet = x[:, 0] == x[:, 0].min(); inner = inlet & (x[:, 2] > x[:, 2].min())
 print("u", u.shape, "inlet ux", u[inner, 0].min(), u[inner, 0].max(), "p range", p.min(), p.max())
 sys.exit(0 if u.shape[1] == 3 and abs(u[inner, 0] - 0.05).max() < 1e-9 and p.shape[0] == g.GetNumberOfPoints() else 1)
 PYEOF
+CF="$(dirname "$0")/../../tools/compare_flow.py"
+/usr/bin/python3 "$CF" "$T/immersed" "$T/immersed" --iter 8 >"$T/cf_same.txt" 2>&1
+check "tools/compare_flow.py: a run against itself differs by 0" \
+  eval 'grep -q "all water nodes.*RMS 0.0000  max 0.0000" "$T/cf_same.txt"'
+/usr/bin/python3 "$CF" "$T/immersed" "$T/conforming" --iter 8 >"$T/cf_diff.txt" 2>&1
+check "tools/compare_flow.py: the immersed and conforming flows differ (RMS > 0)" \
+  eval 'grep "all water nodes" "$T/cf_diff.txt" | grep -qv "RMS 0.0000"'
 finish
