@@ -63,7 +63,8 @@ typedef struct sessile_fluid_params {
                           stored in several chunks (la's ILU(0) needs one) */
   int restart;         /* GMRES(m), default 50 */
   int block_jacobi;    /* scale each block row by its inverse 4x4 diagonal block
-                          before the solve (default 0: tried, no better than point Jacobi; docs/fluid.md) */
+                          before the solve (default 0; for comparisons:
+                          `sessile bench fluid --block-scale`) */
   int verbose;         /* print each Newton step to stderr */
   /* Optional: Dirichlet values other than the defaults above, and a force. */
   sessile_fluid_velocity_fn velocity_fn;
