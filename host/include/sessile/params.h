@@ -71,7 +71,7 @@ extern "C" {
   X(fluid_viscosity, REAL, 5.0e-2, 1e-9, 1e5, "Pa s", "paper §4.2", "eta in the Navier-Stokes equations (eq 3)") \
   X(inlet_velocity, REAL, 0.05, 0, 100, "m/s", "paper §4.2", "inflow at x-min, along +x")        \
   X(max_nvs_iterations, INT, 100, 1, 10000, "", "Table 1", "Newton iterations of the fluid solve at most") \
-  X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, "", "paper §4.2", "Newton's relative tolerance on the residual") \
+  X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, "", "paper §4.2", "Newton stops at residual <= this times the rest state's residual") \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, "m^2/s", "ours",                                 \
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
