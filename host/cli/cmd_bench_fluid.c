@@ -40,7 +40,7 @@ static void print_result(const char *what, const sessile_fluid_result *r) {
     const sessile_fluid_step *s = &r->step[k];
     printf("  %4d %-7s %12.4e %8d %12.3e %-14s %-6s %6u %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
            s->residual, s->lin_iterations, s->lin_relres, sessile_solve_status_name(s->lin_status),
-           s->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi", s->lin_chunks,
+           sessile_pc_type_name(s->lin_pc), s->lin_chunks,
            s->assembly_s, s->solve_s);
   }
 }
@@ -154,7 +154,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     printf("box level %u: %u x %u x %u = %u nodes (%u unknowns), %u tets, spacing %.3g cm; "
            "%s + %s, Re = rho U L / eta = %.0f (L = 12 cm)\n",
            res, box.n[0], box.n[1], box.n[2], n, 4 * n, mesh.ntets, box.h,
-           sessile_ksp_type_name(fp.ksp), fp.pc == SESSILE_PC_ILU0 ? "ILU(0)" : "Jacobi",
+           sessile_ksp_type_name(fp.ksp), sessile_pc_type_name(fp.pc),
            p.fluid_density * p.inlet_velocity * 0.12 / p.fluid_viscosity);
     printf("mesh and solver setup: %.2f s\n\n", t_setup);
     fflush(stdout);

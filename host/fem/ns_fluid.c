@@ -365,9 +365,9 @@ static sessile_status linear_solve(sessile_fluid *fl, const sessile_fluid_params
   o.type = p->ksp;
   o.pc = p->pc;
   /* la factorises ILU(0) only on a matrix stored in one piece */
-  if (o.pc == SESSILE_PC_ILU0 && sessile_mat_chunks(m) > 1) o.pc = SESSILE_PC_JACOBI;
-  st->lin_pc = o.pc;
   st->lin_chunks = sessile_mat_chunks(m);
+  if (o.pc == SESSILE_PC_ILU0 && st->lin_chunks > 1) o.pc = SESSILE_PC_JACOBI;
+  st->lin_pc = o.pc;
   o.rtol = p->linear_rtol;
   o.max_it = p->linear_max;
   o.restart = p->restart;

@@ -93,7 +93,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
     cJSON_AddNumberToObject(o, "linear_true_relres", st->lin_relres);
     cJSON_AddStringToObject(o, "linear_status", sessile_solve_status_name(st->lin_status));
-    cJSON_AddStringToObject(o, "preconditioner", st->lin_pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi");
+    cJSON_AddStringToObject(o, "preconditioner", sessile_pc_type_name(st->lin_pc));
     cJSON_AddNumberToObject(o, "matrix_chunks", st->lin_chunks);
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);
     cJSON_AddNumberToObject(o, "solve_seconds", st->solve_s);

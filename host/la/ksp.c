@@ -28,6 +28,15 @@ const char *sessile_ksp_type_name(sessile_ksp_type t) {
   return "?";
 }
 
+const char *sessile_pc_type_name(sessile_pc_type t) {
+  switch (t) {
+  case SESSILE_PC_NONE: return "none";
+  case SESSILE_PC_JACOBI: return "jacobi";
+  case SESSILE_PC_ILU0: return "ilu0";
+  }
+  return "?";
+}
+
 const char *sessile_solve_status_name(sessile_solve_status s) {
   switch (s) {
   case SESSILE_SOLVE_CONVERGED: return "converged";

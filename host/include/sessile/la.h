@@ -125,6 +125,7 @@ typedef struct sessile_ksp_options {
 
 void sessile_ksp_options_default(sessile_ksp_options *o);
 const char *sessile_ksp_type_name(sessile_ksp_type t);
+const char *sessile_pc_type_name(sessile_pc_type t); /* "none", "jacobi", "ilu0" */
 
 typedef enum sessile_solve_status {
   SESSILE_SOLVE_CONVERGED = 0,
