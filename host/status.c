@@ -3,6 +3,7 @@
  * thread-local so OpenMP workers and Vulkan callers never race on it. */
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "sessile/status.h"
 
@@ -16,6 +17,7 @@ const char *sessile_status_name(sessile_status s) {
     X(SESSILE_OK) X(SESSILE_ERR_USAGE) X(SESSILE_ERR_NO_DEVICE) X(SESSILE_ERR_VULKAN)
     X(SESSILE_ERR_NO_MEMORY) X(SESSILE_ERR_TOO_LARGE) X(SESSILE_ERR_IO)
     X(SESSILE_ERR_UNSUPPORTED) X(SESSILE_ERR_NUMERIC) X(SESSILE_ERR_INTERNAL)
+    X(SESSILE_ERR_INTERRUPTED)
 #undef X
   }
   /* Outside the switch so -Wswitch still flags a newly added enumerator. */
@@ -23,11 +25,16 @@ const char *sessile_status_name(sessile_status s) {
 }
 
 sessile_status sessile_error_set(sessile_status s, const char *fmt, ...) {
+  /* Format into scratch first: a caller may pass error_message itself as an
+   * argument ("iteration 3: %s", sessile_error_message()), and vsnprintf
+   * into its own source is undefined (it printed "...: tory"). */
+  char scratch[SESSILE_ERROR_MESSAGE_MAX];
   va_list ap;
   va_start(ap, fmt);
   /* vsnprintf truncates and always terminates: a long message is cut, never lost. */
-  if (vsnprintf(error_message, sizeof error_message, fmt, ap) < 0) error_message[0] = '\0';
+  if (vsnprintf(scratch, sizeof scratch, fmt, ap) < 0) scratch[0] = '\0';
   va_end(ap);
+  memcpy(error_message, scratch, sizeof error_message);
   return s;
 }
 

@@ -1,4 +1,5 @@
 /* Shared option parsing: one-line errors and exit code 2 for bad usage. */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,16 +17,50 @@ int cli_usage_error(const char *cmd, const char *fmt, ...) {
 }
 
 int cli_fail(sessile_status s) {
-  fprintf(stderr, "sessile: error: %s\n", sessile_error_message());
+  /* copy first: the message buffer is the library's */
+  char msg[1100];
+  snprintf(msg, sizeof msg, "%s", sessile_error_message());
+  fprintf(stderr, "sessile: error: %s\n", msg);
   return s == SESSILE_ERR_USAGE ? EXIT_USAGE : EXIT_RUNTIME;
+}
+
+const char *cli_value(const char *cmd, int argc, char **argv, int *i) {
+  const char *opt = argv[*i];
+  if (*i + 1 >= argc || strncmp(argv[*i + 1], "--", 2) == 0) {
+    cli_usage_error(cmd, "%s needs a value", opt);
+    return NULL;
+  }
+  return argv[++*i];
+}
+
+int cli_parse_seed(const char *cmd, const char *val, unsigned long long *out) {
+  int ok = val && *val && strlen(val) <= 20;
+  for (const char *c = val; ok && *c; c++) ok = *c >= '0' && *c <= '9';
+  errno = 0;
+  char *end = NULL;
+  unsigned long long v = ok ? strtoull(val, &end, 10) : 0;
+  if (!ok || errno == ERANGE || *end)
+    return cli_usage_error(cmd, "--seed: '%.40s' is not an integer in 0..18446744073709551615", val ? val : "");
+  *out = v;
+  return 0;
+}
+
+int cli_finish_stdout(int rc) {
+  if (fflush(stdout) != 0 || ferror(stdout)) {
+    int e = errno;
+    fprintf(stderr, "sessile: error: cannot write the output: %s\n", e ? strerror(e) : "write error");
+    return EXIT_RUNTIME;
+  }
+  return rc;
 }
 
 int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned lo, unsigned hi,
                    unsigned *out) {
   char *end = NULL;
   if (!val || !*val) return cli_usage_error(cmd, "%s needs a value", opt);
+  errno = 0;
   unsigned long v = strtoul(val, &end, 10);
-  if (*end || val[0] == '-' || v < lo || v > hi)
+  if (*end || val[0] < '0' || val[0] > '9' || errno == ERANGE || v < lo || v > hi)
     return cli_usage_error(cmd, "%s: '%s' is not an integer in %u..%u", opt, val, lo, hi);
   *out = (unsigned)v;
   return 0;
@@ -38,11 +73,8 @@ int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts 
     return 1;
   }
   if (strcmp(a, "--device") != 0 && strcmp(a, "--precision") != 0) return 0;
-  if (*i + 1 >= argc) {
-    cli_usage_error(cmd, "%s needs a value", a);
-    return -1;
-  }
-  const char *v = argv[++*i];
+  const char *v = cli_value(cmd, argc, argv, i);
+  if (!v) return -1;
   if (strcmp(a, "--device") == 0) {
     if (!*v) {
       cli_usage_error(cmd, "--device needs an index or a name substring");
@@ -70,11 +102,5 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
 }
 
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {
-  char key[128];
-  const char *eq = strchr(kv, '=');
-  if (!eq || eq == kv || (size_t)(eq - kv) >= sizeof key)
-    return sessile_error_set(SESSILE_ERR_USAGE, "--set '%s' must be KEY=VALUE", kv);
-  memcpy(key, kv, (size_t)(eq - kv));
-  key[eq - kv] = 0;
-  return sessile_params_set(p, key, eq + 1);
+  return sessile_params_set_kv(&sessile_grow_param_table, p, kv);
 }

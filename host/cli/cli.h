@@ -1,7 +1,9 @@
 /* The command-line interface: shared option parsing and exit codes. */
 #ifndef SESSILE_CLI_H
 #define SESSILE_CLI_H
+#include <signal.h>
 #include "sessile/gpu.h"
+#include "sessile/param_table.h"
 #include "sessile/params.h"
 
 enum { EXIT_OK = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
@@ -17,6 +19,12 @@ typedef struct {
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Prints the library's last message and returns the exit code for s. */
 int cli_fail(sessile_status s);
+/* The value of the option at argv[*i] (advancing *i), or NULL after a
+ * usage error when it is missing or starts with "--" ("--out needs a
+ * value": `--out --print-config` must not make a folder named so). */
+const char *cli_value(const char *cmd, int argc, char **argv, int *i);
+/* Parses a seed: decimal digits only, within 0..2^64-1. */
+int cli_parse_seed(const char *cmd, const char *val, unsigned long long *out);
 /* Parses an unsigned integer in [lo, hi]; returns 0 on success. */
 int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned lo, unsigned hi,
                    unsigned *out);
@@ -26,10 +34,27 @@ int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts 
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
 /* Applies one --set KEY=VALUE to p (SESSILE_ERR_USAGE with a message on bad input). */
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv);
+/* Writes stdout's pending output and reports a failure (a full disk, a
+ * closed pipe): returns EXIT_RUNTIME then, else rc. */
+int cli_finish_stdout(int rc);
+
+/* SIGINT/SIGTERM: the first sets the returned flag to the signal number
+ * (the run stops at its next safe point and saves its state); a second one
+ * ends the process at once. */
+volatile sig_atomic_t *cli_stop_flag_install(void);
+/* 130 for SIGINT, 143 for SIGTERM. */
+int cli_signal_exit_code(int signo);
+
+/* One subcommand: name, one-line summary for `sessile --help`, entry. */
+typedef struct cli_command {
+  const char *name, *summary;
+  int (*run)(int argc, char **argv, const cli_gpu_opts *global);
+} cli_command;
 
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_sphere(int argc, char **argv, const cli_gpu_opts *global);
 #endif

@@ -20,7 +20,6 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   sessile_grow_options o;
   sessile_grow_options_default(&o);
-  o.quiet = 1;
   o.every = 0;
   o.slices = "";
   o.fields = 0;

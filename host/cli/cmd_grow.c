@@ -1,15 +1,21 @@
 /* `sessile grow`: the accretive sponge on the paper's defaults, with presets,
- * JSON configs and --set overrides. */
+ * JSON configs and --set overrides, through the run framework (lock,
+ * manifest, records, checkpoints, --force, --resume, signals). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "cli.h"
+#include "cli_monitor.h"
+#include "cli_run.h"
 #include "sessile/grow.h"
+#include "sessile/run.h"
 
 static const char *help =
-    "usage: sessile grow [--preset radiate|crella] [--config FILE.json] [--set KEY=VALUE]...\n"
-    "                    [--seed N] [--iterations N] [--out DIR] [--every K] [--slices SPEC]\n"
-    "                    [--no-fields] [--quiet] [--print-config] [--device D] [--validation]\n"
+    "usage: sessile grow [--preset radiate|crella] [--config FILE.json]... [--set KEY=VALUE]...\n"
+    "                    [--seed N] [--iterations N] [--out DIR] [--force] [--every K]\n"
+    "                    [--slices SPEC] [--no-fields] [--quiet] [--print-config]\n"
+    "       sessile grow --resume DIR [--iterations N] [--quiet]\n"
     "\n"
     "Grows a sponge by O'Hagan et al.'s accretive model: per iteration the box nodes\n"
     "inside the sponge become solid, the nutrient field is solved (diffusion limited:\n"
@@ -24,105 +30,139 @@ static const char *help =
     "\n"
     "  --preset P        radiate: Table 1 as is (radiate accretive growth, default);\n"
     "                    crella: Halichondrid normals + randomised x/y position (§4.7)\n"
-    "  --config FILE     JSON object of parameter overrides {\"t_give\": 0.1, ...}\n"
-    "  --set KEY=VALUE   override one parameter (repeatable; applied after --config)\n"
-    "  --print-config    list every parameter (value, unit, paper source) and exit\n"
-    "  --seed N          seed of every random choice (default 1): same seed, same\n"
-    "                    device, same bytes out\n"
-    "  --iterations N    growth iterations (default 50)\n"
-    "  --out DIR         run directory (default runs/<preset>); files there with the\n"
-    "                    same names are replaced\n"
-    "  --every K         snapshot every K iterations: sponge/iter_NNNN.ply,\n"
-    "                    slices/iter_NNNN_<plane>.exr, fields/iter_NNNN.vtu (default 10;\n"
-    "                    0: final mesh only)\n"
+    "  --config FILE     JSON object of parameter overrides {\"t_give\": 0.1, ...};\n"
+    "                    repeatable: files apply in order, a later one wins\n"
+    "  --set KEY=VALUE   override one parameter (repeatable; applied after every --config)\n"
+    "  --print-config    list every parameter (value, unit, range, paper source) and exit;\n"
+    "                    it checks exactly what a run checks before it starts\n"
+    "  --seed N          seed of every random choice, 0..2^64-1 (default 1): same seed,\n"
+    "                    same device, same bytes out\n"
+    "  --iterations N    growth iterations (default 50; with --resume: the new total)\n"
+    "  --out DIR         run directory (default runs/<preset>); it must be new or empty\n"
+    "  --force           DIR holds an earlier run: remove that run's files (those its\n"
+    "                    manifest lists) and start anew\n"
+    "  --resume DIR      continue the run in DIR from its last checkpoint (interrupted,\n"
+    "                    failed or completed: with a larger --iterations it goes on);\n"
+    "                    the outputs are byte-identical to a run that never stopped\n"
+    "  --every K         snapshot every K iterations and at the last one (default 10;\n"
+    "                    0: the last only): sponge/iter_NNNN.ply, slices, fields, and a\n"
+    "                    checkpoint\n"
     "  --slices SPEC     EXR slice planes: 'x,y,z' through the sponge centre (default),\n"
     "                    'z=3.5,y=19.2' at given heights in cm, or '' for none\n"
     "  --no-fields       no VTU volume fields\n"
-    "  --quiet           no progress output\n"
+    "  --quiet           no progress output (warnings still go to stderr)\n"
     "\n"
-    "The run directory holds manifest.json (parameters, seed, device, per-iteration\n"
-    "timings, solver iterations and true residuals, mesh statistics; rewritten after\n"
-    "every iteration), sponge/final.ply and final.obj, and the snapshots above\n"
+    "The run directory (docs/run.md) holds manifest.json (state, pid, host, command,\n"
+    "times, every parameter, device, totals, the files of the run), records.jsonl (one\n"
+    "line per iteration: stage timings, solver iterations and true residuals, mesh\n"
+    "statistics), checkpoint.bin, sponge/final.ply and final.obj, and the snapshots\n"
     "(fields/series.pvd opens the VTU series in ParaView).  Every file is written\n"
-    "atomically.  Exit codes: 0 success, 1 runtime failure, 2 bad usage or input.\n";
+    "atomically.  A second run into a directory in use is refused.  SIGINT/SIGTERM stop\n"
+    "the run after its current iteration with a checkpoint (a second signal: at once).\n"
+    "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
 
-int cmd_grow(int argc, char **argv, const cli_gpu_opts *global) {
-  cli_gpu_opts go = *global;
+typedef struct grow_args {
+  const char *preset;
+  cli_run_args ra;
   sessile_grow_options o;
-  sessile_grow_options_default(&o);
-  const char *preset = "radiate", *config = NULL, *out = NULL;
-  int print_config = 0;
-  /* --set values are applied in order after the preset and the config. */
-  const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-  if (!sets) return cli_usage_error("grow", "out of memory");
-  int nsets = 0, rc = -1;
-  for (int i = 1; i < argc && rc < 0; i++) {
-    const char *a = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    unsigned u = 0;
-    int r = cli_gpu_option("grow", argc, argv, &i, &go);
-    if (r < 0) rc = EXIT_USAGE;
-    else if (r > 0) continue;
-    else if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+  cli_gpu_opts go;
+} grow_args;
+
+/* Parses argv; returns -1 to go on, else an exit code. */
+static int parse(int argc, char **argv, grow_args *a) {
+  for (int i = 1; i < argc; i++) {
+    const char *opt = argv[i];
+    int r = cli_gpu_option("grow", argc, argv, &i, &a->go);
+    if (r == 0) r = cli_run_option("grow", argc, argv, &i, &a->ra);
+    if (r < 0) return EXIT_USAGE;
+    if (r > 0) continue;
+    if (!strcmp(opt, "--help") || !strcmp(opt, "-h")) {
       fputs(help, stdout);
-      rc = EXIT_OK;
-    } else if (!strcmp(a, "--print-config")) print_config = 1;
-    else if (!strcmp(a, "--quiet")) o.quiet = 1;
-    else if (!strcmp(a, "--no-fields")) o.fields = 0;
-    else if (!v) rc = cli_usage_error("grow", "%s needs a value", a);
-    else if (!strcmp(a, "--preset")) preset = argv[++i];
-    else if (!strcmp(a, "--config")) config = argv[++i];
-    else if (!strcmp(a, "--out")) out = argv[++i];
-    else if (!strcmp(a, "--slices")) o.slices = argv[++i];
-    else if (!strcmp(a, "--set")) sets[nsets++] = argv[++i];
-    else if (!strcmp(a, "--iterations")) {
-      if (cli_parse_uint("grow", a, argv[++i], 0, 100000, &u)) rc = EXIT_USAGE;
-      o.iterations = (int)u;
-    } else if (!strcmp(a, "--every")) {
-      if (cli_parse_uint("grow", a, argv[++i], 0, 100000, &u)) rc = EXIT_USAGE;
-      o.every = (int)u;
-    } else if (!strcmp(a, "--seed")) {
-      char *end = NULL;
-      const char *sv = argv[++i];
-      unsigned long long seed = strtoull(sv, &end, 10);
-      if (!*sv || *end || sv[0] == '-') rc = cli_usage_error("grow", "--seed: '%s' is not a non-negative integer", sv);
-      o.seed = seed;
-    } else rc = cli_usage_error("grow", "unknown option '%s'", a);
+      return EXIT_OK;
+    }
+    if (!strcmp(opt, "--no-fields")) {
+      a->o.fields = 0, a->ra.have_run_option = 1;
+    } else if (!strcmp(opt, "--slices")) {
+      /* --slices '' is a value (no slices) */
+      if (i + 1 < argc && argv[i + 1][0] == 0) a->o.slices = argv[++i];
+      else if (!(a->o.slices = cli_value("grow", argc, argv, &i))) return EXIT_USAGE;
+      a->ra.have_run_option = 1;
+    } else if (!strcmp(opt, "--preset")) {
+      if (!(a->preset = cli_value("grow", argc, argv, &i))) return EXIT_USAGE;
+      a->ra.have_run_option = 1;
+    } else return cli_usage_error("grow", "unknown option '%.60s'", opt);
   }
-  if (rc >= 0) {
-    free(sets);
-    return rc;
-  }
+  return cli_run_args_check("grow", &a->ra);
+}
+
+static int grow_main(int argc, char **argv, grow_args *a) {
+  int rc = parse(argc, argv, a);
+  if (rc >= 0) return rc;
+  a->o.seed = a->ra.seed, a->o.iterations = a->ra.iterations, a->o.every = a->ra.every;
   sessile_params p;
-  sessile_status s = sessile_params_preset(&p, preset);
-  if (s == SESSILE_OK && config) s = sessile_params_load_json(&p, config);
-  for (int k = 0; s == SESSILE_OK && k < nsets; k++) s = cli_params_set_kv(&p, sets[k]);
-  free(sets);
-  if (s == SESSILE_OK) s = sessile_params_validate(&p);
-  if (s != SESSILE_OK) return cli_fail(s);
-  if (print_config) {
-    sessile_params_print(&p, stdout);
-    return EXIT_OK;
+  sessile_status s = SESSILE_OK;
+  if (!a->ra.resume) {
+    /* the preset, the configs in order, the --sets; then every check that
+     * needs no device: bad input exits 2 here, before any work */
+    s = sessile_params_preset(&p, a->preset);
+    if (s == SESSILE_OK) s = cli_run_apply_params(&sessile_grow_param_table, &p, &a->ra);
+    if (s == SESSILE_OK) s = sessile_grow_check_options(&p, &a->o);
+    if (s != SESSILE_OK) return cli_fail(s);
+    if (a->ra.print_config) {
+      s = sessile_params_print(&sessile_grow_param_table, &p, stdout);
+      return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
+    }
   }
   char outbuf[512];
-  if (!out) {
-    snprintf(outbuf, sizeof outbuf, "runs/%s", preset);
-    out = outbuf;
-  }
-  o.out_dir = out;
-  o.preset = preset;
+  snprintf(outbuf, sizeof outbuf, "runs/%s", a->preset);
+  const char *dir = a->ra.resume ? a->ra.resume : a->ra.out ? a->ra.out : outbuf;
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_gpu *g = NULL;
-  s = cli_gpu_create(&go, &g);
-  sessile_grow_summary sum;
-  if (s == SESSILE_OK) s = sessile_grow_run(g, &p, &o, NULL, &sum);
-  sessile_gpu_destroy(g);
-  if (s != SESSILE_OK) {
-    if (!o.quiet) fputc('\n', stderr);
-    return cli_fail(s);
+  s = cli_gpu_create(&a->go, &g);
+  if (s != SESSILE_OK) return cli_fail(s);
+  sessile_run *run = NULL;
+  cJSON *old = NULL; /* a resume's options point into its stored config: keep a copy */
+  s = cli_run_open("grow", argc, argv, &a->ra, dir, stop, &run);
+  if (s == SESSILE_OK && a->ra.resume) {
+    old = cJSON_Duplicate(sessile_run_config(run), 1);
+    s = old ? sessile_grow_config_read(old, &p, &a->o)
+            : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+    if (s == SESSILE_OK && a->ra.have_iterations) a->o.iterations = a->ra.iterations;
   }
-  if (!o.quiet)
+  if (s == SESSILE_OK) {
+    cJSON *cfg = sessile_grow_config(&p, &a->o);
+    if (!cfg) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+    else s = sessile_run_set_config(run, cfg);
+  }
+  cli_monitor mon = {.cmd = "grow", .quiet = a->ra.quiet, .tty = isatty(2)};
+  a->o.run = run;
+  a->o.monitor = cli_monitor_line;
+  a->o.monitor_user = &mon;
+  sessile_grow_summary sum;
+  memset(&sum, 0, sizeof sum);
+  if (s == SESSILE_OK) s = sessile_grow_run(g, &p, &a->o, NULL, &sum);
+  cli_monitor_end(&mon);
+  s = sessile_run_close(run, s);
+  cJSON_Delete(old);
+  sessile_gpu_destroy(g);
+  if (s == SESSILE_OK && !a->ra.quiet)
     printf("grew %d iterations in %.1f s: %u vertices, %u triangles; box %u nodes; run in %s\n",
-           sum.iterations, sum.total_seconds, sum.final_vertices, sum.final_triangles, sum.box_nodes,
-           out);
-  return EXIT_OK;
+           sum.iterations, sum.total_seconds, sum.final_vertices, sum.final_triangles, sum.box_nodes, dir);
+  return cli_run_exit("grow", s, dir, stop, sum.iterations);
+}
+
+int cmd_grow(int argc, char **argv, const cli_gpu_opts *global) {
+  grow_args a;
+  memset(&a, 0, sizeof a);
+  a.go = *global;
+  a.preset = "radiate";
+  sessile_grow_options_default(&a.o);
+  if (cli_run_args_init(&a.ra, argc, a.o.seed, a.o.iterations, a.o.every) != 0) {
+    cli_run_args_free(&a.ra);
+    fprintf(stderr, "sessile grow: error: out of host memory\n");
+    return EXIT_RUNTIME;
+  }
+  int rc = grow_main(argc, argv, &a);
+  cli_run_args_free(&a.ra);
+  return rc;
 }

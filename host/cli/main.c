@@ -1,5 +1,5 @@
 /* sessile: grows 3-D models of marine sessile organisms from physics.
- * The entry point dispatches to one file per subcommand. */
+ * One table of subcommands drives both dispatch and `sessile --help`. */
 #include <stdio.h>
 #include <string.h>
 #include "cli.h"
@@ -8,37 +8,61 @@
 #define SESSILE_VERSION "dev"
 #endif
 
-static const char *help =
-    "usage: sessile [--device INDEX|NAME] [--precision 32|64] [--validation] COMMAND [OPTIONS]\n"
-    "\n"
-    "Grows 3-D models of marine sponges and corals from physics on any Vulkan device\n"
-    "(GPU, or the CPU through Mesa lavapipe).\n"
-    "\n"
-    "commands:\n"
-    "  grow        grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'\n"
-    "  devices     list the Vulkan devices and the one sessile uses\n"
-    "  bench la    time the GPU linear algebra against the plain-C reference\n"
-    "  bench grow  time each stage of the growth loop\n"
-    "  bench fluid time the Navier-Stokes solve (Newton steps, linear iterations)\n"
-    "  help        this text; 'sessile COMMAND --help' explains a command\n"
-    "  version     print the version\n"
-    "\n"
-    "options (before or after the command):\n"
-    "  --device D      device index or name substring (default: discrete > integrated > CPU;\n"
-    "                  environment SESSILE_DEVICE)\n"
-    "  --precision P   Krylov precision 64 or 32 (default 64 where the device has fp64;\n"
-    "                  32 uses mixed-precision iterative refinement; env SESSILE_PRECISION)\n"
-    "  --validation    enable the Khronos validation layer (env SESSILE_VALIDATION=1)\n"
-    "\n"
-    "exit codes: 0 success, 1 runtime failure, 2 bad usage or input.\n"
-    "sessile is free software under the GNU AGPL-3.0-or-later.\n";
+static int cmd_version(int argc, char **argv, const cli_gpu_opts *g);
+static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
 
-int main(int argc, char **argv) {
+static const cli_command commands[] = {
+    {"grow", "grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'", cmd_grow},
+    {"sphere", "the smallest generator: a seeded noisy icosphere through the run framework", cmd_sphere},
+    {"devices", "list the Vulkan devices and the one sessile uses", cmd_devices},
+    {"bench", "benchmarks: 'bench la', 'bench grow', 'bench fluid' (figures, never pass/fail)", cmd_bench},
+    {"help", "this text; 'sessile COMMAND --help' explains a command", cmd_help},
+    {"version", "print the version", cmd_version},
+};
+enum { NCOMMANDS = sizeof commands / sizeof commands[0] };
+
+static void print_help(FILE *out) {
+  fputs("usage: sessile [--device INDEX|NAME] [--precision 32|64] [--validation] COMMAND [OPTIONS]\n"
+        "\n"
+        "Grows 3-D models of marine sponges and corals from physics on any Vulkan device\n"
+        "(GPU, or the CPU through Mesa lavapipe).\n"
+        "\n"
+        "commands:\n", out);
+  for (int i = 0; i < NCOMMANDS; i++) fprintf(out, "  %-9s %s\n", commands[i].name, commands[i].summary);
+  fputs("\n"
+        "options (before or after the command):\n"
+        "  --device D      device index or name substring (default: discrete > integrated > CPU;\n"
+        "                  environment SESSILE_DEVICE)\n"
+        "  --precision P   Krylov precision 64 or 32 (default 64 where the device has fp64;\n"
+        "                  32 uses mixed-precision iterative refinement; env SESSILE_PRECISION)\n"
+        "  --validation    enable the Khronos validation layer (env SESSILE_VALIDATION=1)\n"
+        "\n"
+        "Runs write a run directory (docs/run.md): manifest.json, records.jsonl, a checkpoint\n"
+        "at every snapshot; SIGINT/SIGTERM stop a run at the end of its iteration (exit 130/143)\n"
+        "and '--resume DIR' continues it to the same bytes.\n"
+        "exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n"
+        "sessile is free software under the GNU AGPL-3.0-or-later.\n", out);
+}
+
+static int cmd_version(int argc, char **argv, const cli_gpu_opts *g) {
+  (void)g;
+  if (argc > 1) return cli_usage_error("version", "takes no arguments ('%s')", argv[1]);
+  printf("sessile %s\n", SESSILE_VERSION);
+  return EXIT_OK;
+}
+
+static int cmd_help(int argc, char **argv, const cli_gpu_opts *g) {
+  (void)argc, (void)argv, (void)g;
+  print_help(stdout);
+  return EXIT_OK;
+}
+
+static int run(int argc, char **argv) {
   cli_gpu_opts g = {0};
   int i = 1;
   for (; i < argc && argv[i][0] == '-'; i++) {
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-      fputs(help, stdout);
+      print_help(stdout);
       return EXIT_OK;
     }
     if (strcmp(argv[i], "--version") == 0) {
@@ -50,19 +74,18 @@ int main(int argc, char **argv) {
     if (r == 0) return cli_usage_error(NULL, "unknown option '%s'", argv[i]);
   }
   if (i >= argc) return cli_usage_error(NULL, "no command given");
-  const char *cmd = argv[i];
-  int sub_argc = argc - i;
-  char **sub_argv = argv + i;
-  if (strcmp(cmd, "help") == 0) {
-    fputs(help, stdout);
-    return EXIT_OK;
+  for (int c = 0; c < NCOMMANDS; c++)
+    if (strcmp(argv[i], commands[c].name) == 0) return commands[c].run(argc - i, argv + i, &g);
+  char names[256] = "";
+  for (int c = 0; c < NCOMMANDS; c++) {
+    size_t l = strlen(names);
+    snprintf(names + l, sizeof names - l, "%s%s", c ? ", " : "", commands[c].name);
   }
-  if (strcmp(cmd, "version") == 0) {
-    printf("sessile %s\n", SESSILE_VERSION);
-    return EXIT_OK;
-  }
-  if (strcmp(cmd, "devices") == 0) return cmd_devices(sub_argc, sub_argv, &g);
-  if (strcmp(cmd, "bench") == 0) return cmd_bench(sub_argc, sub_argv, &g);
-  if (strcmp(cmd, "grow") == 0) return cmd_grow(sub_argc, sub_argv, &g);
-  return cli_usage_error(NULL, "unknown command '%s' (commands: grow, devices, bench, help, version)", cmd);
+  return cli_usage_error(NULL, "unknown command '%.60s' (commands: %s)", argv[i], names);
+}
+
+int main(int argc, char **argv) {
+  /* Every command's output goes through stdout: a write error there (a full
+   * disk, `> /dev/full`) is a failure, not a silent success. */
+  return cli_finish_stdout(run(argc, argv));
 }

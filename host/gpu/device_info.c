@@ -93,6 +93,12 @@ void sessile_describe_device_(VkPhysicalDevice p, uint32_t index, sessile_gpu_in
     for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
       if ((mem.memoryTypes[i].propertyFlags & want) == want) info->unified_memory = 1;
   }
+  /* The largest device-local heap: what a run's estimate is checked against. */
+  info->device_local_bytes = 0;
+  for (uint32_t h = 0; h < mem.memoryHeapCount; h++)
+    if ((mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) &&
+        mem.memoryHeaps[h].size > info->device_local_bytes)
+      info->device_local_bytes = mem.memoryHeaps[h].size;
   if (mem_out) *mem_out = mem;
 }
 

@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #include "grow_internal.h"
+#include "sessile/growth_ref.h"
 
 const char *sessile_grow_stage_name(int stage) {
   static const char *names[] = {
@@ -26,6 +26,7 @@ void sessile_grow_options_default(sessile_grow_options *o) {
   o->slices = "x,y,z";
   o->fields = 1;
   o->check_every_iteration = 1;
+  o->monitor = NULL;
 }
 
 uint64_t grow_splitmix64(uint64_t *state) {
@@ -91,45 +92,26 @@ static void teardown(grow_run *r) {
   for (int i = 0; i < r->nvtu; i++) free(r->vtu_files[i]);
   free(r->vtu_files);
   free(r->vtu_steps);
-  cJSON_Delete(r->manifest);
 }
 
-static void growth_params(const sessile_params *p, sessile_growth_params *g) {
-  memset(g, 0, sizeof *g);
-  g->probe_offset = p->concentration_offset_distance;
-  g->probe_samples = (uint32_t)p->probe_samples;
-  g->t_give = p->t_give;
-  g->translocate_passes = p->translocate_passes;
-  g->nutrient_threshold = p->nutrient_threshold;
-  g->growth_threshold = p->growth_threshold;
-  g->growth_rate = p->growth_rate;
-  g->l_max = p->l_max;
-  g->kinetic_order = p->kinetic_order;
-  g->growth_constant = p->growth_constant;
-  g->max_growth = p->max_growth;
-  g->halichondrid = p->skeletal_growth == SESSILE_SKELETON_HALICHONDRID;
-  g->normal_offset_radius = p->normal_offset_radius;
-}
-
-/* A progress line: rewritten in place on a terminal, one line per iteration
- * otherwise (logs). */
+/* Progress for the monitor: the stage, time so far and an estimate of
+ * what is left from the iterations this process ran. */
 static void progress(grow_run *r, int it, const char *stage, int done) {
-  if (r->o->quiet) return;
+  if (!r->o->monitor) return;
   double el = sessile_wall_seconds() - r->t_start;
-  double left = it > 1 || done ? el / (done ? it : it - 1) * (r->o->iterations - (done ? it : it - 1)) : 0;
-  if (isatty(2)) {
-    fprintf(stderr, "\r\033[K[%d/%d] %-9s %4.0f s elapsed, ~%.0f s left", it, r->o->iterations, stage,
-            el, left);
-    if (done && it == r->o->iterations) fputc('\n', stderr);
-  } else if (done) {
-    fprintf(stderr, "iteration %d/%d: %u vertices, %u triangles, %.1f s elapsed, ~%.0f s left\n", it,
-            r->o->iterations, r->surf.nv, r->surf.nf, el, left);
-  }
+  int ran = it - r->first_it + (done ? 1 : 0);
+  double left = ran > 0 ? el / ran * (r->o->iterations - (done ? it : it - 1)) : 0;
+  if (done)
+    grow_monitor(r, SESSILE_MONITOR_ITERATION,
+                 "iteration %d/%d: %u vertices, %u triangles, %.1f s elapsed, ~%.0f s left", it,
+                 r->o->iterations, r->surf.nv, r->surf.nf, el, left);
+  else
+    grow_monitor(r, SESSILE_MONITOR_STATUS, "[%d/%d] %-9s %4.0f s elapsed, ~%.0f s left", it,
+                 r->o->iterations, stage, el, left);
 }
 
-static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *gp, double **normals,
-                              double **newpos) {
-  cJSON *rec = grow_manifest_iteration(r, it);
+static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *saved,
+                              const sessile_growth_params *gp, double **normals, double **newpos) {
   double t[SESSILE_STAGE_COUNT + 1];
   int nv = (int)r->surf.nv;
 
@@ -143,10 +125,14 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
 
   /* The flow feeds the nutrient unless diffusion limited; then it is solved
    * only for snapshots (or every iteration on request). */
-  int snap = r->o->every > 0 && it % r->o->every == 0;
+  /* Snapshots every K iterations, and the last iteration always is one. */
+  int snap = (r->o->every > 0 && it % r->o->every == 0) || it == r->o->iterations;
   int advect = !r->p->diffusion_limited;
   r->flow_valid = 0;
-  if (advect || r->p->fluid_every_iteration || (snap && r->o->out_dir && r->p->fluid_at_snapshots)) {
+  int snap_flow = !advect && !r->p->fluid_every_iteration;
+  int final_only = snap && !(r->o->every > 0 && it % r->o->every == 0);
+  if (advect || r->p->fluid_every_iteration || (snap && r->o->run && r->p->fluid_at_snapshots)) {
+    if (snap_flow && final_only) SESSILE_CALL(grow_flow_keep(r, saved));
     progress(r, it, "fluid", 0);
     sessile_status fs = grow_flow_solve(r, it, rec);
     if (fs != SESSILE_OK && advect) return fs;
@@ -156,9 +142,8 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
       cJSON *fl = cJSON_GetObjectItem(rec, "fluid");
       if (!fl) fl = cJSON_AddObjectToObject(rec, "fluid");
       cJSON_AddStringToObject(fl, "error", sessile_error_message());
-      if (!r->o->quiet)
-        fprintf(stderr, "\nsessile grow: warning: iteration %d: the flow solve failed (%s); this "
-                        "snapshot has no flow channels\n", it, sessile_error_message());
+      grow_warn(r, "iteration %d: the flow solve failed (%s); this snapshot has no flow channels", it,
+                sessile_error_message());
       r->flow_valid = 0;
     }
   }
@@ -189,10 +174,9 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   SESSILE_CHECK(res.status != SESSILE_SOLVE_BREAKDOWN, SESSILE_ERR_NUMERIC,
                 "iteration %d: the nutrient solve broke down (%s); the run stops here, its "
                 "files so far are whole", it, res.reason);
-  if (res.status != SESSILE_SOLVE_CONVERGED && !r->o->quiet)
-    fprintf(stderr, "\nsessile grow: warning: iteration %d: nutrient solve stopped at %d iterations "
-                    "with true relative residual %.2e (%s); raise linear_max_iterations\n",
-            it, res.iterations, res.true_relres, res.reason);
+  if (res.status != SESSILE_SOLVE_CONVERGED)
+    grow_warn(r, "iteration %d: nutrient solve stopped at %d iterations with true relative residual "
+                 "%.2e (%s); raise linear_max_iterations", it, res.iterations, res.true_relres, res.reason);
 
   progress(r, it, "growth", 0);
   double *np = realloc(*newpos, (size_t)nv * 3 * sizeof *np);
@@ -248,6 +232,16 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
                                it, sessile_error_message());
   }
   if (r->o->check_every_iteration) cJSON_AddStringToObject(rec, "surface_check", "passed");
+  /* A sponge fused down to a few vertices (e.g. a radius below the fusion
+   * threshold) is no model of anything: say so once. */
+  if (r->surf.nv < 20 && !r->warned_degenerate) {
+    r->warned_degenerate = 1;
+    grow_warn(r, "iteration %d: the sponge has degenerated to %u vertices (remeshing fuses edges "
+                 "shorter than vertex_fusion_threshold = %g cm); the result is not meaningful: "
+                 "raise sponge_radius or lower the remeshing thresholds",
+              it, r->surf.nv, r->p->vertex_fusion_threshold);
+    cJSON_AddStringToObject(rec, "warning", "degenerate surface");
+  }
   cJSON *rm = cJSON_AddObjectToObject(rec, "remesh");
   cJSON_AddNumberToObject(rm, "splits", rs.splits);
   cJSON_AddNumberToObject(rm, "fusions", rs.fusions);
@@ -260,7 +254,8 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   SESSILE_CHECK(nn, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", r->surf.nv);
   *normals = nn;
   sessile_surface_normals(&r->surf, nn);
-  if (r->o->out_dir && snap) SESSILE_CALL(grow_write_snapshot(r, it, nn));
+  if (r->o->run && snap) SESSILE_CALL(grow_write_snapshot(r, it, nn));
+  grow_flow_putback(r, saved);
   t[7] = sessile_wall_seconds();
 
   cJSON *ts = cJSON_AddObjectToObject(rec, "seconds");
@@ -271,9 +266,56 @@ static sessile_status iterate(grow_run *r, int it, const sessile_growth_params *
   cJSON_AddNumberToObject(ts, "total", t[SESSILE_STAGE_COUNT] - t[0]);
   grow_manifest_surface_stats(cJSON_AddObjectToObject(rec, "surface"), &r->surf);
   r->sum.iterations = it;
-  if (r->o->out_dir) SESSILE_CALL(grow_manifest_write(r, "running"));
+  if (r->o->run) {
+    SESSILE_CALL(sessile_run_record(r->o->run, rec));
+    /* A checkpoint at every snapshot, and when asked to stop (the state
+     * after this whole iteration). */
+    if (snap || sessile_run_stop_requested(r->o->run)) SESSILE_CALL(grow_checkpoint_save(r, it));
+  }
   progress(r, it, "done", 1);
   return SESSILE_OK;
+}
+
+/* Restores a checkpoint when the run has one; sets r->first_it. */
+static sessile_status resume(grow_run *r) {
+  r->first_it = 1;
+  const sessile_ckpt *ck = r->o->run ? sessile_run_checkpoint_loaded(r->o->run) : NULL;
+  if (!ck) return SESSILE_OK;
+  int k = sessile_ckpt_iteration(ck);
+  SESSILE_CHECK(k <= r->o->iterations, SESSILE_ERR_USAGE,
+                "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
+  SESSILE_CALL(grow_checkpoint_restore(r, ck));
+  r->first_it = k + 1;
+  /* The old last iteration was a snapshot only because it was the last: a
+   * run that goes past it never had one there. */
+  if (k < r->o->iterations && (r->o->every == 0 || k % r->o->every != 0))
+    SESSILE_CALL(grow_forget_snapshot(r, k));
+  return SESSILE_OK;
+}
+
+/* Refuses a box the device cannot hold, with the estimate. */
+static sessile_status device_fits(const grow_run *r) {
+  const sessile_gpu_info *gi = sessile_gpu_info_of(r->gpu);
+  double need = sessile_params_device_bytes(r->p);
+  if (gi->precision == 32) need *= 0.5;
+  SESSILE_CHECK(gi->device_local_bytes == 0 || need < (double)gi->device_local_bytes, SESSILE_ERR_USAGE,
+                "the run needs about %.2f GiB of device memory but %s has %.2f GiB; lower "
+                "box_resolution, fluid_resolution or the box size",
+                need / 1073741824.0, gi->name, (double)gi->device_local_bytes / 1073741824.0);
+  return SESSILE_OK;
+}
+
+/* One iteration with its record (appended to the run, then freed). */
+static sessile_status iterate_recorded(grow_run *r, int it, const sessile_growth_params *gp,
+                                       double **normals, double **newpos) {
+  cJSON *rec = grow_manifest_iteration(r, it);
+  SESSILE_CHECK(rec, SESSILE_ERR_NO_MEMORY, "out of host memory for iteration %d's record", it);
+  grow_flow_saved saved;
+  memset(&saved, 0, sizeof saved);
+  sessile_status s = iterate(r, it, rec, &saved, gp, normals, newpos);
+  grow_flow_saved_free(&saved);
+  cJSON_Delete(rec);
+  return s;
 }
 
 sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
@@ -288,17 +330,25 @@ sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
   r.gpu = g;
   r.t_start = sessile_wall_seconds();
   double *normals = NULL, *newpos = NULL;
-  sessile_status s = setup(&r);
+  sessile_status s = device_fits(&r);
+  if (s == SESSILE_OK) s = setup(&r);
   if (s == SESSILE_OK) s = grow_parse_planes(&r);
-  if (s == SESSILE_OK && o->out_dir) s = grow_prepare_outdir(&r);
-  if (s == SESSILE_OK) s = grow_manifest_begin(&r);
+  if (s == SESSILE_OK && o->run) s = grow_manifest_begin(&r);
+  if (s == SESSILE_OK) s = resume(&r);
   sessile_growth_params gp;
-  growth_params(p, &gp);
-  for (int it = 1; s == SESSILE_OK && it <= o->iterations; it++) s = iterate(&r, it, &gp, &normals, &newpos);
-  if (s == SESSILE_OK && o->out_dir) {
-    normals = realloc(normals, (size_t)(r.surf.nv ? r.surf.nv : 1) * 3 * sizeof *normals);
-    if (!normals) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_growth_params_from(p, &gp);
+  for (int it = r.first_it; s == SESSILE_OK && it <= o->iterations; it++) {
+    s = iterate_recorded(&r, it, &gp, &normals, &newpos);
+    if (s == SESSILE_OK && o->run && sessile_run_stop_requested(o->run) && it < o->iterations)
+      s = sessile_error_set(SESSILE_ERR_INTERRUPTED,
+                            "stopped by signal %d after iteration %d of %d; continue with 'sessile "
+                            "grow --resume DIR'", sessile_run_stop_requested(o->run), it, o->iterations);
+  }
+  if (s == SESSILE_OK && o->run) {
+    double *nn = realloc(normals, (size_t)(r.surf.nv ? r.surf.nv : 1) * 3 * sizeof *normals);
+    if (!nn) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     else {
+      normals = nn;
       sessile_surface_normals(&r.surf, normals);
       s = grow_write_final(&r, normals);
     }
@@ -306,12 +356,11 @@ sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
   r.sum.total_seconds = sessile_wall_seconds() - r.t_start;
   r.sum.final_vertices = r.surf.nv;
   r.sum.final_triangles = r.surf.nf;
-  if (o->out_dir && r.manifest) {
-    /* Record how the run ended, even when it failed (keep the first error). */
+  if (o->run && r.first_it > 0) {
+    /* The totals so far, even when the run failed (keep the first error). */
     char msg[1024];
     snprintf(msg, sizeof msg, "%s", s == SESSILE_OK ? "" : sessile_error_message());
-    if (s != SESSILE_OK) cJSON_AddStringToObject(r.manifest, "error", msg);
-    sessile_status ms = grow_manifest_write(&r, s == SESSILE_OK ? "complete" : "failed");
+    sessile_status ms = grow_manifest_totals(&r);
     if (s == SESSILE_OK) s = ms;
     else sessile_error_set(s, "%s", msg);
   }

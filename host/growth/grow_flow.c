@@ -33,7 +33,7 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
 }
 
 /* The immersed flow's box, mesh and solver, once. */
-static sessile_status flow_setup(grow_run *r) {
+sessile_status grow_flow_setup(grow_run *r) {
   if (r->flow_ready) return SESSILE_OK;
   const sessile_params *p = r->p;
   const double origin[3] = {0, 0, 0};
@@ -134,7 +134,7 @@ static sessile_status flow_immersed(grow_run *r, sessile_fluid_result *res) {
 }
 
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
-  SESSILE_CALL(flow_setup(r));
+  SESSILE_CALL(grow_flow_setup(r));
   cJSON *fl = cJSON_AddObjectToObject(rec, "fluid");
   cJSON_AddStringToObject(fl, "why", !r->p->diffusion_limited ? "feeds the advected nutrient"
                                      : r->p->fluid_every_iteration ? "requested every iteration"
@@ -144,24 +144,23 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   int fell_back = 0;
   if (r->p->domain == SESSILE_DOMAIN_CONFORMING) {
     SESSILE_CALL(grow_flow_conforming(r, &res, fl, &fell_back));
-    if (fell_back && !r->o->quiet)
-      fprintf(stderr, "\nsessile grow: warning: iteration %d: TetGen rejected the sponge surface (%s); "
-                      "this iteration's flow uses the immersed domain\n",
-              it, cJSON_GetObjectItem(fl, "fallback")->valuestring);
+    if (fell_back)
+      grow_warn(r, "iteration %d: TetGen rejected the sponge surface (%s); this iteration's flow "
+                   "uses the immersed domain", it, cJSON_GetObjectItem(fl, "fallback")->valuestring);
   }
   if (r->p->domain == SESSILE_DOMAIN_IMMERSED || fell_back) SESSILE_CALL(flow_immersed(r, &res));
   cJSON_AddStringToObject(fl, "domain", r->flow_domain);
   record_fluid(fl, &res, !strcmp(r->flow_domain, "immersed") ? sessile_box_nodes(&r->fbox) : r->cmesh.nnodes);
-  if (!res.converged && !r->o->quiet)
-    fprintf(stderr, "\nsessile grow: warning: iteration %d: Navier-Stokes stopped after %d Newton steps "
-                    "at residual %.2e, %.2e of the rest state's (not converged to %g); see manifest.json\n",
+  if (!res.converged)
+    grow_warn(r, "iteration %d: Navier-Stokes stopped after %d Newton steps at residual %.2e, %.2e "
+                 "of the rest state's (not converged to %g); see records.jsonl",
             it, res.nsteps, res.residual,
             res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
   r->flow_valid = 1;
   return SESSILE_OK;
 }
 
-sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res) {
+sessile_status grow_advected_setup(grow_run *r) {
   uint32_t nb = sessile_box_nodes(&r->box);
   if (!r->ad) {
     SESSILE_CALL(sessile_tetmesh_from_box(&r->box, &r->nmesh));
@@ -173,6 +172,12 @@ sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res) {
     SESSILE_CHECK(r->nmask && r->nsolid && r->nval && r->nc, SESSILE_ERR_NO_MEMORY, "out of host memory for the nutrient");
     for (uint32_t i = 0; i < nb; i++) r->nc[i] = 1.0;
   }
+  return SESSILE_OK;
+}
+
+sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res) {
+  uint32_t nb = sessile_box_nodes(&r->box);
+  SESSILE_CALL(grow_advected_setup(r));
   SESSILE_CALL(mask_download(r->solid, nb, r->nsolid));
   sessile_advdiff_nutrient_bc(&r->nmesh, r->nsolid, r->nmask, r->nval);
   SESSILE_CALL(sessile_advdiff_solve(r->ad, r->ufine, r->p->diffusion_coefficient, r->nmask, r->nval,

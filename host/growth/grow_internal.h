@@ -54,7 +54,8 @@ typedef struct grow_run {
   sessile_advdiff *ad;
   uint8_t *nmask, *nsolid;
   double *nval, *nc;
-  cJSON *manifest, *iters;
+  int first_it;
+  int warned_degenerate;      /* the first iteration this process runs (1, or after the checkpoint) */
   double t_start;
   sessile_grow_summary sum;
 } grow_run;
@@ -64,11 +65,11 @@ uint64_t grow_splitmix64(uint64_t *state);
 
 /* Parses o->slices into run->planes (SESSILE_ERR_USAGE on a bad spec). */
 sessile_status grow_parse_planes(grow_run *r);
-/* Creates the run folders (sponge/, slices/, fields/); SESSILE_ERR_USAGE when
- * the folder cannot be created or written. */
-sessile_status grow_prepare_outdir(grow_run *r);
 /* Writes sponge/iter_NNNN.ply, slices and fields for iteration it. */
 sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals);
+/* Removes the snapshot of iteration it (files and series entry): a resumed
+ * run that goes past its old last iteration drops that final-only snapshot. */
+sessile_status grow_forget_snapshot(grow_run *r, int it);
 /* Writes sponge/final.ply and final.obj. */
 sessile_status grow_write_final(grow_run *r, const double *normals);
 
@@ -77,6 +78,10 @@ sessile_status grow_write_final(grow_run *r, const double *normals);
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec);
 sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res);
 void grow_flow_teardown(grow_run *r);
+/* The flow's and the advected nutrient's state, created once (a resume
+ * creates them to restore their warm starts). */
+sessile_status grow_flow_setup(grow_run *r);
+sessile_status grow_advected_setup(grow_run *r);
 /* The run's fluid parameters (grow_flow.c). */
 void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp);
 /* The conforming flow (grow_flow_conforming.c): TetGen's mesh of the box
@@ -85,11 +90,35 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp);
  * rejected the surface; then nothing else changed. */
 sessile_status grow_flow_conforming(grow_run *r, sessile_fluid_result *res, cJSON *fl, int *fell_back);
 
-/* Manifest: created at start, one record per iteration, rewritten (atomically)
- * after every iteration so an interrupted run still says what it did. */
+/* A line to the caller's monitor (grow_monitor.c); warnings also go to the
+ * iteration's record by the caller. */
+void grow_monitor(const grow_run *r, sessile_monitor_kind kind, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+void grow_warn(const grow_run *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* The manifest's growth members (parameters, device, box, ...), the
+ * per-iteration record, and the totals written at checkpoints and the end. */
 sessile_status grow_manifest_begin(grow_run *r);
 cJSON *grow_manifest_iteration(grow_run *r, int it);
-sessile_status grow_manifest_write(grow_run *r, const char *state);
+sessile_status grow_manifest_totals(grow_run *r);
 void grow_manifest_surface_stats(cJSON *obj, const sessile_surface *s);
+
+/* A final-only snapshot (the last iteration, off the --every grid) solves
+ * the flow only for its outputs; its solution must not become the next warm
+ * start, or a resumed longer run would differ from one that never stopped.
+ * keep copies the flow's warm starts before such a solve, putback restores
+ * them after the snapshot is written (and frees the copies). */
+typedef struct grow_flow_saved {
+  int active, was_ready;
+  double *up, *cup;
+  sessile_tetmesh cmesh;
+} grow_flow_saved;
+sessile_status grow_flow_keep(grow_run *r, grow_flow_saved *k);
+void grow_flow_putback(grow_run *r, grow_flow_saved *k);
+void grow_flow_saved_free(grow_flow_saved *k);
+
+/* Checkpoint (grow_checkpoint.c): the state after iteration it, and back. */
+sessile_status grow_checkpoint_save(grow_run *r, int it);
+sessile_status grow_checkpoint_restore(grow_run *r, const sessile_ckpt *c);
 
 #endif

@@ -1,16 +1,13 @@
-/* manifest.json of a run: version, every parameter (value, unit, source),
- * seed, device, box, per-iteration stage timings, solver iterations and true
- * residuals, remesh counts and mesh statistics.  Rewritten atomically after
- * every iteration. */
+/* The growth members of a run's manifest.json (every parameter with its
+ * unit and source, seed, device, box, initial sponge, slices; totals at each
+ * checkpoint and at the end) and the per-iteration record appended to
+ * records.jsonl (stage timings, solver iterations and true residuals, remesh
+ * counts, mesh statistics).  The run framework writes both. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
 #include "sessile/io.h"
-
-#ifndef SESSILE_VERSION
-#define SESSILE_VERSION "dev"
-#endif
 
 static void add_vec3(cJSON *o, const char *name, const double v[3]) {
   cJSON *a = cJSON_AddArrayToObject(o, name);
@@ -34,13 +31,11 @@ void grow_manifest_surface_stats(cJSON *obj, const sessile_surface *s) {
 }
 
 sessile_status grow_manifest_begin(grow_run *r) {
-  cJSON *m = cJSON_CreateObject();
-  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
-  r->manifest = m;
-  cJSON_AddStringToObject(m, "program", "sessile grow");
-  cJSON_AddStringToObject(m, "version", SESSILE_VERSION);
+  cJSON *m = sessile_run_manifest(r->o->run);
+  const char *mine[] = {"model", "preset", "seed", "iterations_requested", "snapshot_every", "device",
+                        "parameters", "box", "initial_sponge", "slices", "fluid", "totals"};
+  for (size_t i = 0; i < sizeof mine / sizeof mine[0]; i++) cJSON_DeleteItemFromObjectCaseSensitive(m, mine[i]);
   cJSON_AddStringToObject(m, "model", "O'Hagan, Chalmers, Rhee: accretive sponge growth (Crella incrustans)");
-  cJSON_AddStringToObject(m, "state", "starting");
   cJSON_AddStringToObject(m, "preset", r->o->preset ? r->o->preset : "");
   /* The seed as a string: JSON numbers lose 64-bit integers past 2^53. */
   char seed[32];
@@ -56,17 +51,9 @@ sessile_status grow_manifest_begin(grow_run *r) {
   cJSON_AddStringToObject(dev, "driver", gi->driver);
   cJSON_AddNumberToObject(dev, "precision_bits", gi->precision);
 
-  cJSON *params = cJSON_AddObjectToObject(m, "parameters");
-  for (int i = 0; i < sessile_params_count(); i++) {
-    sessile_param_info in;
-    sessile_params_get(r->p, i, &in);
-    cJSON *pi = cJSON_AddObjectToObject(params, in.name);
-    if (in.text) cJSON_AddStringToObject(pi, "value", in.text);
-    else if (!strcmp(in.type, "bool")) cJSON_AddBoolToObject(pi, "value", in.value != 0);
-    else cJSON_AddNumberToObject(pi, "value", in.value);
-    cJSON_AddStringToObject(pi, "unit", in.unit);
-    cJSON_AddStringToObject(pi, "source", in.source);
-  }
+  cJSON *params = sessile_params_to_json(&sessile_grow_param_table, r->p);
+  SESSILE_CHECK(params, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
+  cJSON_AddItemToObject(m, "parameters", params);
 
   cJSON *box = cJSON_AddObjectToObject(m, "box");
   double mx[3], n[3] = {r->box.n[0], r->box.n[1], r->box.n[2]};
@@ -97,37 +84,28 @@ sessile_status grow_manifest_begin(grow_run *r) {
                               : "solved only at snapshot iterations, for the slices and fields; it does "
                                 "not feed the growth (diffusion_limited = true: the nutrient is a "
                                 "Laplace problem)");
-  r->iters = cJSON_AddArrayToObject(m, "iterations");
-  SESSILE_CHECK(r->iters, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
   return SESSILE_OK;
 }
 
 cJSON *grow_manifest_iteration(grow_run *r, int it) {
   cJSON *rec = cJSON_CreateObject();
-  cJSON_AddNumberToObject(rec, "iteration", it);
-  cJSON_AddItemToArray(r->iters, rec);
+  if (rec) cJSON_AddNumberToObject(rec, "iteration", it);
   return rec;
 }
 
-sessile_status grow_manifest_write(grow_run *r, const char *state) {
-  cJSON_ReplaceItemInObject(r->manifest, "state", cJSON_CreateString(state));
-  cJSON *tot = cJSON_GetObjectItem(r->manifest, "totals");
-  if (tot) cJSON_DeleteItemFromObject(r->manifest, "totals");
-  tot = cJSON_AddObjectToObject(r->manifest, "totals");
+sessile_status grow_manifest_totals(grow_run *r) {
+  cJSON *m = sessile_run_manifest(r->o->run);
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "totals");
+  cJSON *tot = cJSON_AddObjectToObject(m, "totals");
+  SESSILE_CHECK(tot, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
   cJSON_AddNumberToObject(tot, "iterations_done", r->sum.iterations);
-  cJSON_AddNumberToObject(tot, "wall_seconds", sessile_wall_seconds() - r->t_start);
+  cJSON_AddNumberToObject(tot, "wall_seconds_this_start", sessile_wall_seconds() - r->t_start);
   cJSON_AddNumberToObject(tot, "solver_iterations", (double)r->sum.solver_iterations);
   cJSON_AddNumberToObject(tot, "worst_true_relres", r->sum.worst_relres);
   cJSON *st = cJSON_AddObjectToObject(tot, "stage_seconds");
   for (int s = 0; s < SESSILE_STAGE_COUNT; s++)
     cJSON_AddNumberToObject(st, sessile_grow_stage_name(s), r->sum.stage_seconds[s]);
-  char *text = cJSON_Print(r->manifest);
-  SESSILE_CHECK(text, SESSILE_ERR_NO_MEMORY, "out of host memory printing the manifest");
-  char path[4096];
-  snprintf(path, sizeof path, "%s/manifest.json", r->o->out_dir);
-  size_t len = strlen(text);
-  text[len] = '\n'; /* replace the terminator: the file ends with a newline */
-  sessile_status s = sessile_write_file_atomic(path, text, len + 1);
-  free(text);
-  return s;
+  cJSON *fin = cJSON_AddObjectToObject(tot, "surface");
+  grow_manifest_surface_stats(fin, &r->surf);
+  return sessile_run_write_manifest(r->o->run);
 }

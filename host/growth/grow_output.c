@@ -1,7 +1,8 @@
-/* The run directory of `sessile grow`: folders, snapshots (PLY, EXR slices,
- * VTU + PVD) and the final meshes.  Every file goes through host/io's atomic
- * writers. */
+/* The files of `sessile grow`: snapshots (PLY, EXR slices, VTU + PVD) and
+ * the final meshes, each listed in the run directory (sessile/run.h) and
+ * written through host/io's atomic writers. */
 #include <errno.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -10,28 +11,28 @@
 #include "grow_internal.h"
 #include "sessile/io.h"
 
-sessile_status grow_parse_planes(grow_run *r) {
-  const char *spec = r->o->slices ? r->o->slices : "";
-  r->nplanes = 0;
+/* Parses a --slices spec against the box's extent mx; bare axes go through
+ * center.  Each plane once. */
+static sessile_status parse_planes(const char *spec, const double mx[3], const double center[3],
+                                   grow_plane *planes, int *nplanes) {
+  *nplanes = 0;
   const char *s = spec;
   while (*s) {
     const char *e = strchr(s, ',');
     size_t len = e ? (size_t)(e - s) : strlen(s);
     char tok[64];
     SESSILE_CHECK(len > 0 && len < sizeof tok, SESSILE_ERR_USAGE,
-                  "--slices: bad plane list '%s' (e.g. 'x,y,z' or 'z=3.5,x=19.2')", spec);
+                  "--slices: bad plane list '%.80s' (e.g. 'x,y,z' or 'z=3.5,x=19.2')", spec);
     memcpy(tok, s, len);
     tok[len] = 0;
-    SESSILE_CHECK(r->nplanes < 16, SESSILE_ERR_USAGE, "--slices: at most 16 planes");
-    grow_plane *pl = &r->planes[r->nplanes];
+    SESSILE_CHECK(*nplanes < 16, SESSILE_ERR_USAGE, "--slices: at most 16 planes");
+    grow_plane *pl = &planes[*nplanes];
     SESSILE_CHECK(tok[0] == 'x' || tok[0] == 'y' || tok[0] == 'z', SESSILE_ERR_USAGE,
                   "--slices: plane '%s' must start with x, y or z", tok);
     pl->axis = tok[0] - 'x';
-    double mx[3];
-    sessile_box_max(&r->box, mx);
     if (tok[1] == 0) {
       /* through the sponge: its initial centre */
-      pl->value = r->center[pl->axis];
+      pl->value = center[pl->axis];
       snprintf(pl->name, sizeof pl->name, "%c", tok[0]);
     } else {
       char *end = NULL;
@@ -43,46 +44,60 @@ sessile_status grow_parse_planes(grow_run *r) {
                     tok, tok[0], mx[pl->axis]);
       snprintf(pl->name, sizeof pl->name, "%c%g", tok[0], pl->value);
     }
-    r->nplanes++;
+    for (int k = 0; k < *nplanes; k++)
+      SESSILE_CHECK(strcmp(planes[k].name, pl->name), SESSILE_ERR_USAGE,
+                    "--slices: plane '%s' is given twice", pl->name);
+    (*nplanes)++;
     s += len;
     if (*s == ',') s++;
   }
   return SESSILE_OK;
 }
 
-static sessile_status subdir(const char *out, const char *name) {
-  char path[4096];
-  snprintf(path, sizeof path, "%s/%s", out, name);
-  SESSILE_CHECK(sessile_mkdirs(path) == SESSILE_OK, SESSILE_ERR_USAGE,
-                "cannot create the output folder '%s': %s", path, sessile_error_message());
-  SESSILE_CHECK(access(path, W_OK) == 0, SESSILE_ERR_USAGE,
-                "the output folder '%s' is not writable: %s", path, strerror(errno));
-  return SESSILE_OK;
+sessile_status grow_parse_planes(grow_run *r) {
+  double mx[3];
+  sessile_box_max(&r->box, mx);
+  return parse_planes(r->o->slices ? r->o->slices : "", mx, r->center, r->planes, &r->nplanes);
 }
 
-sessile_status grow_prepare_outdir(grow_run *r) {
-  const char *out = r->o->out_dir;
-  SESSILE_CHECK(strlen(out) < 3000, SESSILE_ERR_USAGE, "output folder name too long");
-  SESSILE_CHECK(sessile_mkdirs(out) == SESSILE_OK, SESSILE_ERR_USAGE,
-                "cannot create the output folder '%s': %s", out, sessile_error_message());
-  SESSILE_CHECK(access(out, W_OK) == 0, SESSILE_ERR_USAGE, "the output folder '%s' is not writable: %s",
-                out, strerror(errno));
-  SESSILE_CALL(subdir(out, "sponge"));
-  if (r->nplanes) SESSILE_CALL(subdir(out, "slices"));
-  if (r->o->fields) SESSILE_CALL(subdir(out, "fields"));
-  return SESSILE_OK;
+sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o) {
+  SESSILE_CALL(sessile_params_validate(p));
+  SESSILE_CHECK(o->iterations >= 0 && o->every >= 0, SESSILE_ERR_USAGE,
+                "iterations and every must be >= 0");
+  const double origin[3] = {0, 0, 0};
+  const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y, (uint32_t)p->box_cells_z};
+  sessile_box box;
+  memset(&box, 0, sizeof box);
+  SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->box_resolution, &box));
+  double mx[3];
+  sessile_box_max(&box, mx);
+  const double center[3] = {mx[0] / 2, mx[1] / 2, 0};
+  grow_plane planes[16];
+  int n = 0;
+  return parse_planes(o->slices ? o->slices : "", mx, center, planes, &n);
 }
 
 static sessile_status write_pvd(grow_run *r) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/fields/series.pvd", r->o->out_dir);
+  SESSILE_CALL(sessile_run_file(r->o->run, "fields/series.pvd", path, sizeof path));
   return sessile_write_pvd(path, r->nvtu, r->vtu_steps, (const char *const *)r->vtu_files);
 }
 
+/* The run file rel (printf-style) as a path. */
+static sessile_status run_path(grow_run *r, char *path, size_t n, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static sessile_status run_path(grow_run *r, char *path, size_t n, const char *fmt, ...) {
+  char rel[256];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(rel, sizeof rel, fmt, ap);
+  va_end(ap);
+  return sessile_run_file(r->o->run, rel, path, n);
+}
+
 sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
-  const char *out = r->o->out_dir;
   char path[4096];
-  snprintf(path, sizeof path, "%s/sponge/iter_%04d.ply", out, it);
+  SESSILE_CALL(run_path(r, path, sizeof path, "sponge/iter_%04d.ply", it));
   SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
   if (!r->nplanes && !r->o->fields) return SESSILE_OK;
 
@@ -117,8 +132,8 @@ sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
       ch[5] = (sessile_slice_channel){"p", r->pfine};
       nch = 6;
     }
-    snprintf(path, sizeof path, "%s/slices/iter_%04d_%s.exr", out, it, r->planes[i].name);
-    s = sessile_write_slice_exr(path, &r->box, (sessile_axis)r->planes[i].axis, r->planes[i].value, nch,
+    s = run_path(r, path, sizeof path, "slices/iter_%04d_%s.exr", it, r->planes[i].name);
+    if (s == SESSILE_OK) s = sessile_write_slice_exr(path, &r->box, (sessile_axis)r->planes[i].axis, r->planes[i].value, nch,
                                 ch, it);
   }
   free(uc);
@@ -128,8 +143,8 @@ sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
                                 {"p", r->pfine, NULL, 1}};
     char name[64];
     snprintf(name, sizeof name, "iter_%04d.vtu", it);
-    snprintf(path, sizeof path, "%s/fields/%s", out, name);
-    s = sessile_write_vtu(path, &r->box, flow ? 4 : 2, pd);
+    s = run_path(r, path, sizeof path, "fields/%s", name);
+    if (s == SESSILE_OK) s = sessile_write_vtu(path, &r->box, flow ? 4 : 2, pd);
     if (s == SESSILE_OK) {
       int *steps = realloc(r->vtu_steps, (size_t)(r->nvtu + 1) * sizeof *steps);
       if (steps) r->vtu_steps = steps;
@@ -152,11 +167,35 @@ sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
   return s;
 }
 
+sessile_status grow_forget_snapshot(grow_run *r, int it) {
+  char rel[256];
+  snprintf(rel, sizeof rel, "sponge/iter_%04d.ply", it);
+  SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
+  for (int i = 0; i < r->nplanes; i++) {
+    snprintf(rel, sizeof rel, "slices/iter_%04d_%s.exr", it, r->planes[i].name);
+    SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
+  }
+  snprintf(rel, sizeof rel, "fields/iter_%04d.vtu", it);
+  SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
+  int k = 0;
+  for (int i = 0; i < r->nvtu; i++) {
+    if (r->vtu_steps[i] == it) {
+      free(r->vtu_files[i]);
+      continue;
+    }
+    r->vtu_steps[k] = r->vtu_steps[i];
+    r->vtu_files[k++] = r->vtu_files[i];
+  }
+  int changed = k != r->nvtu;
+  r->nvtu = k;
+  return changed ? write_pvd(r) : SESSILE_OK;
+}
+
 sessile_status grow_write_final(grow_run *r, const double *normals) {
   char path[4096];
-  snprintf(path, sizeof path, "%s/sponge/final.ply", r->o->out_dir);
+  SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.ply", path, sizeof path));
   SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
-  snprintf(path, sizeof path, "%s/sponge/final.obj", r->o->out_dir);
+  SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.obj", path, sizeof path));
   SESSILE_CALL(sessile_write_obj(path, &r->surf, normals));
   return SESSILE_OK;
 }

@@ -5,21 +5,29 @@
 #include <string.h>
 #include "sessile/growth_ref.h"
 
-void sessile_growth_params_default(sessile_growth_params *p) {
-  memset(p, 0, sizeof *p);
-  p->probe_offset = 0.1;      /* Table 1: concentration offset distance */
-  p->probe_samples = 8;       /* ours, docs/growth.md */
-  p->t_give = 0.05;           /* ours: N T < 1 for valences up to 19 */
-  p->translocate_passes = 1;  /* ours */
-  p->nutrient_threshold = 0.0; /* ours: Iroquois off by default */
-  p->growth_threshold = 0.0;  /* Table 1 */
-  p->growth_rate = 5.0;       /* Table 1: Gr */
-  p->l_max = 0.02;            /* ours, cm */
-  p->kinetic_order = 1.4;     /* Table 1: n */
-  p->growth_constant = 1.0;   /* Table 1: K */
-  p->max_growth = 0.1;        /* ours, cm */
-  p->halichondrid = 0;        /* Table 1: radiate accretive */
-  p->normal_offset_radius = 0.02; /* Table 1: R */
+/* The defaults are the parameter table's (sessile/params.h), the one source:
+ * this only maps the run's parameters onto the kernels'. */
+void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *g) {
+  memset(g, 0, sizeof *g);
+  g->probe_offset = p->concentration_offset_distance;
+  g->probe_samples = (uint32_t)p->probe_samples;
+  g->t_give = p->t_give;
+  g->translocate_passes = p->translocate_passes;
+  g->nutrient_threshold = p->nutrient_threshold;
+  g->growth_threshold = p->growth_threshold;
+  g->growth_rate = p->growth_rate;
+  g->l_max = p->l_max;
+  g->kinetic_order = p->kinetic_order;
+  g->growth_constant = p->growth_constant;
+  g->max_growth = p->max_growth;
+  g->halichondrid = p->skeletal_growth == SESSILE_SKELETON_HALICHONDRID;
+  g->normal_offset_radius = p->normal_offset_radius;
+}
+
+void sessile_growth_params_default(sessile_growth_params *g) {
+  sessile_params p;
+  sessile_params_default(&p);
+  sessile_growth_params_from(&p, g);
 }
 
 sessile_status sessile_growth_params_check(const sessile_growth_params *p) {

@@ -1,61 +1,46 @@
-/* The parameter table of `sessile grow` (sessile/params.h): defaults,
- * presets, text and JSON overrides with range checks, printing. */
-#include <cjson/cJSON.h>
-#include <errno.h>
+/* The parameter table of `sessile grow` (sessile/params.h): the one source
+ * of every default; presets; the checks that need no device. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+#include <unistd.h>
 #include "sessile/params.h"
 
-typedef enum { T_REAL, T_INT, T_BOOL, T_ENUM_SKELETON, T_ENUM_DOMAIN } ptype;
+static const char *const skeleton_names[] = {"radiate", "halichondrid", NULL};
+static const char *const domain_names[] = {"immersed", "conforming", NULL};
 
-typedef struct {
-  const char *name;
-  ptype type;
-  size_t offset;
-  double def, lo, hi;
-  const char *unit, *source, *desc;
-} pdef;
+#define PT_REAL SESSILE_PT_REAL, NULL
+#define PT_INT SESSILE_PT_INT, NULL
+#define PT_BOOL SESSILE_PT_BOOL, NULL
+#define PT_ENUM_SKELETON SESSILE_PT_ENUM, skeleton_names
+#define PT_ENUM_DOMAIN SESSILE_PT_ENUM, domain_names
+#define BOUNDS_0 0
+#define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
+#define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \
+  {#name, type_, offsetof(sessile_params, name), def, lo, hi, bounds, unit, src, desc, names_},
+#define DESC_(...) DESC(__VA_ARGS__)
 
-static const pdef table[] = {
-#define X(name, type, def, lo, hi, unit, src, desc)                                                \
-  {#name, T_##type, offsetof(sessile_params, name), def, lo, hi, unit, src, desc},
+static const sessile_param_desc descs[] = {
+#define X(name, type, def, lo, hi, bounds, unit, src, desc) \
+  DESC_(PT_##type, name, def, lo, hi, BOUNDS_##bounds, unit, src, desc)
     SESSILE_PARAMS(X)
 #undef X
 };
-enum { NPARAMS = sizeof table / sizeof table[0] };
 
-static const char *skeleton_names[] = {"radiate", "halichondrid", NULL};
-static const char *domain_names[] = {"immersed", "conforming", NULL};
+static sessile_status validate(const void *values);
 
-/* The names of an enum parameter's values (index = value), NULL-terminated. */
-static const char *const *enum_names(ptype t) {
-  return t == T_ENUM_SKELETON ? skeleton_names : t == T_ENUM_DOMAIN ? domain_names : NULL;
+const sessile_param_table sessile_grow_param_table = {
+    "grow", sizeof(sessile_params), (int)(sizeof descs / sizeof descs[0]), descs, validate};
+
+void sessile_params_default(sessile_params *p) { sessile_params_defaults(&sessile_grow_param_table, p); }
+
+sessile_status sessile_params_set(sessile_params *p, const char *key, const char *value) {
+  return sessile_params_set_text(&sessile_grow_param_table, p, key, value);
 }
 
-static double get(const sessile_params *p, const pdef *d) {
-  const char *base = (const char *)p + d->offset;
-  if (d->type == T_REAL) return *(const double *)base;
-  return *(const int *)base;
-}
-
-static void put(sessile_params *p, const pdef *d, double v) {
-  char *base = (char *)p + d->offset;
-  if (d->type == T_REAL) *(double *)base = v;
-  else *(int *)base = (int)v;
-}
-
-static const pdef *find(const char *key) {
-  for (int i = 0; i < NPARAMS; i++)
-    if (strcmp(table[i].name, key) == 0) return &table[i];
-  return NULL;
-}
-
-void sessile_params_default(sessile_params *p) {
-  memset(p, 0, sizeof *p);
-  for (int i = 0; i < NPARAMS; i++) put(p, &table[i], table[i].def);
+sessile_status sessile_params_validate(const sessile_params *p) {
+  return sessile_params_check(&sessile_grow_param_table, p);
 }
 
 sessile_status sessile_params_preset(sessile_params *p, const char *name) {
@@ -72,178 +57,80 @@ sessile_status sessile_params_preset(sessile_params *p, const char *name) {
   return sessile_error_set(SESSILE_ERR_USAGE, "unknown preset '%s' (presets: radiate, crella)", name);
 }
 
-static sessile_status range_error(const pdef *d, const char *text) {
-  if (d->type == T_INT)
-    return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not an integer in %g..%g",
-                             d->name, text, d->lo, d->hi);
-  return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not a number in [%g, %g]%s%s",
-                           d->name, text, d->lo, d->hi, *d->unit ? " " : "", d->unit);
+/* Box nodes at the nutrient's resolution (each level halves the cell). */
+static double box_nodes(const sessile_params *p, int level) {
+  double k = ldexp(1.0, level - 1);
+  return (p->box_cells_x * k + 1) * (p->box_cells_y * k + 1) * (p->box_cells_z * k + 1);
 }
 
-/* Checks and stores a numeric value (text only for messages). */
-static sessile_status set_number(sessile_params *p, const pdef *d, double v, const char *text) {
-  if (!isfinite(v) || v < d->lo || v > d->hi) return range_error(d, text);
-  if (d->type == T_INT && v != floor(v)) return range_error(d, text);
-  put(p, d, v);
-  return SESSILE_OK;
+/* Flow nodes: the immersed fluid box, or TetGen's mesh of the water
+ * estimated from the far-field size (a regular tetrahedron of edge a has
+ * volume a^3 / (6 sqrt 2); about 6 tetrahedra per node).  The sponge's
+ * surface refines the conforming mesh further: this is a lower bound. */
+static double flow_nodes(const sessile_params *p, double *tets) {
+  double h = p->box_base_cell;
+  double vol = h * p->box_cells_x * h * p->box_cells_y * h * p->box_cells_z;
+  double a = p->conforming_size_far;
+  *tets = vol / (a * a * a / (6 * sqrt(2.0)));
+  if (p->domain == SESSILE_DOMAIN_CONFORMING) return *tets / 6;
+  return box_nodes(p, p->fluid_resolution);
 }
 
-sessile_status sessile_params_set(sessile_params *p, const char *key, const char *value) {
-  const pdef *d = find(key);
-  SESSILE_CHECK(d, SESSILE_ERR_USAGE,
-                "unknown parameter '%s' ('sessile grow --print-config' lists them all)", key);
-  SESSILE_CHECK(value && *value, SESSILE_ERR_USAGE, "parameter %s needs a value", key);
-  if (d->type == T_BOOL) {
-    if (!strcasecmp(value, "true") || !strcmp(value, "1") || !strcasecmp(value, "yes")) put(p, d, 1);
-    else if (!strcasecmp(value, "false") || !strcmp(value, "0") || !strcasecmp(value, "no")) put(p, d, 0);
-    else return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not true or false", key, value);
-    return SESSILE_OK;
-  }
-  const char *const *names = enum_names(d->type);
-  if (names) {
-    char list[128] = "";
-    for (int i = 0; names[i]; i++) {
-      if (!strcasecmp(value, names[i])) {
-        put(p, d, i);
-        return SESSILE_OK;
-      }
-      snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", i ? ", " : "", names[i]);
-    }
-    return sessile_error_set(SESSILE_ERR_USAGE, "parameter %s: '%s' is not one of %s", key, value, list);
-  }
-  char *end = NULL;
-  errno = 0;
-  double v = strtod(value, &end);
-  if (end == value || *end || errno == ERANGE) return range_error(d, value);
-  return set_number(p, d, v, value);
+double sessile_params_device_bytes(const sessile_params *p) {
+  double tets;
+  /* nutrient: ~12 reals per node (solution, CG vectors, operator diagonal)
+   * plus the solid mask; flow: block-CSR (4x4 reals, ~15 neighbours) for the
+   * Jacobian and its ILU(0), and GMRES(50)'s basis of 4 reals per node. */
+  double nutrient = box_nodes(p, p->box_resolution) * (12 * 8 + 4);
+  double fn = flow_nodes(p, &tets);
+  int flow = !p->diffusion_limited || p->fluid_every_iteration || p->fluid_at_snapshots;
+  return nutrient + (flow ? fn * (2 * 15 * 16 * 8 + 52 * 4 * 8) : 0);
 }
 
-sessile_status sessile_params_load_json(sessile_params *p, const char *path) {
-  FILE *f = fopen(path, "rb");
-  SESSILE_CHECK(f, SESSILE_ERR_USAGE, "cannot read config file '%s': %s", path, strerror(errno));
-  char *text = NULL;
-  size_t len = 0, cap = 0;
-  for (;;) {
-    if (len + 4096 + 1 > cap) {
-      cap = (len + 4096 + 1) * 2;
-      char *t = realloc(text, cap);
-      if (!t) {
-        free(text), fclose(f);
-        return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory reading '%s'", path);
-      }
-      text = t;
-    }
-    size_t r = fread(text + len, 1, 4096, f);
-    len += r;
-    if (r < 4096) break;
-  }
-  int rerr = ferror(f);
-  fclose(f);
-  if (rerr) {
-    free(text);
-    return sessile_error_set(SESSILE_ERR_USAGE, "cannot read config file '%s'", path);
-  }
-  text[len] = 0;
-  const char *errp = NULL;
-  cJSON *root = cJSON_ParseWithOpts(text, &errp, 1);
-  if (!root) {
-    size_t at = errp ? (size_t)(errp - text) : 0, line = 1;
-    for (size_t i = 0; i < at && i < len; i++) line += text[i] == '\n';
-    free(text);
-    return sessile_error_set(SESSILE_ERR_USAGE, "config file '%s' is not valid JSON (near line %zu)",
-                             path, line);
-  }
-  free(text);
-  sessile_status s = SESSILE_OK;
-  if (!cJSON_IsObject(root))
-    s = sessile_error_set(SESSILE_ERR_USAGE, "config file '%s' must hold one JSON object", path);
-  const cJSON *it = NULL;
-  if (s == SESSILE_OK) cJSON_ArrayForEach(it, root) {
-      const pdef *d = find(it->string);
-      if (!d) {
-        s = sessile_error_set(SESSILE_ERR_USAGE,
-                              "config file '%s': unknown parameter '%s' ('sessile grow "
-                              "--print-config' lists them all)", path, it->string);
-        break;
-      }
-      if (d->type == T_BOOL) {
-        if (!cJSON_IsBool(it)) {
-          s = sessile_error_set(SESSILE_ERR_USAGE, "config file '%s': %s must be true or false",
-                                path, d->name);
-          break;
-        }
-        put(p, d, cJSON_IsTrue(it));
-      } else if (enum_names(d->type)) {
-        if (!cJSON_IsString(it)) {
-          s = sessile_error_set(SESSILE_ERR_USAGE, "config file '%s': %s must be a string (%s, ...)",
-                                path, d->name, enum_names(d->type)[0]);
-          break;
-        }
-        s = sessile_params_set(p, d->name, it->valuestring);
-      } else {
-        if (!cJSON_IsNumber(it)) {
-          s = sessile_error_set(SESSILE_ERR_USAGE, "config file '%s': %s must be a number", path,
-                                d->name);
-          break;
-        }
-        char txt[64];
-        snprintf(txt, sizeof txt, "%.17g", it->valuedouble);
-        s = set_number(p, d, it->valuedouble, txt);
-      }
-      if (s != SESSILE_OK) break;
-    }
-  cJSON_Delete(root);
-  return s;
-}
-
-sessile_status sessile_params_validate(const sessile_params *p) {
+static sessile_status validate(const void *values) {
+  const sessile_params *p = values;
+  double h = p->box_base_cell * ldexp(1.0, 1 - p->box_resolution); /* node spacing */
   double top = p->box_base_cell * p->box_cells_z;
   double sx = p->box_base_cell * p->box_cells_x, sy = p->box_base_cell * p->box_cells_y;
-  SESSILE_CHECK(p->sponge_z + p->sponge_radius < top && p->sponge_z < p->sponge_radius, SESSILE_ERR_USAGE,
-                "the sponge (centre height sponge_z = %g cm, radius %g cm) does not fit under the "
-                "box top (%g cm) or does not touch the substratum (sponge_z must be below the radius)",
-                p->sponge_z, p->sponge_radius, top);
-  SESSILE_CHECK(2 * p->sponge_radius < top && 2 * p->sponge_radius < sx && 2 * p->sponge_radius < sy,
-                SESSILE_ERR_USAGE,
-                "the sponge (radius %g cm) does not fit the box (%g x %g x %g cm); enlarge the box "
+  double R = p->sponge_radius;
+  SESSILE_CHECK(p->sponge_z < R, SESSILE_ERR_USAGE,
+                "sponge_z (%g cm) must be below sponge_radius (%g cm): the sponge grows on the "
+                "substratum", p->sponge_z, R);
+  /* The sponge keeps one node spacing from every wall (the growth loop
+   * clamps its jittered position there too). */
+  SESSILE_CHECK(p->sponge_z + R + h < top && 2 * (R + h) < sx && 2 * (R + h) < sy, SESSILE_ERR_USAGE,
+                "the sponge (radius %g cm, centre height %g cm, plus a wall margin of one node "
+                "spacing, %g cm) does not fit the box (%g x %g x %g cm); enlarge the box "
                 "(box_cells_*, box_base_cell) or shrink sponge_radius",
-                p->sponge_radius, sx, sy, top);
+                R, p->sponge_z, h, sx, sy, top);
   double cx = p->sponge_x < 0 ? sx / 2 : p->sponge_x, cy = p->sponge_y < 0 ? sy / 2 : p->sponge_y;
-  SESSILE_CHECK(cx - p->sponge_radius > 0 && cx + p->sponge_radius < sx && cy - p->sponge_radius > 0 &&
-                    cy + p->sponge_radius < sy,
-                SESSILE_ERR_USAGE, "the sponge centre (%g, %g) puts the sponge outside the box", cx, cy);
+  SESSILE_CHECK(cx - R - h >= 0 && cx + R + h <= sx && cy - R - h >= 0 && cy + R + h <= sy,
+                SESSILE_ERR_USAGE,
+                "the sponge centre (%g, %g) cm puts the sponge (radius %g cm) within one node "
+                "spacing (%g cm) of a side wall or outside the box (%g x %g cm)", cx, cy, R, h, sx, sy);
   SESSILE_CHECK(p->vertex_insertion_threshold > p->vertex_fusion_threshold, SESSILE_ERR_USAGE,
                 "vertex_insertion_threshold (%g) must exceed vertex_fusion_threshold (%g)",
                 p->vertex_insertion_threshold, p->vertex_fusion_threshold);
   SESSILE_CHECK(p->fluid_resolution <= p->box_resolution, SESSILE_ERR_USAGE,
                 "fluid_resolution (%d) must not exceed box_resolution (%d)", p->fluid_resolution,
                 p->box_resolution);
+  /* Sizes: 32-bit node and element indices, and the host's memory. */
+  double nodes = box_nodes(p, p->box_resolution), tets;
+  double fnodes = flow_nodes(p, &tets);
+  SESSILE_CHECK(nodes * 6 < 2147483647.0, SESSILE_ERR_USAGE,
+                "the box would have %.3g nodes and %.3g tetrahedra, past 32-bit indices; lower "
+                "box_resolution or box_cells_*", nodes, nodes * 6);
+  if (p->domain == SESSILE_DOMAIN_CONFORMING)
+    SESSILE_CHECK(tets < 2e7, SESSILE_ERR_USAGE,
+                  "the conforming mesh would have at least %.3g tetrahedra (%.3g nodes) at "
+                  "conforming_size_far = %g cm; TetGen and the flow cannot hold more than 2e7: "
+                  "raise conforming_size_far", tets, fnodes, p->conforming_size_far);
+  double need = sessile_params_device_bytes(p);
+  long pages = sysconf(_SC_PHYS_PAGES), psize = sysconf(_SC_PAGESIZE);
+  double host = pages > 0 && psize > 0 ? (double)pages * (double)psize : 0;
+  SESSILE_CHECK(host == 0 || need < host, SESSILE_ERR_USAGE,
+                "the run needs about %.1f GiB (box %.3g nodes, flow %.3g nodes) but this machine "
+                "has %.1f GiB; lower box_resolution, fluid_resolution or the box size",
+                need / 1073741824.0, nodes, fnodes, host / 1073741824.0);
   return SESSILE_OK;
-}
-
-int sessile_params_count(void) { return NPARAMS; }
-
-void sessile_params_get(const sessile_params *p, int i, sessile_param_info *info) {
-  const pdef *d = &table[i];
-  static const char *tn[] = {"real", "integer", "bool", "enum", "enum"};
-  info->name = d->name;
-  info->type = tn[d->type];
-  info->unit = d->unit;
-  info->source = d->source;
-  info->description = d->desc;
-  info->value = get(p, d);
-  info->text = enum_names(d->type) ? enum_names(d->type)[(int)info->value] : NULL;
-}
-
-void sessile_params_print(const sessile_params *p, FILE *out) {
-  fprintf(out, "%-34s %-14s %-6s %-14s %s\n", "parameter", "value", "unit", "source", "meaning");
-  for (int i = 0; i < NPARAMS; i++) {
-    sessile_param_info in;
-    sessile_params_get(p, i, &in);
-    char val[32];
-    if (in.text) snprintf(val, sizeof val, "%s", in.text);
-    else if (table[i].type == T_BOOL) snprintf(val, sizeof val, "%s", in.value ? "true" : "false");
-    else snprintf(val, sizeof val, "%.10g", in.value);
-    fprintf(out, "%-34s %-14s %-6s %-14s %s\n", in.name, val, in.unit, in.source, in.description);
-  }
 }

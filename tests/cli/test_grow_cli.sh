@@ -15,7 +15,7 @@ run grow --help
 check "'sessile grow --help' answers" eval 'rc_is 0 && grep -q "usage: sessile grow" "$T/out" && grep -q -- "--print-config" "$T/out"'
 run grow --print-config
 check "--print-config lists parameters with units and sources" eval \
-  'rc_is 0 && grep -q "^vertex_insertion_threshold *0.6 *cm *Table 1" "$T/out" && grep -q "^t_give .* ours" "$T/out"'
+  'rc_is 0 && grep -q "^vertex_insertion_threshold *0.6 *cm *\[0, 1e+06\] *Table 1" "$T/out" && grep -q "^t_give .* ours" "$T/out"'
 run grow --preset crella --print-config
 check "--preset crella selects Halichondrid" eval 'rc_is 0 && grep -q "^skeletal_growth *halichondrid" "$T/out"'
 run grow --set t_give=0.2 --print-config
@@ -52,19 +52,19 @@ bad "bad slice plane" "slices" --slices "w=3"
 bad "sponge outside the box" "does not fit" --set sponge_radius=40
 echo "not a folder" >"$T/file"
 run grow --out "$T/file/run" $COARSE --iterations 1
-check "an unwritable output folder: exit 2, one line" eval 'rc_is 2 && one_line_error && grep -q "output folder" "$T/err"'
+check "an unwritable output folder: exit 2, one line" eval 'rc_is 2 && one_line_error && grep -q "run directory" "$T/err"'
 
 # A short run writes every promised file, atomically.
 run grow --out "$T/r1" $COARSE --preset crella --seed 7 --iterations 2 --every 1
 check "a 2-iteration crella run succeeds" rc_is 0
-for f in manifest.json sponge/iter_0001.ply sponge/iter_0002.ply sponge/final.ply sponge/final.obj \
+for f in manifest.json records.jsonl checkpoint.bin sponge/iter_0001.ply sponge/iter_0002.ply sponge/final.ply sponge/final.obj \
          slices/iter_0002_x.exr slices/iter_0002_y.exr slices/iter_0002_z.exr \
          fields/iter_0001.vtu fields/iter_0002.vtu fields/series.pvd; do
   check "run directory holds $f" test -s "$T/r1/$f"
 done
-check "no temporary files are left behind" eval '[ -z "$(find "$T/r1" -name "*.tmp*")" ]'
-check "the manifest says complete, with seed, device and per-iteration solves" eval \
-  'grep -q "\"state\":.*\"complete\"" "$T/r1/manifest.json" && grep -q "\"seed\":.*\"7\"" "$T/r1/manifest.json" && grep -q "true_relres" "$T/r1/manifest.json" && grep -q "\"driver\"" "$T/r1/manifest.json"'
+check "no temporary files are left behind" eval '[ -z "$(find "$T/r1" -name "*.tmp*" -o -name "*sessile-tmp*")" ]'
+check "the manifest says completed, with seed, device, command and times; records hold the solves" eval \
+  'grep -q "\"state\":.*\"completed\"" "$T/r1/manifest.json" && grep -q "\"seed\":.*\"7\"" "$T/r1/manifest.json" && grep -q "\"driver\"" "$T/r1/manifest.json" && grep -q "\"end_time\":.*Z\"" "$T/r1/manifest.json" && grep -q "true_relres" "$T/r1/records.jsonl" && [ "$(wc -l <"$T/r1/records.jsonl")" = 2 ]'
 # The run's own files through independent readers (VTK, meshio, exrheader).
 check "VTK reads the run's VTU: one point per box node, c in [0,1], c = 0 on solid nodes" \
   /usr/bin/python3 - "$T/r1/fields/iter_0002.vtu" "$T/r1/manifest.json" <<'PYEOF'
@@ -82,7 +82,7 @@ PYEOF
 check "meshio reads final.ply and final.obj with the manifest's vertex count" \
   /usr/bin/python3 - "$T/r1/sponge/final.ply" "$T/r1/sponge/final.obj" "$T/r1/manifest.json" <<'PYEOF'
 import json, sys, meshio
-m = json.load(open(sys.argv[3])); nv = m["iterations"][-1]["surface"]["vertices"]
+m = json.load(open(sys.argv[3])); nv = m["totals"]["surface"]["vertices"]
 a = meshio.read(sys.argv[1]); b = meshio.read(sys.argv[2])
 print("ply", len(a.points), "obj", len(b.points), "manifest", nv)
 sys.exit(0 if len(a.points) == nv == len(b.points) and abs(a.points - b.points).max() < 1e-5 else 1)
@@ -91,6 +91,16 @@ check "exrheader reads a slice with its sessile attributes" eval \
   'exrheader "$T/r1/slices/iter_0002_z.exr" | grep -q "sessile:iteration (type int): 2"'
 run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
 check "same seed, same device: byte-identical final.ply" cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"
+check "--every 0 still snapshots the last iteration" test -s "$T/r2/slices/iter_0002_z.exr"
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
+check "the same command again is refused: the folder holds a run (exit 2)" eval 'rc_is 2 && one_line_error'
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0 --force
+check "... and with --force it runs again to the same bytes" eval 'rc_is 0 && cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"'
+run grow --out "$T/r6" $COARSE --iterations 6 --every 10 --set fluid_at_snapshots=false
+check "a 6-iteration run with --every 10 writes iter_0006 slices and fields" eval \
+  'rc_is 0 && test -s "$T/r6/slices/iter_0006_x.exr" && test -s "$T/r6/fields/iter_0006.vtu" && test -s "$T/r6/sponge/iter_0006.ply"'
+run grow --out "$T/deg" $COARSE --iterations 2 --every 0 --set fluid_at_snapshots=false --set sponge_radius=0.01
+check "a sponge fused to a few vertices warns" eval 'rc_is 0 && grep -q "warning: .*degenerated" "$T/err"'
 run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0
 check "two seeds give different crella meshes" eval '! cmp -s "$T/r1/sponge/final.ply" "$T/r3/sponge/final.ply"'
 

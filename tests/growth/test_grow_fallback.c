@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/grow.h"
+#include "sessile/run.h"
 #include "testutil.h"
 
 static char *slurp(const char *path) {
@@ -53,35 +54,42 @@ int main(void) {
   t_true("temporary folder", mkdtemp(dir) != NULL);
   sessile_grow_options o;
   sessile_grow_options_default(&o);
-  o.out_dir = dir;
+  sessile_run_options ro = {.dir = dir, .generator = "grow", .version = "test"};
+  sessile_run *run = NULL;
+  t_ok("run directory", sessile_run_open(&ro, &run));
+  o.run = run;
   o.iterations = 1;
   o.every = 1;
-  o.quiet = 1;
   o.fields = 0;
   o.slices = "z";
   o.initial = &s;
   sessile_grow_summary sum;
   sessile_status st = sessile_grow_run(g, &p, &o, NULL, &sum);
+  st = sessile_run_close(run, st);
   t_ok("the run goes on past TetGen's rejection", st);
   char path[256];
   snprintf(path, sizeof path, "%s/manifest.json", dir);
   char *text = slurp(path);
   cJSON *m = text ? cJSON_Parse(text) : NULL;
   t_true("manifest.json is written and parses", m != NULL);
-  cJSON *it = m ? cJSON_GetArrayItem(cJSON_GetObjectItem(m, "iterations"), 0) : NULL;
+  snprintf(path, sizeof path, "%s/records.jsonl", dir);
+  char *rtext = slurp(path);
+  cJSON *it = rtext ? cJSON_Parse(rtext) : NULL; /* one line: iteration 1's record */
   cJSON *fl = it ? cJSON_GetObjectItem(it, "fluid") : NULL;
   cJSON *fb = fl ? cJSON_GetObjectItem(fl, "fallback") : NULL;
   cJSON *dom = fl ? cJSON_GetObjectItem(fl, "domain") : NULL;
   if (fb) printf("fallback reason: %s\n", fb->valuestring);
   t_true("iteration 1 records the fallback with TetGen's reason", cJSON_IsString(fb) && strlen(fb->valuestring) > 0);
   t_true("iteration 1's flow used the immersed domain", cJSON_IsString(dom) && !strcmp(dom->valuestring, "immersed"));
-  t_true("the run is complete", m && !strcmp(cJSON_GetObjectItem(m, "state")->valuestring, "complete"));
+  t_true("the run is complete", m && !strcmp(cJSON_GetObjectItem(m, "state")->valuestring, "completed"));
   snprintf(path, sizeof path, "%s/slices/iter_0001_z.exr", dir);
   FILE *f = fopen(path, "rb");
   t_true("the slice with the flow's channels was written", f != NULL);
   if (f) fclose(f);
   cJSON_Delete(m);
+  cJSON_Delete(it);
   free(text);
+  free(rtext);
   sessile_surface_free(&s);
   char cmd[300];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);

@@ -53,6 +53,7 @@ typedef struct sessile_gpu_info {
   uint32_t max_workgroup_count_x;
   double timestamp_period_ns;
   int unified_memory; /* device-local memory is host-visible */
+  uint64_t device_local_bytes; /* the largest device-local heap */
 } sessile_gpu_info;
 
 sessile_status sessile_gpu_create(const sessile_gpu_options *opt, sessile_gpu **out);

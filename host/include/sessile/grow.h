@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "sessile/gpu.h"
 #include "sessile/params.h"
+#include "sessile/run.h"
 #include "sessile/surface.h"
 
 #ifdef __cplusplus
@@ -27,19 +28,30 @@ typedef enum {
 } sessile_grow_stage;
 const char *sessile_grow_stage_name(int stage);
 
+/* What a monitor line is: a transient status (a terminal may overwrite it),
+ * the end of an iteration, or a warning the user should read. */
+typedef enum { SESSILE_MONITOR_STATUS = 0, SESSILE_MONITOR_ITERATION = 1, SESSILE_MONITOR_WARNING = 2 } sessile_monitor_kind;
+
 typedef struct sessile_grow_options {
-  const char *out_dir;  /* run directory; NULL writes nothing (benchmarks) */
+  /* The run directory (sessile/run.h), opened by the caller; NULL writes
+   * nothing (benchmarks).  When it holds a checkpoint (resume), the loop
+   * continues from it. */
+  sessile_run *run;
   const char *preset;   /* recorded in the manifest */
   int iterations;       /* growth iterations (default 50) */
   uint64_t seed;        /* every random choice flows from it */
-  int every;            /* snapshot interval K: sponge/slices/fields every K iterations (0: final only) */
+  int every;            /* snapshot interval K: sponge/slices/fields every K iterations and at
+                           the last one (0: the last only); each snapshot is a checkpoint */
   const char *slices;   /* planes: "x,y,z" through the sponge centre, or "z=3.5,x=19.2" */
   int fields;           /* write fields/iter_NNNN.vtu at snapshots (default 1) */
-  int quiet;            /* no progress output */
   int check_every_iteration; /* run the surface invariant check after every remesh (default 1) */
   /* The starting surface (copied; clamped into the box), or NULL for the
    * icosphere the parameters describe. */
   const sessile_surface *initial;
+  /* Progress and warnings, one line each, no newline (NULL: silent).  The
+   * library prints nothing itself. */
+  void (*monitor)(void *user, sessile_monitor_kind kind, const char *line);
+  void *monitor_user;
 } sessile_grow_options;
 void sessile_grow_options_default(sessile_grow_options *o);
 
@@ -53,10 +65,24 @@ typedef struct sessile_grow_summary {
   double worst_relres;
 } sessile_grow_summary;
 
+/* The configuration a resume restarts from (parameters, preset, seed,
+ * iterations, snapshots) as JSON, and back: config_read fills p and o
+ * (strings point into cfg, which must outlive o).  A malformed config is
+ * SESSILE_ERR_USAGE. */
+cJSON *sessile_grow_config(const sessile_params *p, const sessile_grow_options *o);
+sessile_status sessile_grow_config_read(const cJSON *cfg, sessile_params *p, sessile_grow_options *o);
+
+/* Every check of parameters and options that needs no device (the
+ * parameter table's, the --slices spec): a run that passes it starts. */
+sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o);
+
 /* Runs the growth loop.  The final surface is returned in final (may be
- * NULL).  Errors: SESSILE_ERR_USAGE for bad parameters or an unwritable
- * output folder (nothing written then), SESSILE_ERR_IO, SESSILE_ERR_NUMERIC
- * for a solve that broke down; files already written stay whole. */
+ * NULL).  Errors: SESSILE_ERR_USAGE for bad parameters (nothing written
+ * then), SESSILE_ERR_TOO_LARGE when the box would not fit the device,
+ * SESSILE_ERR_IO, SESSILE_ERR_NUMERIC for a solve that broke down,
+ * SESSILE_ERR_INTERRUPTED when the run's stop flag was raised (the state
+ * after the last whole iteration is checkpointed); files already written
+ * stay whole.  The caller closes the run (sessile_run_close). */
 sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
                                 const sessile_grow_options *o, sessile_surface *final,
                                 sessile_grow_summary *summary);

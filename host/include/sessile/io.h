@@ -20,15 +20,20 @@ extern "C" {
 #endif
 
 /* --- atomic files ------------------------------------------------------------ */
-/* An output file being written: data goes to "<path>.tmp.<pid>" (same
- * folder) until commit renames it to path (after fflush + fsync, then an
- * fsync of the folder); abort removes the temporary.  Errors are
- * SESSILE_ERR_IO with the file's name and errno's text.  After commit or
- * abort the struct holds nothing (both free everything). */
+/* An output file being written: data goes to ".<name>.sessile-tmp.<random>"
+ * in the same folder, created with O_CREAT|O_EXCL|O_NOFOLLOW (never through a
+ * planted symlink, FIFO or file), until commit renames it to path (after
+ * fflush + fsync, then an fsync of the folder); abort removes the temporary.
+ * Errors are SESSILE_ERR_IO with the file's name and errno's text.  After
+ * commit or abort the struct holds nothing (both free everything). */
 typedef struct sessile_atomic_file {
   FILE *f;
-  char *path, *tmp;
+  char *path, *tmp; /* tmp: the temporary's name inside the folder */
+  int dirfd;        /* the folder, opened once: the rename happens where the file was made */
 } sessile_atomic_file;
+/* Whether a file name (no folder) is one of these temporaries: the run
+ * framework removes such leftovers of a killed run at the next start. */
+int sessile_is_temp_name(const char *name);
 sessile_status sessile_atomic_open(const char *path, sessile_atomic_file *af);
 sessile_status sessile_atomic_commit(sessile_atomic_file *af); /* closes; removes tmp on failure */
 void sessile_atomic_abort(sessile_atomic_file *af);           /* closes and removes tmp; NULL-safe */

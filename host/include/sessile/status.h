@@ -22,13 +22,16 @@ typedef enum sessile_status {
   SESSILE_ERR_IO = 6,          /* file read/write failed */
   SESSILE_ERR_UNSUPPORTED = 7, /* the device lacks a needed feature */
   SESSILE_ERR_NUMERIC = 8,     /* numerically invalid input (zero diagonal, NaN, ...) */
-  SESSILE_ERR_INTERNAL = 9     /* a bug: an invariant of sessile itself failed */
+  SESSILE_ERR_INTERNAL = 9,    /* a bug: an invariant of sessile itself failed */
+  SESSILE_ERR_INTERRUPTED = 10 /* stopped on request (SIGINT/SIGTERM); the state is saved */
 } sessile_status;
 
 /* Short name of a status ("SESSILE_ERR_VULKAN"). */
 const char *sessile_status_name(sessile_status s);
 
-/* Records the message of the failure just detected (thread-local) and returns s. */
+/* Records the message of the failure just detected (thread-local) and returns s.
+ * The arguments may include sessile_error_message() itself (to prefix it):
+ * the message is formatted into a scratch buffer before it replaces the old. */
 sessile_status sessile_error_set(sessile_status s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 

@@ -1,0 +1,36 @@
+/* The options every generator's command shares (--config, --set,
+ * --print-config, --seed, --iterations, --every, --out, --force, --resume,
+ * --quiet) and the run directory's life around the generator: open (lock,
+ * replace or resume), close, and the exit code (130/143 when interrupted). */
+#ifndef SESSILE_CLI_RUN_H
+#define SESSILE_CLI_RUN_H
+#include "cli.h"
+#include "sessile/run.h"
+
+typedef struct cli_run_args {
+  const char *out, *resume;
+  const char **configs, **sets; /* argc entries each */
+  int nconfigs, nsets;
+  int print_config, force, quiet;
+  int have_iterations;          /* --iterations given */
+  int have_run_option;          /* an option a resume must not change */
+  unsigned long long seed;
+  int iterations, every;
+} cli_run_args;
+
+/* Allocates the lists for argc arguments; defaults for seed etc. */
+int cli_run_args_init(cli_run_args *a, int argc, unsigned long long seed, int iterations, int every);
+void cli_run_args_free(cli_run_args *a);
+/* Consumes a shared option at argv[*i]: 1 consumed, 0 not one, -1 usage error. */
+int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args *a);
+/* After parsing: --resume excludes every run option; -1 to go on, else an exit code. */
+int cli_run_args_check(const char *cmd, const cli_run_args *a);
+/* The configs in order, then the --sets, into values (after defaults/preset). */
+sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, const cli_run_args *a);
+/* Opens the run directory (new, --force or --resume) with the stop flag. */
+sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
+                            const char *dir, volatile sig_atomic_t *stop, sessile_run **run);
+/* The exit code after sessile_run_close returned s. */
+int cli_run_exit(const char *cmd, sessile_status s, const char *dir, const volatile sig_atomic_t *stop,
+                 int iterations_done);
+#endif

@@ -1,0 +1,470 @@
+/* The run directory (sessile/run.h): lock, manifest, file list, records,
+ * stop flag.  Everything inside the folder is reached through its file
+ * descriptor with O_NOFOLLOW, so a symlink planted in a shared run directory
+ * never redirects a write (docs/run.md). */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#include <dirent.h>
+#include "run_internal.h"
+#include "sessile/io.h"
+
+void sessile_run_utc_now(char *buf, size_t n) {
+  time_t t = time(NULL);
+  struct tm tm;
+  if (!gmtime_r(&t, &tm) || !strftime(buf, n, "%Y-%m-%dT%H:%M:%SZ", &tm)) snprintf(buf, n, "unknown");
+}
+
+/* "name" or "folder/name": plain components, no "..", no hidden names. */
+static int plain_rel(const char *rel) {
+  if (!rel || !*rel || strlen(rel) > 200) return 0;
+  int slashes = 0;
+  for (const char *c = rel; *c; c++) slashes += *c == '/';
+  if (slashes > 1 || rel[0] == '/' || rel[0] == '.' || rel[strlen(rel) - 1] == '/') return 0;
+  const char *s = strchr(rel, '/');
+  if (s && (s[1] == '.' || s[1] == 0)) return 0;
+  return 1;
+}
+
+/* Removes leftover temporaries (sessile_is_temp_name) in one folder. */
+static void sweep_temps(int dfd) {
+  int fd = dup(dfd);
+  if (fd < 0) return;
+  DIR *d = fdopendir(fd);
+  if (!d) {
+    close(fd);
+    return;
+  }
+  rewinddir(d); /* a dup shares its offset with dfd: start from the top */
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL)
+    if (sessile_is_temp_name(e->d_name)) unlinkat(dfd, e->d_name, 0);
+  closedir(d);
+}
+
+/* Opens the subfolder `name` of dfd without following a symlink (creating
+ * it when asked); -1 with errno on failure. */
+static int open_subdir(int dfd, const char *name, int create) {
+  if (create && mkdirat(dfd, name, 0777) != 0 && errno != EEXIST) return -1;
+  return openat(dfd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+}
+
+/* Sweeps the folder and each real subfolder (one level, as runs write). */
+static void sweep_all(int dfd) {
+  sweep_temps(dfd);
+  int fd = dup(dfd);
+  if (fd < 0) return;
+  DIR *d = fdopendir(fd);
+  if (!d) {
+    close(fd);
+    return;
+  }
+  rewinddir(d); /* a dup shares its offset with dfd: start from the top */
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL) {
+    if (e->d_name[0] == '.') continue;
+    int sfd = openat(dfd, e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (sfd >= 0) {
+      sweep_temps(sfd);
+      close(sfd);
+    }
+  }
+  closedir(d);
+}
+
+/* Whether the folder holds anything but our lock file. */
+static int folder_empty(int dfd) {
+  int fd = dup(dfd), empty = 1;
+  if (fd < 0) return 0;
+  DIR *d = fdopendir(fd);
+  if (!d) {
+    close(fd);
+    return 0;
+  }
+  rewinddir(d);
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL)
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") && strcmp(e->d_name, RUN_LOCK)) empty = 0;
+  closedir(d);
+  return empty;
+}
+
+/* Reads a small regular file inside the folder (no symlink, FIFO or device). */
+sessile_status run_read_file(int dfd, const char *name, size_t max, char **text, size_t *len) {
+  *text = NULL;
+  *len = 0;
+  int fd = openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0 && errno == ENOENT) return SESSILE_OK;
+  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot read '%s' in the run directory: %s%s", name,
+                strerror(errno), errno == ELOOP ? " (a symlink: refused)" : "");
+  struct stat st;
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size > max) {
+    close(fd);
+    return sessile_error_set(SESSILE_ERR_USAGE, "'%s' in the run directory is not a regular file of at "
+                                                "most %zu bytes", name, max);
+  }
+  char *buf = malloc((size_t)st.st_size + 1);
+  if (!buf) {
+    close(fd);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory reading '%s'", name);
+  }
+  size_t got = 0;
+  while (got < (size_t)st.st_size) {
+    ssize_t k = read(fd, buf + got, (size_t)st.st_size - got);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) break;
+    got += (size_t)k;
+  }
+  close(fd);
+  buf[got] = 0;
+  *text = buf;
+  *len = got;
+  return SESSILE_OK;
+}
+
+static sessile_status lock_folder(sessile_run *r) {
+  r->lockfd = openat(r->dfd, RUN_LOCK, O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  SESSILE_CHECK(r->lockfd >= 0, SESSILE_ERR_USAGE, "cannot create the lock file of '%s': %s%s", r->dir,
+                strerror(errno), errno == ELOOP ? " (a symlink: refused)" : "");
+  struct stat st;
+  SESSILE_CHECK(fstat(r->lockfd, &st) == 0 && S_ISREG(st.st_mode), SESSILE_ERR_USAGE,
+                "the lock file of '%s' is not a regular file", r->dir);
+  if (flock(r->lockfd, LOCK_EX | LOCK_NB) != 0) {
+    int e = errno;
+    char who[256] = "";
+    ssize_t k = pread(r->lockfd, who, sizeof who - 1, 0);
+    who[k > 0 ? k : 0] = 0;
+    who[strcspn(who, "\n")] = 0;
+    if (e == EWOULDBLOCK)
+      return sessile_error_set(SESSILE_ERR_USAGE,
+                               "'%s' is in use by another sessile run (%s); wait for it to end or "
+                               "choose another --out", r->dir, *who ? who : "pid unknown");
+    return sessile_error_set(SESSILE_ERR_IO, "cannot lock '%s': %s", r->dir, strerror(e));
+  }
+  char me[300];
+  int n = snprintf(me, sizeof me, "pid %ld on host %s\n", (long)getpid(), r->host);
+  if (ftruncate(r->lockfd, 0) != 0 || pwrite(r->lockfd, me, (size_t)n, 0) != n)
+    return sessile_error_set(SESSILE_ERR_IO, "cannot write the lock file of '%s': %s", r->dir, strerror(errno));
+  return SESSILE_OK;
+}
+
+/* Removes one listed file of an older run (rel checked; never follows). */
+static void remove_rel(int dfd, const char *rel) {
+  if (!plain_rel(rel)) return;
+  const char *slash = strchr(rel, '/');
+  if (!slash) {
+    unlinkat(dfd, rel, 0);
+    return;
+  }
+  char sub[256];
+  snprintf(sub, sizeof sub, "%.*s", (int)(slash - rel), rel);
+  int sfd = open_subdir(dfd, sub, 0);
+  if (sfd < 0) return;
+  unlinkat(sfd, slash + 1, 0);
+  close(sfd);
+}
+
+static sessile_status replace_old(sessile_run *r, cJSON *old) {
+  const cJSON *files = cJSON_GetObjectItemCaseSensitive(old, "files");
+  const cJSON *f;
+  cJSON_ArrayForEach(f, files) if (cJSON_IsString(f)) remove_rel(r->dfd, f->valuestring);
+  const char *own[] = {RUN_MANIFEST, RUN_RECORDS, RUN_CHECKPOINT};
+  for (int i = 0; i < 3; i++) unlinkat(r->dfd, own[i], 0);
+  return SESSILE_OK;
+}
+
+static const char *state_of(const cJSON *m) {
+  const cJSON *s = cJSON_GetObjectItemCaseSensitive(m, "state");
+  return cJSON_IsString(s) ? s->valuestring : "unknown";
+}
+
+/* Reads the older run's manifest (NULL: none). */
+static sessile_status old_manifest(sessile_run *r, cJSON **out) {
+  *out = NULL;
+  char *text = NULL;
+  size_t len = 0;
+  SESSILE_CALL(run_read_file(r->dfd, RUN_MANIFEST, 64u << 20, &text, &len));
+  if (!text) return SESSILE_OK;
+  cJSON *m = cJSON_ParseWithLength(text, len);
+  free(text);
+  SESSILE_CHECK(m && cJSON_IsObject(m), SESSILE_ERR_USAGE,
+                "'%s/%s' is damaged (not a JSON object); move the folder away or choose another --out",
+                r->dir, RUN_MANIFEST);
+  *out = m;
+  return SESSILE_OK;
+}
+
+static sessile_status open_records(sessile_run *r, int truncate_to_ckpt) {
+  if (!truncate_to_ckpt) {
+    unlinkat(r->dfd, RUN_RECORDS, 0);
+    r->recfd = openat(r->dfd, RUN_RECORDS, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_APPEND | O_CLOEXEC, 0666);
+  } else {
+    r->recfd = openat(r->dfd, RUN_RECORDS, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+    struct stat st;
+    if (r->recfd >= 0 && (fstat(r->recfd, &st) != 0 || !S_ISREG(st.st_mode))) {
+      close(r->recfd);
+      r->recfd = -1;
+      errno = EINVAL;
+    }
+    /* what was appended after the checkpoint is redone, so cut it */
+    if (r->recfd >= 0 && ftruncate(r->recfd, (off_t)r->records_bytes) != 0) {
+      close(r->recfd);
+      r->recfd = -1;
+    }
+    if (r->recfd >= 0) {
+      int fl = fcntl(r->recfd, F_GETFL);
+      if (fl < 0 || fcntl(r->recfd, F_SETFL, (fl | O_APPEND) & ~O_NONBLOCK) != 0) {
+        close(r->recfd);
+        r->recfd = -1;
+      }
+    }
+  }
+  SESSILE_CHECK(r->recfd >= 0, SESSILE_ERR_IO, "cannot open '%s/%s': %s", r->dir, RUN_RECORDS, strerror(errno));
+  return SESSILE_OK;
+}
+
+static sessile_status setup(sessile_run *r, const sessile_run_options *o) {
+  SESSILE_CHECK(o->dir && *o->dir, SESSILE_ERR_USAGE, "the run directory needs a name");
+  SESSILE_CHECK(strlen(o->dir) < 3500, SESSILE_ERR_USAGE, "the run directory's name is too long");
+  r->dir = strdup(o->dir);
+  r->generator = strdup(o->generator ? o->generator : "");
+  SESSILE_CHECK(r->dir && r->generator, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if (gethostname(r->host, sizeof r->host) != 0) snprintf(r->host, sizeof r->host, "unknown");
+  r->host[sizeof r->host - 1] = 0;
+  sessile_status s = sessile_mkdirs(o->dir);
+  if (s != SESSILE_OK)
+    return sessile_error_set(SESSILE_ERR_USAGE, "cannot create the run directory: %s", sessile_error_message());
+  r->dfd = open(o->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  SESSILE_CHECK(r->dfd >= 0, SESSILE_ERR_USAGE, "cannot open the run directory '%s': %s", o->dir, strerror(errno));
+  SESSILE_CHECK(faccessat(r->dfd, ".", W_OK, 0) == 0, SESSILE_ERR_USAGE,
+                "the run directory '%s' is not writable: %s", o->dir, strerror(errno));
+  SESSILE_CALL(lock_folder(r));
+  sweep_all(r->dfd);
+
+  cJSON *old = NULL;
+  SESSILE_CALL(old_manifest(r, &old));
+  if (o->mode == SESSILE_RUN_RESUME) {
+    if (!old)
+      return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': it holds no %s", o->dir, RUN_MANIFEST);
+    const cJSON *g = cJSON_GetObjectItemCaseSensitive(old, "generator");
+    if (!cJSON_IsString(g) || strcmp(g->valuestring, r->generator)) {
+      cJSON_Delete(old);
+      return sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds a run of another generator ('%s'), not '%s'",
+                               o->dir, cJSON_IsString(g) ? g->valuestring : "?", r->generator);
+    }
+    s = run_ckpt_read(r);
+    if (s == SESSILE_OK) {
+      cJSON *cfg = cJSON_DetachItemFromObjectCaseSensitive(old, "config");
+      SESSILE_CHECK(cfg, SESSILE_ERR_USAGE, "'%s/%s' holds no configuration to resume from", o->dir, RUN_MANIFEST);
+      r->config = cfg;
+      /* files listed so far stay listed (a --force later removes them) */
+      cJSON *files = cJSON_DetachItemFromObjectCaseSensitive(old, "files");
+      if (files) cJSON_ReplaceItemInObjectCaseSensitive(r->manifest, "files", files);
+      r->start_count = 0;
+      const cJSON *runs = cJSON_GetObjectItemCaseSensitive(old, "starts");
+      if (cJSON_IsNumber(runs)) r->start_count = (int)runs->valuedouble;
+    }
+    cJSON_Delete(old);
+    SESSILE_CALL(s);
+    return open_records(r, 1);
+  }
+  if (old) {
+    if (o->mode != SESSILE_RUN_REPLACE) {
+      const cJSON *st = cJSON_GetObjectItemCaseSensitive(old, "start_time");
+      s = sessile_error_set(SESSILE_ERR_USAGE,
+                            "'%s' holds an earlier run (state %s, started %s); add --force to replace "
+                            "it, --resume to continue it, or choose another --out",
+                            o->dir, state_of(old), cJSON_IsString(st) ? st->valuestring : "unknown");
+      cJSON_Delete(old);
+      return s;
+    }
+    s = replace_old(r, old);
+    cJSON_Delete(old);
+    SESSILE_CALL(s);
+  } else if (!folder_empty(r->dfd)) {
+    return sessile_error_set(SESSILE_ERR_USAGE,
+                             "'%s' is not empty and holds no sessile run (no %s); choose an empty "
+                             "or new folder for --out", o->dir, RUN_MANIFEST);
+  }
+  unlinkat(r->dfd, RUN_CHECKPOINT, 0);
+  return open_records(r, 0);
+}
+
+sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out) {
+  *out = NULL;
+  sessile_run *r = calloc(1, sizeof *r);
+  SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  r->dfd = r->lockfd = r->recfd = -1;
+  r->stop = o->stop;
+  r->manifest = cJSON_CreateObject();
+  sessile_status s = r->manifest ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if (s == SESSILE_OK) {
+    cJSON_AddArrayToObject(r->manifest, "files");
+    s = setup(r, o);
+  }
+  if (s == SESSILE_OK) {
+    cJSON *m = r->manifest;
+    cJSON_AddStringToObject(m, "program", "sessile");
+    cJSON_AddStringToObject(m, "generator", r->generator);
+    cJSON_AddStringToObject(m, "version", o->version ? o->version : "dev");
+    cJSON_AddStringToObject(m, "state", "running");
+    cJSON_AddNumberToObject(m, "pid", (double)getpid());
+    cJSON_AddStringToObject(m, "host", r->host);
+    cJSON *cmd = cJSON_AddArrayToObject(m, "command");
+    for (int i = 0; i < o->argc && o->argv && o->argv[i]; i++)
+      cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    char now[64];
+    sessile_run_utc_now(now, sizeof now);
+    cJSON_AddStringToObject(m, "start_time", now);
+    cJSON_AddNullToObject(m, "end_time");
+    cJSON_AddNumberToObject(m, "starts", r->start_count + 1);
+    cJSON_AddNumberToObject(m, "resumed_from_iteration", r->ckpt ? r->ckpt->iteration : 0);
+    cJSON_AddStringToObject(m, "records", RUN_RECORDS);
+    if (!cJSON_GetObjectItemCaseSensitive(m, "files")) cJSON_AddArrayToObject(m, "files");
+    s = sessile_run_write_manifest(r);
+  }
+  if (s != SESSILE_OK) {
+    run_free(r);
+    return s;
+  }
+  *out = r;
+  return SESSILE_OK;
+}
+
+cJSON *sessile_run_manifest(sessile_run *r) { return r->manifest; }
+
+sessile_status sessile_run_set_config(sessile_run *r, cJSON *config) {
+  cJSON_Delete(r->config);
+  r->config = config;
+  /* at once: a run killed before its first checkpoint restarts from it */
+  return sessile_run_write_manifest(r);
+}
+
+const cJSON *sessile_run_config(const sessile_run *r) { return r->config; }
+
+int sessile_run_resumed_at(const sessile_run *r) { return r->ckpt ? r->ckpt->iteration : 0; }
+
+int sessile_run_stop_requested(const sessile_run *r) { return r->stop ? (int)*r->stop : 0; }
+
+sessile_status sessile_run_write_manifest(sessile_run *r) {
+  cJSON *m = r->manifest;
+  if (r->config) {
+    cJSON *c = cJSON_Duplicate(r->config, 1);
+    SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
+    if (cJSON_GetObjectItemCaseSensitive(m, "config")) cJSON_ReplaceItemInObjectCaseSensitive(m, "config", c);
+    else cJSON_AddItemToObject(m, "config", c);
+  }
+  char *text = cJSON_Print(m);
+  SESSILE_CHECK(text, SESSILE_ERR_NO_MEMORY, "out of host memory printing the manifest");
+  size_t len = strlen(text);
+  char path[4096];
+  snprintf(path, sizeof path, "%s/%s", r->dir, RUN_MANIFEST);
+  text[len] = '\n'; /* the terminator becomes the file's last newline */
+  sessile_status s = sessile_write_file_atomic(path, text, len + 1);
+  free(text);
+  return s;
+}
+
+static int listed(const cJSON *files, const char *rel) {
+  const cJSON *f;
+  cJSON_ArrayForEach(f, files) if (cJSON_IsString(f) && !strcmp(f->valuestring, rel)) return 1;
+  return 0;
+}
+
+sessile_status sessile_run_file(sessile_run *r, const char *rel, char *path, size_t n) {
+  SESSILE_CHECK(plain_rel(rel), SESSILE_ERR_INTERNAL, "run file name '%s' is not a plain relative name", rel);
+  const char *slash = strchr(rel, '/');
+  if (slash) {
+    char sub[256];
+    snprintf(sub, sizeof sub, "%.*s", (int)(slash - rel), rel);
+    int sfd = open_subdir(r->dfd, sub, 1);
+    SESSILE_CHECK(sfd >= 0, SESSILE_ERR_IO, "cannot use the folder '%s/%s': %s%s", r->dir, sub,
+                  strerror(errno), errno == ELOOP || errno == ENOTDIR ? " (a symlink or file is there: refused)" : "");
+    close(sfd);
+  }
+  int k = snprintf(path, n, "%s/%s", r->dir, rel);
+  SESSILE_CHECK(k > 0 && (size_t)k < n, SESSILE_ERR_USAGE, "the path of '%s' is too long", rel);
+  cJSON *files = cJSON_GetObjectItemCaseSensitive(r->manifest, "files");
+  if (!listed(files, rel)) cJSON_AddItemToArray(files, cJSON_CreateString(rel));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_run_remove_file(sessile_run *r, const char *rel) {
+  SESSILE_CHECK(plain_rel(rel), SESSILE_ERR_INTERNAL, "run file name '%s' is not a plain relative name", rel);
+  remove_rel(r->dfd, rel);
+  cJSON *files = cJSON_GetObjectItemCaseSensitive(r->manifest, "files");
+  int i = 0;
+  const cJSON *f;
+  cJSON_ArrayForEach(f, files) {
+    if (cJSON_IsString(f) && !strcmp(f->valuestring, rel)) {
+      cJSON_DeleteItemFromArray(files, i);
+      break;
+    }
+    i++;
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_run_record(sessile_run *r, const cJSON *rec) {
+  char *line = cJSON_PrintUnformatted(rec);
+  SESSILE_CHECK(line, SESSILE_ERR_NO_MEMORY, "out of host memory for a record");
+  size_t len = strlen(line);
+  line[len] = '\n';
+  size_t done = 0;
+  int e = 0;
+  while (done < len + 1) {
+    ssize_t k = write(r->recfd, line + done, len + 1 - done);
+    if (k < 0 && errno == EINTR) continue;
+    if (k < 0) {
+      e = errno;
+      break;
+    }
+    done += (size_t)k;
+  }
+  free(line);
+  SESSILE_CHECK(!e, SESSILE_ERR_IO, "cannot append to '%s/%s': %s", r->dir, RUN_RECORDS, strerror(e));
+  r->records_bytes += len + 1;
+  return SESSILE_OK;
+}
+
+void run_free(sessile_run *r) {
+  if (!r) return;
+  if (r->recfd >= 0) close(r->recfd);
+  if (r->lockfd >= 0) close(r->lockfd); /* releases the flock */
+  if (r->dfd >= 0) close(r->dfd);
+  cJSON_Delete(r->manifest);
+  cJSON_Delete(r->config);
+  run_ckpt_free(r->ckpt);
+  free(r->dir);
+  free(r->generator);
+  free(r);
+}
+
+sessile_status sessile_run_close(sessile_run *r, sessile_status s) {
+  if (!r) return s;
+  char msg[1024] = "";
+  if (s != SESSILE_OK) snprintf(msg, sizeof msg, "%s", sessile_error_message());
+  const char *state = s == SESSILE_OK ? "completed" : s == SESSILE_ERR_INTERRUPTED ? "interrupted" : "failed";
+  cJSON *m = r->manifest;
+  cJSON_ReplaceItemInObjectCaseSensitive(m, "state", cJSON_CreateString(state));
+  char now[64];
+  sessile_run_utc_now(now, sizeof now);
+  cJSON_ReplaceItemInObjectCaseSensitive(m, "end_time", cJSON_CreateString(now));
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "error");
+  if (s != SESSILE_OK) cJSON_AddStringToObject(m, "error", msg);
+  if (s == SESSILE_ERR_INTERRUPTED && r->stop)
+    cJSON_AddNumberToObject(m, "signal", (double)*r->stop);
+  if (r->recfd >= 0 && fsync(r->recfd) != 0 && errno != EINVAL && s == SESSILE_OK)
+    s = sessile_error_set(SESSILE_ERR_IO, "cannot sync '%s/%s': %s", r->dir, RUN_RECORDS, strerror(errno));
+  sessile_status ms = sessile_run_write_manifest(r);
+  if (s == SESSILE_OK) s = ms;
+  else sessile_error_set(s, "%s", msg); /* the first error is the one to report */
+  run_free(r);
+  return s;
+}
