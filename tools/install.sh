@@ -17,4 +17,4 @@ cmake --build build -j"$(nproc)"
 # The main job on its embedded default: the device in use, then a Crella
 # incrustans sponge grown for 50 iterations (Table 1 + the crella preset).
 ./build/sessile devices
-./build/sessile grow --preset crella --iterations 50 --seed 7 --out runs/crella
+./build/sessile grow --preset crella --iterations 50 --seed 7 --out runs/crella --force

@@ -46,6 +46,8 @@ int cli_parse_seed(const char *cmd, const char *val, unsigned long long *out) {
 }
 
 int cli_finish_stdout(int rc) {
+  /* a command that failed has said why already: one line, not two */
+  if (rc != EXIT_OK) return rc;
   if (fflush(stdout) != 0 || ferror(stdout)) {
     int e = errno;
     fprintf(stderr, "sessile: error: cannot write the output: %s\n", e ? strerror(e) : "write error");

@@ -122,7 +122,9 @@ static int grow_main(int argc, char **argv, grow_args *a) {
   if (s != SESSILE_OK) return cli_fail(s);
   sessile_run *run = NULL;
   cJSON *old = NULL; /* a resume's options point into its stored config: keep a copy */
-  s = cli_run_open("grow", argc, argv, &a->ra, dir, stop, &run);
+  /* what the device cannot hold is refused before the folder is touched */
+  if (!a->ra.resume) s = sessile_grow_check_device(g, &p);
+  if (s == SESSILE_OK) s = cli_run_open("grow", argc, argv, &a->ra, dir, stop, &run);
   if (s == SESSILE_OK && a->ra.resume) {
     old = cJSON_Duplicate(sessile_run_config(run), 1);
     s = old ? sessile_grow_config_read(old, &p, &a->o)

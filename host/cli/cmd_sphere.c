@@ -28,7 +28,11 @@ static int sphere_main(int argc, char **argv, cli_run_args *a) {
       fputs(help, stdout);
       return EXIT_OK;
     }
-    int r = cli_run_option("sphere", argc, argv, &i, a);
+    /* device options are accepted everywhere (sessile --help says so); the
+     * sphere needs no device and ignores them */
+    cli_gpu_opts ignored = {0};
+    int r = cli_gpu_option("sphere", argc, argv, &i, &ignored);
+    if (r == 0) r = cli_run_option("sphere", argc, argv, &i, a);
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error("sphere", "unknown option '%.60s'", argv[i]);
   }

@@ -294,9 +294,9 @@ static sessile_status resume(grow_run *r) {
 }
 
 /* Refuses a box the device cannot hold, with the estimate. */
-static sessile_status device_fits(const grow_run *r) {
-  const sessile_gpu_info *gi = sessile_gpu_info_of(r->gpu);
-  double need = sessile_params_device_bytes(r->p);
+sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_params *p) {
+  const sessile_gpu_info *gi = sessile_gpu_info_of(g);
+  double need = sessile_params_device_bytes(p);
   if (gi->precision == 32) need *= 0.5;
   SESSILE_CHECK(gi->device_local_bytes == 0 || need < (double)gi->device_local_bytes, SESSILE_ERR_USAGE,
                 "the run needs about %.2f GiB of device memory but %s has %.2f GiB; lower "
@@ -330,7 +330,7 @@ sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
   r.gpu = g;
   r.t_start = sessile_wall_seconds();
   double *normals = NULL, *newpos = NULL;
-  sessile_status s = device_fits(&r);
+  sessile_status s = sessile_grow_check_device(g, p);
   if (s == SESSILE_OK) s = setup(&r);
   if (s == SESSILE_OK) s = grow_parse_planes(&r);
   if (s == SESSILE_OK && o->run) s = grow_manifest_begin(&r);

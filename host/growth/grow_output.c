@@ -37,6 +37,9 @@ static sessile_status parse_planes(const char *spec, const double mx[3], const d
     } else {
       char *end = NULL;
       SESSILE_CHECK(tok[1] == '=', SESSILE_ERR_USAGE, "--slices: plane '%s' must be 'AXIS' or 'AXIS=VALUE'", tok);
+      /* decimal only: strtod alone would take "0x1p3", "inf" or blanks */
+      SESSILE_CHECK(tok[2] && strspn(tok + 2, "0123456789.eE+-") == strlen(tok + 2), SESSILE_ERR_USAGE,
+                    "--slices: '%s' needs a decimal number of cm after '='", tok);
       pl->value = strtod(tok + 2, &end);
       SESSILE_CHECK(end != tok + 2 && !*end && isfinite(pl->value) && pl->value >= 0 &&
                         pl->value <= mx[pl->axis],

@@ -8,7 +8,7 @@
 #define RUN_MANIFEST "manifest.json"
 #define RUN_RECORDS "records.jsonl"
 #define RUN_CHECKPOINT "checkpoint.bin"
-#define RUN_LOCK ".sessile.lock"
+#define RUN_LOCK ".sessile.lock" /* who holds the folder's flock */
 
 typedef struct ckpt_entry {
   char *name;
@@ -27,7 +27,8 @@ struct sessile_ckpt {
 struct sessile_run {
   char *dir, *generator;
   char host[256];
-  int dfd, lockfd, recfd;
+  int dfd, recfd;         /* the folder (flock'ed while the run lives), records.jsonl */
+  cJSON *replaced;        /* --force: the older run's manifest, until its files are removed */
   const volatile sig_atomic_t *stop;
   cJSON *manifest, *config;
   uint64_t records_bytes; /* records.jsonl's length: a checkpoint keeps it */

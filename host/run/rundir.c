@@ -128,29 +128,38 @@ sessile_status run_read_file(int dfd, const char *name, size_t max, char **text,
   return SESSILE_OK;
 }
 
+/* The lock is an flock on the folder itself: taking it creates nothing, so
+ * a refused run leaves the folder exactly as it was.  Who holds it is written
+ * to .sessile.lock only once the run is accepted (for the next one's message). */
 static sessile_status lock_folder(sessile_run *r) {
-  r->lockfd = openat(r->dfd, RUN_LOCK, O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
-  SESSILE_CHECK(r->lockfd >= 0, SESSILE_ERR_USAGE, "cannot create the lock file of '%s': %s%s", r->dir,
-                strerror(errno), errno == ELOOP ? " (a symlink: refused)" : "");
+  if (flock(r->dfd, LOCK_EX | LOCK_NB) == 0) return SESSILE_OK;
+  int e = errno;
+  char who[256] = "";
+  int fd = openat(r->dfd, RUN_LOCK, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   struct stat st;
-  SESSILE_CHECK(fstat(r->lockfd, &st) == 0 && S_ISREG(st.st_mode), SESSILE_ERR_USAGE,
-                "the lock file of '%s' is not a regular file", r->dir);
-  if (flock(r->lockfd, LOCK_EX | LOCK_NB) != 0) {
-    int e = errno;
-    char who[256] = "";
-    ssize_t k = pread(r->lockfd, who, sizeof who - 1, 0);
+  if (fd >= 0 && fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    ssize_t k = pread(fd, who, sizeof who - 1, 0);
     who[k > 0 ? k : 0] = 0;
     who[strcspn(who, "\n")] = 0;
-    if (e == EWOULDBLOCK)
-      return sessile_error_set(SESSILE_ERR_USAGE,
-                               "'%s' is in use by another sessile run (%s); wait for it to end or "
-                               "choose another --out", r->dir, *who ? who : "pid unknown");
-    return sessile_error_set(SESSILE_ERR_IO, "cannot lock '%s': %s", r->dir, strerror(e));
   }
+  if (fd >= 0) close(fd);
+  if (e == EWOULDBLOCK)
+    return sessile_error_set(SESSILE_ERR_USAGE,
+                             "'%s' is in use by another sessile run (%s); wait for it to end or "
+                             "choose another --out", r->dir, *who ? who : "pid unknown");
+  return sessile_error_set(SESSILE_ERR_IO, "cannot lock '%s': %s", r->dir, strerror(e));
+}
+
+/* Records who holds the lock (the folder is ours now). */
+static sessile_status write_lock_owner(sessile_run *r) {
   char me[300];
   int n = snprintf(me, sizeof me, "pid %ld on host %s\n", (long)getpid(), r->host);
-  if (ftruncate(r->lockfd, 0) != 0 || pwrite(r->lockfd, me, (size_t)n, 0) != n)
-    return sessile_error_set(SESSILE_ERR_IO, "cannot write the lock file of '%s': %s", r->dir, strerror(errno));
+  unlinkat(r->dfd, RUN_LOCK, 0);
+  int fd = openat(r->dfd, RUN_LOCK, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  int ok = fd >= 0 && write(fd, me, (size_t)n) == n;
+  int e = errno;
+  if (fd >= 0) close(fd);
+  SESSILE_CHECK(ok, SESSILE_ERR_IO, "cannot write '%s/%s': %s", r->dir, RUN_LOCK, strerror(e));
   return SESSILE_OK;
 }
 
@@ -229,6 +238,52 @@ static sessile_status open_records(sessile_run *r, int truncate_to_ckpt) {
   return SESSILE_OK;
 }
 
+/* Decides whether this run may use the folder (nothing written yet). */
+static sessile_status admit(sessile_run *r, const sessile_run_options *o) {
+  cJSON *old = NULL;
+  SESSILE_CALL(old_manifest(r, &old));
+  sessile_status s = SESSILE_OK;
+  if (o->mode == SESSILE_RUN_RESUME) {
+    if (!old)
+      return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': it holds no %s", o->dir, RUN_MANIFEST);
+    const cJSON *g = cJSON_GetObjectItemCaseSensitive(old, "generator");
+    if (!cJSON_IsString(g) || strcmp(g->valuestring, r->generator)) {
+      s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds a run of another generator ('%.40s'), not '%s'",
+                            o->dir, cJSON_IsString(g) ? g->valuestring : "?", r->generator);
+      cJSON_Delete(old);
+      return s;
+    }
+    cJSON *cfg = cJSON_DetachItemFromObjectCaseSensitive(old, "config");
+    if (!cfg) s = sessile_error_set(SESSILE_ERR_USAGE, "'%s/%s' holds no configuration to resume from", o->dir, RUN_MANIFEST);
+    r->config = cfg;
+    /* files listed so far stay listed (a --force later removes them) */
+    cJSON *files = cJSON_DetachItemFromObjectCaseSensitive(old, "files");
+    if (files) cJSON_ReplaceItemInObjectCaseSensitive(r->manifest, "files", files);
+    const cJSON *starts = cJSON_GetObjectItemCaseSensitive(old, "starts");
+    if (cJSON_IsNumber(starts)) r->start_count = (int)starts->valuedouble;
+    cJSON_Delete(old);
+    if (s == SESSILE_OK) s = run_ckpt_read(r);
+    return s;
+  }
+  if (old && o->mode != SESSILE_RUN_REPLACE) {
+    const cJSON *st = cJSON_GetObjectItemCaseSensitive(old, "start_time");
+    s = sessile_error_set(SESSILE_ERR_USAGE,
+                          "'%s' holds an earlier run (state %s, started %s); add --force to replace "
+                          "it, --resume to continue it, or choose another --out",
+                          o->dir, state_of(old), cJSON_IsString(st) ? st->valuestring : "unknown");
+  } else if (!old && !folder_empty(r->dfd)) {
+    s = sessile_error_set(SESSILE_ERR_USAGE,
+                          "'%s' is not empty and holds no sessile run (no %s); choose an empty "
+                          "or new folder for --out", o->dir, RUN_MANIFEST);
+  }
+  r->replaced = old; /* removed once admitted */
+  if (s != SESSILE_OK) {
+    cJSON_Delete(old);
+    r->replaced = NULL;
+  }
+  return s;
+}
+
 static sessile_status setup(sessile_run *r, const sessile_run_options *o) {
   SESSILE_CHECK(o->dir && *o->dir, SESSILE_ERR_USAGE, "the run directory needs a name");
   SESSILE_CHECK(strlen(o->dir) < 3500, SESSILE_ERR_USAGE, "the run directory's name is too long");
@@ -237,60 +292,28 @@ static sessile_status setup(sessile_run *r, const sessile_run_options *o) {
   SESSILE_CHECK(r->dir && r->generator, SESSILE_ERR_NO_MEMORY, "out of host memory");
   if (gethostname(r->host, sizeof r->host) != 0) snprintf(r->host, sizeof r->host, "unknown");
   r->host[sizeof r->host - 1] = 0;
-  sessile_status s = sessile_mkdirs(o->dir);
-  if (s != SESSILE_OK)
-    return sessile_error_set(SESSILE_ERR_USAGE, "cannot create the run directory: %s", sessile_error_message());
+  /* A resume never creates its folder; a new run creates it (with parents). */
+  if (o->mode != SESSILE_RUN_RESUME) {
+    sessile_status s = sessile_mkdirs(o->dir);
+    if (s != SESSILE_OK)
+      return sessile_error_set(SESSILE_ERR_USAGE, "cannot create the run directory: %s", sessile_error_message());
+  }
   r->dfd = open(o->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (r->dfd < 0 && o->mode == SESSILE_RUN_RESUME)
+    return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': %s", o->dir, strerror(errno));
   SESSILE_CHECK(r->dfd >= 0, SESSILE_ERR_USAGE, "cannot open the run directory '%s': %s", o->dir, strerror(errno));
   SESSILE_CHECK(faccessat(r->dfd, ".", W_OK, 0) == 0, SESSILE_ERR_USAGE,
                 "the run directory '%s' is not writable: %s", o->dir, strerror(errno));
   SESSILE_CALL(lock_folder(r));
+  SESSILE_CALL(admit(r, o));
+  /* Admitted: from here on the folder is this run's. */
+  SESSILE_CALL(write_lock_owner(r));
   sweep_all(r->dfd);
-
-  cJSON *old = NULL;
-  SESSILE_CALL(old_manifest(r, &old));
-  if (o->mode == SESSILE_RUN_RESUME) {
-    if (!old)
-      return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': it holds no %s", o->dir, RUN_MANIFEST);
-    const cJSON *g = cJSON_GetObjectItemCaseSensitive(old, "generator");
-    if (!cJSON_IsString(g) || strcmp(g->valuestring, r->generator)) {
-      cJSON_Delete(old);
-      return sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds a run of another generator ('%s'), not '%s'",
-                               o->dir, cJSON_IsString(g) ? g->valuestring : "?", r->generator);
-    }
-    s = run_ckpt_read(r);
-    if (s == SESSILE_OK) {
-      cJSON *cfg = cJSON_DetachItemFromObjectCaseSensitive(old, "config");
-      SESSILE_CHECK(cfg, SESSILE_ERR_USAGE, "'%s/%s' holds no configuration to resume from", o->dir, RUN_MANIFEST);
-      r->config = cfg;
-      /* files listed so far stay listed (a --force later removes them) */
-      cJSON *files = cJSON_DetachItemFromObjectCaseSensitive(old, "files");
-      if (files) cJSON_ReplaceItemInObjectCaseSensitive(r->manifest, "files", files);
-      r->start_count = 0;
-      const cJSON *runs = cJSON_GetObjectItemCaseSensitive(old, "starts");
-      if (cJSON_IsNumber(runs)) r->start_count = (int)runs->valuedouble;
-    }
-    cJSON_Delete(old);
-    SESSILE_CALL(s);
-    return open_records(r, 1);
-  }
-  if (old) {
-    if (o->mode != SESSILE_RUN_REPLACE) {
-      const cJSON *st = cJSON_GetObjectItemCaseSensitive(old, "start_time");
-      s = sessile_error_set(SESSILE_ERR_USAGE,
-                            "'%s' holds an earlier run (state %s, started %s); add --force to replace "
-                            "it, --resume to continue it, or choose another --out",
-                            o->dir, state_of(old), cJSON_IsString(st) ? st->valuestring : "unknown");
-      cJSON_Delete(old);
-      return s;
-    }
-    s = replace_old(r, old);
-    cJSON_Delete(old);
-    SESSILE_CALL(s);
-  } else if (!folder_empty(r->dfd)) {
-    return sessile_error_set(SESSILE_ERR_USAGE,
-                             "'%s' is not empty and holds no sessile run (no %s); choose an empty "
-                             "or new folder for --out", o->dir, RUN_MANIFEST);
+  if (o->mode == SESSILE_RUN_RESUME) return open_records(r, 1);
+  if (r->replaced) {
+    SESSILE_CALL(replace_old(r, r->replaced));
+    cJSON_Delete(r->replaced);
+    r->replaced = NULL;
   }
   unlinkat(r->dfd, RUN_CHECKPOINT, 0);
   return open_records(r, 0);
@@ -300,7 +323,7 @@ sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out)
   *out = NULL;
   sessile_run *r = calloc(1, sizeof *r);
   SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  r->dfd = r->lockfd = r->recfd = -1;
+  r->dfd = r->recfd = -1;
   r->stop = o->stop;
   r->manifest = cJSON_CreateObject();
   sessile_status s = r->manifest ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
@@ -436,8 +459,8 @@ sessile_status sessile_run_record(sessile_run *r, const cJSON *rec) {
 void run_free(sessile_run *r) {
   if (!r) return;
   if (r->recfd >= 0) close(r->recfd);
-  if (r->lockfd >= 0) close(r->lockfd); /* releases the flock */
-  if (r->dfd >= 0) close(r->dfd);
+  if (r->dfd >= 0) close(r->dfd); /* releases the flock */
+  cJSON_Delete(r->replaced);
   cJSON_Delete(r->manifest);
   cJSON_Delete(r->config);
   run_ckpt_free(r->ckpt);

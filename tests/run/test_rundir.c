@@ -141,6 +141,7 @@ int main(void) {
 
   /* A damaged checkpoint is reported, not trusted. */
   t_ok("open to checkpoint", open_run(SESSILE_RUN_REPLACE, &r));
+  t_ok("set the config", sessile_run_set_config(r, cJSON_CreateString("cfg")));
   t_ok("a checkpoint", sessile_run_checkpoint(r, 3, 1, &sec));
   t_ok("close", sessile_run_close(r, SESSILE_OK));
   snprintf(path, sizeof path, "%s/checkpoint.bin", dir);
@@ -156,6 +157,9 @@ int main(void) {
   mkdir(other, 0700);
   snprintf(dir, sizeof dir, "%.180s", outside);
   t_true("a non-run folder is refused even with --force", open_run(SESSILE_RUN_REPLACE, &r) == SESSILE_ERR_USAGE);
+  struct stat lk;
+  snprintf(path, sizeof path, "%s/.sessile.lock", dir);
+  t_true("... and nothing is written into it (no lock file)", lstat(path, &lk) != 0);
   t_true("nothing to resume in a non-run folder", open_run(SESSILE_RUN_RESUME, &r) == SESSILE_ERR_USAGE);
   cJSON_Delete(rec);
   char cmd[300];

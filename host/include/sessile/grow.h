@@ -76,6 +76,10 @@ sessile_status sessile_grow_config_read(const cJSON *cfg, sessile_params *p, ses
  * parameter table's, the --slices spec): a run that passes it starts. */
 sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o);
 
+/* Refuses (SESSILE_ERR_USAGE, with the estimate) parameters whose
+ * device-memory estimate exceeds the device's largest device-local heap. */
+sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_params *p);
+
 /* Runs the growth loop.  The final surface is returned in final (may be
  * NULL).  Errors: SESSILE_ERR_USAGE for bad parameters (nothing written
  * then), SESSILE_ERR_TOO_LARGE when the box would not fit the device,
