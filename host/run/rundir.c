@@ -32,8 +32,8 @@ static int plain_rel(const char *rel) {
   return 1;
 }
 
-/* Removes leftover temporaries (sessile_is_temp_name) in one folder. */
-static void sweep_temps(int dfd) {
+/* Calls fn for every entry of the folder dfd (but "." and ".."). */
+static void each_entry(int dfd, void (*fn)(int dfd, const char *name, void *user), void *user) {
   int fd = dup(dfd);
   if (fd < 0) return;
   DIR *d = fdopendir(fd);
@@ -44,8 +44,13 @@ static void sweep_temps(int dfd) {
   rewinddir(d); /* a dup shares its offset with dfd: start from the top */
   struct dirent *e;
   while ((e = readdir(d)) != NULL)
-    if (sessile_is_temp_name(e->d_name)) unlinkat(dfd, e->d_name, 0);
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) fn(dfd, e->d_name, user);
   closedir(d);
+}
+
+static void unlink_temp(int dfd, const char *name, void *user) {
+  (void)user;
+  if (sessile_is_temp_name(name)) unlinkat(dfd, name, 0);
 }
 
 /* Opens the subfolder `name` of dfd without following a symlink (creating
@@ -55,44 +60,32 @@ static int open_subdir(int dfd, const char *name, int create) {
   return openat(dfd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
 }
 
-/* Sweeps the folder and each real subfolder (one level, as runs write). */
+static void sweep_subdir(int dfd, const char *name, void *user) {
+  (void)user;
+  if (name[0] == '.') return;
+  int sfd = open_subdir(dfd, name, 0);
+  if (sfd < 0) return;
+  each_entry(sfd, unlink_temp, NULL);
+  close(sfd);
+}
+
+/* Removes leftover temporaries (sessile_is_temp_name) in the folder and each
+ * real subfolder (one level, as runs write). */
 static void sweep_all(int dfd) {
-  sweep_temps(dfd);
-  int fd = dup(dfd);
-  if (fd < 0) return;
-  DIR *d = fdopendir(fd);
-  if (!d) {
-    close(fd);
-    return;
-  }
-  rewinddir(d); /* a dup shares its offset with dfd: start from the top */
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL) {
-    if (e->d_name[0] == '.') continue;
-    int sfd = openat(dfd, e->d_name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (sfd >= 0) {
-      sweep_temps(sfd);
-      close(sfd);
-    }
-  }
-  closedir(d);
+  each_entry(dfd, unlink_temp, NULL);
+  each_entry(dfd, sweep_subdir, NULL);
+}
+
+static void count_foreign(int dfd, const char *name, void *user) {
+  (void)dfd;
+  if (strcmp(name, RUN_LOCK)) ++*(int *)user;
 }
 
 /* Whether the folder holds anything but our lock file. */
 static int folder_empty(int dfd) {
-  int fd = dup(dfd), empty = 1;
-  if (fd < 0) return 0;
-  DIR *d = fdopendir(fd);
-  if (!d) {
-    close(fd);
-    return 0;
-  }
-  rewinddir(d);
-  struct dirent *e;
-  while ((e = readdir(d)) != NULL)
-    if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..") && strcmp(e->d_name, RUN_LOCK)) empty = 0;
-  closedir(d);
-  return empty;
+  int n = 0;
+  each_entry(dfd, count_foreign, &n);
+  return n == 0;
 }
 
 /* Reads a small regular file inside the folder (no symlink, FIFO or device). */
