@@ -16,10 +16,10 @@
  * the GPU; the field is clamped into [0, 1] (SUPG's small over- and
  * undershoots near layers) before the probe reads it. */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
+#include "grow_warn.h"
 
 void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
   sessile_fluid_params_default(fp);
@@ -39,14 +39,20 @@ static sessile_status flow_setup(grow_run *r) {
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
                              (uint32_t)p->box_cells_z};
-  SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->fluid_resolution, &r->fbox));
-  SESSILE_CALL(sessile_tetmesh_from_box(&r->fbox, &r->fmesh));
-  SESSILE_CALL(sessile_fluid_create(r->la, &r->fmesh, &r->fluid));
+  /* Each piece once: a diffusion-limited run goes on after a failed flow
+   * and calls this again, which then completes what is missing (nothing is
+   * made twice; grow_flow_teardown frees what there is). */
+  if (!r->fmesh.nnodes) {
+    SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->fluid_resolution, &r->fbox));
+    SESSILE_CALL(sessile_tetmesh_from_box(&r->fbox, &r->fmesh));
+  }
+  if (!r->fluid) SESSILE_CALL(sessile_fluid_create(r->la, &r->fmesh, &r->fluid));
   uint32_t nf = sessile_box_nodes(&r->fbox), nb = sessile_box_nodes(&r->box);
-  SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nf * 4, SESSILE_BUFFER_DEVICE, &r->fsolid));
-  r->up = calloc((size_t)nf * 4, sizeof *r->up);
-  r->ufine = calloc((size_t)nb * 3, sizeof *r->ufine);
-  r->pfine = calloc(nb, sizeof *r->pfine);
+  if (!r->fsolid)
+    SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nf * 4, SESSILE_BUFFER_DEVICE, &r->fsolid));
+  if (!r->up) r->up = calloc((size_t)nf * 4, sizeof *r->up);
+  if (!r->ufine) r->ufine = calloc((size_t)nb * 3, sizeof *r->ufine);
+  if (!r->pfine) r->pfine = calloc(nb, sizeof *r->pfine);
   SESSILE_CHECK(r->up && r->ufine && r->pfine, SESSILE_ERR_NO_MEMORY, "out of host memory for the flow");
   r->flow_ready = 1;
   return SESSILE_OK;
@@ -136,6 +142,7 @@ static sessile_status flow_immersed(grow_run *r, sessile_fluid_result *res) {
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   SESSILE_CALL(flow_setup(r));
   cJSON *fl = cJSON_AddObjectToObject(rec, "fluid");
+  SESSILE_CHECK(fl, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest's flow record");
   cJSON_AddStringToObject(fl, "why", !r->p->diffusion_limited ? "feeds the advected nutrient"
                                      : r->p->fluid_every_iteration ? "requested every iteration"
                                                                    : "snapshot output only (diffusion limited)");
@@ -144,19 +151,20 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   int fell_back = 0;
   if (r->p->domain == SESSILE_DOMAIN_CONFORMING) {
     SESSILE_CALL(grow_flow_conforming(r, &res, fl, &fell_back));
-    if (fell_back && !r->o->quiet)
-      fprintf(stderr, "\nsessile grow: warning: iteration %d: TetGen rejected the sponge surface (%s); "
-                      "this iteration's flow uses the immersed domain\n",
-              it, cJSON_GetObjectItem(fl, "fallback")->valuestring);
+    if (fell_back) {
+      const char *why = cJSON_GetStringValue(cJSON_GetObjectItem(fl, "fallback"));
+      grow_warn(r, "iteration %d: TetGen rejected the sponge surface (%s); this iteration's flow "
+                   "uses the immersed domain", it, why ? why : "no reason recorded");
+    }
   }
   if (r->p->domain == SESSILE_DOMAIN_IMMERSED || fell_back) SESSILE_CALL(flow_immersed(r, &res));
   cJSON_AddStringToObject(fl, "domain", r->flow_domain);
   record_fluid(fl, &res, !strcmp(r->flow_domain, "immersed") ? sessile_box_nodes(&r->fbox) : r->cmesh.nnodes);
-  if (!res.converged && !r->o->quiet)
-    fprintf(stderr, "\nsessile grow: warning: iteration %d: Navier-Stokes stopped after %d Newton steps "
-                    "at residual %.2e, %.2e of the rest state's (not converged to %g); see manifest.json\n",
-            it, res.nsteps, res.residual,
-            res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
+  if (!res.converged)
+    grow_warn(r, "iteration %d: Navier-Stokes stopped after %d Newton steps at residual %.2e, %.2e of "
+                 "the rest state's (not converged to %g); see manifest.json",
+              it, res.nsteps, res.residual,
+              res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
   r->flow_valid = 1;
   return SESSILE_OK;
 }
@@ -164,14 +172,15 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
 sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res) {
   uint32_t nb = sessile_box_nodes(&r->box);
   if (!r->ad) {
-    SESSILE_CALL(sessile_tetmesh_from_box(&r->box, &r->nmesh));
-    SESSILE_CALL(sessile_advdiff_create(r->la, &r->nmesh, &r->ad));
-    r->nmask = malloc(nb);
-    r->nsolid = malloc(nb);
-    r->nval = malloc((size_t)nb * sizeof *r->nval);
-    r->nc = malloc((size_t)nb * sizeof *r->nc);
+    /* The arrays first, the solver last: r->ad set means all of it is there. */
+    if (!r->nmask) r->nmask = malloc(nb);
+    if (!r->nsolid) r->nsolid = malloc(nb);
+    if (!r->nval) r->nval = malloc((size_t)nb * sizeof *r->nval);
+    if (!r->nc) r->nc = malloc((size_t)nb * sizeof *r->nc);
     SESSILE_CHECK(r->nmask && r->nsolid && r->nval && r->nc, SESSILE_ERR_NO_MEMORY, "out of host memory for the nutrient");
     for (uint32_t i = 0; i < nb; i++) r->nc[i] = 1.0;
+    if (!r->nmesh.nnodes) SESSILE_CALL(sessile_tetmesh_from_box(&r->box, &r->nmesh));
+    SESSILE_CALL(sessile_advdiff_create(r->la, &r->nmesh, &r->ad));
   }
   SESSILE_CALL(mask_download(r->solid, nb, r->nsolid));
   sessile_advdiff_nutrient_bc(&r->nmesh, r->nsolid, r->nmask, r->nval);
