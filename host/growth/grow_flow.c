@@ -91,9 +91,10 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
   cJSON_AddNumberToObject(fl, "solve_seconds", res->solve_s);
   cJSON_AddNumberToObject(fl, "seconds", res->seconds);
   cJSON *steps = cJSON_AddArrayToObject(fl, "steps");
-  for (int k = 0; k < res->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
+  for (int k = 0; steps && k < res->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *st = &res->step[k];
     cJSON *o = cJSON_CreateObject();
+    if (!o) break; /* out of memory: the record is shorter, the run goes on */
     cJSON_AddNumberToObject(o, "residual", st->residual);
     cJSON_AddStringToObject(o, "kind", st->picard ? "picard" : "newton");
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
@@ -103,7 +104,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "matrix_chunks", st->lin_chunks);
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);
     cJSON_AddNumberToObject(o, "solve_seconds", st->solve_s);
-    cJSON_AddItemToArray(steps, o);
+    if (!cJSON_AddItemToArray(steps, o)) cJSON_Delete(o);
   }
 }
 
