@@ -179,7 +179,7 @@ void sessile_fluid_destroy(sessile_fluid *fl) {
 
 sessile_status sessile_fluid_create(sessile_la *la, const sessile_tetmesh *m, sessile_fluid **out) {
   *out = NULL;
-  SESSILE_CHECK(m && m->nnodes >= 4 && m->ntets >= 1, SESSILE_ERR_USAGE,
+  SESSILE_CHECK(m && m->nnodes >= 4 && m->ntets >= 1 && m->xyz && m->tet, SESSILE_ERR_USAGE,
                 "fluid mesh needs at least one tetrahedron");
   SESSILE_CHECK(m->nnodes <= UINT32_MAX / 4, SESSILE_ERR_TOO_LARGE, "fluid mesh too large");
   for (uint64_t k = 0; k < 4ull * m->ntets; k++)
