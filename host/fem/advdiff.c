@@ -121,12 +121,15 @@ sessile_status sessile_advdiff_set_source(sessile_advdiff *ad, const double *f) 
     ad->f = NULL;
     return SESSILE_OK;
   }
+  /* Validate, then allocate, then copy: on any failure the previous source
+   * (or none) stays in force, never a half-written or uninitialised one. */
   size_t n = ad->mesh->nnodes;
-  if (!ad->f) ad->f = malloc(n * sizeof *ad->f);
-  SESSILE_CHECK(ad->f, SESSILE_ERR_NO_MEMORY, "out of host memory");
   for (size_t i = 0; i < n; i++)
     SESSILE_CHECK(isfinite(f[i]), SESSILE_ERR_NUMERIC, "source is not finite at node %zu", i);
-  memcpy(ad->f, f, n * sizeof *f);
+  double *dst = ad->f ? ad->f : malloc(n * sizeof *dst);
+  SESSILE_CHECK(dst, SESSILE_ERR_NO_MEMORY, "out of host memory for a source of %zu nodes", n);
+  memcpy(dst, f, n * sizeof *f);
+  ad->f = dst;
   return SESSILE_OK;
 }
 

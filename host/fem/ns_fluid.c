@@ -3,6 +3,7 @@
  * the Newton loop with GPU linear solves.  The element is ns_element.c;
  * decisions and measurements are in docs/fluid.md. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,19 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->pc = SESSILE_PC_ILU0; /* 47-100 GMRES iterations per Newton step on the default box */
   p->restart = 50;
   p->block_jacobi = 0;
+}
+
+/* One line to the caller's monitor (nothing when it is NULL). */
+static void fluid_monitor(const sessile_fluid_params *p, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void fluid_monitor(const sessile_fluid_params *p, const char *fmt, ...) {
+  if (!p->monitor) return;
+  char line[320];
+  va_list ap;
+  va_start(ap, fmt);
+  if (vsnprintf(line, sizeof line, fmt, ap) < 0) line[0] = '\0';
+  va_end(ap);
+  p->monitor(p->monitor_user, line);
 }
 
 static int cmp_u32(const void *a, const void *b) {
@@ -87,18 +101,22 @@ static sessile_status build_graph(sessile_fluid *fl) {
       fl->pos = malloc((size_t)nt * 16 * sizeof *fl->pos);
       if (!fl->pos) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     }
-    if (s == SESSILE_OK)
-      for (uint64_t t = 0; t < nt; t++)
-        for (int a = 0; a < 4; a++) {
-          uint32_t r = fl->tet[4 * t + a];
-          const uint32_t *row = fl->a.col + fl->a.rowptr[r];
-          size_t len = (size_t)(fl->a.rowptr[r + 1] - fl->a.rowptr[r]);
-          for (int b = 0; b < 4; b++) {
-            uint32_t key = fl->tet[4 * t + b];
-            const uint32_t *hit = bsearch(&key, row, len, sizeof *row, cmp_u32);
-            fl->pos[16 * t + 4 * a + b] = (uint32_t)(fl->a.rowptr[r] + (uint64_t)(hit - row));
+    for (uint64_t t = 0; s == SESSILE_OK && t < nt; t++)
+      for (int a = 0; a < 4 && s == SESSILE_OK; a++) {
+        uint32_t r = fl->tet[4 * t + a];
+        const uint32_t *row = fl->a.col + fl->a.rowptr[r];
+        size_t len = (size_t)(fl->a.rowptr[r + 1] - fl->a.rowptr[r]);
+        for (int b = 0; b < 4; b++) {
+          uint32_t key = fl->tet[4 * t + b];
+          const uint32_t *hit = bsearch(&key, row, len, sizeof *row, cmp_u32);
+          if (!hit) { /* the pattern holds every pair of a tet: cannot happen */
+            s = sessile_error_set(SESSILE_ERR_INTERNAL, "fluid graph: node %u misses neighbour %u of tet %llu",
+                                  r, key, (unsigned long long)t);
+            break;
           }
+          fl->pos[16 * t + 4 * a + b] = (uint32_t)(fl->a.rowptr[r] + (uint64_t)(hit - row));
         }
+      }
   }
   free(cnt);
   free(tmp);
@@ -161,7 +179,7 @@ void sessile_fluid_destroy(sessile_fluid *fl) {
 
 sessile_status sessile_fluid_create(sessile_la *la, const sessile_tetmesh *m, sessile_fluid **out) {
   *out = NULL;
-  SESSILE_CHECK(m && m->nnodes >= 4 && m->ntets >= 1, SESSILE_ERR_USAGE,
+  SESSILE_CHECK(m && m->nnodes >= 4 && m->ntets >= 1 && m->xyz && m->tet, SESSILE_ERR_USAGE,
                 "fluid mesh needs at least one tetrahedron");
   SESSILE_CHECK(m->nnodes <= UINT32_MAX / 4, SESSILE_ERR_TOO_LARGE, "fluid mesh too large");
   for (uint64_t k = 0; k < 4ull * m->ntets; k++)
@@ -239,6 +257,8 @@ static void assemble(sessile_fluid *fl, const sessile_fluid_params *p, const dou
 
 sessile_status sessile_fluid_residual(sessile_fluid *fl, const sessile_fluid_params *p,
                                       const double *up, double *r) {
+  SESSILE_CHECK(fl && p && up && r, SESSILE_ERR_USAGE,
+                "fluid residual needs a solver, parameters, a state and an output");
   assemble(fl, p, up, 1.0, 0, r);
   return SESSILE_OK;
 }
@@ -324,8 +344,11 @@ static int inv4(const double *a, double *inv) {
  * sees D^-1 A x = D^-1 b (its relative residual is then that of the scaled
  * system).  la's point Jacobi cannot couple a node's u and p. */
 static sessile_status block_scale(sessile_fluid *fl, double *rhs) {
-  sessile_status s = SESSILE_OK;
-#pragma omp parallel for schedule(static)
+  /* A failure in a worker is reduced to the lowest failing node and reported
+   * once, on the calling thread, after the parallel loop: the error message
+   * is thread-local, so a worker's sessile_error_set would be lost. */
+  uint32_t bad = UINT32_MAX;
+#pragma omp parallel for schedule(static) reduction(min : bad)
   for (uint32_t i = 0; i < fl->nnodes; i++) {
     double D[16], Di[16], tmp[16];
     int found = 0;
@@ -335,8 +358,7 @@ static sessile_status block_scale(sessile_fluid *fl, double *rhs) {
         found = 1;
       }
     if (!found || !inv4(D, Di)) {
-#pragma omp critical
-      s = sessile_error_set(SESSILE_ERR_NUMERIC, "Navier-Stokes Jacobian: singular diagonal block at node %u", i);
+      if (i < bad) bad = i;
       continue;
     }
     for (uint64_t e = fl->a.rowptr[i]; e < fl->a.rowptr[i + 1]; e++) {
@@ -350,7 +372,10 @@ static sessile_status block_scale(sessile_fluid *fl, double *rhs) {
     for (int r = 0; r < 4; r++) bt[r] = Di[4 * r] * b[0] + Di[4 * r + 1] * b[1] + Di[4 * r + 2] * b[2] + Di[4 * r + 3] * b[3];
     memcpy(b, bt, sizeof bt);
   }
-  return s;
+  if (bad != UINT32_MAX)
+    return sessile_error_set(SESSILE_ERR_NUMERIC,
+                             "Navier-Stokes Jacobian: singular diagonal block at node %u", bad);
+  return SESSILE_OK;
 }
 
 static sessile_status linear_solve(sessile_fluid *fl, const sessile_fluid_params *p, const double *r,
@@ -378,13 +403,14 @@ static sessile_status linear_solve(sessile_fluid *fl, const sessile_fluid_params
   if (s == SESSILE_OK) s = sessile_vec_download(x, du);
   sessile_mat_destroy(m);
   if (s != SESSILE_OK) return s;
-  if (getenv("SESSILE_NS_CHECK")) {
+  if (p->check_linear && p->monitor) {
     double *y = malloc(n4 * sizeof *y), e = 0, nb = 0;
+    SESSILE_CHECK(y, SESSILE_ERR_NO_MEMORY, "out of host memory for the linear-solve check");
     sessile_ref_spmv_bcsr4(&fl->a, du, y);
     for (size_t k = 0; k < n4; k++) { e += (y[k] + r[k]) * (y[k] + r[k]); nb += r[k] * r[k]; }
     if (p->block_jacobi) e = NAN; /* the matrix is scaled */
-    fprintf(stderr, "host check |J du + r|/|r| = %g\n", sqrt(e / nb));
     free(y);
+    fluid_monitor(p, "host check |J du + r|/|r| = %g", sqrt(e / nb));
   }
   st->lin_iterations = lr.iterations;
   st->lin_relres = lr.true_relres;
@@ -394,6 +420,8 @@ static sessile_status linear_solve(sessile_fluid *fl, const sessile_fluid_params
 
 sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
                                    double *up, sessile_fluid_result *res) {
+  SESSILE_CHECK(fl && p && up && res, SESSILE_ERR_USAGE,
+                "fluid solve needs a solver, parameters, a state and a result");
   memset(res, 0, sizeof *res);
   SESSILE_CHECK(p->eta > 0 && p->rho >= 0 && isfinite(p->rho) && isfinite(p->eta), SESSILE_ERR_USAGE,
                 "fluid needs eta > 0 and rho >= 0 (got eta %g, rho %g)", p->eta, p->rho);
@@ -462,15 +490,14 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
       lam *= 0.5;
     }
     st->step_length = lam;
-    if (p->verbose)
-      fprintf(stderr, "fluid %s %d: |R| %.3e (rel %.2e)  step %.3g  lin %d it relres %.2e %s  asm %.2f s solve %.2f s\n",
-              picard ? "picard" : "newton", it, rn, rn / res->residual_rest, lam, st->lin_iterations,
-              st->lin_relres, sessile_solve_status_name(st->lin_status), tass, st->solve_s);
+    fluid_monitor(p, "fluid %s %d: |R| %.3e (rel %.2e)  step %.3g  lin %d it relres %.2e %s  asm %.2f s solve %.2f s",
+                  picard ? "picard" : "newton", it, rn, rn / res->residual_rest, lam, st->lin_iterations,
+                  st->lin_relres, sessile_solve_status_name(st->lin_status), tass, st->solve_s);
   }
-  if (s == SESSILE_OK && p->verbose)
-    fprintf(stderr, "fluid: %s after %d steps, |R| %.3e (rel %.2e)\n",
-            res->converged ? "converged" : "NOT converged", res->nsteps, res->residual,
-            res->residual_rest > 0 ? res->residual / res->residual_rest : 0.0);
+  if (s == SESSILE_OK)
+    fluid_monitor(p, "fluid: %s after %d steps, |R| %.3e (rel %.2e)",
+                  res->converged ? "converged" : "NOT converged", res->nsteps, res->residual,
+                  res->residual_rest > 0 ? res->residual / res->residual_rest : 0.0);
   sessile_vec_destroy(b);
   sessile_vec_destroy(x);
   free(bc);

@@ -64,7 +64,9 @@ static sessile_status create_device(sessile_gpu *g) {
 }
 
 static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
-  SESSILE_CALL(sessile_instance_create_(o->validation, &g->validation_count, &g->instance,
+  g->validation.fn = o->validation_message;
+  g->validation.user = o->validation_user;
+  SESSILE_CALL(sessile_instance_create_(o->validation, &g->validation, &g->instance,
                                         &g->messenger));
   uint32_t index = 0;
   SESSILE_CALL(sessile_choose_device_(g->instance, o->device, &g->phys, &index));
@@ -112,7 +114,7 @@ void sessile_gpu_destroy(sessile_gpu *g) {
 }
 
 const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g) { return &g->info; }
-uint64_t sessile_gpu_validation_count(const sessile_gpu *g) { return g->validation_count; }
+uint64_t sessile_gpu_validation_count(const sessile_gpu *g) { return g->validation.count; }
 
 uint32_t sessile_gpu_memory_type_(const sessile_gpu *g, uint32_t bits, VkMemoryPropertyFlags want) {
   for (uint32_t i = 0; i < g->mem.memoryTypeCount; i++)

@@ -8,8 +8,9 @@ void sessile_describe_device_(VkPhysicalDevice p, uint32_t index, sessile_gpu_in
                               VkPhysicalDeviceMemoryProperties *mem);
 sessile_status sessile_choose_device_(VkInstance inst, const char *choice, VkPhysicalDevice *out,
                                       uint32_t *index);
-/* Creates an instance (validation: enable the Khronos layer and a messenger counting into *count). */
-sessile_status sessile_instance_create_(int validation, uint64_t *count, VkInstance *inst,
+/* Creates an instance (validation: enable the Khronos layer and a messenger
+ * reporting to *sink, which must outlive the instance). */
+sessile_status sessile_instance_create_(int validation, sessile_validation_sink_ *sink, VkInstance *inst,
                                         VkDebugUtilsMessengerEXT *messenger);
 void sessile_instance_destroy_(VkInstance inst, VkDebugUtilsMessengerEXT messenger);
 #endif

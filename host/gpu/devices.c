@@ -30,8 +30,8 @@ static void print_one(FILE *out, VkPhysicalDevice p, uint32_t i, int chosen) {
 sessile_status sessile_gpu_print_devices(FILE *out, const char *device_choice) {
   VkInstance inst;
   VkDebugUtilsMessengerEXT m;
-  uint64_t count = 0;
-  SESSILE_CALL(sessile_instance_create_(0, &count, &inst, &m));
+  sessile_validation_sink_ sink = {0, NULL, NULL}; /* validation off: unused */
+  SESSILE_CALL(sessile_instance_create_(0, &sink, &inst, &m));
   VkPhysicalDevice chosen = VK_NULL_HANDLE;
   uint32_t chosen_index = 0;
   sessile_status s = sessile_choose_device_(inst, device_choice, &chosen, &chosen_index);

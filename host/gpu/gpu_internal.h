@@ -5,6 +5,14 @@
 #include <vulkan/vulkan.h>
 #include "sessile/gpu.h"
 
+/* Where the validation messenger reports (instance.c): every warning and
+ * error is counted, then handed to fn (NULL: printed to stderr). */
+typedef struct sessile_validation_sink_ {
+  uint64_t count;
+  sessile_validation_fn fn;
+  void *user;
+} sessile_validation_sink_;
+
 struct sessile_gpu {
   VkInstance instance;
   VkDebugUtilsMessengerEXT messenger;
@@ -18,7 +26,7 @@ struct sessile_gpu {
   VkPhysicalDeviceMemoryProperties mem;
   VkPhysicalDeviceLimits limits;
   sessile_gpu_info info;
-  uint64_t validation_count;
+  sessile_validation_sink_ validation;
 };
 
 struct sessile_buffer {

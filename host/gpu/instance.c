@@ -1,5 +1,6 @@
 /* Vulkan instance, with the Khronos validation layer on request.  Validation
- * warnings and errors are printed and counted: tests fail on any. */
+ * warnings and errors are counted (tests fail on any) and handed to the
+ * context's validation_message callback, by default printed to stderr. */
 #define _GNU_SOURCE /* dl_iterate_phdr, RTLD_NODELETE (sanitizer builds) */
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,11 +54,13 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlag
                                                  void *user) {
   (void)type;
   if (sev >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-    uint64_t *count = user;
-    (*count)++;
-    fprintf(stderr, "sessile: vulkan validation %s: %s\n",
-            sev >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning",
-            d && d->pMessage ? d->pMessage : "(no message)");
+    sessile_validation_sink_ *sink = user;
+    int is_error = sev >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    const char *msg = d && d->pMessage ? d->pMessage : "(no message)";
+    sink->count++;
+    if (sink->fn) sink->fn(sink->user, is_error, msg);
+    else /* the documented default (sessile_gpu_options.validation_message) */
+      fprintf(stderr, "sessile: vulkan validation %s: %s\n", is_error ? "error" : "warning", msg);
   }
   return VK_FALSE;
 }
@@ -74,7 +77,7 @@ static int has_layer(const char *name) {
   return found;
 }
 
-sessile_status sessile_instance_create_(int validation, uint64_t *count, VkInstance *inst,
+sessile_status sessile_instance_create_(int validation, sessile_validation_sink_ *sink, VkInstance *inst,
                                         VkDebugUtilsMessengerEXT *messenger) {
   *inst = VK_NULL_HANDLE;
   *messenger = VK_NULL_HANDLE;
@@ -102,7 +105,7 @@ sessile_status sessile_instance_create_(int validation, uint64_t *count, VkInsta
                      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                      VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
       .pfnUserCallback = on_message,
-      .pUserData = count};
+      .pUserData = sink};
   VkInstanceCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
                              .pNext = validation ? &mi : NULL, /* also catches create/destroy */
                              .pApplicationInfo = &app,

@@ -16,7 +16,6 @@
  * the GPU; the field is clamped into [0, 1] (SUPG's small over- and
  * undershoots near layers) before the probe reads it. */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
@@ -39,14 +38,20 @@ sessile_status grow_flow_setup(grow_run *r) {
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
                              (uint32_t)p->box_cells_z};
-  SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->fluid_resolution, &r->fbox));
-  SESSILE_CALL(sessile_tetmesh_from_box(&r->fbox, &r->fmesh));
-  SESSILE_CALL(sessile_fluid_create(r->la, &r->fmesh, &r->fluid));
+  /* Each piece once: a diffusion-limited run goes on after a failed flow
+   * and calls this again, which then completes what is missing (nothing is
+   * made twice; grow_flow_teardown frees what there is). */
+  if (!r->fmesh.nnodes) {
+    SESSILE_CALL(sessile_box_make(origin, p->box_base_cell, cells, p->fluid_resolution, &r->fbox));
+    SESSILE_CALL(sessile_tetmesh_from_box(&r->fbox, &r->fmesh));
+  }
+  if (!r->fluid) SESSILE_CALL(sessile_fluid_create(r->la, &r->fmesh, &r->fluid));
   uint32_t nf = sessile_box_nodes(&r->fbox), nb = sessile_box_nodes(&r->box);
-  SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nf * 4, SESSILE_BUFFER_DEVICE, &r->fsolid));
-  r->up = calloc((size_t)nf * 4, sizeof *r->up);
-  r->ufine = calloc((size_t)nb * 3, sizeof *r->ufine);
-  r->pfine = calloc(nb, sizeof *r->pfine);
+  if (!r->fsolid)
+    SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nf * 4, SESSILE_BUFFER_DEVICE, &r->fsolid));
+  if (!r->up) r->up = calloc((size_t)nf * 4, sizeof *r->up);
+  if (!r->ufine) r->ufine = calloc((size_t)nb * 3, sizeof *r->ufine);
+  if (!r->pfine) r->pfine = calloc(nb, sizeof *r->pfine);
   SESSILE_CHECK(r->up && r->ufine && r->pfine, SESSILE_ERR_NO_MEMORY, "out of host memory for the flow");
   r->flow_ready = 1;
   return SESSILE_OK;
@@ -85,9 +90,10 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
   cJSON_AddNumberToObject(fl, "solve_seconds", res->solve_s);
   cJSON_AddNumberToObject(fl, "seconds", res->seconds);
   cJSON *steps = cJSON_AddArrayToObject(fl, "steps");
-  for (int k = 0; k < res->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
+  for (int k = 0; steps && k < res->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *st = &res->step[k];
     cJSON *o = cJSON_CreateObject();
+    if (!o) break; /* out of memory: the record is shorter, the run goes on */
     cJSON_AddNumberToObject(o, "residual", st->residual);
     cJSON_AddStringToObject(o, "kind", st->picard ? "picard" : "newton");
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
@@ -97,7 +103,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "matrix_chunks", st->lin_chunks);
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);
     cJSON_AddNumberToObject(o, "solve_seconds", st->solve_s);
-    cJSON_AddItemToArray(steps, o);
+    if (!cJSON_AddItemToArray(steps, o)) cJSON_Delete(o);
   }
 }
 
@@ -136,6 +142,7 @@ static sessile_status flow_immersed(grow_run *r, sessile_fluid_result *res) {
 sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   SESSILE_CALL(grow_flow_setup(r));
   cJSON *fl = cJSON_AddObjectToObject(rec, "fluid");
+  SESSILE_CHECK(fl, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest's flow record");
   cJSON_AddStringToObject(fl, "why", !r->p->diffusion_limited ? "feeds the advected nutrient"
                                      : r->p->fluid_every_iteration ? "requested every iteration"
                                                                    : "snapshot output only (diffusion limited)");
@@ -144,18 +151,20 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
   int fell_back = 0;
   if (r->p->domain == SESSILE_DOMAIN_CONFORMING) {
     SESSILE_CALL(grow_flow_conforming(r, &res, fl, &fell_back));
-    if (fell_back)
+    if (fell_back) {
+      const char *why = cJSON_GetStringValue(cJSON_GetObjectItem(fl, "fallback"));
       grow_warn(r, "iteration %d: TetGen rejected the sponge surface (%s); this iteration's flow "
-                   "uses the immersed domain", it, cJSON_GetObjectItem(fl, "fallback")->valuestring);
+                   "uses the immersed domain", it, why ? why : "no reason recorded");
+    }
   }
   if (r->p->domain == SESSILE_DOMAIN_IMMERSED || fell_back) SESSILE_CALL(flow_immersed(r, &res));
   cJSON_AddStringToObject(fl, "domain", r->flow_domain);
   record_fluid(fl, &res, !strcmp(r->flow_domain, "immersed") ? sessile_box_nodes(&r->fbox) : r->cmesh.nnodes);
   if (!res.converged)
-    grow_warn(r, "iteration %d: Navier-Stokes stopped after %d Newton steps at residual %.2e, %.2e "
-                 "of the rest state's (not converged to %g); see records.jsonl",
-            it, res.nsteps, res.residual,
-            res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
+    grow_warn(r, "iteration %d: Navier-Stokes stopped after %d Newton steps at residual %.2e, %.2e of "
+                 "the rest state's (not converged to %g); see records.jsonl",
+              it, res.nsteps, res.residual,
+              res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
   r->flow_valid = 1;
   return SESSILE_OK;
 }
@@ -163,14 +172,15 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
 sessile_status grow_advected_setup(grow_run *r) {
   uint32_t nb = sessile_box_nodes(&r->box);
   if (!r->ad) {
-    SESSILE_CALL(sessile_tetmesh_from_box(&r->box, &r->nmesh));
-    SESSILE_CALL(sessile_advdiff_create(r->la, &r->nmesh, &r->ad));
-    r->nmask = malloc(nb);
-    r->nsolid = malloc(nb);
-    r->nval = malloc((size_t)nb * sizeof *r->nval);
-    r->nc = malloc((size_t)nb * sizeof *r->nc);
+    /* The arrays first, the solver last: r->ad set means all of it is there. */
+    if (!r->nmask) r->nmask = malloc(nb);
+    if (!r->nsolid) r->nsolid = malloc(nb);
+    if (!r->nval) r->nval = malloc((size_t)nb * sizeof *r->nval);
+    if (!r->nc) r->nc = malloc((size_t)nb * sizeof *r->nc);
     SESSILE_CHECK(r->nmask && r->nsolid && r->nval && r->nc, SESSILE_ERR_NO_MEMORY, "out of host memory for the nutrient");
     for (uint32_t i = 0; i < nb; i++) r->nc[i] = 1.0;
+    if (!r->nmesh.nnodes) SESSILE_CALL(sessile_tetmesh_from_box(&r->box, &r->nmesh));
+    SESSILE_CALL(sessile_advdiff_create(r->la, &r->nmesh, &r->ad));
   }
   return SESSILE_OK;
 }

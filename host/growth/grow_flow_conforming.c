@@ -71,6 +71,11 @@ sessile_status grow_flow_conforming(grow_run *r, sessile_fluid_result *res, cJSO
   sessile_status s = sessile_tetgen_conforming(&r->box, &r->surf, &to, &m);
   cJSON_AddNumberToObject(fl, "tetgen_seconds", sessile_wall_seconds() - t0);
   if (s != SESSILE_OK) {
+    /* Fall back to the immersed domain only where the sponge's geometry was
+     * refused (TetGen's verdict on the input: SESSILE_ERR_NUMERIC; a vertex
+     * outside the box or on a box edge: SESSILE_ERR_USAGE).  Out of memory,
+     * TetGen's internal errors and anything else stop the run. */
+    if (s != SESSILE_ERR_NUMERIC && s != SESSILE_ERR_USAGE) return s;
     *fell_back = 1;
     cJSON_AddStringToObject(fl, "fallback", sessile_error_message());
     return SESSILE_OK;

@@ -106,7 +106,7 @@ static sessile_status bench_vectors(bench *b, uint32_t n) {
     s = sessile_vec_create(b->la, n, &v[i]);
     if (s == SESSILE_OK) s = sessile_vec_upload(v[i], h + (size_t)i * n);
   }
-  la_scalar_set(b->la, S_IMM, 1.0);
+  if (s == SESSILE_OK) la_scalar_set(b->la, S_IMM, 1.0);
   double rb = b->la->real_bytes;
   for (size_t k = 0; s == SESSILE_OK && k < sizeof ops / sizeof ops[0]; k++) {
     char name[64];
@@ -115,7 +115,8 @@ static sessile_status bench_vectors(bench *b, uint32_t n) {
                  ops[k].nvec > 2 ? v[2] : NULL, ops[k].dot};
     if (ops[k].id == K_FILL || ops[k].id == K_SCALE) c.x = v[1];
     double tg;
-    SESSILE_CALL(time_gpu(b, rec_vec_op, &c, &tg));
+    s = time_gpu(b, rec_vec_op, &c, &tg);
+    if (s != SESSILE_OK) break; /* the vectors and h are freed below */
     ref_vec_ctx rc = {(int)k, n, h, h + n, h + 2 * (size_t)n, 0};
     double tr = ref_time(ref_vec_op, &rc, b->rep);
     row(b, name, tg, tr, ops[k].fl * n, ops[k].rw * rb * n);

@@ -68,7 +68,7 @@ static sessile_status cg_run(sessile_la *la, const sessile_ksp_options *o, const
   SESSILE_CALL(record_start(la, la->cmd, a, b, x, dinv, w));
   SESSILE_CALL(sessile_cmd_submit_wait(la->cmd));
   SESSILE_CALL(record_iterations(la, iter, a, x, dinv, w, o->check_every));
-  SESSILE_CALL(la_solver_loop(la, iter, o->check_every, o->max_it, o->monitor, "cg", CG_RR, 1));
+  SESSILE_CALL(la_solver_loop(la, iter, o->check_every, o->max_it, o, "cg", CG_RR, 1));
   la_solver_outcome(la, res, sqrt(fmax(la_scalar_read(la, CG_RR), 0) / la_scalar_read(la, S_BB)));
   return SESSILE_OK;
 }

@@ -81,7 +81,7 @@ static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const
   la_scalar_set(la, S_TOL2, o->rtol * o->rtol * la_scalar_read(la, S_BB));
   la_scalar_set(la, GM_ZERO, 0.0);
   SESSILE_CALL(record_cycle(la, iter, a, b, x, pc, V, z, m));
-  SESSILE_CALL(la_solver_loop(la, iter, 1, o->max_it, o->monitor, "gmres", GM_EST, 0));
+  SESSILE_CALL(la_solver_loop(la, iter, 1, o->max_it, o, "gmres", GM_EST, 0));
   la_solver_outcome(la, res, la_scalar_read(la, GM_EST) / sqrt(la_scalar_read(la, S_BB)));
   return SESSILE_OK;
 }
@@ -101,7 +101,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
                   "maxStorageBufferRange is %llu: use bicgstab", (unsigned long long)per,
                   (unsigned long long)range);
     m = (uint32_t)fit - 1;
-    if (o->monitor) fprintf(stderr, "  gmres: restart reduced to %u to fit maxStorageBufferRange\n", m);
+    la_monitorf(o, "gmres: restart reduced to %u to fit maxStorageBufferRange", m);
   }
   sessile_buffer *V = NULL;
   sessile_vec *z = NULL;

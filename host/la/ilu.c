@@ -85,7 +85,7 @@ static sessile_status build_tri(sessile_la *la, la_ilu *f, int upper, const uint
     s = sessile_error_set(SESSILE_ERR_TOO_LARGE,
                           "ILU(0): the %s factor needs %llu bytes of values, over the per-buffer "
                           "limit of %llu bytes (maxStorageBufferRange, or "
-                          "SESSILE_MAX_MATRIX_CHUNK_BYTES when set); ILU(0) factors are not split "
+                          "max_matrix_chunk_bytes when set); ILU(0) factors are not split "
                           "into row chunks: use Jacobi for this matrix",
                           upper ? "upper" : "lower",
                           (unsigned long long)((uint64_t)total * b2 * la->real_bytes),

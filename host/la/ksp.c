@@ -122,9 +122,8 @@ static sessile_status solve_device(sessile_la *la, const sessile_ksp_options *o,
       snprintf(res->reason, sizeof res->reason, "%s", reason_text(2));
     }
     if (res->status != SESSILE_SOLVE_CONVERGED || res->true_relres <= o->rtol) break;
-    if (o->monitor)
-      fprintf(stderr, "  %s: true residual %.3e > rtol after convergence: restarting\n",
-              sessile_ksp_type_name(o->type), res->true_relres);
+    la_monitorf(o, "%s: true residual %.3e > rtol after convergence: restarting",
+                sessile_ksp_type_name(o->type), res->true_relres);
     res->status = SESSILE_SOLVE_MAX_ITER; /* unless the restart converges */
     snprintf(res->reason, sizeof res->reason, "true residual stayed above rtol after restarts");
   }
@@ -261,9 +260,9 @@ sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
   sessile_vec_destroy(q);
   sessile_vec_destroy(dinv);
   res->seconds = sessile_wall_seconds() - t0;
-  if (s == SESSILE_OK && o.monitor)
-    fprintf(stderr, "  %s: %s after %d iterations, true relative residual %.3e (%.3f s)\n",
-            sessile_ksp_type_name(o.type), sessile_solve_status_name(res->status),
-            res->iterations, res->true_relres, res->seconds);
+  if (s == SESSILE_OK)
+    la_monitorf(&o, "%s: %s after %d iterations, true relative residual %.3e (%.3f s)",
+                sessile_ksp_type_name(o.type), sessile_solve_status_name(res->status),
+                res->iterations, res->true_relres, res->seconds);
   return s;
 }

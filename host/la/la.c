@@ -20,14 +20,22 @@ static sessile_status la_init(sessile_la *la) {
   return SESSILE_OK;
 }
 
+void sessile_la_options_default(sessile_la_options *o) { memset(o, 0, sizeof *o); }
+
 sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out) {
+  return sessile_la_create_with(g, NULL, out);
+}
+
+sessile_status sessile_la_create_with(sessile_gpu *g, const sessile_la_options *opt, sessile_la **out) {
   *out = NULL;
+  sessile_la_options o;
+  if (opt) o = *opt;
+  else sessile_la_options_default(&o);
   sessile_la *la = calloc(1, sizeof *la);
   SESSILE_CHECK(la, SESSILE_ERR_NO_MEMORY, "out of host memory");
   la->gpu = g;
   la->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
-  const char *e = getenv("SESSILE_SPMV_STORAGE");
-  la->spmv_texel = !(e && e[0] == '1');
+  sessile_la_set_options(la, &o);
   sessile_status s = la_init(la);
   if (s != SESSILE_OK) {
     sessile_la_destroy(la);
@@ -35,6 +43,11 @@ sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out) {
   }
   *out = la;
   return SESSILE_OK;
+}
+
+void sessile_la_set_options(sessile_la *la, const sessile_la_options *opt) {
+  la->spmv_texel = !opt->spmv_storage;
+  la->max_chunk_bytes = opt->max_matrix_chunk_bytes;
 }
 
 void sessile_la_destroy(sessile_la *la) {

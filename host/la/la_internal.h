@@ -64,7 +64,8 @@ struct sessile_la {
   sessile_buffer *partials;   /* NSETS * MAXG (hi, lo) pairs */
   sessile_cmd *cmd;           /* immediate operations */
   int spmv_texel;             /* CSR SpMV may read through texel buffers (default
-                                 on; SESSILE_SPMV_STORAGE=1 forces storage buffers) */
+                                 on; sessile_la_options.spmv_storage forces storage buffers) */
+  uint64_t max_chunk_bytes;   /* sessile_la_options.max_matrix_chunk_bytes (0: none) */
 };
 
 struct sessile_vec {
@@ -78,7 +79,7 @@ typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1, MAT_STENCIL7 = 2 } mat_kind;
 /* A row range of an assembled matrix with its own buffers: row pointers
  * rebased to the chunk, columns global (x is read whole), values of the
  * chunk's rows.  A matrix whose arrays exceed the per-buffer limit
- * (maxStorageBufferRange, or SESSILE_MAX_MATRIX_CHUNK_BYTES for tests) is
+ * (maxStorageBufferRange, or the la's max_matrix_chunk_bytes for tests) is
  * stored as several chunks and every SpMV dispatches once per chunk. */
 typedef struct {
   uint32_t row0, nrows;    /* CSR: scalar rows (row0 a multiple of 8); BCSR4: block rows */
@@ -180,7 +181,10 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
                         sessile_solve_result *res);
 /* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
-                              int monitor, const char *name, int est_slot, int est_is_sq);
+                              const sessile_ksp_options *o, const char *name, int est_slot,
+                              int est_is_sq);
+/* Formats one line and hands it to o->monitor (nothing when it is NULL). */
+void la_monitorf(const sessile_ksp_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void la_solver_reset(sessile_la *la, const sessile_ksp_options *o);
 
 /* Shared by the solvers: reads STOP/ITER, fills status and reason. */

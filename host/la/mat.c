@@ -34,21 +34,16 @@ static sessile_status check_csr(const sessile_csr *a) {
 }
 
 /* The per-buffer limit of a matrix's arrays: the device's
- * maxStorageBufferRange, lowered by SESSILE_MAX_MATRIX_CHUNK_BYTES when set
+ * maxStorageBufferRange, lowered by the la's max_matrix_chunk_bytes when set
  * (a testing knob: it makes small matrices split into many chunks). */
 static uint64_t chunk_limit(sessile_la *la) {
   uint64_t lim = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range;
-  const char *e = getenv("SESSILE_MAX_MATRIX_CHUNK_BYTES");
-  if (e && *e) {
-    char *end;
-    unsigned long long v = strtoull(e, &end, 10);
-    if (*end == '\0' && v > 0 && v < lim) lim = v;
-  }
+  if (la->max_chunk_bytes > 0 && la->max_chunk_bytes < lim) lim = la->max_chunk_bytes;
   return lim;
 }
 
-#define LIMIT_TEXT "the per-buffer limit of %llu bytes (maxStorageBufferRange, or " \
-                   "SESSILE_MAX_MATRIX_CHUNK_BYTES when set)"
+#define LIMIT_TEXT "the per-buffer limit of %llu bytes (maxStorageBufferRange, or the la's " \
+                   "max_matrix_chunk_bytes when set)"
 
 static sessile_status alloc_chunks(sessile_mat *m, uint32_t n) {
   m->chunk = calloc(n, sizeof *m->chunk);

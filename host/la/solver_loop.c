@@ -3,12 +3,14 @@
  * The device checks convergence itself every iteration and turns the rest
  * of a block into no-ops, so the host only decides when to look. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include "la_internal.h"
 #include "solver_slots.h"
 
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
-                              int monitor, const char *name, int est_slot, int est_is_sq) {
+                              const sessile_ksp_options *o, const char *name, int est_slot,
+                              int est_is_sq) {
   /* Each submit advances at least one iteration until the device stops, so
    * this bound is never reached by a correct solver: it guards against hangs. */
   long bound = (long)max_it / (per_submit > 0 ? per_submit : 1) + (long)max_it + 4;
@@ -17,11 +19,11 @@ sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit,
                   "%s did not stop after %ld submits of %d iterations (max_it %d)", name, k,
                   per_submit, max_it);
     SESSILE_CALL(sessile_cmd_submit_wait(iter));
-    if (monitor) {
+    if (o->monitor) {
       double est = la_scalar_read(la, est_slot);
       if (est_is_sq) est = sqrt(fmax(est, 0));
-      fprintf(stderr, "  %s %5d  |r|/|b| %.6e\n", name, (int)la_scalar_read(la, S_ITER),
-              est / sqrt(la_scalar_read(la, S_BB)));
+      la_monitorf(o, "%s %5d  |r|/|b| %.6e", name, (int)la_scalar_read(la, S_ITER),
+                  est / sqrt(la_scalar_read(la, S_BB)));
     }
   }
   return SESSILE_OK;
@@ -34,4 +36,14 @@ void la_solver_reset(sessile_la *la, const sessile_ksp_options *o) {
   la_scalar_set(la, S_REASON, 0);
   la_scalar_set(la, S_MAXIT, o->max_it);
   la_scalar_set(la, S_RTOL2, o->rtol * o->rtol);
+}
+
+void la_monitorf(const sessile_ksp_options *o, const char *fmt, ...) {
+  if (!o->monitor) return;
+  char line[256];
+  va_list ap;
+  va_start(ap, fmt);
+  if (vsnprintf(line, sizeof line, fmt, ap) < 0) line[0] = '\0';
+  va_end(ap);
+  o->monitor(o->monitor_user, line);
 }

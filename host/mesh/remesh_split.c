@@ -81,9 +81,12 @@ sessile_status remesh_split(sessile_surface *s, double **normals, const sessile_
                     pass, sqrt(worst), o->insert_len);
       return SESSILE_OK;
     }
-    SESSILE_CHECK(s->nf <= UINT32_MAX / 4 && s->nv <= UINT32_MAX - nlong, SESSILE_ERR_TOO_LARGE,
-                  "remesh: splitting %u edges of %u triangles overflows 32-bit indices", nlong,
-                  s->nf);
+    if (s->nf > UINT32_MAX / 4 || s->nv > UINT32_MAX - nlong) {
+      free(off), free(nbr);
+      return sessile_error_set(SESSILE_ERR_TOO_LARGE,
+                               "remesh: splitting %u edges of %u triangles overflows 32-bit indices",
+                               nlong, s->nf);
+    }
     uint32_t *mid = malloc(((size_t)off[s->nv] + 1) * sizeof *mid);
     uint32_t *nt = malloc((size_t)s->nf * 12 * sizeof *nt);
     sessile_status r = mid && nt ? sessile_surface_reserve(s, s->nv + nlong, s->nf * 4)

@@ -482,10 +482,16 @@ sessile_status sessile_tetgen_conforming(const sessile_box *box, const sessile_s
   int code = tg_tetrahedralize(&plc, sw, &r, msg, sizeof msg);
   free(plc.xyz);
   build_free(&b);
-  if (code != 0)
-    return sessile_error_set(code == 1 || code == -2 ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_NUMERIC,
-                             "conforming mesh of the box minus the sponge (%u vertices, %u triangles): %s",
+  if (code != 0) {
+    /* Only TetGen's verdicts on the input geometry are SESSILE_ERR_NUMERIC
+     * (callers may fall back to another domain on those); running out of
+     * memory and TetGen's internal errors are not about the input. */
+    sessile_status st_tg = code == 1 || code == -2                         ? SESSILE_ERR_NO_MEMORY
+                           : code == 3 || code == 4 || code == 5 || code == 10 ? SESSILE_ERR_NUMERIC
+                                                                              : SESSILE_ERR_INTERNAL;
+    return sessile_error_set(st_tg, "conforming mesh of the box minus the sponge (%u vertices, %u triangles): %s",
                              sponge->nv, sponge->nf, msg);
+  }
   st = convert(&r, out);
   tg_result_free(&r);
   if (st != SESSILE_OK) sessile_tetmesh_free(out);

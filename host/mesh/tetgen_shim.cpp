@@ -92,6 +92,10 @@ template <typename T> T *copy_out(const T *src, size_t n) {
 
 }  // namespace
 
+extern "C" {
+int tg_fault_inject = 0;
+}
+
 extern "C" void tg_result_free(tg_result *r) {
   if (!r) return;
   std::free(r->xyz);
@@ -109,6 +113,8 @@ extern "C" int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_res
   try {
     tetgenio in, res;
     fill_input(plc, in);
+    if (tg_fault_inject == TG_FAULT_BAD_ALLOC) throw std::bad_alloc();
+    if (tg_fault_inject) throw int(tg_fault_inject);
     std::vector<char> sw(switches, switches + std::strlen(switches) + 1);
     tetrahedralize(sw.data(), &in, &res);
     if (res.numberofcorners != 4 || !res.tetrahedronlist || !res.trifacelist ||

@@ -10,6 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <unistd.h>
+
+#include "gpu/gpu_internal.h"
 #include "testutil.h"
 
 /* Deterministic pseudo-random bytes (splitmix64). */
@@ -261,8 +264,9 @@ static void test_device_choice(void) {
   printf("-- device choice\n");
   sessile_gpu_options o;
   sessile_gpu_options_default(&o);
-  t_true("options_default: device NULL, validation -1, precision 0, cache_dir NULL",
-         o.device == NULL && o.validation == -1 && o.precision == 0 && o.cache_dir == NULL);
+  t_true("options_default: device NULL, validation -1, precision 0, cache_dir NULL, validation_message NULL",
+         o.device == NULL && o.validation == -1 && o.precision == 0 && o.cache_dir == NULL &&
+             o.validation_message == NULL);
   o.validation = 1;
   o.device = "no-such-device";
   sessile_gpu *g = (sessile_gpu *)&g;
@@ -313,6 +317,52 @@ static void test_destroy_null(void) {
   t_true("gpu/buffer/kernel/cmd/la/vec/mat destroy(NULL) are no-ops", 1);
 }
 
+/* A validation message goes to sessile_gpu_options.validation_message (and is
+ * counted), not to stderr: a deliberately invalid vkCreateBuffer (size 0) on
+ * a second context, so the test's own context stays clean. */
+typedef struct { int n, errors; } vmsgs;
+static void on_validation(void *user, int is_error, const char *message) {
+  vmsgs *v = user;
+  v->n++;
+  v->errors += is_error;
+  printf("   (callback) validation %s: %.120s...\n", is_error ? "error" : "warning", message);
+}
+
+static void test_validation_callback(void) {
+  printf("-- validation messages through the callback\n");
+  sessile_gpu_options o;
+  sessile_gpu_options_default(&o);
+  o.validation = 1;
+  vmsgs got = {0, 0};
+  o.validation_message = on_validation;
+  o.validation_user = &got;
+  sessile_gpu *g = NULL;
+  sessile_status s = sessile_gpu_create(&o, &g);
+  t_ok("context with a validation callback", s);
+  if (s != SESSILE_OK) return;
+  fflush(stderr);
+  char path[] = "/tmp/sessile-stderr-XXXXXX";
+  int fd = mkstemp(path), saved = dup(2);
+  dup2(fd, 2);
+  VkBufferCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                           .size = 0, /* invalid: size must be greater than 0 */
+                           .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
+  VkBuffer b = VK_NULL_HANDLE;
+  VkResult r = vkCreateBuffer(g->device, &ci, NULL, &b);
+  if (r == VK_SUCCESS && b) vkDestroyBuffer(g->device, b, NULL);
+  fflush(stderr);
+  dup2(saved, 2);
+  close(saved);
+  long bytes = (long)lseek(fd, 0, SEEK_END);
+  close(fd);
+  unlink(path);
+  t_true("the invalid call reached the callback as an error", got.errors >= 1);
+  t_true("the count includes it", sessile_gpu_validation_count(g) == (uint64_t)got.n && got.n >= 1);
+  t_check("bytes written to stderr meanwhile", (double)bytes, 0);
+  sessile_gpu_destroy(g);
+}
+
 int main(void) {
   sessile_gpu *g = t_gpu(0);
   test_info(g);
@@ -320,6 +370,7 @@ int main(void) {
   test_kernels(g);
   test_dispatch(g);
   test_device_choice();
+  test_validation_callback();
   test_destroy_null();
   return t_finish(g);
 }

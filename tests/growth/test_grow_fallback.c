@@ -2,13 +2,16 @@
  * icosphere whose top vertex is pushed down through its own bottom) is
  * rejected by TetGen; the growth loop must then solve that iteration's flow
  * on the immersed domain, say so in the manifest (and on the terminal), and
- * go on: never crash, never lose the run. */
+ * go on: never crash, never lose the run.  TetGen running out of memory or
+ * failing internally (injected) is no rejection: the run stops with
+ * SESSILE_ERR_NO_MEMORY / SESSILE_ERR_INTERNAL. */
 #include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/grow.h"
 #include "sessile/run.h"
+#include "mesh/tetgen_plc.h"
 #include "testutil.h"
 
 static char *slurp(const char *path) {
@@ -90,9 +93,36 @@ int main(void) {
   cJSON_Delete(it);
   free(text);
   free(rtext);
-  sessile_surface_free(&s);
   char cmd[300];
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   if (system(cmd) != 0) printf("note: could not remove %s\n", dir);
+
+  /* Only a rejected geometry falls back: TetGen running out of memory
+   * (std::bad_alloc) or failing internally stops the run with that status,
+   * injected through tg_fault_inject (mesh/tetgen_plc.h) on the same run. */
+  static const struct { int fault; sessile_status want; const char *name; } faults[] = {
+      {TG_FAULT_BAD_ALLOC, SESSILE_ERR_NO_MEMORY, "TetGen out of memory (std::bad_alloc)"},
+      {2, SESSILE_ERR_INTERNAL, "TetGen internal error"}};
+  for (size_t k = 0; k < sizeof faults / sizeof faults[0]; k++) {
+    char d2[] = "/tmp/sessile-fallback-XXXXXX";
+    t_true("temporary folder", mkdtemp(d2) != NULL);
+    sessile_run_options ro2 = {.dir = d2, .generator = "grow", .version = "test"};
+    sessile_run *run2 = NULL;
+    t_ok("run directory", sessile_run_open(&ro2, &run2));
+    o.run = run2;
+    tg_fault_inject = faults[k].fault;
+    sessile_error_clear();
+    st = sessile_grow_run(g, &p, &o, NULL, &sum);
+    tg_fault_inject = 0;
+    st = sessile_run_close(run2, st);
+    printf("%s: %s: %s\n", faults[k].name, sessile_status_name(st), sessile_error_message());
+    char what[160];
+    snprintf(what, sizeof what, "%s stops the run with %s, not a fallback", faults[k].name,
+             sessile_status_name(faults[k].want));
+    t_true(what, st == faults[k].want);
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", d2);
+    if (system(cmd) != 0) printf("note: could not remove %s\n", d2);
+  }
+  sessile_surface_free(&s);
   return t_finish(g);
 }

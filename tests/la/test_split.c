@@ -1,5 +1,5 @@
-/* Matrices stored in row chunks (mat.c): SESSILE_MAX_MATRIX_CHUNK_BYTES set to
- * a few KB splits small matrices into many chunks, as maxStorageBufferRange
+/* Matrices stored in row chunks (mat.c): the la's max_matrix_chunk_bytes set
+ * to a few KB splits small matrices into many chunks, as maxStorageBufferRange
  * (128 MiB on lavapipe) splits big ones.
  *
  * Checks, on the 7-point Laplacian, P1-tet K+M and convection-diffusion CSR
@@ -31,13 +31,13 @@ static double tol_spmv;
 static const double rtol = 1e-6;
 
 /* The chunk limit for matrices created next (0: the device's). */
+static int storage_only; /* the la's spmv_storage */
 static void set_limit(unsigned bytes) {
-  if (bytes) {
-    char v[32];
-    snprintf(v, sizeof v, "%u", bytes);
-    setenv("SESSILE_MAX_MATRIX_CHUNK_BYTES", v, 1);
-  } else
-    unsetenv("SESSILE_MAX_MATRIX_CHUNK_BYTES");
+  sessile_la_options o;
+  sessile_la_options_default(&o);
+  o.spmv_storage = storage_only;
+  o.max_matrix_chunk_bytes = bytes;
+  sessile_la_set_options(la, &o);
 }
 
 static void to_stored(double *v, uint64_t n) {
@@ -242,7 +242,7 @@ static void check_refused(const char *what, sessile_status s, const char *needle
   printf("   %s: %s: %s\n", what, sessile_status_name(s), msg);
   char w[240];
   snprintf(w, sizeof w, "%s: SESSILE_ERR_TOO_LARGE naming the limit and \"%s\"", what, needle);
-  t_true(w, s == SESSILE_ERR_TOO_LARGE && strstr(msg, "SESSILE_MAX_MATRIX_CHUNK_BYTES") &&
+  t_true(w, s == SESSILE_ERR_TOO_LARGE && strstr(msg, "max_matrix_chunk_bytes") &&
                 strstr(msg, "maxStorageBufferRange") && strstr(msg, needle));
 }
 
@@ -313,11 +313,12 @@ int main(int argc, char **argv) {
   printf("== refused\n");
   error_cases();
   sessile_la_destroy(la);
-  printf("== SpMV, storage-buffer path (SESSILE_SPMV_STORAGE=1)\n");
-  setenv("SESSILE_SPMV_STORAGE", "1", 1);
-  t_must("la_create", sessile_la_create(g, &la));
+  printf("== SpMV, storage-buffer path (la option spmv_storage = 1)\n");
+  sessile_la_options lo;
+  sessile_la_options_default(&lo);
+  lo.spmv_storage = storage_only = 1;
+  t_must("la_create", sessile_la_create_with(g, &lo, &la));
   spmv_cases();
   sessile_la_destroy(la);
-  unsetenv("SESSILE_SPMV_STORAGE");
   return t_finish(g);
 }

@@ -482,15 +482,16 @@ int main(int argc, char **argv) {
   sessile_la_destroy(la);
   /* The storage-buffer SpMV kernels (used where texel views do not fit the
    * device limit) on the same cases. */
-  printf("== storage-buffer SpMV path (SESSILE_SPMV_STORAGE=1)\n");
-  setenv("SESSILE_SPMV_STORAGE", "1", 1);
-  t_must("la_create", sessile_la_create(g, &la));
+  printf("== storage-buffer SpMV path (la option spmv_storage = 1)\n");
+  sessile_la_options lo;
+  sessile_la_options_default(&lo);
+  lo.spmv_storage = 1;
+  t_must("la_create", sessile_la_create_with(g, &lo, &la));
   test_random();
   test_ragged_slices();
   test_structured();
   test_nonfinite_x();
   test_cg_fused("storage buffers");
   sessile_la_destroy(la);
-  unsetenv("SESSILE_SPMV_STORAGE");
   return t_finish(g);
 }

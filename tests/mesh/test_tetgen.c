@@ -12,6 +12,7 @@
 #include <string.h>
 #include "sessile/locate.h"
 #include "sessile/tetgen.h"
+#include "mesh/tetgen_plc.h"
 #include "testutil.h"
 
 static double tri_area(const double *a, const double *b, const double *c, double n[3]) {
@@ -238,6 +239,35 @@ int main(int argc, char **argv) {
   t_true("sponge outside the box: SESSILE_ERR_USAGE", st == SESSILE_ERR_USAGE && m.xyz == NULL);
   sessile_surface_free(&a);
   sessile_surface_free(&b);
+
+  /* 6. TetGen's failures told apart (tg_fault_inject, mesh/tetgen_plc.h:
+   * the input is built, then TetGen "throws" through the real catch
+   * clauses): only verdicts on the input geometry are SESSILE_ERR_NUMERIC,
+   * which callers may answer with a fallback; out of memory and internal
+   * errors are not, and must stop them. */
+  static const struct { int fault; sessile_status want; const char *name; } faults[] = {
+      {TG_FAULT_BAD_ALLOC, SESSILE_ERR_NO_MEMORY, "std::bad_alloc"},
+      {1, SESSILE_ERR_NO_MEMORY, "TetGen error 1 (out of memory)"},
+      {2, SESSILE_ERR_INTERNAL, "TetGen error 2 (internal error)"},
+      {3, SESSILE_ERR_NUMERIC, "TetGen error 3 (self-intersection)"},
+      {4, SESSILE_ERR_NUMERIC, "TetGen error 4 (small feature)"},
+      {10, SESSILE_ERR_NUMERIC, "TetGen error 10 (invalid input)"},
+      {7, SESSILE_ERR_INTERNAL, "an unknown TetGen error code"}};
+  t_ok("icosphere", sessile_surface_icosphere(3, 2.5, mid, &s));
+  for (size_t k = 0; k < sizeof faults / sizeof faults[0]; k++) {
+    tg_fault_inject = faults[k].fault;
+    sessile_error_clear();
+    st = sessile_tetgen_conforming(&box, &s, &o, &m);
+    tg_fault_inject = 0;
+    printf("injected %s: %s: %s\n", faults[k].name, sessile_status_name(st), sessile_error_message());
+    char what[160];
+    snprintf(what, sizeof what, "injected %s: %s, message, output empty", faults[k].name,
+             sessile_status_name(faults[k].want));
+    t_true(what, st == faults[k].want && strlen(sessile_error_message()) > 0 && m.xyz == NULL && m.tet == NULL);
+  }
+  t_ok("after the injected faults, the same surface meshes", sessile_tetgen_conforming(&box, &s, &o, &m));
+  sessile_tetmesh_free(&m);
+  sessile_surface_free(&s);
 
   if (argc > 1 && !strcmp(argv[1], "--measure")) {
     measure(4, 6.0, "default box minus the initial dome");

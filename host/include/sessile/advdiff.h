@@ -65,7 +65,9 @@ sessile_status sessile_advdiff_solve(sessile_advdiff *ad, const double *velocity
 
 /* A nodal source term f (P1 interpolant, mol m^-3 s^-1; copied) added to the
  * next solves, with its SUPG term; NULL removes it.  For manufactured
- * solutions; the nutrient has no source. */
+ * solutions; the nutrient has no source.  Fails with SESSILE_ERR_NUMERIC on
+ * a non-finite value (naming the node) or SESSILE_ERR_NO_MEMORY; on failure
+ * the source in force before the call (or none) is kept unchanged. */
 sessile_status sessile_advdiff_set_source(sessile_advdiff *ad, const double *f_or_null);
 
 /* Multiplies tau by `scale` (default 1; 0 gives plain Galerkin, which

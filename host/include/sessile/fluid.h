@@ -65,7 +65,16 @@ typedef struct sessile_fluid_params {
   int block_jacobi;    /* scale each block row by its inverse 4x4 diagonal block
                           before the solve (default 0; for comparisons:
                           `sessile bench fluid --block-scale`) */
-  int verbose;         /* print each Newton step to stderr */
+  /* Progress: one line per Newton/Picard step and one at the end (and the
+   * check_linear lines) to monitor(monitor_user, line); NULL (default):
+   * silent.  The library itself never prints. */
+  sessile_monitor_fn monitor;
+  void *monitor_user;
+  int check_linear;    /* after each linear solve, recompute |J du + r|/|r| on
+                          the host in double and report it through monitor
+                          (diagnostics; default 0) */
+  int verbose;         /* ignored (the library prints nothing): set monitor;
+                          kept so that older callers still compile */
   /* Optional: Dirichlet values other than the defaults above, and a force. */
   sessile_fluid_velocity_fn velocity_fn;
   sessile_fluid_pressure_fn pressure_fn;

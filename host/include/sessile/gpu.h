@@ -21,6 +21,10 @@ typedef struct sessile_buffer sessile_buffer;
 typedef struct sessile_kernel sessile_kernel;
 typedef struct sessile_cmd sessile_cmd;
 
+/* A Vulkan validation-layer message: is_error 1 for an error, 0 for a
+ * warning; user is the options' validation_user. */
+typedef void (*sessile_validation_fn)(void *user, int is_error, const char *message);
+
 typedef struct sessile_gpu_options {
   /* Device by index or case-insensitive name substring; NULL: $SESSILE_DEVICE,
    * else the best (discrete > integrated > virtual > CPU). */
@@ -33,6 +37,13 @@ typedef struct sessile_gpu_options {
   /* Pipeline cache folder; NULL: $XDG_CACHE_HOME/sessile or ~/.cache/sessile;
    * "" disables the on-disk cache. */
   const char *cache_dir;
+  /* Where validation warnings and errors go once counted
+   * (sessile_gpu_validation_count).  NULL (the default): printed to stderr
+   * as "sessile: vulkan validation error|warning: MESSAGE", the line the
+   * tests and `--validation` rely on; a callback replaces the printing (it
+   * may run on any thread that calls Vulkan). */
+  sessile_validation_fn validation_message;
+  void *validation_user;
 } sessile_gpu_options;
 
 /* Fills the defaults above. */

@@ -25,7 +25,24 @@ typedef struct sessile_la sessile_la;
 typedef struct sessile_vec sessile_vec;
 typedef struct sessile_mat sessile_mat;
 
+/* Options of an la context (the defaults suit every normal use). */
+typedef struct sessile_la_options {
+  /* 1: CSR SpMV reads the matrix through storage buffers only (default 0:
+   * through texel buffers where they fit, docs/design.md). */
+  int spmv_storage;
+  /* Per-buffer limit in bytes of a matrix's arrays: 0 (default), or a value
+   * at or above the device's maxStorageBufferRange, means that range; a
+   * smaller value makes small matrices split into row chunks (tests). */
+  uint64_t max_matrix_chunk_bytes;
+} sessile_la_options;
+
+void sessile_la_options_default(sessile_la_options *o);
+/* sessile_la_create_with(g, NULL, out): the defaults. */
 sessile_status sessile_la_create(sessile_gpu *g, sessile_la **out);
+sessile_status sessile_la_create_with(sessile_gpu *g, const sessile_la_options *opt, sessile_la **out);
+/* Replaces the options; they are read when a matrix is created, so they
+ * apply to matrices created afterwards (existing ones keep theirs). */
+void sessile_la_set_options(sessile_la *la, const sessile_la_options *opt);
 void sessile_la_destroy(sessile_la *la);
 sessile_gpu *sessile_la_gpu(sessile_la *la);
 /* Bytes per stored real: 8 (fp64) or 4 (fp32). */
@@ -77,8 +94,8 @@ void sessile_mat_destroy(sessile_mat *m);
 uint32_t sessile_mat_rows(const sessile_mat *m);
 uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */
 /* Row chunks the matrix is stored in (1 unless its arrays exceed
- * maxStorageBufferRange, or SESSILE_MAX_MATRIX_CHUNK_BYTES when set; 0 for the
- * matrix-free 7-point operator). */
+ * maxStorageBufferRange, or the la's max_matrix_chunk_bytes when set; 0 for
+ * the matrix-free 7-point operator). */
 uint32_t sessile_mat_chunks(const sessile_mat *m);
 /* y = A x on the device. */
 sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,
@@ -113,6 +130,11 @@ typedef enum sessile_pc_type {
   SESSILE_PC_ILU0 = 2
 } sessile_pc_type;
 
+/* A progress monitor: called with one line of text (no trailing newline) at
+ * each point the solver reports; user is the options' monitor_user.  NULL
+ * (the default) keeps the library silent: it prints nothing itself. */
+typedef void (*sessile_monitor_fn)(void *user, const char *line);
+
 typedef struct sessile_ksp_options {
   sessile_ksp_type type;
   sessile_pc_type pc;
@@ -120,7 +142,9 @@ typedef struct sessile_ksp_options {
   int max_it;       /* default 1000 */
   int restart;      /* GMRES(m): m, default 30 */
   int check_every;  /* iterations recorded per submit (CG/BiCGSTAB); default 16 */
-  int monitor;      /* print iteration and residual at every check to stderr */
+  sessile_monitor_fn monitor; /* iteration and residual at every check, restarts and
+                                 the outcome; default NULL (silent) */
+  void *monitor_user;
 } sessile_ksp_options;
 
 void sessile_ksp_options_default(sessile_ksp_options *o);

@@ -51,8 +51,11 @@ void sessile_tetgen_options_default(sessile_tetgen_options *o);
  * (INLET, OUTLET, SUBSTRATUM, SIDE, TOP, SPONGE) and node tags.
  * opt NULL = defaults.  Errors: SESSILE_ERR_USAGE for a sponge vertex outside
  * the box or on a box edge, SESSILE_ERR_NUMERIC with TetGen's reason when it
- * rejects the input (self-intersecting surface, too small features),
- * SESSILE_ERR_NO_MEMORY. out is empty on failure. */
+ * rejects the input geometry (self-intersecting surface, too small features,
+ * facets too close, invalid PLC): only these two describe the input;
+ * SESSILE_ERR_NO_MEMORY when TetGen or the conversion runs out of memory
+ * (std::bad_alloc included), SESSILE_ERR_INTERNAL for TetGen's internal
+ * errors and any other failure.  out is empty on failure. */
 sessile_status sessile_tetgen_conforming(const sessile_box *box, const sessile_surface *sponge,
                                          const sessile_tetgen_options *opt, sessile_tetmesh *out);
 
