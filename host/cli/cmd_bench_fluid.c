@@ -26,7 +26,13 @@ static const char *help =
     "which ran).  --block-scale multiplies each block row by\n"
     "the inverse of its 4x4 diagonal block before the Krylov solve; --picard K takes\n"
     "K Picard (Oseen) steps before Newton; --restart M is GMRES(M); --no-lsic drops the\n"
-    "grad-div term.  SESSILE_FLUID_VERBOSE=1 prints each step to stderr as it goes.\n";
+    "grad-div term.  --verbose prints each step to stderr as it goes.\n";
+
+/* --verbose: the fluid solver's monitor lines to stderr. */
+static void print_line(void *user, const char *line) {
+  (void)user;
+  fprintf(stderr, "%s\n", line);
+}
 
 static void print_result(const char *what, const sessile_fluid_result *r) {
   printf("%s: %s after %d steps, residual %.3e -> %.3e (rest state %.3e), %d linear iterations, %.2f s "
@@ -66,7 +72,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int pc = -1, ksp = -1, block_scale = -1, picard = -1, restart = -1, lsic = -1;
+  int pc = -1, ksp = -1, block_scale = -1, picard = -1, restart = -1, lsic = -1, verbose = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -85,8 +91,12 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       lsic = 0;
       continue;
     }
-    if (i + 1 >= argc) return cli_usage_error("bench fluid", "%s needs a value (or is unknown)", a);
-    const char *v = argv[++i];
+    if (!strcmp(a, "--verbose")) {
+      verbose = 1;
+      continue;
+    }
+    const char *v = cli_value("bench fluid", argc, argv, &i);
+    if (!v) return EXIT_USAGE;
     if (!strcmp(a, "--resolution")) {
       if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
     } else if (!strcmp(a, "--picard")) {
@@ -146,7 +156,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   if (picard >= 0) fp.picard_steps = picard;
   if (restart >= 0) fp.restart = restart;
   if (lsic >= 0) fp.lsic = lsic;
-  fp.verbose = getenv("SESSILE_FLUID_VERBOSE") != NULL;
+  if (verbose) fp.monitor = print_line;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
     printf("sessile bench fluid: device %s (%s), driver %s, fp%d\n", gi->name, gi->type, gi->driver,

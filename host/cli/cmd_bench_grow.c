@@ -26,7 +26,10 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   const char *preset = "crella";
   sessile_params p;
   const char **sets = calloc((size_t)argc + 1, sizeof *sets);
-  if (!sets) return cli_usage_error("bench grow", "out of memory");
+  if (!sets) {
+    fprintf(stderr, "sessile bench grow: error: out of host memory\n");
+    return EXIT_RUNTIME;
+  }
   int nsets = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -39,14 +42,19 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
       free(sets);
       return EXIT_OK;
     }
-    if (i + 1 >= argc) { free(sets); return cli_usage_error("bench grow", "%s needs a value (or is unknown)", a); }
-    if (!strcmp(a, "--preset")) preset = argv[++i];
-    else if (!strcmp(a, "--set")) sets[nsets++] = argv[++i];
-    else if (!strcmp(a, "--iterations") || !strcmp(a, "--seed")) {
-      if (cli_parse_uint("bench grow", a, argv[++i], a[2] == 'i' ? 1 : 0, 100000000, &u)) { free(sets); return EXIT_USAGE; }
+    if (strcmp(a, "--preset") && strcmp(a, "--set") && strcmp(a, "--iterations") && strcmp(a, "--seed")) {
+      free(sets);
+      return cli_usage_error("bench grow", "unknown option '%s'", a);
+    }
+    const char *v = cli_value("bench grow", argc, argv, &i);
+    if (!v) { free(sets); return EXIT_USAGE; }
+    if (!strcmp(a, "--preset")) preset = v;
+    else if (!strcmp(a, "--set")) sets[nsets++] = v;
+    else {
+      if (cli_parse_uint("bench grow", a, v, a[2] == 'i' ? 1 : 0, 100000000, &u)) { free(sets); return EXIT_USAGE; }
       if (a[2] == 'i') o.iterations = (int)u;
       else o.seed = u;
-    } else { free(sets); return cli_usage_error("bench grow", "unknown option '%s'", a); }
+    }
   }
   sessile_status s = sessile_params_preset(&p, preset);
   for (int k = 0; s == SESSILE_OK && k < nsets; k++) s = cli_params_set_kv(&p, sets[k]);

@@ -446,6 +446,7 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     res->residual_rest = apply_bc_rows(fl, bc, 0, r);
     impose_bc(fl, solid, p, bc, up);
   }
+  int stalled = 0; /* Newton steps running whose line search found no decrease */
   for (int it = 0; s == SESSILE_OK; it++) {
     int picard = it < p->picard_steps;
     double ta = sessile_wall_seconds();
@@ -466,6 +467,26 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
       break;
     }
     if (it >= p->newton_max) break;
+    /* A hopeless but in-range setting (e.g. eta = 1e-9 Pa s, Re ~ 1e9) must
+     * fail with a message, not run for hours: a wall-clock bound, and a
+     * stop once the line search finds no decrease several steps running. */
+    double el = sessile_wall_seconds() - t0;
+    if (p->max_seconds > 0 && el > p->max_seconds) {
+      s = sessile_error_set(SESSILE_ERR_NUMERIC,
+                            "the flow solve passed its time bound (%.0f s > %g s) after %d Newton steps at "
+                            "residual %.2e (%.2e of the rest state's); the setting may be hopeless "
+                            "(Reynolds number, viscosity) or raise fluid_max_seconds",
+                            el, p->max_seconds, it, rn, res->residual_rest > 0 ? rn / res->residual_rest : 0.0);
+      break;
+    }
+    if (stalled >= 5) {
+      s = sessile_error_set(SESSILE_ERR_NUMERIC,
+                            "the flow solve stagnated: %d Newton steps running found no decrease of the "
+                            "residual (%.2e, %.2e of the rest state's); the setting may be hopeless "
+                            "(Reynolds number, viscosity)", stalled, rn,
+                            res->residual_rest > 0 ? rn / res->residual_rest : 0.0);
+      break;
+    }
     sessile_fluid_step *st = &res->step[it];
     st->residual = rn;
     st->picard = picard;
@@ -482,10 +503,16 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     double lam = 1.0;
     for (int ls = 0; ls < 7; ls++) {
       for (size_t k = 0; k < n4; k++) up[k] += lam * du[k];
-      if (ls == 6) break;
+      if (ls == 6) {
+        stalled++; /* no decrease: the smallest step is taken anyway */
+        break;
+      }
       assemble(fl, p, up, 1.0, 0, r);
       double rt = apply_bc_rows(fl, bc, 0, r);
-      if (isfinite(rt) && rt < (1.0 - 1e-4 * lam) * rn) break;
+      if (isfinite(rt) && rt < (1.0 - 1e-4 * lam) * rn) {
+        stalled = 0;
+        break;
+      }
       for (size_t k = 0; k < n4; k++) up[k] -= lam * du[k];
       lam *= 0.5;
     }

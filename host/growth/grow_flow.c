@@ -27,6 +27,7 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
   fp->inlet[0] = r->p->inlet_velocity;
   fp->inlet[1] = fp->inlet[2] = 0;
   fp->newton_max = r->p->max_nvs_iterations;
+  fp->max_seconds = r->p->fluid_max_seconds;
   fp->newton_rtol = r->p->nvs_rtol;
   fp->linear_rtol = r->p->linear_rtol;
 }
