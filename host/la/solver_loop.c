@@ -5,7 +5,6 @@
 #include <math.h>
 #include <stdio.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
                               int monitor, const char *name, int est_slot, int est_is_sq) {
