@@ -12,6 +12,7 @@
  * that of the free rows alone, not diluted by the trivially satisfied
  * Dirichlet rows (docs/fem.md). */
 #include <stdlib.h>
+#include "fem_kernels.h"
 #include "sessile/nutrient.h"
 
 struct sessile_nutrient {
@@ -23,17 +24,11 @@ struct sessile_nutrient {
   sessile_vec *b;      /* right-hand side of the homogenised system */
 };
 
-typedef struct {
-  uint32_t n0, n1, n2, mode, zero_masked, pad;
-  union { double d; float f; } h;
-} dir_push;
-
 static sessile_status nutrient_init(sessile_nutrient *nt) {
   sessile_gpu *g = sessile_la_gpu(nt->la);
-  int f64 = sessile_la_real_bytes(nt->la) == 8;
   uint32_t n = sessile_box_nodes(&nt->box);
-  SESSILE_CALL(sessile_kernel_create(g, f64 ? "fem/dirichlet.f64" : "fem/dirichlet.f32", 4,
-                                     sizeof(dir_push), 0, &nt->bc));
+  SESSILE_CALL(sessile_kernel_create_decl(g, &sessile_fem_kernels[FK_DIRICHLET],
+                                          sessile_la_real_bytes(nt->la), 0, &nt->bc));
   SESSILE_CALL(sessile_cmd_create(g, &nt->cmd));
   SESSILE_CALL(sessile_vec_create(nt->la, n, &nt->walls));
   SESSILE_CALL(sessile_vec_create(nt->la, n, &nt->b));
@@ -81,9 +76,9 @@ void sessile_nutrient_destroy(sessile_nutrient *nt) {
 static sessile_status run_bc(sessile_nutrient *nt, uint32_t mode, sessile_buffer *mask,
                              const sessile_vec *g, sessile_vec *c, int zero_masked) {
   const sessile_box *b = &nt->box;
-  dir_push p = {b->n[0], b->n[1], b->n[2], mode, (uint32_t)zero_masked, 0, {0}};
-  if (sessile_la_real_bytes(nt->la) == 8) p.h.d = b->h;
-  else p.h.f = (float)b->h;
+  dir_push p = {.n0 = b->n[0], .n1 = b->n[1], .n2 = b->n[2], .mode = mode,
+                .zero_masked = (uint32_t)zero_masked,
+                .h = sessile_push_real_of(b->h, sessile_la_real_bytes(nt->la))};
   sessile_buffer *bufs[4] = {mask, sessile_vec_buffer(g), sessile_vec_buffer(c),
                              sessile_vec_buffer(nt->b)};
   uint32_t n = sessile_box_nodes(b), local = sessile_kernel_local_size(nt->bc);

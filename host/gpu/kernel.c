@@ -1,7 +1,8 @@
-/* Compute kernels: one pipeline per embedded SPIR-V module.  Bindings 0..n-1
- * are storage buffers (or uniform texel buffers where asked), scalars come as
- * push constants, and the workgroup
- * size is specialisation constant 0, so one SPIR-V serves every device. */
+/* Compute kernels: one pipeline per embedded SPIR-V module, made from the
+ * kernel's declaration (shaders/<layer>/kernels.def).  Bindings 0..n-1 are
+ * storage buffers or uniform texel buffers as declared, scalars come as push
+ * constants, and the workgroup size is specialisation constant 0, so one
+ * SPIR-V serves every device. */
 #include <stdlib.h>
 #include <string.h>
 #include "gpu_internal.h"
@@ -42,38 +43,44 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
   return SESSILE_OK;
 }
 
-sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
-                                     uint32_t push_bytes, uint32_t local_size,
-                                     sessile_kernel **out) {
-  return sessile_kernel_create_texel(g, name, nbuffers, push_bytes, local_size, NULL, out);
+/* The binding kind on this precision: a "real" texel is one real wide. */
+static uint8_t resolve_kind(sessile_binding_kind kind, uint32_t real_bytes) {
+  if (kind != SESSILE_TEXEL_REAL) return (uint8_t)kind;
+  return real_bytes == 8 ? SESSILE_TEXEL_RG32UI : SESSILE_TEXEL_R32UI;
 }
 
-sessile_status sessile_kernel_create_texel(sessile_gpu *g, const char *name, uint32_t nbuffers,
-                                           uint32_t push_bytes, uint32_t local_size,
-                                           const sessile_binding_kind *texel, sessile_kernel **out) {
+sessile_status sessile_kernel_create_decl(sessile_gpu *g, const sessile_kernel_decl *d,
+                                          uint32_t real_bytes, uint32_t local_size,
+                                          sessile_kernel **out) {
   *out = NULL;
+  if (real_bytes == 0) real_bytes = g->info.precision == 64 ? 8 : 4;
+  char name[64];
+  if (d->per_precision) snprintf(name, sizeof name, "%s.%s", d->name, real_bytes == 8 ? "f64" : "f32");
+  else snprintf(name, sizeof name, "%s", d->name);
   const sessile_spirv *sp = sessile_spirv_find(name);
   SESSILE_CHECK(sp, SESSILE_ERR_INTERNAL, "no embedded kernel named \"%s\"", name);
-  SESSILE_CHECK(nbuffers <= 16, SESSILE_ERR_INTERNAL, "kernel %s: %u buffers > 16", name, nbuffers);
-  SESSILE_CHECK(push_bytes <= 128 && push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
-                "kernel %s: %u push-constant bytes (at most 128, multiple of 4)", name, push_bytes);
-  if (local_size == 0) local_size = 256;
-  if (local_size > g->info.max_workgroup_invocations) local_size = g->info.max_workgroup_invocations;
-  if (local_size > g->limits.maxComputeWorkGroupSize[0])
-    local_size = g->limits.maxComputeWorkGroupSize[0];
+  SESSILE_CHECK(d->nbindings <= 16, SESSILE_ERR_INTERNAL, "kernel %s: %u bindings > 16", name,
+                d->nbindings);
+  SESSILE_CHECK(d->push_bytes <= 128 && d->push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
+                "kernel %s: %u push-constant bytes (at most 128, multiple of 4)", name, d->push_bytes);
+  if (local_size == 0) local_size = d->local_size ? d->local_size : 256;
+  /* Halving keeps a power of two, which the reductions' trees need. */
+  while (local_size > 1 && (local_size > g->info.max_workgroup_invocations ||
+                            local_size > g->limits.maxComputeWorkGroupSize[0]))
+    local_size /= 2;
   sessile_kernel *k = calloc(1, sizeof *k);
   SESSILE_CHECK(k, SESSILE_ERR_NO_MEMORY, "out of host memory");
   k->gpu = g;
-  k->nbuffers = nbuffers;
-  k->push_bytes = push_bytes;
+  k->nbuffers = d->nbindings;
+  k->push_bytes = d->push_bytes;
   k->local_size = local_size;
-  for (uint32_t i = 0; texel && i < nbuffers; i++) {
-    if (texel[i] > SESSILE_TEXEL_RGBA32UI) {
+  for (uint32_t i = 0; i < d->nbindings; i++) {
+    if ((unsigned)d->bindings[i].kind > SESSILE_TEXEL_REAL) {
       free(k);
       return sessile_error_set(SESSILE_ERR_INTERNAL, "kernel %s: binding %u has an unknown kind %d",
-                               name, i, (int)texel[i]);
+                               name, i, (int)d->bindings[i].kind);
     }
-    k->texel[i] = (uint8_t)texel[i];
+    k->texel[i] = resolve_kind(d->bindings[i].kind, real_bytes);
   }
   snprintf(k->name, sizeof k->name, "%s", name);
   sessile_status s = build(k, sp);

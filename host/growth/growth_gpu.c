@@ -22,18 +22,9 @@ sessile_status sessile_growth_gpu_create(sessile_la *la, sessile_growth_gpu **ou
   g->la = la;
   g->gpu = sessile_la_gpu(la);
   g->real_bytes = sessile_la_real_bytes(la);
-  const char *suffix = g->real_bytes == 8 ? "f64" : "f32";
-  static const struct { const char *name; uint32_t nb; } tab[GK_COUNT] = {
-#define X(id, name, nb) {name, nb},
-      SESSILE_GROWTH_KERNELS(X)
-#undef X
-  };
   sessile_status s = SESSILE_OK;
-  for (int i = 0; i < GK_COUNT && s == SESSILE_OK; i++) {
-    char name[64];
-    snprintf(name, sizeof name, "%s.%s", tab[i].name, suffix);
-    s = sessile_kernel_create(g->gpu, name, tab[i].nb, sizeof(growth_push), GROWTH_LOCAL, &g->k[i]);
-  }
+  for (int i = 0; i < GK_COUNT && s == SESSILE_OK; i++)
+    s = sessile_kernel_create_decl(g->gpu, &sessile_growth_kernels[i], g->real_bytes, 0, &g->k[i]);
   if (s == SESSILE_OK) s = sessile_cmd_create(g->gpu, &g->cmd);
   if (s == SESSILE_OK)
     s = sessile_buffer_create(g->gpu, 32 * 8, SESSILE_BUFFER_MAPPED, &g->params);

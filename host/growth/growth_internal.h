@@ -5,33 +5,10 @@
 #include "sessile/growth_gpu.h"
 #include "sessile/growth_ref.h"
 
-/* Real parameter slots, shared with shaders/growth/growth_common.glsl. */
-enum {
-  P_OX = 0, P_OY, P_OZ, P_H, P_MX, P_MY, P_MZ, P_OFFSET, P_TGIVE, P_NTHR, P_GTHR, P_GR,
-  P_LMAX, P_N, P_K, P_MAXG, P_R, P_COUNT
-};
-
-/* Push constants of every growth kernel (growth_common.glsl). */
-typedef struct {
-  uint32_t nv, nf, n0, n1, n2, samples, halichondrid, seed_lo, seed_hi, iteration, ncols, pad;
-} growth_push;
-
-/* The kernel table (X-macro): id, embedded name, buffers. */
-#define SESSILE_GROWTH_KERNELS(X)          \
-  X(GK_CLASSIFY, "growth/classify", 7)     \
-  X(GK_NORMALS, "growth/normals", 6)       \
-  X(GK_PROBE, "growth/probe", 5)           \
-  X(GK_TRANSLOCATE, "growth/translocate", 5) \
-  X(GK_GROW, "growth/grow", 7)
-
-typedef enum {
-#define X(id, name, nb) id,
-  SESSILE_GROWTH_KERNELS(X)
-#undef X
-  GK_COUNT
-} growth_kernel_id;
-
-enum { GROWTH_LOCAL = 64 };
+/* The kernels (growth_kernel_id, sessile_growth_kernels[]), growth_push,
+ * the parameter slots P_* and GROWTH_LOCAL: generated from
+ * shaders/growth/kernels.def. */
+#include "growth_kernels.h"
 
 struct sessile_growth_gpu {
   sessile_la *la;

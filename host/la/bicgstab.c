@@ -4,14 +4,13 @@
  * Converged on ‖r‖ (or already on ‖s‖, the half step). */
 #include <math.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 
 typedef struct { sessile_vec *r, *r0, *p, *v, *ph, *sv, *sh, *t; } bi_work;
 
 static sessile_status scalar_op(sessile_la *la, sessile_cmd *c, uint32_t op) {
-  uint32_t pc[2] = {op, 0};
+  op_push pc = {.op = op};
   sessile_buffer *sb[1] = {la->scalars};
-  return sessile_cmd_dispatch(c, la->k[K_BICG_SCALAR], 1, sb, pc);
+  return sessile_cmd_dispatch(c, la->k[K_BICG_SCALAR], 1, sb, &pc);
 }
 
 static sessile_status record_start(sessile_la *la, sessile_cmd *c, const sessile_mat *a,

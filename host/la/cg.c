@@ -7,7 +7,6 @@
  * scalar/reduction dispatches: about 11 vector passes (docs/performance.md). */
 #include <math.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 
 typedef struct { sessile_vec *r, *p, *q; } cg_work; /* p starts as z = M r */
 
@@ -26,9 +25,9 @@ static sessile_status record_start(sessile_la *la, sessile_cmd *c, const sessile
   SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r), vref_of(w->r), 2, -1, &cnt));
   SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, S_BB, 0, -1));
   SESSILE_CALL(rec_reduce(la, c, cnt, 1, 2, CG_RZNEW, 0, -1));
-  uint32_t op0[2] = {0, 0};
+  op_push op0 = {.op = 0};
   sessile_buffer *sb[1] = {la->scalars};
-  SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, op0));
+  SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, &op0));
   return sessile_cmd_end(c);
 }
 
@@ -37,19 +36,19 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
                                         cg_work *w, int k) {
   uint32_t n = a->nrows, cnt;
   sessile_buffer *sb[1] = {la->scalars};
-  uint32_t op1[2] = {1, 0}, op2[2] = {2, 0};
+  op_push op1 = {.op = 1}, op2 = {.op = 2};
   SESSILE_CALL(sessile_cmd_begin(c));
   for (int it = 0; it < k; it++) {
     SESSILE_CALL(rec_spmv_dot(la, c, a, vref_of(w->p), vref_of(w->q), S_STOP, &cnt));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, CG_PQ, 0, S_STOP));
-    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, op1));
+    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, &op1));
     sessile_buffer *ub[7] = {la->scalars, w->p->buf, w->q->buf, dinv->buf,
                              x->buf,      w->r->buf, la->partials};
     uint32_t ucnt = la_reduce_groups(la, w->p->n4);
     vec_push p = {.n4 = w->p->n4, .n = n, .a_slot = CG_ALPHA, .guard = S_STOP};
     SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_UPDATE), ucnt, ub, &p));
     SESSILE_CALL(rec_reduce(la, c, ucnt, 0, 2, CG_RZNEW, 0, S_STOP));
-    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, op2));
+    SESSILE_CALL(sessile_cmd_dispatch(c, kern(la, K_CG_SCALAR), 1, sb, &op2));
     SESSILE_CALL(rec_vec(la, c, K_CG_DIRECTION, n, vref_of(dinv), vref_of(w->r), vref_of(w->p), -1, 0, S_STOP));
   }
   return sessile_cmd_end(c);

@@ -7,12 +7,11 @@
 #include <math.h>
 #include <stdio.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 
 static sessile_status gm_op(sessile_la *la, sessile_cmd *c, uint32_t op, uint32_t j, uint32_t m) {
-  uint32_t pc[4] = {op, j, m, 0};
+  gmres_op_push pc = {.op = op, .j = j, .m = m};
   sessile_buffer *sb[1] = {la->scalars};
-  return sessile_cmd_dispatch(c, la->k[K_GMRES_SCALAR], 1, sb, pc);
+  return sessile_cmd_dispatch(c, la->k[K_GMRES_SCALAR], 1, sb, &pc);
 }
 
 static int hslot(uint32_t i, uint32_t j, uint32_t m) { return GM_BASE + (int)(i + j * (m + 1)); }

@@ -198,9 +198,9 @@ sessile_status rec_ilu(sessile_la *la, sessile_cmd *c, const la_ilu *f, vref r, 
     vref in = u ? z : r;
     sessile_buffer *bufs[7] = {la->scalars, t->order, t->rowptr, t->col, t->val, in.buf, z.buf};
     for (uint32_t l = 0; l < t->nlev; l++) {
-      struct { uint32_t first, count, xoff, yoff; int32_t guard; uint32_t diag; } p = {
-          t->levptr[l], t->levptr[l + 1] - t->levptr[l], in.off4 * scale, z.off4 * scale, guard,
-          (uint32_t)u};
+      ilu_push p = {.first = t->levptr[l], .count = t->levptr[l + 1] - t->levptr[l],
+                    .xoff = in.off4 * scale, .yoff = z.off4 * scale, .guard = guard,
+                    .diag = (uint32_t)u};
       SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, id, p.count), bufs, &p));
     }
   }

@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 #include "sessile/la_ref.h"
 
 void sessile_ksp_options_default(sessile_ksp_options *o) {

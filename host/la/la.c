@@ -5,12 +5,6 @@
 #include <string.h>
 #include "la_internal.h"
 
-static const struct { const char *name; uint32_t nbuf, push, local; } kinfo[K_COUNT] = {
-#define X(id, name, nb, pb, ls) {name, nb, pb, ls},
-    SESSILE_LA_KERNELS(X)
-#undef X
-};
-
 static sessile_status la_init(sessile_la *la) {
   SESSILE_CALL(sessile_buffer_create(la->gpu, (size_t)NSLOTS * la->real_bytes,
                                      SESSILE_BUFFER_MAPPED, &la->scalars));
@@ -63,24 +57,9 @@ sessile_gpu *sessile_la_gpu(sessile_la *la) { return la->gpu; }
 uint32_t sessile_la_real_bytes(const sessile_la *la) { return la->real_bytes; }
 
 sessile_status la_kernel(sessile_la *la, la_kernel_id id, sessile_kernel **out) {
-  if (!la->k[id]) {
-    char name[96];
-    snprintf(name, sizeof name, "%s.%s", kinfo[id].name, la->real_bytes == 8 ? "f64" : "f32");
-    uint32_t local = kinfo[id].local;
-    /* Reductions use a tree over a power-of-two workgroup. */
-    uint32_t maxl = sessile_gpu_info_of(la->gpu)->max_workgroup_invocations;
-    while (local > maxl) local /= 2;
-    if (id == K_SPMV_CSR_TEX || id == K_SPMV_CSR_TEX_DOT) {
-      /* columns and values as raw RGBA32UI texels, x as one texel per real */
-      sessile_binding_kind xk = la->real_bytes == 8 ? SESSILE_TEXEL_RG32UI : SESSILE_TEXEL_R32UI;
-      const sessile_binding_kind t[7] = {0, 0, SESSILE_TEXEL_RGBA32UI, SESSILE_TEXEL_RGBA32UI, xk,
-                                         0, 0};
-      SESSILE_CALL(sessile_kernel_create_texel(la->gpu, name, kinfo[id].nbuf, kinfo[id].push,
-                                               local, t, &la->k[id]));
-    } else
-      SESSILE_CALL(sessile_kernel_create(la->gpu, name, kinfo[id].nbuf, kinfo[id].push, local,
-                                         &la->k[id]));
-  }
+  if (!la->k[id])
+    SESSILE_CALL(sessile_kernel_create_decl(la->gpu, &sessile_la_kernels[id], la->real_bytes, 0,
+                                            &la->k[id]));
   *out = la->k[id];
   return SESSILE_OK;
 }

@@ -4,57 +4,10 @@
 
 #include "sessile/la.h"
 
-/* Scalar slots, shared with shaders/common/sessile.glsl (keep in sync). */
-enum {
-  S_STOP = 0, S_ITER = 1, S_BB = 2, S_TOL2 = 3, S_MAXIT = 4, S_REASON = 5,
-  S_SOLVER = 8,   /* 8..63: per-solver scalars */
-  S_IMM = 64,     /* 64..71: immediate coefficients of the vec_* calls */
-  S_GMRES = 128,  /* GMRES Hessenberg, rotations, g, y */
-  NSLOTS = 8192
-};
-#define STOP_RUNNING 0.0
-#define STOP_CONVERGED 1.0
-#define STOP_MAXIT 2.0
-#define STOP_BREAKDOWN 3.0
-enum { MAXG = 1024, NSETS = 8 }; /* reduction groups and partial sets */
-
-/* The kernel table (X-macro): id, embedded name, buffers, push bytes, local size. */
-#define SESSILE_LA_KERNELS(X)                       \
-  X(K_FILL, "la/fill", 2, 32, 256)                  \
-  X(K_COPY, "la/copy", 3, 32, 256)                  \
-  X(K_SCALE, "la/scale", 2, 32, 256)                \
-  X(K_AXPY, "la/axpy", 3, 32, 256)                  \
-  X(K_AYPX, "la/aypx", 3, 32, 256)                  \
-  X(K_WAXPY, "la/waxpy", 4, 32, 256)                \
-  X(K_PMUL, "la/pmul", 4, 32, 256)                  \
-  X(K_DOT, "la/dot", 4, 32, 256)                    \
-  X(K_REDUCE, "la/reduce", 2, 20, 256)              \
-  X(K_SPMV_CSR, "la/spmv_csr", 6, 20, 64)           \
-  X(K_SPMV_BCSR4, "la/spmv_bcsr4", 6, 20, 64)       \
-  X(K_SPMV_CSR_DOT, "la/spmv_csr_dot", 7, 20, 64)   \
-  X(K_SPMV_CSR_TEX, "la/spmv_csr_tex", 6, 20, 64)   \
-  X(K_SPMV_CSR_TEX_DOT, "la/spmv_csr_tex_dot", 7, 20, 64) \
-  X(K_CG_UPDATE, "la/cg_update", 7, 32, 256)        \
-  X(K_CG_DIRECTION, "la/cg_direction", 4, 32, 256)  \
-  X(K_CG_SCALAR, "la/cg_scalar", 1, 8, 1)           \
-  X(K_BICG_P, "la/bicgstab_p", 4, 32, 256)          \
-  X(K_BICG_S, "la/bicgstab_s", 5, 32, 256)          \
-  X(K_BICG_XR, "la/bicgstab_xr", 9, 32, 256)        \
-  X(K_BICG_SCALAR, "la/bicgstab_scalar", 1, 8, 1)   \
-  X(K_GMRES_SCALAR, "la/gmres_scalar", 1, 16, 1)    \
-  X(K_GMRES_UPDATE, "la/gmres_update", 4, 32, 256)  \
-  X(K_STENCIL7, "la/stencil7", 4, 32, 64)           \
-  X(K_STENCIL7_DOT, "la/stencil7_dot", 5, 32, 64)   \
-  X(K_STENCIL7_JACOBI, "la/stencil7_jacobi", 4, 32, 64) \
-  X(K_ILU_CSR, "la/ilu_csr", 7, 24, 64)             \
-  X(K_ILU_BCSR4, "la/ilu_bcsr4", 7, 24, 64)
-
-typedef enum {
-#define X(id, name, nb, pb, ls) id,
-  SESSILE_LA_KERNELS(X)
-#undef X
-  K_COUNT
-} la_kernel_id;
+/* The kernels (la_kernel_id, sessile_la_kernels[]), their push structs
+ * (vec_push, spmv_push, ...) and the scalar slots (S_*, CG_*, BI_*, GM_*),
+ * MAXG, NSETS, COEF_*: generated from shaders/la/kernels.def. */
+#include "la_kernels.h"
 
 struct sessile_la {
   sessile_gpu *gpu;
@@ -108,15 +61,6 @@ struct sessile_mat {
 /* A vector inside a buffer: `off4` REAL4 chunks from its start. */
 typedef struct { sessile_buffer *buf; uint32_t off4; } vref;
 static inline vref vref_of(const sessile_vec *v) { vref r = {v->buf, 0}; return r; }
-
-/* Push constants of the element-wise kernels (shaders/common/vecpush.glsl). */
-typedef struct {
-  uint32_t n4, n, off0, off1, off2;
-  int32_t a_slot;
-  uint32_t flags;
-  int32_t guard;
-} vec_push;
-enum { COEF_NEG = 1, COEF_INV = 2 };
 
 sessile_status la_kernel(sessile_la *la, la_kernel_id id, sessile_kernel **out);
 /* Host view of the scalar slots (mapped). */

@@ -39,8 +39,8 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, K_REDUCE, &k));
   sessile_buffer *bufs[2] = {la->scalars, la->partials};
-  struct { uint32_t count, first_set; int32_t dst; uint32_t sq; int32_t guard; } p = {
-      count, first_set, dst_slot, (uint32_t)sqrt_flag, guard};
+  reduce_push p = {.count = count, .first_set = first_set, .dst_slot = dst_slot,
+                   .sqrt_flag = (uint32_t)sqrt_flag, .guard = guard};
   return sessile_cmd_dispatch(c, k, nsets, bufs, &p);
 }
 
@@ -64,8 +64,8 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
   for (uint32_t i = 0; i < a->nchunks; i++) {
     const mat_chunk *ch = &a->chunk[i];
     sessile_buffer *bufs[6] = {la->scalars, ch->rowptr, ch->col, ch->val, x.buf, y.buf};
-    struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
-        ch->nrows, x.off4 * scale, y.off4 * scale + ch->row0, guard, per};
+    spmv_push p = {.nrows = ch->nrows, .xoff = x.off4 * scale, .yoff = y.off4 * scale + ch->row0,
+                   .guard = guard, .rows_per = per};
     uint32_t items = (ch->nrows + per - 1) / per;
     SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p));
   }
@@ -86,8 +86,8 @@ sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a
   SESSILE_CALL(la_kernel(la, id, &k));
   const mat_chunk *ch = &a->chunk[0];
   sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, x.buf, y.buf, la->partials};
-  struct { uint32_t nrows, xoff, yoff; int32_t guard; uint32_t rows_per; } p = {
-      a->nrows, x.off4 * 4, y.off4 * 4, guard, a->rows_per};
+  spmv_push p = {.nrows = a->nrows, .xoff = x.off4 * 4, .yoff = y.off4 * 4, .guard = guard,
+                 .rows_per = a->rows_per};
   uint32_t items = (a->nrows + a->rows_per - 1) / a->rows_per;
   *count = la_groups(la, id, items);
   if (*count > MAXG) *count = MAXG;

@@ -6,7 +6,6 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include "la_internal.h"
-#include "solver_slots.h"
 
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
                               const sessile_ksp_options *o, const char *name, int est_slot,

@@ -9,12 +9,6 @@
 #include "la_internal.h"
 #include "sessile/la_ref.h"
 
-typedef struct {
-  uint32_t n0, n1, n2, xoff, yoff;
-  int32_t guard;
-  union { double d; float f; } h; /* REAL: fp64 or fp32 push constant */
-} stencil_push;
-
 sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
                                            double h, sessile_buffer *mask, sessile_mat **out) {
   *out = NULL;
@@ -44,9 +38,8 @@ sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t
 }
 
 static stencil_push push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard) {
-  stencil_push p = {a->grid[0], a->grid[1], a->grid[2], x.off4 * 4, y.off4 * 4, guard, {0}};
-  if (la->real_bytes == 8) p.h.d = a->h;
-  else p.h.f = (float)a->h;
+  stencil_push p = {.n0 = a->grid[0], .n1 = a->grid[1], .n2 = a->grid[2], .xoff = x.off4 * 4,
+                    .yoff = y.off4 * 4, .guard = guard, .h = sessile_push_real_of(a->h, la->real_bytes)};
   return p;
 }
 

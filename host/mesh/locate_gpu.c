@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "locate_internal.h"
+#include "mesh_kernels.h"
 
 struct sessile_locate_gpu {
   sessile_gpu *gpu;
@@ -39,9 +40,9 @@ sessile_status sessile_locate_gpu_create(sessile_gpu *gpu, const sessile_locator
   lg->eps = f64 ? SESSILE_LOCATE_EPS : 1e-5;
   memcpy(lg->dims, l->dims, sizeof lg->dims);
   const sessile_tetmesh *m = l->m;
-  sessile_status s = sessile_kernel_create(gpu, f64 ? "mesh/locate.f64" : "mesh/locate.f32", 9,
-                                           4 * sizeof(uint32_t), 0, &lg->k);
-  if (s == SESSILE_OK) s = sessile_buffer_create(gpu, 8 * 8, SESSILE_BUFFER_MAPPED, &lg->params);
+  sessile_status s = sessile_kernel_create_decl(gpu, &sessile_mesh_kernels[MK_LOCATE], lg->real_bytes,
+                                                0, &lg->k);
+  if (s == SESSILE_OK) s = sessile_buffer_create(gpu, LOC_COUNT * 8, SESSILE_BUFFER_MAPPED, &lg->params);
   if (s == SESSILE_OK) s = make_buffer(gpu, (size_t)3 * m->nnodes * lg->real_bytes, &lg->xyz);
   if (s == SESSILE_OK) s = make_buffer(gpu, (size_t)4 * m->ntets * sizeof(uint32_t), &lg->tet);
   if (s == SESSILE_OK) s = make_buffer(gpu, ((size_t)l->nbins + 1) * sizeof(uint32_t), &lg->off);
@@ -53,8 +54,10 @@ sessile_status sessile_locate_gpu_create(sessile_gpu *gpu, const sessile_locator
   if (s == SESSILE_OK && l->nentries)
     s = sessile_buffer_upload(lg->cell, 0, l->cell_tet, (size_t)l->nentries * sizeof(uint32_t));
   if (s == SESSILE_OK) {
-    double pr[8] = {l->lo[0], l->lo[1], l->lo[2], l->inv_h[0], l->inv_h[1], l->inv_h[2], lg->eps, 0};
-    s = sessile_buffer_upload_reals(lg->params, 0, pr, 8);
+    double pr[LOC_COUNT] = {0};
+    for (int a = 0; a < 3; a++) pr[LOC_LO + a] = l->lo[a], pr[LOC_INV_H + a] = l->inv_h[a];
+    pr[LOC_EPS] = lg->eps;
+    s = sessile_buffer_upload_reals(lg->params, 0, pr, LOC_COUNT);
   }
   if (s != SESSILE_OK) {
     sessile_locate_gpu_destroy(lg);
@@ -71,10 +74,10 @@ sessile_status sessile_locate_gpu_record(sessile_locate_gpu *lg, sessile_cmd *c,
   /* the outside value is a parameter slot (mapped: visible at submission) */
   void *hp = sessile_buffer_host_ptr(lg->params);
   SESSILE_CHECK(hp, SESSILE_ERR_INTERNAL, "locator parameter buffer is not mapped");
-  if (lg->real_bytes == 8) ((double *)hp)[7] = outside_value;
-  else ((float *)hp)[7] = (float)outside_value;
+  if (lg->real_bytes == 8) ((double *)hp)[LOC_OUTSIDE] = outside_value;
+  else ((float *)hp)[LOC_OUTSIDE] = (float)outside_value;
   sessile_buffer *b[9] = {lg->params, lg->xyz, lg->tet, lg->off, lg->cell, points, field, values, tets};
-  uint32_t push[4] = {n, lg->dims[0], lg->dims[1], lg->dims[2]};
+  locate_push push = {.n = n, .d0 = lg->dims[0], .d1 = lg->dims[1], .d2 = lg->dims[2]};
   uint32_t ls = sessile_kernel_local_size(lg->k);
-  return sessile_cmd_dispatch(c, lg->k, (n + ls - 1) / ls, b, push);
+  return sessile_cmd_dispatch(c, lg->k, (n + ls - 1) / ls, b, &push);
 }

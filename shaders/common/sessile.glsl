@@ -1,6 +1,8 @@
-// Shared GLSL for sessile kernels: precision, workgroup size, indexing,
-// the scalar-slot map and compensated accumulation.
-// Every kernel is built twice: SESSILE_F64=1 (REAL = double) and 0 (float).
+// Shared GLSL for sessile kernels: precision, workgroup size, indexing and
+// compensated accumulation.  Kernels declared "real" in their kernels.def are
+// built twice: SESSILE_F64=1 (REAL = double) and 0 (float).  Push blocks,
+// bindings and constants shared with the host come from the generated
+// <layer>_kernels.glsl (docs/design.md, "Declaring a kernel").
 #ifndef SESSILE_GLSL
 #ifndef SESSILE_F64
 #define SESSILE_F64 1
@@ -25,20 +27,6 @@ uint sessile_gid() {
   return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
 }
 uint sessile_group() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
-
-// Scalar slots shared with host/la/la_internal.h (keep in sync).
-#define S_STOP 0     // 0 running, 1 converged, 2 max iterations, 3 breakdown
-#define S_ITER 1
-#define S_BB 2       // ||b||^2
-#define S_TOL2 3     // rtol^2 ||b||^2
-#define S_MAXIT 4
-#define S_REASON 5   // breakdown reason code
-#define STOP_CONVERGED 1.0
-#define STOP_MAXIT 2.0
-#define STOP_BREAKDOWN 3.0
-
-// Reductions: each group writes a (hi, lo) pair per set; MAXG groups at most.
-#define MAXG 1024u
 
 // Compensated accumulation: exact two-sum in fp32, plain sum in fp64.
 void acc_add(inout REAL2 a, REAL x) {

@@ -9,16 +9,7 @@
 //   (= -K_fD g, the 7-point P1 stiffness is -h off the diagonal), b = 0 and
 //   c = 0 on Dirichlet nodes; free entries of c (the warm start) are kept.
 // mode 1 (restore): c = Dirichlet value on Dirichlet nodes.
-#include "../common/sessile.glsl"
-layout(push_constant) uniform DirPush {
-  uint n0, n1, n2;
-  uint mode, zero_masked, pad;
-  REAL h;
-} pc;
-layout(std430, binding = 0) readonly buffer M { uint mask[]; };
-layout(std430, binding = 1) readonly buffer G { REAL g[]; };
-layout(std430, binding = 2) buffer C { REAL c[]; };
-layout(std430, binding = 3) writeonly buffer B { REAL b[]; };
+#include "fem_kernels.glsl"
 
 bool wall(uint i, uint j, uint k) {
   return i == 0u || j == 0u || k == 0u || i == pc.n0 - 1u || j == pc.n1 - 1u || k == pc.n2 - 1u;

@@ -5,12 +5,6 @@
 // watertight edge-function rule, then each node's parity of the crossings at
 // or below it.  Mirrors host/growth/classify_ref.c operation by operation.
 #include "growth_common.glsl"
-layout(std430, binding = 1) readonly buffer Pos { REAL pos[]; };
-layout(std430, binding = 2) readonly buffer Tri { uint tri[]; };
-layout(std430, binding = 3) readonly buffer ColOff { uint col_off[]; };
-layout(std430, binding = 4) readonly buffer ColTri { uint col_tri[]; };
-layout(std430, binding = 5) writeonly buffer Solid { uint solid[]; };
-layout(std430, binding = 6) buffer Status { uint status[]; };  // [0]: 1 + first overflowing column
 
 #define MAXC 64
 

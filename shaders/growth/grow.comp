@@ -6,12 +6,6 @@
 // where C > nutrient threshold (Iroquois) and g > growth threshold; the new
 // position is clamped into the box.  Reference: sessile_growth_ref_grow.
 #include "growth_common.glsl"
-layout(std430, binding = 1) readonly buffer Pos { REAL pos[]; };
-layout(std430, binding = 2) readonly buffer Nrm { REAL nrm[]; };
-layout(std430, binding = 3) readonly buffer Ctr { REAL ctr[]; };
-layout(std430, binding = 4) writeonly buffer NewPos { REAL new_pos[]; };
-layout(std430, binding = 5) writeonly buffer Len { REAL len[]; };
-layout(std430, binding = 6) writeonly buffer Dir { REAL dir_out[]; };
 
 void main() {
   uint v = sessile_gid();

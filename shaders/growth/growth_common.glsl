@@ -1,34 +1,10 @@
-// Shared GLSL of the growth kernels: push constants, the parameter slots,
-// box point location (mirrors sessile_box_locate in host/include/sessile/box.h
-// exactly), the counter-based hash (mirrors sessile_growth_hash) and a
+// Shared GLSL of the growth kernels: box point location (mirrors
+// sessile_box_locate in host/include/sessile/box.h exactly), the counter-based hash (mirrors sessile_growth_hash) and a
 // double-precision pow (GLSL's pow/exp/log are float-only).
 #ifndef GROWTH_COMMON_GLSL
 #define GROWTH_COMMON_GLSL
-#include "../common/sessile.glsl"
-
-layout(push_constant) uniform Push {
-  uint nv, nf, n0, n1, n2, samples, halichondrid, seed_lo, seed_hi, iteration, ncols, pad;
-} pc;
-
-// Real parameters in the context precision (host/growth/growth_internal.h).
-layout(std430, binding = 0) readonly buffer Params { REAL gp[]; };
-#define P_OX 0
-#define P_OY 1
-#define P_OZ 2
-#define P_H 3
-#define P_MX 4
-#define P_MY 5
-#define P_MZ 6
-#define P_OFFSET 7
-#define P_TGIVE 8
-#define P_NTHR 9
-#define P_GTHR 10
-#define P_GR 11
-#define P_LMAX 12
-#define P_N 13
-#define P_K 14
-#define P_MAXG 15
-#define P_R 16
+// Push block, bindings and the parameter slots P_*: shaders/growth/kernels.def.
+#include "growth_kernels.glsl"
 
 // The 4 nodes and barycentric weights of the Kuhn tet holding p (clamped
 // into the box), operation by operation as in sessile_box_locate.

@@ -4,11 +4,6 @@
 // products (|cross| = 2 area), in ascending face order from the vertex->face
 // CSR, normalised.  Reference: sessile_surface_normals.
 #include "growth_common.glsl"
-layout(std430, binding = 1) readonly buffer Pos { REAL pos[]; };
-layout(std430, binding = 2) readonly buffer Tri { uint tri[]; };
-layout(std430, binding = 3) readonly buffer VfOff { uint vf_off[]; };
-layout(std430, binding = 4) readonly buffer Vf { uint vf[]; };
-layout(std430, binding = 5) writeonly buffer Nrm { REAL nrm[]; };
 
 void main() {
   uint v = sessile_gid();

@@ -4,10 +4,6 @@
 // w(d) = 1/(20 d + 1); c is the P1 interpolant of the nutrient field on the
 // box (point location mirrors sessile_box_locate).
 #include "growth_common.glsl"
-layout(std430, binding = 1) readonly buffer Pos { REAL pos[]; };
-layout(std430, binding = 2) readonly buffer Nrm { REAL nrm[]; };
-layout(std430, binding = 3) readonly buffer Field { REAL field[]; };
-layout(std430, binding = 4) writeonly buffer Out { REAL probed[]; };
 
 void main() {
   uint v = sessile_gid();

@@ -4,10 +4,6 @@
 // out = clamp(c - N T c + T sum_{nbr} c', 0, 1).  The paper's sequential form
 // is in the host reference; docs/growth.md measures how the two differ.
 #include "growth_common.glsl"
-layout(std430, binding = 1) readonly buffer NbrOff { uint nbr_off[]; };
-layout(std430, binding = 2) readonly buffer Nbr { uint nbr[]; };
-layout(std430, binding = 3) readonly buffer In { REAL cin[]; };
-layout(std430, binding = 4) writeonly buffer Out { REAL cout_[]; };
 
 void main() {
   uint v = sessile_gid();

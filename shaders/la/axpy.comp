@@ -1,10 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // y = a x + y
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
-layout(std430, binding = 1) readonly buffer X { REAL4 x[]; };
-layout(std430, binding = 2) buffer Y { REAL4 y[]; };
 void main() {
   uint i = sessile_gid();
   if (i >= pc.n4 || guarded()) return;

@@ -1,14 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // BiCGSTAB half step: s = r − α v, with partial sums of s·s (set 0).
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
 #include "../common/reduce_shared.glsl"
-#include "../common/solver_slots.glsl"
-layout(std430, binding = 1) readonly buffer R { REAL4 r[]; };
-layout(std430, binding = 2) readonly buffer V { REAL4 v[]; };
-layout(std430, binding = 3) writeonly buffer SV { REAL4 sv[]; };
-layout(std430, binding = 4) writeonly buffer PART { REAL2 part[]; };
 void main() {
   if (guarded()) return;
   REAL a = s[BI_ALPHA];

@@ -1,10 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // BiCGSTAB scalar steps: 0 init, 1 β, 2 α, 3 ω, 4 convergence test.
-#include "../common/sessile.glsl"
-#include "../common/solver_slots.glsl"
-layout(push_constant) uniform Push { uint op; uint pad; } pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
+#include "la_kernels.glsl"
 void stop(REAL why, REAL reason) { s[S_STOP] = why; s[S_REASON] = reason; }
 void main() {
   if (s[S_STOP] != REAL(0)) return;

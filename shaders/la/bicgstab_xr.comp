@@ -2,18 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // BiCGSTAB update: x += α p̂ + ω ŝ; r = s − ω t; partial sums of r·r (set 0)
 // and r̂0·r (set 1).
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
 #include "../common/reduce_shared.glsl"
-#include "../common/solver_slots.glsl"
-layout(std430, binding = 1) buffer X { REAL4 x[]; };
-layout(std430, binding = 2) readonly buffer PH { REAL4 ph[]; };
-layout(std430, binding = 3) readonly buffer SH { REAL4 sh[]; };
-layout(std430, binding = 4) readonly buffer SV { REAL4 sv[]; };
-layout(std430, binding = 5) readonly buffer T { REAL4 t[]; };
-layout(std430, binding = 6) buffer R { REAL4 r[]; };
-layout(std430, binding = 7) readonly buffer R0 { REAL4 r0[]; };
-layout(std430, binding = 8) writeonly buffer PART { REAL2 part[]; };
 void main() {
   if (guarded()) return;
   REAL a = s[BI_ALPHA], w = s[BI_OMEGA];

@@ -2,10 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // CG scalar steps on the device (one invocation), so k iterations run
 // without the host: op 0 init, 1 α = (r·z)/(p·Ap), 2 convergence test and β.
-#include "../common/sessile.glsl"
-#include "../common/solver_slots.glsl"
-layout(push_constant) uniform Push { uint op; uint pad; } pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
+#include "la_kernels.glsl"
 void stop(REAL why, REAL reason) { s[S_STOP] = why; s[S_REASON] = reason; }
 void main() {
   if (s[S_STOP] != REAL(0)) return;

@@ -2,16 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // CG step, fused: x += α p; r -= α q; partial sums of r·D⁻¹r (set 0) and r·r
 // (set 1).  z = D⁻¹ r is never stored: cg_direction.comp recomputes it.
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
 #include "../common/reduce_shared.glsl"
-#include "../common/solver_slots.glsl"
-layout(std430, binding = 1) readonly buffer P { REAL4 p[]; };
-layout(std430, binding = 2) readonly buffer Q { REAL4 q[]; };
-layout(std430, binding = 3) readonly buffer D { REAL4 dinv[]; };
-layout(std430, binding = 4) buffer X { REAL4 x[]; };
-layout(std430, binding = 5) buffer R { REAL4 r[]; };
-layout(std430, binding = 6) writeonly buffer PART { REAL2 part[]; };
 void main() {
   if (guarded()) return;
   REAL a = s[CG_ALPHA];

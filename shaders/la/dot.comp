@@ -3,12 +3,9 @@
 // Partial sums of x·y: each group writes one compensated (hi, lo) pair into
 // partial set `off2`; reduce.comp finishes the sum in a fixed order, so the
 // result is deterministic.  Grid-stride over at most MAXG groups.
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
 #include "../common/reduce_shared.glsl"
-layout(std430, binding = 1) readonly buffer X { REAL4 x[]; };
-layout(std430, binding = 2) readonly buffer Y { REAL4 y[]; };
-layout(std430, binding = 3) writeonly buffer P { REAL2 part[]; };
 void main() {
   if (guarded()) return;
   REAL2 acc = REAL2(0);

@@ -4,10 +4,7 @@
 // 1 Givens rotation of Hessenberg column j and residual estimate, 2 back
 // substitution H y = g, 3 end-of-cycle convergence test.
 // Layout from GM_BASE: H (m+1)×m column-major, then g (m+1), cs (m), sn (m), y (m).
-#include "../common/sessile.glsl"
-#include "../common/solver_slots.glsl"
-layout(push_constant) uniform Push { uint op; uint j; uint m; uint pad; } pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
+#include "la_kernels.glsl"
 uint H(uint i, uint j) { return GM_BASE + i + j * (pc.m + 1u); }
 uint G(uint i) { return GM_BASE + (pc.m + 1u) * pc.m + i; }
 uint CS(uint i) { return G(pc.m + 1u) + i; }

@@ -3,12 +3,8 @@
 // GMRES solution update with right Jacobi preconditioning:
 // x += D⁻¹ Σ_{i<k} y_i v_i, with k and y from the scalar slots and the basis
 // v_i stored one after another in V (stride off0 REAL4 chunks).
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/vecpush.glsl"
-#include "../common/solver_slots.glsl"
-layout(std430, binding = 1) readonly buffer V { REAL4 v[]; };
-layout(std430, binding = 2) readonly buffer D { REAL4 dinv[]; };
-layout(std430, binding = 3) buffer X { REAL4 x[]; };
 void main() {
   uint e = sessile_gid();
   if (e >= pc.n4 || guarded()) return;

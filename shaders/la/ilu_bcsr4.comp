@@ -6,20 +6,7 @@
 //   diag = 1 (U):              y_i = U_ii⁻¹ (x_i − Σ_j U_ij y_j), the dense
 //                              inverse pivot block stored as the row's first entry
 // For U, x and y are the same vector (in place).
-#include "../common/sessile.glsl"
-layout(push_constant) uniform IluPush {
-  uint first, count;  // the level's positions [first, first + count)
-  uint xoff, yoff;    // in REAL4
-  int guard;
-  uint diag;
-} pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer O { uint order[]; };
-layout(std430, binding = 2) readonly buffer RP { uint rowptr[]; };
-layout(std430, binding = 3) readonly buffer C { uint col[]; };
-layout(std430, binding = 4) readonly buffer V { REAL4 val[]; };
-layout(std430, binding = 5) readonly buffer X { REAL4 x[]; };
-layout(std430, binding = 6) buffer Y { REAL4 y[]; };
+#include "la_kernels.glsl"
 REAL4 bmul(uint k, REAL4 v) {
   uint b = 4u * k;
   return REAL4(dot(val[b], v), dot(val[b + 1u], v), dot(val[b + 2u], v), dot(val[b + 3u], v));

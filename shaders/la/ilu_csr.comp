@@ -7,20 +7,7 @@
 //                              inverse pivot stored as the row's first entry
 // The rows read y_j of earlier levels only (written by earlier dispatches);
 // for U, x and y are the same vector (in place).
-#include "../common/sessile.glsl"
-layout(push_constant) uniform IluPush {
-  uint first, count;  // the level's positions [first, first + count)
-  uint xoff, yoff;    // in REAL
-  int guard;
-  uint diag;
-} pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer O { uint order[]; };
-layout(std430, binding = 2) readonly buffer RP { uint rowptr[]; };
-layout(std430, binding = 3) readonly buffer C { uint col[]; };
-layout(std430, binding = 4) readonly buffer V { REAL val[]; };
-layout(std430, binding = 5) readonly buffer X { REAL x[]; };
-layout(std430, binding = 6) buffer Y { REAL y[]; };
+#include "la_kernels.glsl"
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
   uint t = sessile_gid();

@@ -3,16 +3,8 @@
 // Finishes reductions: workgroup k sums the `count` partial pairs of set
 // first_set + k in a fixed order and stores s[dst_slot + k] (its square root
 // when sqrt_flag is set).
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/reduce_shared.glsl"
-layout(push_constant) uniform ReducePush {
-  uint count, first_set;
-  int dst_slot;
-  uint sqrt_flag;
-  int guard;
-} pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer P { REAL2 part[]; };
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
   uint set = pc.first_set + gl_WorkGroupID.x;

@@ -2,23 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // y = A x for 4x4 block CSR: one block row per invocation; x and y blocks are
 // REAL4 (4 unknowns per node), each block four REAL4 rows.
-#include "../common/sessile.glsl"
-layout(push_constant) uniform SpmvPush {
-  uint nbrows;
-  uint xoff, yoff;   // in REAL4
-  int guard;
-  uint rows_per;
-} pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer RP { uint rowptr[]; };
-layout(std430, binding = 2) readonly buffer C { uint col[]; };
-layout(std430, binding = 3) readonly buffer V { REAL4 val[]; };
-layout(std430, binding = 4) readonly buffer X { REAL4 x[]; };
-layout(std430, binding = 5) writeonly buffer Y { REAL4 y[]; };
+#include "la_kernels.glsl"
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
   uint br = sessile_gid();
-  if (br >= pc.nbrows) return;
+  if (br >= pc.nrows) return;
   REAL4 sum = REAL4(0);
   uint e = rowptr[br + 1u];
   for (uint k = rowptr[br]; k < e; k++) {

@@ -8,7 +8,6 @@
 #define SELL_TEXEL 0
 #include "spmv_sell.glsl"
 #include "../common/reduce_shared.glsl"
-layout(std430, binding = 6) writeonly buffer PART { REAL2 part[]; };
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
   REAL2 acc = REAL2(0);

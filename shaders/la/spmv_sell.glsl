@@ -14,20 +14,8 @@
 //     loads per lane, ~2.5x faster (docs/performance.md).  Texels are raw
 //     bits: RGBA32UI for columns and values (a dvec4 is two texels), RG32UI
 //     (fp64) or R32UI (fp32) for x.
-#include "../common/sessile.glsl"
-layout(push_constant) uniform SpmvPush {
-  uint nrows;
-  uint xoff, yoff;   // in reals
-  int guard;
-  uint rows_per;     // unused: one row per invocation (per grid step)
-} pc;
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer RP { uint slice_ptr[]; };  // in chunks of 4
-layout(std430, binding = 5) writeonly buffer Y { REAL y[]; };
+#include "la_kernels.glsl"
 #if SELL_TEXEL
-layout(binding = 2) uniform usamplerBuffer col_t;
-layout(binding = 3) uniform usamplerBuffer val_t;
-layout(binding = 4) uniform usamplerBuffer x_t;
 uvec4 ld_col(uint k) { return texelFetch(col_t, int(k)); }
 #if SESSILE_F64
 REAL ld_x(uint i) { return packDouble2x32(texelFetch(x_t, int(i)).xy); }
@@ -41,9 +29,6 @@ REAL ld_x(uint i) { return uintBitsToFloat(texelFetch(x_t, int(i)).x); }
 REAL4 ld_val(uint k) { return uintBitsToFloat(texelFetch(val_t, int(k))); }
 #endif
 #else
-layout(std430, binding = 2) readonly buffer C { uvec4 col[]; };
-layout(std430, binding = 3) readonly buffer V { REAL4 val[]; };
-layout(std430, binding = 4) readonly buffer X { REAL x[]; };
 uvec4 ld_col(uint k) { return col[k]; }
 REAL4 ld_val(uint k) { return val[k]; }
 REAL ld_x(uint i) { return x[i]; }

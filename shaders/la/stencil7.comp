@@ -2,11 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // y = A x for the masked 7-point operator (common/stencil7.glsl): the P1
 // Laplacian of the Kuhn box with Dirichlet rows/columns eliminated.
-#include "../common/sessile.glsl"
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer M { uint mask[]; };
-layout(std430, binding = 2) readonly buffer X { REAL x[]; };
-layout(std430, binding = 3) writeonly buffer Y { REAL y[]; };
+#include "la_kernels.glsl"
 #include "stencil7.glsl"
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;

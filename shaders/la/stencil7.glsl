@@ -5,13 +5,7 @@
 // column are the identity (symmetric elimination), so for a free node
 //   (A x)_i = h (6 x_i - sum of x over its free face neighbours)
 // which is the P1 stiffness of the Kuhn box (docs/fem.md), and (A x)_i = x_i
-// on Dirichlet nodes.
-layout(push_constant) uniform StencilPush {
-  uint n0, n1, n2;
-  uint xoff, yoff; // in reals
-  int guard;
-  REAL h;
-} pc;
+// on Dirichlet nodes.  Push block and bindings: shaders/la/kernels.def.
 
 bool st_wall(uint i, uint j, uint k) {
   return i == 0u || j == 0u || k == 0u || i == pc.n0 - 1u || j == pc.n1 - 1u || k == pc.n2 - 1u;

@@ -2,13 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // y = A x (masked 7-point operator) fused with the partial sums of x·y into
 // set 0, as spmv_csr_dot.comp does for CG's p·Ap.  Grid-stride, MAXG groups.
-#include "../common/sessile.glsl"
+#include "la_kernels.glsl"
 #include "../common/reduce_shared.glsl"
-layout(std430, binding = 0) buffer Scalars { REAL s[]; };
-layout(std430, binding = 1) readonly buffer M { uint mask[]; };
-layout(std430, binding = 2) readonly buffer X { REAL x[]; };
-layout(std430, binding = 3) writeonly buffer Y { REAL y[]; };
-layout(std430, binding = 4) writeonly buffer PART { REAL2 part[]; };
 #include "stencil7.glsl"
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;

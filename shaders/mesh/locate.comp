@@ -5,19 +5,7 @@
 // index) whose barycentric weights are all >= -eps.  Operation by operation
 // as sessile_locator_find / locate_weights (host/mesh/locate.c), so the fp64
 // build returns the host's tet.
-#include "../common/sessile.glsl"
-
-layout(push_constant) uniform Push { uint n, d0, d1, d2; } pc;
-// lo[3], inv_h[3], eps, outside value (context precision)
-layout(std430, binding = 0) readonly buffer Params { REAL gp[]; };
-layout(std430, binding = 1) readonly buffer Xyz { REAL xyz[]; };
-layout(std430, binding = 2) readonly buffer Tet { uvec4 tet[]; };
-layout(std430, binding = 3) readonly buffer Off { uint cell_off[]; };
-layout(std430, binding = 4) readonly buffer Cell { uint cell_tet[]; };
-layout(std430, binding = 5) readonly buffer Pts { REAL pts[]; };
-layout(std430, binding = 6) readonly buffer Field { REAL field[]; };
-layout(std430, binding = 7) writeonly buffer Val { REAL val[]; };
-layout(std430, binding = 8) writeonly buffer Found { uint found[]; };
+#include "mesh_kernels.glsl"
 
 const uint OUTSIDE = 0xFFFFFFFFu;
 
@@ -55,15 +43,15 @@ void main() {
   uint c[3];
   bool inside = true;
   for (int k = 0; k < 3; k++) {
-    precise REAL x = (p[k] - gp[k]) * gp[3 + k];
+    precise REAL x = (p[k] - gp[LOC_LO + k]) * gp[LOC_INV_H + k];
     if (!(x >= REAL(-1e-3) && x <= REAL(dims[k]) + REAL(1e-3))) inside = false;
     REAL top = REAL(dims[k] - 1u);
     c[k] = !inside || x <= REAL(0) ? 0u : x >= top ? dims[k] - 1u : uint(x);
   }
   uint hit = OUTSIDE;
-  REAL value = gp[7];
+  REAL value = gp[LOC_OUTSIDE];
   if (inside) {
-    REAL eps = gp[6];
+    REAL eps = gp[LOC_EPS];
     uint b = c[0] + pc.d0 * (c[1] + pc.d1 * c[2]);
     uint e1 = cell_off[b + 1u];
     for (uint e = cell_off[b]; e < e1; e++) {

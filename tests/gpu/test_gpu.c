@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "gpu/gpu_internal.h"
+#include "la_kernels.h" /* the generated declaration of la/fill */
 #include "testutil.h"
 
 /* Deterministic pseudo-random bytes (splitmix64). */
@@ -174,8 +175,10 @@ static void test_kernels(sessile_gpu *g) {
 
   sessile_kernel *k = (sessile_kernel *)&k;
   sessile_error_clear();
-  sessile_status s = sessile_kernel_create(g, "la/no-such-kernel.f64", 2, 32, 0, &k);
-  printf("   kernel_create(\"la/no-such-kernel.f64\"): %s: \"%s\"\n", sessile_status_name(s),
+  sessile_kernel_decl bad = sessile_la_kernels[K_FILL];
+  bad.name = "la/no-such-kernel";
+  sessile_status s = sessile_kernel_create_decl(g, &bad, 8, 0, &k);
+  printf("   kernel_create_decl(\"la/no-such-kernel\"): %s: \"%s\"\n", sessile_status_name(s),
          sessile_error_message());
   t_true("kernel_create with an unknown name fails, *out = NULL, message names the kernel",
          s != SESSILE_OK && k == NULL && strstr(sessile_error_message(), "no-such-kernel") != NULL);
@@ -192,8 +195,8 @@ static void test_dispatch(sessile_gpu *g) {
   sessile_kernel *k = NULL;
   sessile_cmd *c = NULL;
   sessile_buffer *scal = NULL, *y = NULL;
-  sessile_status s = sessile_kernel_create(g, f64 ? "la/fill.f64" : "la/fill.f32", 2, 32, 0, &k);
-  t_ok("kernel_create la/fill", s);
+  sessile_status s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_FILL], 0, 0, &k);
+  t_ok("kernel_create_decl la/fill", s);
   if (s == SESSILE_OK) {
     uint32_t ls = sessile_kernel_local_size(k);
     printf("   la/fill local size %u\n", ls);
@@ -207,8 +210,7 @@ static void test_dispatch(sessile_gpu *g) {
   memset(marker, 0x5A, sizeof marker);
   if (s == SESSILE_OK) s = sessile_buffer_upload(y, (size_t)n4 * 4 * rb, marker, 4 * rb);
   if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
-  struct { uint32_t n4, n, off0, off1, off2; int32_t a_slot; uint32_t flags; int32_t guard; } push = {
-      n4, n, 0, 0, 0, -1, 0, -1};
+  vec_push push = {.n4 = n4, .n = n, .a_slot = -1, .guard = -1};
   sessile_buffer *bufs[2] = {scal, y};
   if (s == SESSILE_OK) s = sessile_cmd_begin(c);
   if (s == SESSILE_OK) s = sessile_cmd_timestamp(c, 0);

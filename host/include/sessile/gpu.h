@@ -104,29 +104,60 @@ sessile_status sessile_buffer_download_reals(sessile_buffer *b, size_t offset_re
                                              size_t n);
 
 /* --- kernels ----------------------------------------------------------- */
-/* A compute pipeline from the embedded SPIR-V named `name` (e.g. "la/axpy.f64").
- * Bindings 0..nbuffers-1 are storage buffers; `push_bytes` of push constants;
- * local size x through specialisation constant 0 (0 = the kernel's default 256,
- * clamped to maxComputeWorkGroupInvocations). */
-sessile_status sessile_kernel_create(sessile_gpu *g, const char *name, uint32_t nbuffers,
-                                     uint32_t push_bytes, uint32_t local_size,
-                                     sessile_kernel **out);
-/* The same with some bindings read as uniform texel buffers (texelFetch on a
- * usamplerBuffer in the shader) instead of storage buffers: texel[i] is the
- * format of binding i, SESSILE_BINDING_STORAGE for a storage buffer.  A view
- * of the whole buffer is made on first use and kept with the buffer; the
- * buffer must hold at most max_texel_buffer_elements texels.  Why: lavapipe
+/* How a binding is read: a storage buffer, or a uniform texel buffer
+ * (texelFetch on a usamplerBuffer) of the given format.  For a texel binding
+ * a view of the whole buffer is made on first use and kept with the buffer;
+ * the buffer must hold at most max_texel_buffer_elements texels.  Why: lavapipe
  * gathers texels with vector loads but scalarises storage-buffer loads per
  * lane, which made SpMV ~2.5x slower (docs/performance.md). */
 typedef enum sessile_binding_kind {
   SESSILE_BINDING_STORAGE = 0,
   SESSILE_TEXEL_R32UI = 1,    /* 4-byte texels */
   SESSILE_TEXEL_RG32UI = 2,   /* 8-byte texels */
-  SESSILE_TEXEL_RGBA32UI = 3  /* 16-byte texels */
+  SESSILE_TEXEL_RGBA32UI = 3, /* 16-byte texels */
+  SESSILE_TEXEL_REAL = 4      /* one texel per real: R32UI (fp32) or RG32UI (fp64) */
 } sessile_binding_kind;
-sessile_status sessile_kernel_create_texel(sessile_gpu *g, const char *name, uint32_t nbuffers,
-                                           uint32_t push_bytes, uint32_t local_size,
-                                           const sessile_binding_kind *texel, sessile_kernel **out);
+
+typedef struct sessile_binding_decl {
+  const char *name;          /* the GLSL name */
+  sessile_binding_kind kind;
+  int readonly;              /* the kernel never writes it */
+} sessile_binding_decl;
+
+/* One kernel's declaration.  Written by tools/kernelgen.c from
+ * shaders/<layer>/kernels.def into sessile_<layer>_kernels[] (<layer>_kernels.h),
+ * together with the GLSL push block and bindings, so host and shader agree
+ * (docs/design.md, "Declaring a kernel"). */
+typedef struct sessile_kernel_decl {
+  const char *name;          /* "la/axpy": SPIR-V "la/axpy.f64"/".f32", or "la/axpy" when once */
+  uint32_t nbindings;        /* bindings 0..nbindings-1 */
+  const sessile_binding_decl *bindings;
+  uint32_t push_bytes;       /* sizeof the generated push struct, 0 for none */
+  uint32_t local_size;       /* default workgroup size x (a power of two) */
+  int per_precision;         /* 1: compiled for f64 and f32; 0: once */
+} sessile_kernel_decl;
+
+/* A push-constant field of GLSL type REAL: double on fp64 contexts, float on
+ * fp32 ones; 8 bytes and 8-aligned either way so offsets do not move. */
+typedef union sessile_push_real {
+  double d;
+  float f;
+} sessile_push_real;
+static inline sessile_push_real sessile_push_real_of(double v, uint32_t real_bytes) {
+  sessile_push_real r = {0};
+  if (real_bytes == 8) r.d = v;
+  else r.f = (float)v;
+  return r;
+}
+
+/* A compute pipeline for declaration `d` in precision real_bytes (8 or 4; 0:
+ * the context's).  local_size overrides d->local_size when non-zero; it is
+ * halved until it fits maxComputeWorkGroupInvocations and
+ * maxComputeWorkGroupSize[0] (kernels with reductions need a power of two).
+ * The workgroup size reaches the shader as specialisation constant 0. */
+sessile_status sessile_kernel_create_decl(sessile_gpu *g, const sessile_kernel_decl *d,
+                                          uint32_t real_bytes, uint32_t local_size,
+                                          sessile_kernel **out);
 void sessile_kernel_destroy(sessile_kernel *k);
 uint32_t sessile_kernel_local_size(const sessile_kernel *k);
 

@@ -73,7 +73,7 @@ extern "C" {
   X(fluid_viscosity, REAL, 5.0e-2, 1e-9, 1e5, 0, "Pa s", "paper §4.2", "eta in the Navier-Stokes equations (eq 3)") \
   X(inlet_velocity, REAL, 0.05, 0, 100, 0, "m/s", "paper §4.2", "inflow at x-min, along +x")        \
   X(max_nvs_iterations, INT, 100, 1, 10000, 0, "", "Table 1", "Newton iterations of the fluid solve at most") \
-  X(fluid_max_seconds, REAL, 900, 0, 1e7, LO_OPEN, "s", "ours",                                   \
+  X(fluid_max_seconds, REAL, 600, 0, 1e7, LO_OPEN, "s", "ours",                                   \
     "wall-clock bound of one flow solve: past it the solve fails with a message (docs/fluid.md)") \
   X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, 0, "", "paper §4.2", "Newton stops at residual <= this times the rest state's residual") \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
