@@ -5,7 +5,10 @@
  * Formats: PLY (binary little-endian) and OBJ meshes; OpenEXR slices (float32
  * channels, through OpenEXR's C API, openexr.h) with plane origin, spacing and
  * iteration as header attributes; VTK XML UnstructuredGrid (.vtu, the box's
- * tetrahedra with point data) and ParaView's .pvd series; JSON through cJSON. */
+ * or any tetrahedral mesh, with point and cell data) and ParaView's .pvd
+ * series; JSON through cJSON.  Every writer takes plain arrays, so any
+ * generator (the sponge's box and surface, multi-part surfaces, general tet
+ * meshes) can use them. */
 #ifndef SESSILE_IO_H
 #define SESSILE_IO_H
 
@@ -82,6 +85,28 @@ typedef struct sessile_point_data {
 } sessile_point_data;
 sessile_status sessile_write_vtu(const char *path, const sessile_box *box, int ndata,
                                  const sessile_point_data *data);
+
+/* Any tetrahedral mesh (e.g. sessile_tetmesh: xyz, nnodes, tet, ntets):
+ * nv points xyz[3 nv], nt tets tets[4 nt] (VTK_TETRA node order), with point
+ * data (one tuple per point) and cell data (one tuple per tet).  A field has a
+ * name, exactly one of f64 / u8 / i32 (Float64, UInt8, Int32 in the file)
+ * and 1 or 3 components; names are unique within point data and within cell
+ * data.  Same encoding as sessile_write_vtu (sessile_write_vtu is this writer
+ * with the box's tets generated on the fly, and gives the same bytes as this
+ * writer given the box's points and tets).  Zero points or tets, non-finite
+ * coordinates or an index >= nv is SESSILE_ERR_USAGE; nothing is written. */
+enum { SESSILE_VTU_MAX_FIELDS = 256 };
+typedef struct sessile_vtu_field {
+  const char *name;
+  const double *f64;  /* components per tuple, or NULL */
+  const uint8_t *u8;  /* components per tuple, or NULL */
+  const int32_t *i32; /* components per tuple, or NULL */
+  int components;     /* 1 or 3 */
+} sessile_vtu_field;
+sessile_status sessile_write_vtu_tets(const char *path, const double *xyz, uint32_t nv,
+                                      const uint32_t *tets, uint32_t nt, int npoint,
+                                      const sessile_vtu_field *pf, int ncell,
+                                      const sessile_vtu_field *cf);
 /* ParaView collection listing (timestep, file) pairs; files relative to the .pvd. */
 sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
                                  const char *const *files);
