@@ -49,6 +49,35 @@ sessile_status sessile_write_ply(const char *path, const sessile_surface *s, con
                                  const double *const *extra);
 sessile_status sessile_write_obj(const char *path, const sessile_surface *s, const double *normals);
 
+/* A surface made of several parts (e.g. the tubes of a branching coral),
+ * written as one file: the parts' vertices are concatenated in order, and
+ * each part's triangle indices (local to the part, 0..nv-1) are offset by the
+ * vertices of the parts before it.  Empty parts (nv == nf == 0) are allowed.
+ * Normals are per part: either every non-empty part has them or none does.
+ * Fields are named once for the whole union; each part gives its own values
+ * (fields[p][v] for field p, local vertex v; NULL when there are no fields). */
+typedef struct sessile_mesh_part {
+  const char *name;            /* OBJ o/g name and PLY comment; NULL: "part<k>" (no spaces) */
+  const double *pos;           /* 3 nv */
+  uint32_t nv;
+  const uint32_t *tri;         /* 3 nf, counter-clockwise from outside */
+  uint32_t nf;
+  const double *normals;       /* 3 nv, or NULL */
+  const double *const *fields; /* nfields arrays of nv values, or NULL when nfields == 0 */
+} sessile_mesh_part;
+/* Binary little-endian PLY of the union: float x,y,z (+ nx,ny,nz) + one float
+ * property per field; header comments "sessile surface: N parts" and, per
+ * part, "part <name> vertices <first> <count> faces <first> <count>".
+ * Invalid input (non-finite positions, an index out of its part's range,
+ * mixed normals, a total above 2^32-1 vertices or faces, bad names) is
+ * SESSILE_ERR_USAGE and writes nothing. */
+sessile_status sessile_write_ply_parts(const char *path, int nparts, const sessile_mesh_part *parts,
+                                       int nfields, const char *const *field_names);
+/* OBJ of the union: "o <name>" and "g <name>" per part, then its v (and vn)
+ * lines and its faces with 1-based indices into the whole file.  Fields are
+ * not written (OBJ has no per-vertex values). */
+sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessile_mesh_part *parts);
+
 /* --- slices --------------------------------------------------------------------- */
 typedef enum sessile_axis { SESSILE_AXIS_X = 0, SESSILE_AXIS_Y = 1, SESSILE_AXIS_Z = 2 } sessile_axis;
 /* A slice: the axis-aligned plane axis = value through the box, sampled on
