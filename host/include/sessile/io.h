@@ -98,6 +98,29 @@ sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box,
                                        double value, int nchan, const sessile_slice_channel *chan,
                                        int iteration);
 
+/* A slice of any field on any plane: pixel (i, j) (i < width along u, j <
+ * height along v, row 0 first) sits at origin + i spacing[0] u + j spacing[1] v,
+ * with u, v the unit vectors of axis_u, axis_v (which must be perpendicular,
+ * |cos| <= 1e-6).  The header has the same attributes as the box slice
+ * ("sessile:plane" holds label, or "plane" when label is NULL; "sessile:origin";
+ * "sessile:spacing"; "sessile:iteration") plus "sessile:axis_u" and
+ * "sessile:axis_v" (v3f, the unit vectors). */
+typedef struct sessile_plane {
+  double origin[3];            /* world position of pixel (0, 0), cm */
+  double axis_u[3], axis_v[3]; /* in-plane directions of width and height (any length > 0) */
+  double spacing[2];           /* cm per pixel along u and v (> 0) */
+  uint32_t width, height;      /* pixels (>= 1) */
+} sessile_plane;
+/* Value of channel `channel` at world point p (NaN is stored as NaN). */
+typedef double (*sessile_plane_sampler)(void *user, int channel, const double p[3]);
+sessile_status sessile_write_plane_exr(const char *path, const sessile_plane *plane, const char *label,
+                                       int nchan, const char *const *names,
+                                       sessile_plane_sampler sample, void *user, int iteration);
+/* The same with precomputed pixels: values[c][i + width * j]. */
+sessile_status sessile_write_plane_exr_values(const char *path, const sessile_plane *plane,
+                                              const char *label, int nchan, const char *const *names,
+                                              const double *const *values, int iteration);
+
 /* --- volume fields -------------------------------------------------------------- */
 /* VTK XML UnstructuredGrid of the box's tetrahedra (cell type 10, the 6 Kuhn
  * tets of each cube as sessile_box_tet orders them) with point data: Float64
