@@ -168,12 +168,12 @@ static int random_name(char *out) {
   unsigned char r[TMP_RANDOM];
   size_t got = 0;
   while (got < sizeof r) {
-    ssize_t n = getrandom(r + got, sizeof r - got, 0);
+    ssize_t n = getrandom(r + got, sizeof r - got, GRND_NONBLOCK); /* never wait at boot */
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;
     got += (size_t)n;
   }
-  if (got < sizeof r) { /* no getrandom (old kernel, seccomp): /dev/urandom */
+  if (got < sizeof r) { /* no getrandom (old kernel, seccomp) or not ready yet: /dev/urandom */
     int fd = open("/dev/urandom", O_RDONLY | O_CLOEXEC);
     if (fd < 0) return -1;
     got = 0;
