@@ -1,4 +1,7 @@
-/* sessile io — EXR slices of box fields through OpenEXR's C API (Core 3.1).
+/* sessile io — EXR slices through OpenEXR's C API (Core 3.1): of box fields
+ * on an axis-aligned plane (sessile_write_slice_exr), or of any field on any
+ * plane, given as a sampler callback or as precomputed pixels.  All three
+ * share one encoder.
  *
  * One scanline part, float32 channels, ZIP compression (16 lines per zlib
  * block: lossless, deterministic, and read by every EXR tool).  The slice is
@@ -92,53 +95,28 @@ static void sample_slice(const sessile_box *b, int axis, double value, int nchan
     }                                                                                             \
   } while (0)
 
-sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
-                                       double value, int nchan, const sessile_slice_channel *chan,
-                                       int iteration) {
-  static const char axis_name[3] = {'x', 'y', 'z'};
-  SESSILE_CHECK(box && axis >= SESSILE_AXIS_X && axis <= SESSILE_AXIS_Z, SESSILE_ERR_USAGE,
-                "cannot write '%s': slice axis must be x, y or z", path);
-  SESSILE_CHECK(nchan >= 1 && nchan <= 64 && chan, SESSILE_ERR_USAGE,
-                "cannot write '%s': a slice needs 1..64 channels (got %d)", path, nchan);
-  for (int c = 0; c < nchan; c++) {
-    SESSILE_CHECK(chan[c].name && chan[c].name[0] && chan[c].field, SESSILE_ERR_USAGE,
-                  "cannot write '%s': channel %d needs a name and a field", path, c);
-    for (int d = 0; d < c; d++)
-      SESSILE_CHECK(strcmp(chan[c].name, chan[d].name) != 0, SESSILE_ERR_USAGE,
-                    "cannot write '%s': channel name '%s' appears twice", path, chan[c].name);
-  }
-  double mx[3];
-  sessile_box_max(box, mx);
-  double lo = box->origin[axis], hi = mx[axis], tol = 1e-9 * box->h;
-  SESSILE_CHECK(value >= lo - tol && value <= hi + tol, SESSILE_ERR_USAGE,
-                "cannot write '%s': plane %c=%g is outside the box (%c from %g to %g)", path,
-                axis_name[axis], value, axis_name[axis], lo, hi);
-  int u, v;
-  plane_axes(axis, &u, &v);
-  uint32_t w = box->n[u], h = box->n[v];
-  SESSILE_CHECK(w <= INT32_MAX && h <= INT32_MAX, SESSILE_ERR_TOO_LARGE,
-                "cannot write '%s': slice of %u x %u pixels is too large for EXR", path, w, h);
+/* Header attributes: the box slice writes the first four, a general plane
+ * also the two axes. */
+typedef struct exr_attrs {
+  const char *plane;
+  double origin[3], spacing[2];
+  int iteration;
+  int has_axes;
+  double axis_u[3], axis_v[3];
+} exr_attrs;
 
+/* The shared encoder: img[c][x + w y] (float32) for channels names[c], into
+ * one ZIP scanline part "slice", atomically.  Takes ownership of nothing. */
+static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, int nchan,
+                                      const char *const *names, float *const *img, const exr_attrs *at) {
   sessile_status st = SESSILE_OK;
   exr_sink sink = {-1, 0};
   exr_context_t ctx = NULL;
   exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
   int enc_live = 0;
-  float **img = calloc((size_t)nchan, sizeof *img);
-  SESSILE_CHECK(img, SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
-  for (int c = 0; c < nchan; c++) {
-    img[c] = malloc((size_t)w * h * sizeof(float));
-    if (!img[c]) {
-      for (int d = 0; d < c; d++) free(img[d]);
-      free(img);
-      return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
-    }
-  }
-  sample_slice(box, axis, value, nchan, chan, img);
 
   sessile_atomic_file af;
-  st = sessile_atomic_open(path, &af);
-  if (st != SESSILE_OK) goto done_noaf;
+  SESSILE_CALL(sessile_atomic_open(path, &af));
   sink.fd = fileno(af.f);
   exr_msg[0] = 0;
 
@@ -156,18 +134,20 @@ sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box,
   /* explicit level: the library default can be changed process-wide */
   EXR_TRY(exr_set_zip_compression_level(ctx, part, 6), "set_zip_compression_level");
   for (int c = 0; c < nchan; c++)
-    EXR_TRY(exr_add_channel(ctx, part, chan[c].name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1),
+    EXR_TRY(exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1),
             "add_channel");
-  char plane[64];
-  snprintf(plane, sizeof plane, "%c=%.9g", axis_name[axis], value);
-  EXR_TRY(exr_attr_set_string(ctx, part, "sessile:plane", plane), "set sessile:plane");
-  double o[3] = {box->origin[0], box->origin[1], box->origin[2]};
-  o[axis] = value;
-  exr_attr_v3f_t origin = {.x = (float)o[0], .y = (float)o[1], .z = (float)o[2]};
+  EXR_TRY(exr_attr_set_string(ctx, part, "sessile:plane", at->plane), "set sessile:plane");
+  exr_attr_v3f_t origin = {.x = (float)at->origin[0], .y = (float)at->origin[1], .z = (float)at->origin[2]};
   EXR_TRY(exr_attr_set_v3f(ctx, part, "sessile:origin", &origin), "set sessile:origin");
-  exr_attr_v2f_t spacing = {.x = (float)box->h, .y = (float)box->h};
+  exr_attr_v2f_t spacing = {.x = (float)at->spacing[0], .y = (float)at->spacing[1]};
   EXR_TRY(exr_attr_set_v2f(ctx, part, "sessile:spacing", &spacing), "set sessile:spacing");
-  EXR_TRY(exr_attr_set_int(ctx, part, "sessile:iteration", iteration), "set sessile:iteration");
+  EXR_TRY(exr_attr_set_int(ctx, part, "sessile:iteration", at->iteration), "set sessile:iteration");
+  if (at->has_axes) {
+    exr_attr_v3f_t au = {.x = (float)at->axis_u[0], .y = (float)at->axis_u[1], .z = (float)at->axis_u[2]};
+    exr_attr_v3f_t av = {.x = (float)at->axis_v[0], .y = (float)at->axis_v[1], .z = (float)at->axis_v[2]};
+    EXR_TRY(exr_attr_set_v3f(ctx, part, "sessile:axis_u", &au), "set sessile:axis_u");
+    EXR_TRY(exr_attr_set_v3f(ctx, part, "sessile:axis_v", &av), "set sessile:axis_v");
+  }
   EXR_TRY(exr_write_header(ctx), "write_header");
 
   int32_t lines = 1;
@@ -182,7 +162,7 @@ sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box,
     for (int k = 0; k < enc.channel_count; k++) {
       exr_coding_channel_info_t *ch = &enc.channels[k];
       int c = 0;
-      while (c < nchan && strcmp(chan[c].name, ch->channel_name) != 0) c++;
+      while (c < nchan && strcmp(names[c], ch->channel_name) != 0) c++;
       if (c == nchan) {
         st = sessile_error_set(SESSILE_ERR_INTERNAL, "writing '%s': OpenEXR reports channel '%s'",
                                path, ch->channel_name);
@@ -213,8 +193,167 @@ done:
   if (ctx) exr_finish(&ctx);
   if (st == SESSILE_OK) st = sessile_atomic_commit(&af);
   else sessile_atomic_abort(&af);
-done_noaf:
-  for (int c = 0; c < nchan; c++) free(img[c]);
+  return st;
+}
+
+/* nchan float images of w x h pixels (freed with free_images). */
+static float **alloc_images(const char *path, int nchan, uint32_t w, uint32_t h) {
+  float **img = calloc((size_t)nchan, sizeof *img);
+  for (int c = 0; img && c < nchan; c++) {
+    img[c] = malloc((size_t)w * h * sizeof(float));
+    if (!img[c]) {
+      for (int d = 0; d < c; d++) free(img[d]);
+      free(img);
+      img = NULL;
+    }
+  }
+  if (!img) sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
+  return img;
+}
+
+static void free_images(float **img, int nchan) {
+  for (int c = 0; img && c < nchan; c++) free(img[c]);
   free(img);
+}
+
+/* Channel names: 1..64, non-empty, unique. */
+static sessile_status check_channels(const char *path, int nchan, const char *const *names) {
+  SESSILE_CHECK(nchan >= 1 && nchan <= 64 && names, SESSILE_ERR_USAGE,
+                "cannot write '%s': a slice needs 1..64 channels (got %d)", path, nchan);
+  for (int c = 0; c < nchan; c++) {
+    SESSILE_CHECK(names[c] && names[c][0], SESSILE_ERR_USAGE, "cannot write '%s': channel %d needs a name",
+                  path, c);
+    for (int d = 0; d < c; d++)
+      SESSILE_CHECK(strcmp(names[c], names[d]) != 0, SESSILE_ERR_USAGE,
+                    "cannot write '%s': channel name '%s' appears twice", path, names[c]);
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
+                                       double value, int nchan, const sessile_slice_channel *chan,
+                                       int iteration) {
+  static const char axis_name[3] = {'x', 'y', 'z'};
+  SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "cannot write a slice: no path given");
+  SESSILE_CHECK(box && axis >= SESSILE_AXIS_X && axis <= SESSILE_AXIS_Z, SESSILE_ERR_USAGE,
+                "cannot write '%s': slice axis must be x, y or z", path);
+  SESSILE_CHECK(nchan >= 1 && nchan <= 64 && chan, SESSILE_ERR_USAGE,
+                "cannot write '%s': a slice needs 1..64 channels (got %d)", path, nchan);
+  const char *names[64];
+  for (int c = 0; c < nchan; c++) {
+    SESSILE_CHECK(chan[c].name && chan[c].name[0] && chan[c].field, SESSILE_ERR_USAGE,
+                  "cannot write '%s': channel %d needs a name and a field", path, c);
+    names[c] = chan[c].name;
+  }
+  SESSILE_CALL(check_channels(path, nchan, names));
+  double mx[3];
+  sessile_box_max(box, mx);
+  double lo = box->origin[axis], hi = mx[axis], tol = 1e-9 * box->h;
+  SESSILE_CHECK(value >= lo - tol && value <= hi + tol, SESSILE_ERR_USAGE,
+                "cannot write '%s': plane %c=%g is outside the box (%c from %g to %g)", path,
+                axis_name[axis], value, axis_name[axis], lo, hi);
+  int u, v;
+  plane_axes(axis, &u, &v);
+  uint32_t w = box->n[u], h = box->n[v];
+  SESSILE_CHECK(w <= INT32_MAX && h <= INT32_MAX, SESSILE_ERR_TOO_LARGE,
+                "cannot write '%s': slice of %u x %u pixels is too large for EXR", path, w, h);
+
+  float **img = alloc_images(path, nchan, w, h);
+  if (!img) return SESSILE_ERR_NO_MEMORY;
+  sample_slice(box, axis, value, nchan, chan, img);
+  exr_attrs at = {.spacing = {box->h, box->h}, .iteration = iteration};
+  char plane[64];
+  snprintf(plane, sizeof plane, "%c=%.9g", axis_name[axis], value);
+  at.plane = plane;
+  for (int a = 0; a < 3; a++) at.origin[a] = box->origin[a];
+  at.origin[axis] = value;
+  sessile_status st = write_exr_image(path, w, h, nchan, names, img, &at);
+  free_images(img, nchan);
+  return st;
+}
+
+/* Checks the plane and fills the header attributes (unit axes). */
+static sessile_status check_plane(const char *path, const sessile_plane *pl, const char *label,
+                                  exr_attrs *at) {
+  SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "cannot write a slice: no path given");
+  SESSILE_CHECK(pl, SESSILE_ERR_USAGE, "cannot write '%s': no plane given", path);
+  SESSILE_CHECK(pl->width >= 1 && pl->height >= 1, SESSILE_ERR_USAGE,
+                "cannot write '%s': the plane has %u x %u pixels (at least 1 x 1 needed)", path, pl->width,
+                pl->height);
+  SESSILE_CHECK(pl->width <= INT32_MAX && pl->height <= INT32_MAX &&
+                    (uint64_t)pl->width * pl->height <= (1ull << 31),
+                SESSILE_ERR_USAGE, "cannot write '%s': slice of %u x %u pixels is too large", path,
+                pl->width, pl->height);
+  int finite = 1;
+  for (int a = 0; a < 3; a++)
+    finite &= isfinite(pl->origin[a]) && isfinite(pl->axis_u[a]) && isfinite(pl->axis_v[a]);
+  SESSILE_CHECK(finite, SESSILE_ERR_USAGE, "cannot write '%s': the plane's origin or axes are not finite", path);
+  SESSILE_CHECK(isfinite(pl->spacing[0]) && isfinite(pl->spacing[1]) && pl->spacing[0] > 0 && pl->spacing[1] > 0,
+                SESSILE_ERR_USAGE, "cannot write '%s': the pixel spacing (%g, %g) must be positive", path,
+                pl->spacing[0], pl->spacing[1]);
+  double lu = 0, lv = 0, dot = 0;
+  for (int a = 0; a < 3; a++) {
+    lu += pl->axis_u[a] * pl->axis_u[a];
+    lv += pl->axis_v[a] * pl->axis_v[a];
+    dot += pl->axis_u[a] * pl->axis_v[a];
+  }
+  lu = sqrt(lu), lv = sqrt(lv);
+  SESSILE_CHECK(lu > 0 && lv > 0 && isfinite(lu) && isfinite(lv), SESSILE_ERR_USAGE,
+                "cannot write '%s': the plane's axes must be non-zero", path);
+  SESSILE_CHECK(fabs(dot / lu / lv) <= 1e-6, SESSILE_ERR_USAGE,
+                "cannot write '%s': the plane's axes are not perpendicular (cos %g)", path, dot / lu / lv);
+  SESSILE_CHECK(!label || strlen(label) < 1024, SESSILE_ERR_USAGE,
+                "cannot write '%s': the plane label is longer than 1023 characters", path);
+  *at = (exr_attrs){.plane = label ? label : "plane", .has_axes = 1};
+  for (int a = 0; a < 3; a++) {
+    at->origin[a] = pl->origin[a];
+    at->axis_u[a] = pl->axis_u[a] / lu;
+    at->axis_v[a] = pl->axis_v[a] / lv;
+  }
+  at->spacing[0] = pl->spacing[0];
+  at->spacing[1] = pl->spacing[1];
+  return SESSILE_OK;
+}
+
+sessile_status sessile_write_plane_exr(const char *path, const sessile_plane *plane, const char *label,
+                                       int nchan, const char *const *names,
+                                       sessile_plane_sampler sample, void *user, int iteration) {
+  exr_attrs at;
+  SESSILE_CALL(check_plane(path, plane, label, &at));
+  SESSILE_CALL(check_channels(path, nchan, names));
+  SESSILE_CHECK(sample, SESSILE_ERR_USAGE, "cannot write '%s': no sampler given", path);
+  at.iteration = iteration;
+  uint32_t w = plane->width, h = plane->height;
+  float **img = alloc_images(path, nchan, w, h);
+  if (!img) return SESSILE_ERR_NO_MEMORY;
+  for (uint32_t j = 0; j < h; j++)
+    for (uint32_t i = 0; i < w; i++) {
+      double p[3];
+      for (int a = 0; a < 3; a++)
+        p[a] = at.origin[a] + i * at.spacing[0] * at.axis_u[a] + j * at.spacing[1] * at.axis_v[a];
+      for (int c = 0; c < nchan; c++) img[c][(size_t)j * w + i] = (float)sample(user, c, p);
+    }
+  sessile_status st = write_exr_image(path, w, h, nchan, names, img, &at);
+  free_images(img, nchan);
+  return st;
+}
+
+sessile_status sessile_write_plane_exr_values(const char *path, const sessile_plane *plane,
+                                              const char *label, int nchan, const char *const *names,
+                                              const double *const *values, int iteration) {
+  exr_attrs at;
+  SESSILE_CALL(check_plane(path, plane, label, &at));
+  SESSILE_CALL(check_channels(path, nchan, names));
+  SESSILE_CHECK(values, SESSILE_ERR_USAGE, "cannot write '%s': no pixel values given", path);
+  for (int c = 0; c < nchan; c++)
+    SESSILE_CHECK(values[c], SESSILE_ERR_USAGE, "cannot write '%s': channel '%s' has no values", path, names[c]);
+  at.iteration = iteration;
+  uint32_t w = plane->width, h = plane->height;
+  float **img = alloc_images(path, nchan, w, h);
+  if (!img) return SESSILE_ERR_NO_MEMORY;
+  for (int c = 0; c < nchan; c++)
+    for (size_t q = 0; q < (size_t)w * h; q++) img[c][q] = (float)values[c][q];
+  sessile_status st = write_exr_image(path, w, h, nchan, names, img, &at);
+  free_images(img, nchan);
   return st;
 }

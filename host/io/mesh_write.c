@@ -1,9 +1,11 @@
-/* sessile io — the sponge surface as binary PLY and as OBJ.
+/* sessile io — surfaces as binary PLY and as OBJ: the sponge's one surface,
+ * or a union of several parts (one file, indices offset per part).
  *
  * PLY is the run's mesh format (compact, exact float32, any number of named
  * per-vertex values such as the probed nutrient); OBJ is for tools that read
  * nothing else.  Both are assembled in memory and written in one go. */
 #include <ctype.h>
+#include <math.h>
 #include <stdlib.h>
 #include "io_internal.h"
 
@@ -14,41 +16,107 @@ static int ply_name_ok(const char *s) {
   return 1;
 }
 
-static sessile_status check_surface(const char *path, const sessile_surface *s) {
-  SESSILE_CHECK(s && (s->nv == 0 || s->pos) && (s->nf == 0 || s->tri), SESSILE_ERR_USAGE,
-                "cannot write '%s': the surface has no vertex or triangle arrays", path);
-  for (uint64_t q = 0; q < 3ull * s->nf; q++)
-    SESSILE_CHECK(s->tri[q] < s->nv, SESSILE_ERR_USAGE,
-                  "cannot write '%s': triangle %llu refers to vertex %u of %u", path,
-                  (unsigned long long)(q / 3), s->tri[q], s->nv);
+/* A part's name, or "part<k>" when it has none. */
+static const char *part_name(const sessile_mesh_part *p, int k, char buf[32]) {
+  if (p->name) return p->name;
+  snprintf(buf, 32, "part%d", k);
+  return buf;
+}
+
+/* Checks a list of parts (and nfields field arrays per part); on success
+ * *tv, *tf hold the union's vertex and face counts and *with_normals whether
+ * normals are written. */
+static sessile_status check_parts(const char *path, int nparts, const sessile_mesh_part *parts,
+                                  int nfields, const char *const *names, uint32_t *tv, uint32_t *tf,
+                                  int *with_normals) {
+  SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "cannot write a mesh: no path given");
+  SESSILE_CHECK(nparts >= 1 && parts, SESSILE_ERR_USAGE, "cannot write '%s': %d surface parts (1 or more needed)",
+                path, nparts);
+  SESSILE_CHECK(nfields >= 0 && nfields <= 64 && (nfields == 0 || names), SESSILE_ERR_USAGE,
+                "cannot write '%s': %d extra vertex properties (0..64 allowed)", path, nfields);
+  for (int p = 0; p < nfields; p++) {
+    SESSILE_CHECK(ply_name_ok(names[p]), SESSILE_ERR_USAGE,
+                  "cannot write '%s': extra property %d needs a name without spaces", path, p);
+    for (int q = 0; q < p; q++)
+      SESSILE_CHECK(strcmp(names[p], names[q]) != 0, SESSILE_ERR_USAGE,
+                    "cannot write '%s': extra property name '%s' appears twice", path, names[p]);
+  }
+  uint64_t nv = 0, nf = 0;
+  int some = 0, all = 1;
+  for (int k = 0; k < nparts; k++) {
+    const sessile_mesh_part *m = &parts[k];
+    char nb[32];
+    const char *name = part_name(m, k, nb);
+    SESSILE_CHECK(ply_name_ok(name), SESSILE_ERR_USAGE,
+                  "cannot write '%s': part %d needs a name without spaces (or NULL)", path, k);
+    SESSILE_CHECK((m->nv == 0 || m->pos) && (m->nf == 0 || m->tri), SESSILE_ERR_USAGE,
+                  "cannot write '%s': part '%s' has no vertex or triangle arrays", path, name);
+    SESSILE_CHECK(m->nf == 0 || m->nv > 0, SESSILE_ERR_USAGE,
+                  "cannot write '%s': part '%s' has %u triangles but no vertices", path, name, m->nf);
+    for (uint64_t q = 0; q < 3ull * m->nv; q++)
+      SESSILE_CHECK(isfinite(m->pos[q]), SESSILE_ERR_USAGE,
+                    "cannot write '%s': part '%s' vertex %llu has a non-finite coordinate (%g)", path, name,
+                    (unsigned long long)(q / 3), m->pos[q]);
+    for (uint64_t q = 0; q < 3ull * m->nf; q++)
+      SESSILE_CHECK(m->tri[q] < m->nv, SESSILE_ERR_USAGE,
+                    "cannot write '%s': part '%s' triangle %llu refers to vertex %u of %u", path, name,
+                    (unsigned long long)(q / 3), m->tri[q], m->nv);
+    if (m->nv > 0) {
+      some |= m->normals != NULL;
+      all &= m->normals != NULL;
+      SESSILE_CHECK(nfields == 0 || m->fields, SESSILE_ERR_USAGE,
+                    "cannot write '%s': part '%s' gives no values for the %d extra properties", path, name,
+                    nfields);
+      for (int p = 0; p < nfields; p++)
+        SESSILE_CHECK(m->fields[p], SESSILE_ERR_USAGE,
+                      "cannot write '%s': part '%s' gives no values for extra property '%s'", path, name,
+                      names[p]);
+    }
+    nv += m->nv;
+    nf += m->nf;
+  }
+  SESSILE_CHECK(!some || all, SESSILE_ERR_USAGE,
+                "cannot write '%s': some parts have normals and others not (all or none)", path);
+  SESSILE_CHECK(nv <= UINT32_MAX && nf <= UINT32_MAX, SESSILE_ERR_USAGE,
+                "cannot write '%s': the union has %llu vertices and %llu triangles (2^32-1 at most)", path,
+                (unsigned long long)nv, (unsigned long long)nf);
+  *tv = (uint32_t)nv;
+  *tf = (uint32_t)nf;
+  *with_normals = some;
   return SESSILE_OK;
 }
 
-sessile_status sessile_write_ply(const char *path, const sessile_surface *s, const double *normals,
-                                 int nextra, const char *const *extra_names,
-                                 const double *const *extra) {
-  SESSILE_CALL(check_surface(path, s));
-  SESSILE_CHECK(nextra >= 0 && nextra <= 64 && (nextra == 0 || (extra_names && extra)),
-                SESSILE_ERR_USAGE, "cannot write '%s': %d extra vertex properties (0..64 allowed)",
-                path, nextra);
-  for (int p = 0; p < nextra; p++)
-    SESSILE_CHECK(ply_name_ok(extra_names[p]) && extra[p], SESSILE_ERR_USAGE,
-                  "cannot write '%s': extra property %d needs a name without spaces and values", path, p);
+/* The PLY of a union: comment is the header's first comment line; with
+ * part_comments, one more comment per part. */
+static sessile_status write_ply_union(const char *path, const char *comment, int part_comments,
+                                      int nparts, const sessile_mesh_part *parts, int nextra,
+                                      const char *const *extra_names) {
+  uint32_t tv, tf;
+  int normals;
+  SESSILE_CALL(check_parts(path, nparts, parts, nextra, extra_names, &tv, &tf, &normals));
   int nfloat = 3 + (normals ? 3 : 0) + nextra;
-  size_t vbytes = (size_t)s->nv * 4 * (size_t)nfloat, fbytes = (size_t)s->nf * 13;
+  size_t vbytes = (size_t)tv * 4 * (size_t)nfloat, fbytes = (size_t)tf * 13;
   uint8_t *buf = malloc(vbytes + fbytes + 1);
   SESSILE_CHECK(buf, SESSILE_ERR_NO_MEMORY, "out of memory writing '%s' (%zu bytes)", path,
                 vbytes + fbytes);
   uint8_t *w = buf;
-  for (uint32_t v = 0; v < s->nv; v++) {
-    for (int a = 0; a < 3; a++) w = io_put_f32(w, s->pos[3 * (size_t)v + a]);
-    if (normals)
-      for (int a = 0; a < 3; a++) w = io_put_f32(w, normals[3 * (size_t)v + a]);
-    for (int p = 0; p < nextra; p++) w = io_put_f32(w, extra[p][v]);
+  for (int k = 0; k < nparts; k++) {
+    const sessile_mesh_part *m = &parts[k];
+    for (uint32_t v = 0; v < m->nv; v++) {
+      for (int a = 0; a < 3; a++) w = io_put_f32(w, m->pos[3 * (size_t)v + a]);
+      if (normals)
+        for (int a = 0; a < 3; a++) w = io_put_f32(w, m->normals[3 * (size_t)v + a]);
+      for (int p = 0; p < nextra; p++) w = io_put_f32(w, m->fields[p][v]);
+    }
   }
-  for (uint32_t f = 0; f < s->nf; f++) {
-    *w++ = 3;
-    for (int c = 0; c < 3; c++) w = io_put_u32(w, s->tri[3 * (size_t)f + c]);
+  uint32_t base = 0;
+  for (int k = 0; k < nparts; k++) {
+    const sessile_mesh_part *m = &parts[k];
+    for (uint32_t f = 0; f < m->nf; f++) {
+      *w++ = 3;
+      for (int c = 0; c < 3; c++) w = io_put_u32(w, base + m->tri[3 * (size_t)f + c]);
+    }
+    base += m->nv;
   }
 
   sessile_atomic_file af;
@@ -57,15 +125,23 @@ sessile_status sessile_write_ply(const char *path, const sessile_surface *s, con
     free(buf);
     return st;
   }
-  st = io_printf(&af, "ply\nformat binary_little_endian 1.0\ncomment sessile sponge surface\n"
-                      "element vertex %u\nproperty float x\nproperty float y\nproperty float z\n",
-                 s->nv);
+  st = io_printf(&af, "ply\nformat binary_little_endian 1.0\ncomment %s\n", comment);
+  uint32_t v0 = 0, f0 = 0;
+  for (int k = 0; part_comments && k < nparts && st == SESSILE_OK; k++) {
+    char nb[32];
+    st = io_printf(&af, "comment part %s vertices %u %u faces %u %u\n", part_name(&parts[k], k, nb), v0,
+                   parts[k].nv, f0, parts[k].nf);
+    v0 += parts[k].nv;
+    f0 += parts[k].nf;
+  }
+  if (st == SESSILE_OK)
+    st = io_printf(&af, "element vertex %u\nproperty float x\nproperty float y\nproperty float z\n", tv);
   if (st == SESSILE_OK && normals)
     st = io_printf(&af, "property float nx\nproperty float ny\nproperty float nz\n");
   for (int p = 0; p < nextra && st == SESSILE_OK; p++)
     st = io_printf(&af, "property float %s\n", extra_names[p]);
   if (st == SESSILE_OK)
-    st = io_printf(&af, "element face %u\nproperty list uchar uint vertex_indices\nend_header\n", s->nf);
+    st = io_printf(&af, "element face %u\nproperty list uchar uint vertex_indices\nend_header\n", tf);
   if (st == SESSILE_OK) st = io_write(&af, buf, (size_t)(w - buf));
   free(buf);
   if (st != SESSILE_OK) {
@@ -73,6 +149,38 @@ sessile_status sessile_write_ply(const char *path, const sessile_surface *s, con
     return st;
   }
   return sessile_atomic_commit(&af);
+}
+
+/* The sponge's surface as a one-part union. */
+static sessile_status surface_part(const char *path, const sessile_surface *s, const double *normals,
+                                   const double *const *extra, sessile_mesh_part *part) {
+  SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "cannot write a mesh: no path given");
+  SESSILE_CHECK(s && (s->nv == 0 || s->pos) && (s->nf == 0 || s->tri), SESSILE_ERR_USAGE,
+                "cannot write '%s': the surface has no vertex or triangle arrays", path);
+  *part = (sessile_mesh_part){.name = "surface", .pos = s->pos, .nv = s->nv, .tri = s->tri, .nf = s->nf,
+                              .normals = normals, .fields = extra};
+  return SESSILE_OK;
+}
+
+sessile_status sessile_write_ply(const char *path, const sessile_surface *s, const double *normals,
+                                 int nextra, const char *const *extra_names,
+                                 const double *const *extra) {
+  sessile_mesh_part part;
+  SESSILE_CALL(surface_part(path, s, normals, extra, &part));
+  SESSILE_CHECK(nextra >= 0 && nextra <= 64 && (nextra == 0 || (extra_names && extra)),
+                SESSILE_ERR_USAGE, "cannot write '%s': %d extra vertex properties (0..64 allowed)",
+                path, nextra);
+  for (int p = 0; p < nextra; p++)
+    SESSILE_CHECK(ply_name_ok(extra_names[p]) && extra[p], SESSILE_ERR_USAGE,
+                  "cannot write '%s': extra property %d needs a name without spaces and values", path, p);
+  return write_ply_union(path, "sessile sponge surface", 0, 1, &part, nextra, extra_names);
+}
+
+sessile_status sessile_write_ply_parts(const char *path, int nparts, const sessile_mesh_part *parts,
+                                       int nfields, const char *const *field_names) {
+  char comment[64];
+  snprintf(comment, sizeof comment, "sessile surface: %d parts", nparts);
+  return write_ply_union(path, comment, 1, nparts, parts, nfields, field_names);
 }
 
 /* The shortest of %.15g..%.17g that reads back as the same double, so OBJ
@@ -84,26 +192,59 @@ static void fmt_exact(char *out, size_t n, double v) {
   }
 }
 
+/* One part's v, vn and f lines; base: vertices written before it. */
+static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part *m, int normals,
+                               uint64_t base) {
+  sessile_status st = SESSILE_OK;
+  char x[3][32];
+  for (uint32_t v = 0; v < m->nv && st == SESSILE_OK; v++) {
+    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->pos[3 * (size_t)v + a]);
+    st = io_printf(af, "v %s %s %s\n", x[0], x[1], x[2]);
+  }
+  for (uint32_t v = 0; normals && v < m->nv && st == SESSILE_OK; v++) {
+    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->normals[3 * (size_t)v + a]);
+    st = io_printf(af, "vn %s %s %s\n", x[0], x[1], x[2]);
+  }
+  for (uint32_t f = 0; f < m->nf && st == SESSILE_OK; f++) {
+    const uint32_t *t = m->tri + 3 * (size_t)f;
+    unsigned long long a = base + t[0] + 1, b = base + t[1] + 1, c = base + t[2] + 1;
+    if (normals) st = io_printf(af, "f %llu//%llu %llu//%llu %llu//%llu\n", a, a, b, b, c, c);
+    else st = io_printf(af, "f %llu %llu %llu\n", a, b, c);
+  }
+  return st;
+}
+
 sessile_status sessile_write_obj(const char *path, const sessile_surface *s, const double *normals) {
-  SESSILE_CALL(check_surface(path, s));
+  sessile_mesh_part part;
+  SESSILE_CALL(surface_part(path, s, normals, NULL, &part));
+  uint32_t tv, tf;
+  int with_normals;
+  SESSILE_CALL(check_parts(path, 1, &part, 0, NULL, &tv, &tf, &with_normals));
   sessile_atomic_file af;
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "# sessile sponge surface: %u vertices, %u triangles\n", s->nv, s->nf);
-  char x[3][32];
-  for (uint32_t v = 0; v < s->nv && st == SESSILE_OK; v++) {
-    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], s->pos[3 * (size_t)v + a]);
-    st = io_printf(&af, "v %s %s %s\n", x[0], x[1], x[2]);
+  if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, 0);
+  if (st != SESSILE_OK) {
+    sessile_atomic_abort(&af);
+    return st;
   }
-  for (uint32_t v = 0; normals && v < s->nv && st == SESSILE_OK; v++) {
-    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], normals[3 * (size_t)v + a]);
-    st = io_printf(&af, "vn %s %s %s\n", x[0], x[1], x[2]);
-  }
-  for (uint32_t f = 0; f < s->nf && st == SESSILE_OK; f++) {
-    const uint32_t *t = s->tri + 3 * (size_t)f;
-    if (normals)
-      st = io_printf(&af, "f %u//%u %u//%u %u//%u\n", t[0] + 1, t[0] + 1, t[1] + 1, t[1] + 1,
-                     t[2] + 1, t[2] + 1);
-    else st = io_printf(&af, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  return sessile_atomic_commit(&af);
+}
+
+sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessile_mesh_part *parts) {
+  uint32_t tv, tf;
+  int normals;
+  SESSILE_CALL(check_parts(path, nparts, parts, 0, NULL, &tv, &tf, &normals));
+  sessile_atomic_file af;
+  SESSILE_CALL(sessile_atomic_open(path, &af));
+  sessile_status st = io_printf(&af, "# sessile surface: %d parts, %u vertices, %u triangles\n", nparts, tv, tf);
+  uint64_t base = 0;
+  for (int k = 0; k < nparts && st == SESSILE_OK; k++) {
+    char nb[32];
+    const char *name = part_name(&parts[k], k, nb);
+    st = io_printf(&af, "o %s\ng %s\n", name, name);
+    if (st == SESSILE_OK) st = obj_part(&af, &parts[k], normals, base);
+    base += parts[k].nv;
   }
   if (st != SESSILE_OK) {
     sessile_atomic_abort(&af);

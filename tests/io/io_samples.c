@@ -16,15 +16,35 @@
  *   fields_0000.vtu, fields_0005.vtu, series.pvd
  *                    box origin (0, 0, 0), h 0.125, 17 x 13 x 9 nodes; point
  *                    data c = 1 + 2x + 3y + 4z (+ step), u = (y, -x, z),
- *                    solid = (z < 0.5); series timesteps 0 and 5 */
+ *                    solid = (z < 0.5); series timesteps 0 and 5
+ *   parts.ply/.obj   a union of 3 parts: "small" (icosphere level 1, 12
+ *                    vertices, 20 triangles, radius 0.5 about the origin),
+ *                    "empty" (nothing) and "big" (level 2, 42 vertices, 80
+ *                    triangles, radius 1 about (2.5, -1, 0.5)), unit normals;
+ *                    PLY fields c = 1 + 2x + 3y + 4z and part = 0 or 2
+ *   tets.vtu         a general tet mesh: the 4 x 3 x 2 cube box (h 0.25) with
+ *                    its 60 nodes moved by (x + 0.1 y^2, y, z + 0.05 x); point
+ *                    data c = 1 + 2x + 3y + 4z; cell data volume (Float64),
+ *                    centroid (Float64 x 3), id = tet - 5 (Int32), kind =
+ *                    tet % 6 (UInt8)
+ *   plane.exr        an oblique plane: origin (-0.5, 0.25, 1), u along
+ *                    (1, 1, 0), v along z, spacing (0.125, 0.25), 8 x 4
+ *                    pixels, label "oblique", iteration 4; channels
+ *                    c = 1 + 2x + 3y + 4z and d = x - y from a sampler */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <sys/stat.h>
 #include "sessile/io.h"
+#include "sessile/tetmesh.h"
 
 static double lin(const double p[3]) { return 1 + 2 * p[0] + 3 * p[1] + 4 * p[2]; }
+
+static double plane_sample(void *user, int channel, const double p[3]) {
+  (void)user;
+  return channel == 0 ? lin(p) : p[0] - p[1];
+}
 
 #define CALL(e)                                                                   \
   do {                                                                            \
@@ -161,5 +181,73 @@ int main(int argc, char **argv) {
   free(fc);
   free(u);
   free(solid);
+
+  /* parts.ply / parts.obj */
+  sessile_surface sa = {0}, sb = {0};
+  double ca[3] = {0, 0, 0}, cb[3] = {2.5, -1, 0.5};
+  CALL(sessile_surface_icosphere(1, 0.5, ca, &sa));
+  CALL(sessile_surface_icosphere(2, 1.0, cb, &sb));
+  double *na = malloc(3 * (size_t)sa.nv * sizeof *na), *nb = malloc(3 * (size_t)sb.nv * sizeof *nb);
+  sessile_surface_normals(&sa, na);
+  sessile_surface_normals(&sb, nb);
+  double *fa[2] = {malloc(sa.nv * sizeof(double)), malloc(sa.nv * sizeof(double))};
+  double *fb[2] = {malloc(sb.nv * sizeof(double)), malloc(sb.nv * sizeof(double))};
+  for (uint32_t v = 0; v < sa.nv; v++) fa[0][v] = lin(sa.pos + 3 * v), fa[1][v] = 0;
+  for (uint32_t v = 0; v < sb.nv; v++) fb[0][v] = lin(sb.pos + 3 * v), fb[1][v] = 2;
+  const double *const fpa[2] = {fa[0], fa[1]}, *const fpb[2] = {fb[0], fb[1]};
+  sessile_mesh_part parts[3] = {{"small", sa.pos, sa.nv, sa.tri, sa.nf, na, fpa},
+                                {"empty", NULL, 0, NULL, 0, NULL, NULL},
+                                {"big", sb.pos, sb.nv, sb.tri, sb.nf, nb, fpb}};
+  const char *pnames[2] = {"c", "part"};
+  snprintf(path, sizeof path, "%s/parts.ply", dir);
+  CALL(sessile_write_ply_parts(path, 3, parts, 2, pnames));
+  snprintf(path, sizeof path, "%s/parts.obj", dir);
+  CALL(sessile_write_obj_parts(path, 3, parts));
+  for (int q = 0; q < 2; q++) free(fa[q]), free(fb[q]);
+  free(na);
+  free(nb);
+  sessile_surface_free(&sa);
+  sessile_surface_free(&sb);
+
+  /* tets.vtu */
+  double o3[3] = {0, 0, 0};
+  uint32_t cells3[3] = {4, 3, 2};
+  CALL(sessile_box_make(o3, 0.25, cells3, 1, &box));
+  sessile_tetmesh m = {0};
+  CALL(sessile_tetmesh_from_box(&box, &m));
+  for (uint32_t i = 0; i < m.nnodes; i++) {
+    double *p = m.xyz + 3 * i, x = p[0], y = p[1];
+    p[0] = x + 0.1 * y * y;
+    p[2] += 0.05 * x;
+  }
+  double *pc = malloc(m.nnodes * sizeof *pc), *vol = malloc(m.ntets * sizeof *vol),
+         *cen = malloc(3 * (size_t)m.ntets * sizeof *cen);
+  int32_t *id = malloc(m.ntets * sizeof *id);
+  uint8_t *kind = malloc(m.ntets);
+  for (uint32_t i = 0; i < m.nnodes; i++) pc[i] = lin(m.xyz + 3 * i);
+  for (uint32_t t = 0; t < m.ntets; t++) {
+    vol[t] = sessile_tetmesh_tet_volume(&m, t);
+    for (int a = 0; a < 3; a++) {
+      cen[3 * t + a] = 0;
+      for (int q = 0; q < 4; q++) cen[3 * t + a] += 0.25 * m.xyz[3 * m.tet[4 * t + q] + a];
+    }
+    id[t] = (int32_t)t - 5;
+    kind[t] = (uint8_t)(t % 6);
+  }
+  sessile_vtu_field pf[1] = {{.name = "c", .f64 = pc, .components = 1}};
+  sessile_vtu_field cf[4] = {{.name = "volume", .f64 = vol, .components = 1},
+                             {.name = "centroid", .f64 = cen, .components = 3},
+                             {.name = "id", .i32 = id, .components = 1},
+                             {.name = "kind", .u8 = kind, .components = 1}};
+  snprintf(path, sizeof path, "%s/tets.vtu", dir);
+  CALL(sessile_write_vtu_tets(path, m.xyz, m.nnodes, m.tet, m.ntets, 1, pf, 4, cf));
+  free(pc), free(vol), free(cen), free(id), free(kind);
+  sessile_tetmesh_free(&m);
+
+  /* plane.exr */
+  sessile_plane pl = {{-0.5, 0.25, 1}, {1, 1, 0}, {0, 0, 1}, {0.125, 0.25}, 8, 4};
+  const char *enames[2] = {"c", "d"};
+  snprintf(path, sizeof path, "%s/plane.exr", dir);
+  CALL(sessile_write_plane_exr(path, &pl, "oblique", 2, enames, plane_sample, NULL, 4));
   return 0;
 }

@@ -2,8 +2,11 @@
  * abort leaves nothing, commit replaces), PLY/OBJ read back by small parsers
  * here, EXR slices read back with OpenEXR's C API and compared with the P1
  * interpolant of the box field on the plane, and determinism (two writes give
- * identical bytes).  The .vtu/.pvd and the independent readers are checked by
- * test_readers.sh. */
+ * identical bytes).  The writers for any generator: multi-part PLY/OBJ
+ * (parsed back here, indices offset per part), EXR on any plane (read back
+ * with OpenEXR, against the sampled formula), VTU of any tet mesh (the box
+ * through it gives the box writer's bytes), and their input checks.  The
+ * .vtu/.pvd and the independent readers are checked by test_readers.sh. */
 #include <dirent.h>
 #include <errno.h>
 #include <math.h>
@@ -15,6 +18,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "sessile/io.h"
+#include "sessile/tetmesh.h"
 #include "testutil.h"
 
 static char T[256]; /* scratch folder */
@@ -408,6 +412,444 @@ static void test_vtu_pvd(const sessile_box *box, const double *fc, const double 
   free(mask);
 }
 
+/* --- multi-part PLY / OBJ -------------------------------------------------- */
+static int nothing_at(const char *p) { return !exists(p); }
+
+/* Two spheres and an empty part between them; fields c (a formula of the
+ * position) and part (the part's index). */
+static void test_parts(void) {
+  sessile_surface a = {0}, b = {0};
+  double ca[3] = {0, 0, 0}, cb[3] = {2.5, -1, 0.5};
+  t_ok("icosphere level 1", sessile_surface_icosphere(1, 0.5, ca, &a));
+  t_ok("icosphere level 2", sessile_surface_icosphere(2, 1.0, cb, &b));
+  double *na = malloc(3 * (size_t)a.nv * sizeof *na), *nb = malloc(3 * (size_t)b.nv * sizeof *nb);
+  sessile_surface_normals(&a, na);
+  sessile_surface_normals(&b, nb);
+  double *fa[2] = {malloc(a.nv * sizeof(double)), malloc(a.nv * sizeof(double))};
+  double *fb[2] = {malloc(b.nv * sizeof(double)), malloc(b.nv * sizeof(double))};
+  for (uint32_t v = 0; v < a.nv; v++) fa[0][v] = 1 + 2 * a.pos[3 * v] - a.pos[3 * v + 2], fa[1][v] = 0;
+  for (uint32_t v = 0; v < b.nv; v++) fb[0][v] = 1 + 2 * b.pos[3 * v] - b.pos[3 * v + 2], fb[1][v] = 2;
+  const double *const fpa[2] = {fa[0], fa[1]}, *const fpb[2] = {fb[0], fb[1]};
+  sessile_mesh_part parts[3] = {
+      {"small", a.pos, a.nv, a.tri, a.nf, na, fpa},
+      {"empty", NULL, 0, NULL, 0, NULL, NULL},
+      {NULL, b.pos, b.nv, b.tri, b.nf, nb, fpb},
+  };
+  const char *names[2] = {"c", "part"};
+  uint32_t tv = a.nv + b.nv, tf = a.nf + b.nf;
+  t_ok("write PLY of 3 parts (one empty)", sessile_write_ply_parts(P("parts/u.ply"), 3, parts, 2, names));
+  t_ok("write it again", sessile_write_ply_parts(P("parts/u2.ply"), 3, parts, 2, names));
+  t_true("PLY parts: two writes give identical bytes", same_bytes(P("parts/u.ply"), P("parts/u2.ply")));
+  size_t n = 0;
+  uint8_t *buf = slurp(P("parts/u.ply"), &n);
+  char *end = buf ? strstr((char *)buf, "end_header\n") : NULL;
+  t_true("PLY parts has a header", end != NULL);
+  if (end) {
+    *end = 0;
+    const uint8_t *d = (const uint8_t *)end + strlen("end_header\n");
+    char expect[1024];
+    snprintf(expect, sizeof expect,
+             "ply\nformat binary_little_endian 1.0\ncomment sessile surface: 3 parts\n"
+             "comment part small vertices 0 %u faces 0 %u\ncomment part empty vertices %u 0 faces %u 0\n"
+             "comment part part2 vertices %u %u faces %u %u\nelement vertex %u\n"
+             "property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+             "property float nz\nproperty float c\nproperty float part\nelement face %u\n"
+             "property list uchar uint vertex_indices\n",
+             a.nv, a.nf, a.nv, a.nf, a.nv, b.nv, a.nf, b.nf, tv, tf);
+    t_true("PLY parts header: part comments, union counts, x..nz c part", strcmp((char *)buf, expect) == 0);
+    size_t need = (size_t)tv * 32 + (size_t)tf * 13;
+    t_true("PLY parts body has the expected size", (size_t)(n - (size_t)(d - buf)) == need);
+    if ((size_t)(n - (size_t)(d - buf)) == need) {
+      double err = 0;
+      for (uint32_t v = 0; v < tv; v++) {
+        int second = v >= a.nv;
+        uint32_t l = second ? v - a.nv : v;
+        const double *pos = second ? b.pos : a.pos, *nrm = second ? nb : na;
+        double want[8] = {pos[3 * l], pos[3 * l + 1], pos[3 * l + 2], nrm[3 * l], nrm[3 * l + 1],
+                          nrm[3 * l + 2], second ? fb[0][l] : fa[0][l], second ? 2 : 0};
+        for (int q = 0; q < 8; q++) err = fmax(err, fabs(rd_f32(d + 32 * (size_t)v + 4 * q) - (float)want[q]));
+      }
+      t_check("PLY parts vertex values == float32 of each part's input", err, 0);
+      int faces_ok = 1;
+      const uint8_t *fp = d + 32 * (size_t)tv;
+      for (uint32_t f = 0; f < tf; f++, fp += 13) {
+        int second = f >= a.nf;
+        const uint32_t *t = second ? b.tri + 3 * (f - a.nf) : a.tri + 3 * f;
+        uint32_t off = second ? a.nv : 0;
+        faces_ok &= fp[0] == 3 && rd_u32(fp + 1) == t[0] + off && rd_u32(fp + 5) == t[1] + off &&
+                    rd_u32(fp + 9) == t[2] + off;
+      }
+      t_true("PLY parts faces: the second sphere's indices are offset by the first's vertices", faces_ok);
+    }
+  }
+  free(buf);
+
+  /* one part through the union writer == the sponge writer, except the comments */
+  sessile_mesh_part one = {"surface", a.pos, a.nv, a.tri, a.nf, na, fpa};
+  t_ok("write a one-part union", sessile_write_ply_parts(P("parts/one.ply"), 1, &one, 2, names));
+  t_ok("write the same surface with sessile_write_ply", sessile_write_ply(P("parts/s.ply"), &a, na, 2, names, fpa));
+  size_t n1 = 0, n2 = 0;
+  uint8_t *b1 = slurp(P("parts/one.ply"), &n1), *b2 = slurp(P("parts/s.ply"), &n2);
+  char *e1 = b1 ? strstr((char *)b1, "element vertex") : NULL, *e2 = b2 ? strstr((char *)b2, "element vertex") : NULL;
+  t_true("... the same bytes from 'element vertex' on",
+         e1 && e2 && n1 - (size_t)(e1 - (char *)b1) == n2 - (size_t)(e2 - (char *)b2) &&
+             !memcmp(e1, e2, n2 - (size_t)(e2 - (char *)b2)));
+  free(b1);
+  free(b2);
+
+  /* OBJ */
+  t_ok("write OBJ of 3 parts", sessile_write_obj_parts(P("parts/u.obj"), 3, parts));
+  t_ok("write it again", sessile_write_obj_parts(P("parts/u2.obj"), 3, parts));
+  t_true("OBJ parts: two writes give identical bytes", same_bytes(P("parts/u.obj"), P("parts/u2.obj")));
+  FILE *f = fopen(P("parts/u.obj"), "r");
+  char line[512], group[3][64] = {"", "", ""};
+  uint32_t nv = 0, nn = 0, nf = 0;
+  int ngroups = 0, faces_ok = 1, other = 0, og_ok = 1;
+  double err = 0;
+  while (f && fgets(line, sizeof line, f)) {
+    double x, y, z;
+    unsigned q[6];
+    char name[64];
+    if (line[0] == '#') continue;
+    if (sscanf(line, "o %63s", name) == 1) {
+      if (ngroups < 3) snprintf(group[ngroups], sizeof group[0], "%s", name);
+      ngroups++;
+    } else if (sscanf(line, "g %63s", name) == 1) {
+      og_ok &= ngroups > 0 && ngroups <= 3 && !strcmp(name, group[ngroups - 1]);
+    } else if (sscanf(line, "v %lf %lf %lf", &x, &y, &z) == 3 && nv < tv) {
+      const double *p = nv < a.nv ? a.pos + 3 * nv : b.pos + 3 * (nv - a.nv);
+      og_ok &= ngroups == (nv < a.nv ? 1 : 3);
+      nv++;
+      err = fmax(err, fmax(fabs(x - p[0]), fmax(fabs(y - p[1]), fabs(z - p[2]))));
+    } else if (sscanf(line, "vn %lf %lf %lf", &x, &y, &z) == 3 && nn < tv) {
+      const double *p = nn < a.nv ? na + 3 * nn : nb + 3 * (nn - a.nv);
+      nn++;
+      err = fmax(err, fmax(fabs(x - p[0]), fmax(fabs(y - p[1]), fabs(z - p[2]))));
+    } else if (sscanf(line, "f %u//%u %u//%u %u//%u", &q[0], &q[1], &q[2], &q[3], &q[4], &q[5]) == 6 && nf < tf) {
+      int second = nf >= a.nf;
+      const uint32_t *t = second ? b.tri + 3 * (nf - a.nf) : a.tri + 3 * nf;
+      uint32_t off = (second ? a.nv : 0) + 1;
+      nf++;
+      faces_ok &= q[0] == t[0] + off && q[1] == q[0] && q[2] == t[1] + off && q[3] == q[2] &&
+                  q[4] == t[2] + off && q[5] == q[4];
+    } else other++;
+  }
+  if (f) fclose(f);
+  t_true("OBJ parts: o/g small, empty, part2 in order, each part's v lines under its own o",
+         ngroups == 3 && og_ok && !strcmp(group[0], "small") && !strcmp(group[1], "empty") &&
+             !strcmp(group[2], "part2"));
+  t_true("OBJ parts: one v and vn per union vertex, one f per triangle, nothing else",
+         nv == tv && nn == tv && nf == tf && other == 0);
+  t_check("OBJ parts: coordinates and normals read back exactly", err, 0);
+  t_true("OBJ parts: faces 1-based into the whole file (second sphere offset)", faces_ok);
+
+  /* input checks: SESSILE_ERR_USAGE, a one-line message, nothing written */
+  struct {
+    const char *what, *msg;
+    int k;
+  } bad[] = {{"a NaN vertex coordinate", "non-finite", 0},
+             {"an index past its part's vertices", "refers to vertex", 1},
+             {"normals on one part only", "normals", 2},
+             {"a part name with a space", "name without spaces", 3},
+             {"no parts", "surface parts", 4},
+             {"a repeated field name", "appears twice", 5},
+             {"a part without field values", "no values", 6}};
+  for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+    sessile_mesh_part bp[2] = {parts[0], parts[2]};
+    double *pos = malloc(3 * (size_t)b.nv * sizeof *pos);
+    uint32_t *tri = malloc(3 * (size_t)b.nf * sizeof *tri);
+    memcpy(pos, b.pos, 3 * (size_t)b.nv * sizeof *pos);
+    memcpy(tri, b.tri, 3 * (size_t)b.nf * sizeof *tri);
+    bp[1].pos = pos, bp[1].tri = tri;
+    int np = 2;
+    const char *nm[2] = {"c", "part"};
+    if (bad[q].k == 0) pos[7] = NAN;
+    if (bad[q].k == 1) tri[5] = b.nv; /* < the union's count, past the part's */
+    if (bad[q].k == 2) bp[1].normals = NULL;
+    if (bad[q].k == 3) bp[0].name = "small part";
+    if (bad[q].k == 4) np = 0;
+    if (bad[q].k == 5) nm[1] = "c";
+    if (bad[q].k == 6) bp[1].fields = NULL;
+    char what[160];
+    sessile_status s1 = sessile_write_ply_parts(P("parts/bad.ply"), np, bp, 2, nm);
+    int msg1 = msg_has(bad[q].msg) && !strchr(sessile_error_message(), '\n');
+    printf("     message: %s\n", sessile_error_message());
+    snprintf(what, sizeof what, "PLY parts with %s: SESSILE_ERR_USAGE naming it, nothing written", bad[q].what);
+    t_true(what, s1 == SESSILE_ERR_USAGE && msg1 && nothing_at(P("parts/bad.ply")));
+    if (bad[q].k <= 4) {
+      sessile_status s2 = sessile_write_obj_parts(P("parts/bad.obj"), np, bp);
+      snprintf(what, sizeof what, "OBJ parts with %s: SESSILE_ERR_USAGE, nothing written", bad[q].what);
+      t_true(what, s2 == SESSILE_ERR_USAGE && msg_has(bad[q].msg) && nothing_at(P("parts/bad.obj")));
+    }
+    free(pos);
+    free(tri);
+  }
+  double nan_pos[9] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
+  uint32_t one_tri[3] = {0, 1, 2};
+  sessile_surface nan_s = {3, 1, 3, 1, nan_pos, one_tri};
+  t_true("sessile_write_ply refuses a NaN vertex too (SESSILE_ERR_USAGE, nothing written)",
+         sessile_write_ply(P("parts/nan.ply"), &nan_s, NULL, 0, NULL, NULL) == SESSILE_ERR_USAGE &&
+             msg_has("non-finite") && nothing_at(P("parts/nan.ply")));
+  t_true("parts folder holds only the good files", count_entries(P("parts")) == 6);
+  for (int q = 0; q < 2; q++) free(fa[q]), free(fb[q]);
+  free(na);
+  free(nb);
+  sessile_surface_free(&a);
+  sessile_surface_free(&b);
+}
+
+/* --- EXR on any plane -------------------------------------------------------- */
+/* Reads float channels names[0..nchan) of a one-part EXR into img (w x h). */
+static int read_exr(const char *path, int nchan, const char *const *names, float **img, int w, int h) {
+  exr_context_t ctx = NULL;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  if (exr_start_read(&ctx, path, &init) != EXR_ERR_SUCCESS) return 0;
+  exr_attr_box2i_t dw;
+  int ok = exr_get_data_window(ctx, 0, &dw) == EXR_ERR_SUCCESS && dw.min.x == 0 && dw.min.y == 0 &&
+           dw.max.x == w - 1 && dw.max.y == h - 1;
+  int32_t lines = 1;
+  exr_get_scanlines_per_chunk(ctx, 0, &lines);
+  exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+  int live = 0;
+  for (int y = 0; ok && y < h; y += lines) {
+    exr_chunk_info_t ci;
+    ok = exr_read_scanline_chunk_info(ctx, 0, y, &ci) == EXR_ERR_SUCCESS;
+    if (ok && !live) ok = exr_decoding_initialize(ctx, 0, &ci, &dec) == EXR_ERR_SUCCESS, live = ok;
+    else if (ok) ok = exr_decoding_update(ctx, 0, &ci, &dec) == EXR_ERR_SUCCESS;
+    for (int k = 0; ok && k < dec.channel_count; k++) {
+      exr_coding_channel_info_t *ch = &dec.channels[k];
+      int c = 0;
+      while (c < nchan && strcmp(names[c], ch->channel_name)) c++;
+      ok = c < nchan && ch->data_type == EXR_PIXEL_FLOAT;
+      if (!ok) break;
+      ch->decode_to_ptr = (uint8_t *)(img[c] + (size_t)y * w);
+      ch->user_pixel_stride = 4;
+      ch->user_line_stride = 4 * w;
+      ch->user_bytes_per_element = 4;
+      ch->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    if (ok) ok = exr_decoding_choose_default_routines(ctx, 0, &dec) == EXR_ERR_SUCCESS;
+    if (ok) ok = exr_decoding_run(ctx, 0, &dec) == EXR_ERR_SUCCESS;
+  }
+  if (live) exr_decoding_destroy(ctx, &dec);
+  exr_finish(&ctx);
+  return ok;
+}
+
+typedef struct plane_user {
+  int calls;
+  const sessile_box *box; /* for the P1 sampler */
+  const double *fc, *fu;
+} plane_user;
+
+static double sample_formula(void *user, int channel, const double p[3]) {
+  ((plane_user *)user)->calls++;
+  if (channel == 0) return sin(p[0]) + 2 * p[1] * p[2];
+  return p[0] < 0.2 ? NAN : p[0] - p[1];
+}
+
+static double sample_box(void *user, int channel, const double p[3]) {
+  plane_user *u = user;
+  return sessile_box_interpolate(u->box, channel == 0 ? u->fc : u->fu, p);
+}
+
+static void test_plane_exr(const sessile_box *box, const double *fc, const double *fu) {
+  /* an oblique plane: u along (1, 1, 0), v along z */
+  sessile_plane pl = {{-0.5, 0.25, 1.0}, {2, 2, 0}, {0, 0, 3}, {0.1, 0.2}, 7, 5};
+  const char *names[2] = {"s", "d"};
+  plane_user pu = {0};
+  t_ok("write EXR on an oblique plane (sampler)",
+       sessile_write_plane_exr(P("planes/ob.exr"), &pl, "oblique test plane", 2, names, sample_formula, &pu, 3));
+  t_true("the sampler was called once per pixel and channel", pu.calls == 2 * 7 * 5);
+  float *img[2] = {calloc(35, 4), calloc(35, 4)};
+  double err = 0;
+  int nan_ok = 1, ok = read_exr(P("planes/ob.exr"), 2, names, img, 7, 5);
+  t_true("EXR plane reads back: 7 x 5 float channels s, d", ok);
+  const double r2 = sqrt(0.5);
+  for (int j = 0; ok && j < 5; j++)
+    for (int i = 0; i < 7; i++) {
+      double p[3] = {-0.5 + 0.1 * i * r2, 0.25 + 0.1 * i * r2, 1.0 + 0.2 * j};
+      float s = img[0][j * 7 + i], d = img[1][j * 7 + i];
+      err = fmax(err, fabs(s - (sin(p[0]) + 2 * p[1] * p[2])) / 4);
+      if (p[0] < 0.2 - 1e-9) nan_ok &= isnan(d);
+      else if (p[0] > 0.2 + 1e-9) err = fmax(err, fabs(d - (p[0] - p[1])));
+    }
+  t_check("EXR plane pixels == the formula at origin + i du + j dv (relative)", err, 1.2e-7);
+  t_true("EXR plane: NaN samples are stored as NaN", nan_ok);
+  exr_context_t ctx = NULL;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  const char *label = NULL;
+  int32_t len = 0, it = -1;
+  exr_attr_v3f_t o = {{{0}}}, au = {{{0}}}, av = {{{0}}};
+  exr_attr_v2f_t sp = {{{0}}};
+  int attrs = exr_start_read(&ctx, P("planes/ob.exr"), &init) == EXR_ERR_SUCCESS &&
+              exr_attr_get_string(ctx, 0, "sessile:plane", &len, &label) == EXR_ERR_SUCCESS &&
+              exr_attr_get_v3f(ctx, 0, "sessile:origin", &o) == EXR_ERR_SUCCESS &&
+              exr_attr_get_v2f(ctx, 0, "sessile:spacing", &sp) == EXR_ERR_SUCCESS &&
+              exr_attr_get_int(ctx, 0, "sessile:iteration", &it) == EXR_ERR_SUCCESS &&
+              exr_attr_get_v3f(ctx, 0, "sessile:axis_u", &au) == EXR_ERR_SUCCESS &&
+              exr_attr_get_v3f(ctx, 0, "sessile:axis_v", &av) == EXR_ERR_SUCCESS;
+  attrs = attrs && len == (int32_t)strlen("oblique test plane") && !strncmp(label, "oblique test plane", (size_t)len) &&
+          o.x == -0.5f && o.y == 0.25f && o.z == 1.0f && sp.x == 0.1f && sp.y == 0.2f && it == 3 &&
+          au.x == (float)r2 && au.y == (float)r2 && au.z == 0 && av.x == 0 && av.y == 0 && av.z == 1;
+  if (ctx) exr_finish(&ctx);
+  t_true("EXR plane attributes: label, origin, spacing, iteration, unit axes", attrs);
+
+  /* precomputed pixels: the same bytes as the sampler */
+  double *vals[2] = {malloc(35 * sizeof(double)), malloc(35 * sizeof(double))};
+  for (int j = 0; j < 5; j++)
+    for (int i = 0; i < 7; i++) {
+      double p[3];
+      for (int a = 0; a < 3; a++) {
+        double un = a < 2 ? r2 : 0, vn = a == 2 ? 1 : 0;
+        p[a] = pl.origin[a] + i * 0.1 * un + j * 0.2 * vn;
+      }
+      for (int c = 0; c < 2; c++) vals[c][j * 7 + i] = sample_formula(&pu, c, p);
+    }
+  const double *const cv[2] = {vals[0], vals[1]};
+  t_ok("write the same plane from precomputed values",
+       sessile_write_plane_exr_values(P("planes/ob_values.exr"), &pl, "oblique test plane", 2, names, cv, 3));
+  t_true("... gives the sampler's bytes", same_bytes(P("planes/ob.exr"), P("planes/ob_values.exr")));
+  t_ok("write it again", sessile_write_plane_exr(P("planes/ob2.exr"), &pl, "oblique test plane", 2, names, sample_formula, &pu, 3));
+  t_true("EXR plane: two writes give identical bytes", same_bytes(P("planes/ob.exr"), P("planes/ob2.exr")));
+
+  /* the box's z = 0.61 plane through the P1 sampler == the box slice's pixels */
+  sessile_plane zp = {{box->origin[0], box->origin[1], 0.61}, {1, 0, 0}, {0, 1, 0}, {box->h, box->h}, box->n[0], box->n[1]};
+  plane_user bu = {0, box, fc, fu};
+  const char *bn[2] = {"c", "ux"};
+  sessile_slice_channel ch[2] = {{"ux", fu}, {"c", fc}};
+  t_ok("write the box's z=0.61 plane through a P1 sampler",
+       sessile_write_plane_exr(P("planes/z.exr"), &zp, NULL, 2, bn, sample_box, &bu, 0));
+  t_ok("write the box slice z=0.61", sessile_write_slice_exr(P("planes/zs.exr"), box, SESSILE_AXIS_Z, 0.61, 2, ch, 0));
+  int w = (int)box->n[0], h = (int)box->n[1];
+  float *g[2] = {calloc((size_t)w * h, 4), calloc((size_t)w * h, 4)}, *s[2] = {calloc((size_t)w * h, 4), calloc((size_t)w * h, 4)};
+  ok = read_exr(P("planes/z.exr"), 2, bn, g, w, h) && read_exr(P("planes/zs.exr"), 2, bn, s, w, h);
+  err = 0;
+  for (int q = 0; ok && q < w * h; q++) err = fmax(err, fmax(fabs(g[0][q] - s[0][q]), fabs(g[1][q] - s[1][q])));
+  t_true("both read back", ok);
+  t_check("plane writer with a P1 sampler == box slice writer (max abs diff)", err, 1e-6);
+
+  /* input checks */
+  struct {
+    const char *what, *msg;
+    int k;
+  } bad[] = {{"width 0", "pixels", 0},         {"a NaN origin", "not finite", 1},
+             {"parallel axes", "perpendicular", 2}, {"a zero axis", "non-zero", 3},
+             {"spacing 0", "spacing", 4},      {"a repeated channel name", "appears twice", 5},
+             {"no sampler", "no sampler", 6},   {"no channels", "channels", 7}};
+  for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+    sessile_plane b = pl;
+    const char *nm[2] = {"s", "d"};
+    int nc = 2;
+    sessile_plane_sampler fn = sample_formula;
+    if (bad[q].k == 0) b.width = 0;
+    if (bad[q].k == 1) b.origin[1] = NAN;
+    if (bad[q].k == 2) b.axis_v[0] = 1, b.axis_v[1] = 1, b.axis_v[2] = 0;
+    if (bad[q].k == 3) memset(b.axis_u, 0, sizeof b.axis_u);
+    if (bad[q].k == 4) b.spacing[1] = 0;
+    if (bad[q].k == 5) nm[1] = "s";
+    if (bad[q].k == 6) fn = NULL;
+    if (bad[q].k == 7) nc = 0;
+    sessile_status st = sessile_write_plane_exr(P("planes/bad.exr"), &b, NULL, nc, nm, fn, &pu, 0);
+    printf("     message: %s\n", sessile_error_message());
+    char what[160];
+    snprintf(what, sizeof what, "EXR plane with %s: SESSILE_ERR_USAGE naming it, nothing written", bad[q].what);
+    t_true(what, st == SESSILE_ERR_USAGE && msg_has(bad[q].msg) && !strchr(sessile_error_message(), '\n') &&
+                     nothing_at(P("planes/bad.exr")));
+  }
+  t_true("planes folder holds only the good files", count_entries(P("planes")) == 5);
+  for (int c = 0; c < 2; c++) free(img[c]), free(vals[c]), free(g[c]), free(s[c]);
+}
+
+/* --- VTU of any tet mesh ------------------------------------------------------ */
+static void test_vtu_tets(const sessile_box *box, const double *fc, const double *fu) {
+  sessile_tetmesh m = {0};
+  t_ok("tetmesh from the box", sessile_tetmesh_from_box(box, &m));
+  size_t nn = m.nnodes;
+  uint8_t *mask = malloc(nn);
+  for (size_t i = 0; i < nn; i++) mask[i] = i % 3 == 0;
+  sessile_point_data d[2] = {{"c", fc, NULL, 1}, {"solid", NULL, mask, 1}};
+  sessile_vtu_field f[2] = {{.name = "c", .f64 = fc, .components = 1}, {.name = "solid", .u8 = mask, .components = 1}};
+  t_ok("write the box with sessile_write_vtu", sessile_write_vtu(P("tets/box.vtu"), box, 2, d));
+  t_ok("write its tetmesh with sessile_write_vtu_tets",
+       sessile_write_vtu_tets(P("tets/mesh.vtu"), m.xyz, m.nnodes, m.tet, m.ntets, 2, f, 0, NULL));
+  t_true("the box writer and the tet writer give identical bytes for the same mesh",
+         same_bytes(P("tets/box.vtu"), P("tets/mesh.vtu")));
+
+  /* cell data: Float64 volume, Float64 x3 centroid, Int32 id, UInt8 id % 6 */
+  double *vol = malloc(m.ntets * sizeof *vol), *cen = malloc(3 * (size_t)m.ntets * sizeof *cen);
+  int32_t *id = malloc(m.ntets * sizeof *id);
+  uint8_t *kind = malloc(m.ntets);
+  for (uint32_t t = 0; t < m.ntets; t++) {
+    vol[t] = sessile_tetmesh_tet_volume(&m, t);
+    for (int a = 0; a < 3; a++) {
+      cen[3 * t + a] = 0;
+      for (int q = 0; q < 4; q++) cen[3 * t + a] += 0.25 * m.xyz[3 * m.tet[4 * t + q] + a];
+    }
+    id[t] = (int32_t)t - 5;
+    kind[t] = (uint8_t)(t % 6);
+  }
+  sessile_vtu_field cf[4] = {{.name = "volume", .f64 = vol, .components = 1},
+                             {.name = "centroid", .f64 = cen, .components = 3},
+                             {.name = "id", .i32 = id, .components = 1},
+                             {.name = "kind", .u8 = kind, .components = 1}};
+  t_ok("write a tet VTU with 2 point and 4 cell arrays",
+       sessile_write_vtu_tets(P("tets/cells.vtu"), m.xyz, m.nnodes, m.tet, m.ntets, 2, f, 4, cf));
+  t_ok("write it again", sessile_write_vtu_tets(P("tets/cells2.vtu"), m.xyz, m.nnodes, m.tet, m.ntets, 2, f, 4, cf));
+  t_true("tet VTU: two writes give identical bytes", same_bytes(P("tets/cells.vtu"), P("tets/cells2.vtu")));
+  size_t n = 0;
+  char *b = (char *)slurp(P("tets/cells.vtu"), &n);
+  char *cd = b ? strstr(b, "<CellData>") : NULL, *pd = b ? strstr(b, "</PointData>") : NULL,
+       *pts = b ? strstr(b, "<Points>") : NULL;
+  t_true("tet VTU: <CellData> between </PointData> and <Points>", cd && pd && pts && pd < cd && cd < pts);
+  t_true("tet VTU: cell arrays volume Float64, centroid Float64 x3, id Int32, kind UInt8",
+         cd && strstr(cd, "<DataArray type=\"Float64\" Name=\"volume\" NumberOfComponents=\"1\"") &&
+             strstr(cd, "<DataArray type=\"Float64\" Name=\"centroid\" NumberOfComponents=\"3\"") &&
+             strstr(cd, "<DataArray type=\"Int32\" Name=\"id\" NumberOfComponents=\"1\"") &&
+             strstr(cd, "<DataArray type=\"UInt8\" Name=\"kind\" NumberOfComponents=\"1\""));
+  free(b);
+
+  /* input checks */
+  struct {
+    const char *what, *msg;
+    int k;
+  } bad[] = {{"a NaN coordinate", "non-finite", 0},          {"a tet index out of range", "refers to point", 1},
+             {"zero tets", "at least 1", 2},                 {"zero points", "at least 1", 3},
+             {"a field with two arrays", "exactly one", 4},  {"2 components", "components", 5},
+             {"a repeated cell data name", "appears twice", 6}, {"an unnamed field", "needs a name", 7}};
+  double *xyz = malloc(3 * nn * sizeof *xyz);
+  uint32_t *tet = malloc(4 * (size_t)m.ntets * sizeof *tet);
+  for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+    memcpy(xyz, m.xyz, 3 * nn * sizeof *xyz);
+    memcpy(tet, m.tet, 4 * (size_t)m.ntets * sizeof *tet);
+    sessile_vtu_field bcf[4] = {cf[0], cf[1], cf[2], cf[3]};
+    uint32_t nv = m.nnodes, nt = m.ntets;
+    if (bad[q].k == 0) xyz[3 * 17 + 1] = NAN;
+    if (bad[q].k == 1) tet[4 * 9 + 2] = nv;
+    if (bad[q].k == 2) nt = 0;
+    if (bad[q].k == 3) nv = 0;
+    if (bad[q].k == 4) bcf[2].u8 = kind;
+    if (bad[q].k == 5) bcf[0].components = 2;
+    if (bad[q].k == 6) bcf[3].name = "id";
+    if (bad[q].k == 7) bcf[1].name = "";
+    sessile_status st = sessile_write_vtu_tets(P("tets/bad.vtu"), xyz, nv, tet, nt, 2, f, 4, bcf);
+    printf("     message: %s\n", sessile_error_message());
+    char what[160];
+    snprintf(what, sizeof what, "tet VTU with %s: SESSILE_ERR_USAGE naming it, nothing written", bad[q].what);
+    t_true(what, st == SESSILE_ERR_USAGE && msg_has(bad[q].msg) && !strchr(sessile_error_message(), '\n') &&
+                     nothing_at(P("tets/bad.vtu")));
+  }
+  t_true("tets folder holds only the good files", count_entries(P("tets")) == 4);
+  free(xyz);
+  free(tet);
+  free(vol);
+  free(cen);
+  free(id);
+  free(kind);
+  free(mask);
+  sessile_tetmesh_free(&m);
+}
+
 int main(void) {
   snprintf(T, sizeof T, "%s/sessile_test_io.XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
   if (!mkdtemp(T)) {
@@ -441,6 +883,12 @@ int main(void) {
   test_exr(&box, fc, fu);
   t_ok("mkdirs fields", sessile_mkdirs(P("fields")));
   test_vtu_pvd(&box, fc, fu);
+  t_ok("mkdirs parts", sessile_mkdirs(P("parts")));
+  test_parts();
+  t_ok("mkdirs planes", sessile_mkdirs(P("planes")));
+  test_plane_exr(&box, fc, fu);
+  t_ok("mkdirs tets", sessile_mkdirs(P("tets")));
+  test_vtu_tets(&box, fc, fu);
   t_ok("mkdirs lim", sessile_mkdirs(P("lim")));
   test_failed_write_keeps_old();
 

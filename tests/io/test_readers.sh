@@ -2,7 +2,7 @@
 # The io writers' files opened by readers that share no code with sessile:
 #   .vtu/.pvd  VTK's own XML reader (python3-vtk9) and meshio (python3-meshio)
 #   .exr       exrheader (openexr) and OpenImageIO's oiiotool/iinfo (openimageio-tools)
-#   .ply/.obj  meshio (python3-meshio)
+#   .ply/.obj  meshio (python3-meshio), VTK's PLY and OBJ readers
 # io_samples writes files with analytic content (see tests/io/io_samples.c);
 # the expected values are recomputed here from the same formulas.  A missing
 # reader is a failure, not a skip: install it with tools/install.sh.
@@ -70,6 +70,37 @@ for line in open(sys.argv[1]):
     n += 1
 print(f"     {n} pixels, max relative error {err:.2e}")
 sys.exit(0 if n == 63 and err <= 1e-6 else 1)
+PYEOF
+
+# --- EXR on an oblique plane: exrheader, OpenImageIO ------------------------------
+exrheader "$T/out/plane.exr" >"$T/exrheader_plane.txt" 2>&1
+check "exrheader plane.exr: 8 x 4, channels c and d float, zip" eval 'has "$T/exrheader_plane.txt" "dataWindow (type box2i): (0 0) - (7 3)" &&
+  has "$T/exrheader_plane.txt" "c, 32-bit floating-point" && has "$T/exrheader_plane.txt" "d, 32-bit floating-point" &&
+  has "$T/exrheader_plane.txt" "compression (type compression): zip"'
+check "exrheader plane.exr: sessile:plane/origin/spacing/iteration/axis_u/axis_v" eval 'has "$T/exrheader_plane.txt" "sessile:plane (type string): \"oblique\"" &&
+  has "$T/exrheader_plane.txt" "sessile:origin (type v3f): (-0.5 0.25 1)" &&
+  has "$T/exrheader_plane.txt" "sessile:spacing (type v2f): (0.125 0.25)" &&
+  has "$T/exrheader_plane.txt" "sessile:iteration (type int): 4" &&
+  has "$T/exrheader_plane.txt" "sessile:axis_u (type v3f): (0.707107 0.707107 0)" &&
+  has "$T/exrheader_plane.txt" "sessile:axis_v (type v3f): (0 0 1)"'
+iinfo -v "$T/out/plane.exr" >"$T/iinfo_plane.txt" 2>&1
+check "iinfo plane.exr: 8 x 4, 2 float channels, sessile:axis_u/axis_v" eval 'has "$T/iinfo_plane.txt" "8 x    4, 2 channel, float openexr" &&
+  has "$T/iinfo_plane.txt" "sessile:axis_u: 0.707107, 0.707107, 0" && has "$T/iinfo_plane.txt" "sessile:axis_v: 0, 0, 1"'
+oiiotool --dumpdata "$T/out/plane.exr" >"$T/dump_plane.txt" 2>&1
+# pixel (i, j) sits at (-0.5, 0.25, 1) + 0.125 i (1, 1, 0)/sqrt(2) + 0.25 j (0, 0, 1)
+check "oiiotool --dumpdata plane.exr: all 32 pixels == c = 1+2x+3y+4z, d = x-y (rel. 1e-6)" "$PY" - "$T/dump_plane.txt" <<'PYEOF'
+import math, re, sys
+n, err = 0, 0.0
+for line in open(sys.argv[1]):
+    m = re.match(r"\s*Pixel \((\d+), (\d+)\): (\S+) (\S+)", line)
+    if not m: continue
+    i, j, c, d = int(m[1]), int(m[2]), float(m[3]), float(m[4])
+    s = 0.125 * i / math.sqrt(2)
+    x, y, z = -0.5 + s, 0.25 + s, 1 + 0.25 * j
+    err = max(err, abs(c - (1 + 2 * x + 3 * y + 4 * z)) / 12, abs(d - (x - y)) / 3)
+    n += 1
+print(f"     {n} pixels, max relative error {err:.2e}")
+sys.exit(0 if n == 32 and err <= 1e-6 else 1)
 PYEOF
 
 # --- VTU / PVD / PLY / OBJ: VTK and meshio ----------------------------------------
@@ -180,6 +211,87 @@ p = obj.points[otri[0]]
 vol = np.einsum("ij,ij->i", p[:, 0], np.cross(p[:, 1], p[:, 2])).sum() / 6
 check("OBJ triangles are counter-clockwise from outside (enclosed volume > 0, < the sphere's)",
       0.9 * 4 / 3 * np.pi * r ** 3 < vol < 4 / 3 * np.pi * r ** 3, f"volume {vol:.4f}")
+
+# --- the writers for any generator --------------------------------------------------
+# tets.vtu: a general tet mesh with point data and cell data (VTK, then meshio)
+r, g = read_vtk(os.path.join(d, "tets.vtu"))
+NT, MT = 5 * 4 * 3, 6 * 4 * 3 * 2
+check("VTK reads tets.vtu without errors", r.GetErrorCode() == 0 and g is not None)
+check(f"VTK tets.vtu: {NT} points, {MT} tets (type 10)",
+      g.GetNumberOfPoints() == NT and g.GetNumberOfCells() == MT and np.all(vtk_to_numpy(g.GetCellTypesArray()) == 10),
+      f"{g.GetNumberOfPoints()} points, {g.GetNumberOfCells()} cells")
+pts = vtk_to_numpy(g.GetPoints().GetData())
+conn = vtk_to_numpy(g.GetCells().GetConnectivityArray()).reshape(-1, 4)
+ref = np.array([[i * 0.25, j * 0.25, k * 0.25] for k in range(3) for j in range(4) for i in range(5)])
+moved = np.stack([ref[:, 0] + 0.1 * ref[:, 1] ** 2, ref[:, 1], ref[:, 2] + 0.05 * ref[:, 0]], axis=1)
+check("VTK tets.vtu: the points are the moved box nodes", np.abs(pts - moved).max() <= 1e-15)
+cd = g.GetCellData()
+vol_a, cen_a, id_a, kind_a = (cd.GetArray(k) for k in ("volume", "centroid", "id", "kind"))
+check("VTK tets.vtu: cell arrays volume double, centroid double x3, id int, kind unsigned char",
+      None not in (vol_a, cen_a, id_a, kind_a) and vol_a.GetDataTypeAsString() == "double" and
+      cen_a.GetDataTypeAsString() == "double" and cen_a.GetNumberOfComponents() == 3 and
+      id_a.GetDataTypeAsString() == "int" and kind_a.GetDataTypeAsString() == "unsigned char" and
+      cd.GetNumberOfArrays() == 4)
+if None not in (vol_a, cen_a, id_a, kind_a):
+    a, b, c, e = (pts[conn[:, q]] for q in range(4))
+    vol = np.einsum("ij,ij->i", np.cross(b - a, c - a), e - a) / 6
+    ev = np.abs(vtk_to_numpy(vol_a) - vol).max()
+    ec = np.abs(vtk_to_numpy(cen_a) - (a + b + c + e) / 4).max()
+    check("VTK tets.vtu: cell volume == the tet's volume from VTK's points (all > 0)",
+          ev <= 1e-15 and vol.min() > 0, f"max abs error {ev:.1e}")
+    check("VTK tets.vtu: cell centroid == the mean of the tet's points", ec <= 1e-15, f"max abs error {ec:.1e}")
+    check("VTK tets.vtu: id == tet - 5 (negative ones too), kind == tet % 6",
+          np.array_equal(vtk_to_numpy(id_a), np.arange(MT) - 5) and
+          np.array_equal(vtk_to_numpy(kind_a), (np.arange(MT) % 6).astype(np.uint8)))
+pc = g.GetPointData().GetArray("c")
+check("VTK tets.vtu: point data c == 1+2x+3y+4z", pc is not None and np.abs(vtk_to_numpy(pc) - lin(pts)).max() <= 1e-12)
+m = meshio.read(os.path.join(d, "tets.vtu"))
+check("meshio reads tets.vtu: same points, tets and cell data as VTK",
+      np.array_equal(m.points, pts) and len(m.cells) == 1 and np.array_equal(m.cells[0].data, conn) and
+      np.array_equal(m.cell_data["id"][0].reshape(-1), np.arange(MT) - 5) and
+      np.array_equal(m.cell_data["volume"][0].reshape(-1), vtk_to_numpy(vol_a)))
+
+# parts.ply / parts.obj: the union of 12 + 0 + 42 vertices, 20 + 0 + 80 triangles
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkIOGeometry import vtkOBJReader
+NV, NF = 12 + 42, 20 + 80
+pp = meshio.read(os.path.join(d, "parts.ply"))
+ptri = np.concatenate([cb.data for cb in pp.cells if cb.type == "triangle"])
+check(f"meshio reads parts.ply: {NV} vertices, {NF} triangles", pp.points.shape == (NV, 3) and ptri.shape == (NF, 3),
+      f"{pp.points.shape[0]} vertices, {ptri.shape[0]} triangles")
+part = pp.point_data["part"].reshape(-1)
+check("parts.ply field part == 0 for the 12 small vertices, 2 for the 42 big ones",
+      np.array_equal(part, np.r_[np.zeros(12), np.full(42, 2.0)]))
+ec = np.abs(pp.point_data["c"].reshape(-1) - lin(pp.points)).max()
+check("parts.ply field c == 1+2x+3y+4z (float32)", ec <= 1e-6 * 16, f"max abs error {ec:.1e}")
+rad = np.r_[np.linalg.norm(pp.points[:12], axis=1) / 0.5, np.linalg.norm(pp.points[12:] - [2.5, -1, 0.5], axis=1)]
+check("parts.ply: the small sphere's vertices come first, then the big one's", np.abs(rad - 1).max() <= 1e-6)
+check("parts.ply: faces 0..19 use vertices 0..11, faces 20..99 vertices 12..53 (offset per part)",
+      ptri[:20].max() < 12 and ptri[20:].min() >= 12 and ptri[20:].max() < NV and
+      len(np.unique(ptri[:20])) == 12 and len(np.unique(ptri[20:])) == 42)
+rd = vtkPLYReader()
+rd.SetFileName(os.path.join(d, "parts.ply"))
+rd.Update()
+pv = rd.GetOutput()
+check(f"VTK's PLY reader: {NV} points, {NF} triangles, same points and triangles as meshio",
+      pv.GetNumberOfPoints() == NV and pv.GetNumberOfCells() == NF and
+      np.array_equal(vtk_to_numpy(pv.GetPoints().GetData()), pp.points.astype(np.float32)) and
+      np.array_equal(vtk_to_numpy(pv.GetPolys().GetConnectivityArray()).reshape(-1, 3), ptri),
+      f"{pv.GetNumberOfPoints()} points, {pv.GetNumberOfCells()} cells")
+po = meshio.read(os.path.join(d, "parts.obj"))
+otri = [cb.data for cb in po.cells if cb.type == "triangle"]
+check("meshio reads parts.obj: 2 non-empty groups (20 and 80 triangles), the PLY's triangles",
+      len(otri) == 2 and otri[0].shape == (20, 3) and otri[1].shape == (80, 3) and
+      np.array_equal(np.concatenate(otri), ptri) and po.points.shape == (NV, 3))
+check("parts.obj: the group ids are 0 and 2 (the empty part is group 1)",
+      [int(np.unique(gid)[0]) for gid in po.cell_data.get("obj:group_ids", [])] == [0, 2])
+check("parts.obj positions == float32 PLY positions", np.abs(po.points - pp.points).max() <= 2.4e-7)
+ro = vtkOBJReader()
+ro.SetFileName(os.path.join(d, "parts.obj"))
+ro.Update()
+ov = ro.GetOutput()
+check(f"VTK's OBJ reader: {NF} triangles", ov.GetNumberOfCells() == NF, f"{ov.GetNumberOfCells()} cells")
+
 print(f"python: {fails} failed")
 sys.exit(1 if fails else 0)
 PYEOF
