@@ -479,11 +479,12 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
                             el, p->max_seconds, it, rn, res->residual_rest > 0 ? rn / res->residual_rest : 0.0);
       break;
     }
-    if (it >= 25 && rn > 0.1 * res->residual_rest) {
+    if (it >= 20 && rn > 10 * p->newton_rtol * res->residual_rest) {
       s = sessile_error_set(SESSILE_ERR_NUMERIC,
                             "the flow solve is not converging: after %d Newton steps the residual is "
-                            "still %.2e of the rest state's; the setting may be hopeless (Reynolds "
-                            "number, viscosity)", it, rn / res->residual_rest);
+                            "still %.2e of the rest state's (the target is %g); the setting may be "
+                            "hopeless (Reynolds number, viscosity)", it, rn / res->residual_rest,
+                            p->newton_rtol);
       break;
     }
     if (stalled >= 5) {

@@ -89,19 +89,19 @@ sys.exit(0 if len(a.points) == nv == len(b.points) and abs(a.points - b.points).
 PYEOF
 check "exrheader reads a slice with its sessile attributes" eval \
   'exrheader "$T/r1/slices/iter_0002_z.exr" | grep -q "sessile:iteration (type int): 2"'
-run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0 --set fluid_at_snapshots=false
 check "same seed, same device: byte-identical final.ply" cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"
 check "--every 0 still snapshots the last iteration" test -s "$T/r2/slices/iter_0002_z.exr"
-run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0 --set fluid_at_snapshots=false
 check "the same command again is refused: the folder holds a run (exit 2)" eval 'rc_is 2 && one_line_error'
-run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0 --force
+run grow --out "$T/r2" $COARSE --preset crella --seed 7 --iterations 2 --every 0 --set fluid_at_snapshots=false --force
 check "... and with --force it runs again to the same bytes" eval 'rc_is 0 && cmp -s "$T/r1/sponge/final.ply" "$T/r2/sponge/final.ply"'
 run grow --out "$T/r6" $COARSE --iterations 6 --every 10 --set fluid_at_snapshots=false
 check "a 6-iteration run with --every 10 writes iter_0006 slices and fields" eval \
   'rc_is 0 && test -s "$T/r6/slices/iter_0006_x.exr" && test -s "$T/r6/fields/iter_0006.vtu" && test -s "$T/r6/sponge/iter_0006.ply"'
 run grow --out "$T/deg" $COARSE --iterations 2 --every 0 --set fluid_at_snapshots=false --set sponge_radius=0.01
 check "a sponge fused to a few vertices warns" eval 'rc_is 0 && grep -q "warning: .*degenerated" "$T/err"'
-run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0
+run grow --out "$T/r3" $COARSE --preset crella --seed 8 --iterations 2 --every 0 --set fluid_at_snapshots=false
 check "two seeds give different crella meshes" eval '! cmp -s "$T/r1/sponge/final.ply" "$T/r3/sponge/final.ply"'
 
 finish

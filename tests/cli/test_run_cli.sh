@@ -16,26 +16,26 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 # A small box (19.2 x 19.2 x 14.4 cm at 1.2 cm) keeps each run to seconds.
 SMALL="--set box_resolution=1 --set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3 --quiet"
-ITS=8
+ITS=6
 outputs() { (cd "$1" && find sponge slices fields -type f | LC_ALL=C sort | xargs sha256sum); }
 temps() { find "$1" -name '*.sessile-tmp.*' | wc -l; }
 state() { /usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["state"])' "$1/manifest.json"; }
 
 # The reference: one uninterrupted run, timed to place the kills.
 t0=$(date +%s.%N)
-"$S" grow $SMALL --iterations $ITS --every 2 --out "$T/ref" >/dev/null 2>"$T/err"
+"$S" grow $SMALL --iterations $ITS --every 3 --out "$T/ref" >/dev/null 2>"$T/err"
 check "the reference run completes" eval '[ "$(state "$T/ref")" = completed ]'
 t1=$(date +%s.%N)
 outputs "$T/ref" >"$T/ref.sum"
 check "the reference has the final-iteration snapshot and the finals" eval \
-  'grep -q "sponge/iter_0008.ply" "$T/ref.sum" && grep -q "sponge/final.ply" "$T/ref.sum"'
+  'grep -q "sponge/iter_0006.ply" "$T/ref.sum" && grep -q "sponge/final.ply" "$T/ref.sum"'
 
 # SIGKILL at 5 random moments of the run (each restart continues the chain).
 seed=${SESSILE_TEST_SEED:-$(( $(date +%s) % 100000 ))}
 echo "kill moments from seed $seed (rerun with SESSILE_TEST_SEED=$seed)"
 RANDOM=$seed
 dur=$(/usr/bin/python3 -c "print(max(1.0, $t1 - $t0))")
-"$S" grow $SMALL --iterations $ITS --every 2 --out "$T/k" >/dev/null 2>>"$T/kerr" &
+"$S" grow $SMALL --iterations $ITS --every 3 --out "$T/k" >/dev/null 2>>"$T/kerr" &
 pid=$!
 for k in 1 2 3 4 5; do
   at=$(/usr/bin/python3 -c "print(0.1 + ($RANDOM / 32767.0) * $dur * 0.6)")
@@ -51,13 +51,13 @@ check "the run resumed after 5 SIGKILLs completes" eval '[ "$(state "$T/k")" = c
 outputs "$T/k" >"$T/k.sum"
 check "every output byte equals the uninterrupted run's" cmp -s "$T/ref.sum" "$T/k.sum"
 check "records: one line per iteration, none repeated" eval \
-  '[ "$(/usr/bin/python3 -c "import json,sys; print([json.loads(l)[\"iteration\"] for l in open(sys.argv[1])])" "$T/k/records.jsonl")" = "[1, 2, 3, 4, 5, 6, 7, 8]" ]'
+  '[ "$(/usr/bin/python3 -c "import json,sys; print([json.loads(l)[\"iteration\"] for l in open(sys.argv[1])])" "$T/k/records.jsonl")" = "[1, 2, 3, 4, 5, 6]" ]'
 check "no temporary left" eval '[ "$(temps "$T/k")" = 0 ]'
 
 # SIGINT and SIGTERM: stop after the current iteration, saved, resumable.
 for sig in INT TERM; do
   rm -rf "$T/s"
-  "$S" grow $SMALL --iterations $ITS --every 2 --out "$T/s" >/dev/null 2>"$T/serr" &
+  "$S" grow $SMALL --iterations $ITS --every 3 --out "$T/s" >/dev/null 2>"$T/serr" &
   pid=$!
   for _ in $(seq 1 600); do [ -s "$T/s/records.jsonl" ] && break; sleep 0.1; done
   kill -$sig $pid
@@ -74,7 +74,7 @@ for sig in INT TERM; do
 done
 
 # Two runs into one folder.
-"$S" grow $SMALL --iterations $ITS --every 2 --out "$T/c" >/dev/null 2>"$T/c1err" &
+"$S" grow $SMALL --iterations $ITS --every 3 --out "$T/c" >/dev/null 2>"$T/c1err" &
 pid=$!
 for _ in $(seq 1 600); do [ -s "$T/c/manifest.json" ] && break; sleep 0.05; done
 run grow $SMALL --iterations 2 --out "$T/c"
@@ -102,10 +102,10 @@ for f in $(cd "$T/p" && find sponge slices fields -type f) manifest.json records
   for p in $(seq $((last + 1)) $((last + 40))); do ln -sf "$T/outside/victim" "$T/p/$f.tmp.$p"; done
   ln -sf "$T/outside/victim" "$T/p/.$(basename "$f").sessile-tmp.0000000000000000"
 done
-for f in sponge/final.ply sponge/iter_0002.ply slices/iter_0004_x.exr fields/series.pvd; do
+for f in sponge/final.ply sponge/iter_0003.ply slices/iter_0003_x.exr fields/series.pvd; do
   rm -f "$T/p/$f"; ln -s "$T/outside/victim" "$T/p/$f"
 done
-"$S" grow $SMALL --iterations $ITS --every 2 --out "$T/p" --force >/dev/null 2>"$T/perr"
+"$S" grow $SMALL --iterations $ITS --every 3 --out "$T/p" --force >/dev/null 2>"$T/perr"
 check "a run among planted symlinks completes" eval '[ $? = 0 ]'
 check "the file outside is unchanged" eval '[ "$(cat "$T/outside/victim")" = precious ]'
 check "the final names hold the run's own files again" eval \
@@ -114,7 +114,7 @@ outputs "$T/p" >"$T/p.sum"
 check "... with the same bytes as the reference" cmp -s "$T/ref.sum" "$T/p.sum"
 rm -rf "$T/p/slices"
 ln -s "$T/outside" "$T/p/slices"
-run grow $SMALL --iterations 2 --every 2 --out "$T/p" --force
+run grow $SMALL --iterations 2 --every 3 --out "$T/p" --force
 check "a symlink planted as a subfolder is refused (exit 1, one line)" eval \
   'rc_is 1 && grep -q "refused" "$T/err" && [ "$(ls "$T/outside")" = victim ]'
 

@@ -127,6 +127,16 @@ static void test_fluid(void) {
   t_check("fluid solve with a monitor: bytes written to stderr", (double)bytes, 0);
   t_true("fluid monitor: a line per step and the outcome",
          got.n >= 2 && strncmp(got.last, "fluid: ", 7) == 0);
+  /* The time bound: a solve past max_seconds fails with a message that
+   * names the bound (a hopeless setting must not run for hours). */
+  sessile_fluid_params_default(&q.p);
+  q.p.max_seconds = 1e-9;
+  memset(q.up, 0, 4 * (size_t)n * sizeof *q.up);
+  sessile_error_clear();
+  run_fluid(&q);
+  printf("  time bound: %s: %s\n", sessile_status_name(q.st), sessile_error_message());
+  t_true("a solve past max_seconds fails (SESSILE_ERR_NUMERIC, names the bound)",
+         q.st == SESSILE_ERR_NUMERIC && strstr(sessile_error_message(), "time bound") != NULL);
   free(q.up);
   sessile_fluid_destroy(fl);
   sessile_tetmesh_free(&m);

@@ -7,7 +7,7 @@
 # 1.2 cm cells), a 3 cm sponge, 8 iterations and at most 4 Newton steps per
 # flow solve keep the test short; the flow solver's accuracy is tested in
 # tests/fem/test_ns.c.  Also checks the flow's outputs: EXR channels ux, uy,
-# uz, umag, p, the VTU's u and p, the manifest's Newton records, and
+# uz, umag, p, the VTU's u and p, the records' Newton steps, and
 # tools/compare_flow.py (a run against itself: 0; two domains: not 0).
 set -u
 S="$1"
@@ -37,12 +37,12 @@ for d in ("immersed", "conforming"):
     ok = ok and s < s0 - 0.15
 sys.exit(0 if ok else 1)
 PYEOF
-check "manifest: every iteration solved the flow, on the requested domain, with Newton records" \
+check "records: every iteration solved the flow, on the requested domain, with Newton records" \
   /usr/bin/python3 - "$T" <<'PYEOF'
 import json, sys
 T = sys.argv[1]; ok = True
 for d in ("immersed", "conforming"):
-    its = json.load(open(f"{T}/{d}/manifest.json"))["iterations"]
+    its = [json.loads(l) for l in open(f"{T}/{d}/records.jsonl")]
     doms = [i["fluid"]["domain"] for i in its]
     ok = ok and len(its) == 8 and all(i["fluid"]["newton_steps"] >= 1 and len(i["fluid"]["steps"]) == i["fluid"]["newton_steps"] for i in its)
     ok = ok and (all(x == d for x in doms) if d == "immersed" else doms.count("conforming") >= 6)

@@ -55,8 +55,9 @@ typedef struct sessile_fluid_params {
   double newton_rtol;  /* on ||R|| / ||R(u0)||, default 1e-3 */
   int newton_max;      /* default 100 (Table 1 "max nvs iterations") */
   double max_seconds;  /* wall-clock bound of one solve (0: none, the default); past it, after
-                          5 Newton steps running without a residual decrease, and when 25
-                          steps leave the residual above 0.1 of the rest state's, the solve
+                          5 Newton steps running without a residual decrease, and when 20
+                          steps leave the residual above 10 newton_rtol of the rest state's
+                          (Newton converges in ~6 from rest when it converges), the solve
                           fails with SESSILE_ERR_NUMERIC and a message */
   int picard_steps;    /* Picard (Oseen) steps before Newton, default 0 */
   double newton_atol;  /* stop also when ||R|| <= atol (default 0) */
