@@ -106,3 +106,16 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {
   return sessile_params_set_kv(&sessile_grow_param_table, p, kv);
 }
+
+static int cmd_argc;
+static char **cmd_argv;
+
+void cli_set_command_line(int argc, char **argv) {
+  cmd_argc = argc;
+  cmd_argv = argv;
+}
+
+void cli_command_line(int *argc, char ***argv) {
+  *argc = cmd_argc;
+  *argv = cmd_argv;
+}

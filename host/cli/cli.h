@@ -45,6 +45,10 @@ volatile sig_atomic_t *cli_stop_flag_install(void);
 /* 130 for SIGINT, 143 for SIGTERM. */
 int cli_signal_exit_code(int signo);
 
+/* The whole command line (global options included), for the manifest. */
+void cli_set_command_line(int argc, char **argv);
+void cli_command_line(int *argc, char ***argv);
+
 /* One subcommand: name, one-line summary for `sessile --help`, entry. */
 typedef struct cli_command {
   const char *name, *summary;

@@ -68,6 +68,8 @@ sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, 
 
 sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run) {
+  /* the manifest records the whole command line, global options included */
+  cli_command_line(&argc, &argv);
   sessile_run_options ro = {.dir = dir, .generator = generator, .version = SESSILE_VERSION,
                             .argc = argc, .argv = argv,
                             .mode = a->resume ? SESSILE_RUN_RESUME

@@ -87,5 +87,6 @@ static int run(int argc, char **argv) {
 int main(int argc, char **argv) {
   /* Every command's output goes through stdout: a write error there (a full
    * disk, `> /dev/full`) is a failure, not a silent success. */
+  cli_set_command_line(argc, argv);
   return cli_finish_stdout(run(argc, argv));
 }
