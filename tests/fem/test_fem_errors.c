@@ -111,7 +111,6 @@ static void test_fluid(void) {
   fluid_run q = {.fl = fl};
   sessile_fluid_params_default(&q.p);
   q.p.newton_max = 2;
-  q.p.verbose = 1; /* ignored: the library never prints */
   q.up = t_dalloc(4 * (size_t)n);
   long bytes = stderr_bytes_during(run_fluid, &q);
   t_ok("fluid solve without a monitor", q.st);

@@ -78,8 +78,6 @@ typedef struct sessile_fluid_params {
   int check_linear;    /* after each linear solve, recompute |J du + r|/|r| on
                           the host in double and report it through monitor
                           (diagnostics; default 0) */
-  int verbose;         /* ignored (the library prints nothing): set monitor;
-                          kept so that older callers still compile */
   /* Optional: Dirichlet values other than the defaults above, and a force. */
   sessile_fluid_velocity_fn velocity_fn;
   sessile_fluid_pressure_fn pressure_fn;
