@@ -10,7 +10,8 @@ void sessile_growth_gpu_destroy(sessile_growth_gpu *g) {
   sessile_cmd_destroy(g->cmd);
   sessile_buffer *bufs[] = {g->params, g->status, g->pos, g->tri, g->vf_off, g->vf, g->nbr_off,
                             g->nbr, g->nrm, g->probed, g->ctr[0], g->ctr[1], g->new_pos,
-                            g->len, g->dir, g->col_off, g->col_tri};
+                            g->len, g->dir, g->col_off[0], g->col_off[1], g->col_off[2],
+                            g->col_tri[0], g->col_tri[1], g->col_tri[2], g->theta_dummy};
   for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) sessile_buffer_destroy(bufs[i]);
   free(g);
 }

@@ -22,9 +22,10 @@ struct sessile_growth_gpu {
   uint32_t nv, nf;
   sessile_buffer *pos, *tri, *vf_off, *vf, *nbr_off, *nbr;
   sessile_buffer *nrm, *probed, *ctr[2], *new_pos, *len, *dir;
-  /* classify bins (grown as needed) */
-  sessile_buffer *col_off, *col_tri;
-  size_t col_off_bytes, col_tri_bytes;
+  /* classify bins per line axis (grown as needed), and the placeholder
+   * bound as the fraction buffer when only the mask is wanted */
+  sessile_buffer *col_off[3], *col_tri[3], *theta_dummy;
+  size_t col_off_bytes[3], col_tri_bytes[3], theta_dummy_bytes;
   double classify_seconds;
 };
 

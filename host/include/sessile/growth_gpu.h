@@ -54,6 +54,13 @@ sessile_status sessile_growth_gpu_set_surface(sessile_growth_gpu *g, const sessi
 sessile_status sessile_growth_gpu_classify(sessile_growth_gpu *g, const sessile_box *box,
                                            sessile_buffer *solid);
 
+/* The same mask, and the cut fractions of the surface on the box's grid
+ * lines along x, y and z (theta: 6 reals per node, laid out as in
+ * sessile_growth_ref_cut, whose values it reproduces exactly).  The
+ * nutrient's cut-cell boundary (docs/nutrient.md) reads both. */
+sessile_status sessile_growth_gpu_cut(sessile_growth_gpu *g, const sessile_box *box,
+                                      sessile_buffer *solid, sessile_buffer *theta);
+
 /* Area-weighted vertex normals of the uploaded surface (3 nv doubles out). */
 sessile_status sessile_growth_gpu_normals(sessile_growth_gpu *g, double *normals);
 

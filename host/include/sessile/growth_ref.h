@@ -39,6 +39,19 @@ sessile_status sessile_growth_params_check(const sessile_growth_params *p);
 sessile_status sessile_growth_bin_columns(const sessile_box *box, const sessile_surface *s,
                                           uint32_t **off, uint32_t **tri_of);
 
+/* The same for the lines along `axis` (0 x, 1 y, 2 z): lines are indexed by
+ * the two other axes in cyclic order (u, v) = (axis+1, axis+2) mod 3, line
+ * c = iu + n_u iv; triangles parallel to the lines are left out.
+ * sessile_growth_bin_columns is axis 2. */
+sessile_status sessile_growth_bin_lines(const sessile_box *box, const sessile_surface *s, int axis,
+                                        uint32_t **off, uint32_t **tri_of);
+/* The crossing coordinates along `axis` of the line through (u, v) = (x, y)
+ * (axes as in sessile_growth_bin_lines), in list order; -1 past
+ * SESSILE_GROWTH_MAX_CROSSINGS. */
+int sessile_growth_line_crossings(const double *pos, const uint32_t *tri, const uint32_t *list,
+                                  uint32_t count, int axis, double x, double y,
+                                  double z[SESSILE_GROWTH_MAX_CROSSINGS]);
+
 /* The crossing heights of the vertical line through (x, y) with the listed
  * triangles, by the watertight edge-function rule (docs/growth.md), in list
  * order.  Returns the count, or -1 when there are more than
@@ -53,6 +66,14 @@ int sessile_growth_column_crossings(const double *pos, const uint32_t *tri, cons
  * crossings. */
 sessile_status sessile_growth_ref_classify(const sessile_box *box, const sessile_surface *s,
                                            uint32_t *solid);
+/* The cut cells of the surface on the box (docs/nutrient.md): solid as
+ * above, and, when theta is not NULL, theta[6 n + 2 a + s] (a the axis, s = 0
+ * towards the node at -h, 1 towards +h) = the distance in units of h from
+ * node n to the nearest surface crossing before that neighbour, or 1 when
+ * the surface does not cross that edge.  A node whose neighbour differs in
+ * solidity has a crossing on their edge by the parity rule. */
+sessile_status sessile_growth_ref_cut(const sessile_box *box, const sessile_surface *s,
+                                      uint32_t *solid, double *theta);
 
 /* --- per-vertex kernels ---------------------------------------------------- */
 /* Eq 6: probed[v] = (1/S) sum_k w(d_k) c(x_v + d_k offset N_v), d_k = k/(S-1),
