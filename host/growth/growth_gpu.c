@@ -46,7 +46,11 @@ void growth_set_params(sessile_growth_gpu *g, const sessile_box *box, const sess
   sessile_box_max(box, mx);
   for (int a = 0; a < 3; a++) v[P_OX + a] = box->origin[a], v[P_MX + a] = mx[a];
   v[P_H] = box->h;
+  if (p && p->ceiling > 0 && p->ceiling < v[P_MZ]) v[P_MZ] = p->ceiling;
   if (p) {
+    v[P_DELTA] = p->probe_distance;
+    v[P_FLUXREF] = p->flux_ref;
+    v[P_CMAX] = sessile_growth_translocate_cmax(p);
     v[P_OFFSET] = p->probe_offset;
     v[P_TGIVE] = p->t_give;
     v[P_NTHR] = p->nutrient_threshold;

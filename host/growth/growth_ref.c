@@ -10,6 +10,14 @@
 void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *g) {
   memset(g, 0, sizeof *g);
   g->probe_offset = p->concentration_offset_distance;
+  g->probe_flux = p->probe == SESSILE_PROBE_FLUX;
+  g->probe_distance = p->probe_distance;
+  /* The bare substratum's flux: c = 1 at H over c = 0 on the floor, dc/dz =
+   * 1/H (far_field = walls: H the box top; the side walls then feed the
+   * box's middle a little more than that, docs/model.md). */
+  double top = p->box_base_cell * p->box_cells_z;
+  g->flux_ref = 1.0 / (p->far_field == SESSILE_FAR_HEIGHT ? p->far_field_height : top);
+  if (p->far_field == SESSILE_FAR_HEIGHT) g->ceiling = p->far_field_height;
   g->probe_samples = (uint32_t)p->probe_samples;
   g->t_give = p->t_give;
   g->translocate_passes = p->translocate_passes;
@@ -47,9 +55,17 @@ sessile_status sessile_growth_params_check(const sessile_growth_params *p) {
   SESSILE_CHECK(p->normal_offset_radius >= 0 && isfinite(p->normal_offset_radius),
                 SESSILE_ERR_USAGE, "normal offset radius must be >= 0 (got %g)",
                 p->normal_offset_radius);
+  SESSILE_CHECK(!p->probe_flux || (p->probe_distance > 0 && isfinite(p->probe_distance) &&
+                                    p->flux_ref > 0 && isfinite(p->flux_ref)),
+                SESSILE_ERR_USAGE, "the flux probe needs a positive probe distance and reference "
+                "flux (got %g cm, %g per cm)", p->probe_distance, p->flux_ref);
   SESSILE_CHECK(isfinite(p->growth_rate) && isfinite(p->l_max), SESSILE_ERR_USAGE,
                 "growth rate and Lmax must be finite");
   return SESSILE_OK;
+}
+
+double sessile_growth_translocate_cmax(const sessile_growth_params *p) {
+  return p->probe_flux ? 1e30 : 1.0;
 }
 
 /* --- probe (eq 6) ------------------------------------------------------------ */
@@ -70,25 +86,67 @@ void sessile_growth_ref_probe(const sessile_box *box, const double *pos, const d
   }
 }
 
-/* --- translocation (eqs 7-8) ------------------------------------------------- */
-static double clamp01(double x) { return x < 0 ? 0 : (x > 1 ? 1 : x); }
-
-void sessile_growth_ref_translocate(const uint32_t *off, const uint32_t *nbr, uint32_t nv,
-                                    double t, const double *c, double *out) {
+void sessile_growth_ref_probe_flux(const sessile_box *box, const double *pos, const double *normals,
+                                   uint32_t nv, const double *field, double delta, double flux_ref,
+                                   double *probed) {
   for (uint32_t v = 0; v < nv; v++) {
-    double s = 0;
-    for (uint32_t q = off[v]; q < off[v + 1]; q++) s += c[nbr[q]];
-    double nn = (double)(off[v + 1] - off[v]);
-    out[v] = clamp01(c[v] - nn * t * c[v] + t * s);
+    double c[2];
+    for (int k = 0; k < 2; k++) {
+      double s = (k + 1) * delta, p[3];
+      for (int a = 0; a < 3; a++) p[a] = pos[3 * v + a] + s * normals[3 * v + a];
+      c[k] = sessile_box_interpolate(box, field, p);
+    }
+    double flux = (4 * c[0] - c[1]) / (2 * delta);
+    flux /= flux_ref;
+    probed[v] = flux > 0 ? flux : 0;
   }
 }
 
-void sessile_growth_ref_translocate_sequential(const uint32_t *off, const uint32_t *nbr,
-                                               uint32_t nv, double t, double *c) {
+/* --- translocation (eqs 7-8) ------------------------------------------------- */
+static double clampc(double x, double cmax) { return x < 0 ? 0 : (x > cmax ? cmax : x); }
+
+void sessile_growth_ref_translocate_pass(const uint32_t *off, const uint32_t *nbr, uint32_t nv,
+                                         double t, double cmax, const double *c, double *out) {
   for (uint32_t v = 0; v < nv; v++) {
-    double give = t * c[v];
-    for (uint32_t q = off[v]; q < off[v + 1]; q++) c[nbr[q]] = clamp01(c[nbr[q]] + give);
-    c[v] = clamp01(c[v] - (double)(off[v + 1] - off[v]) * give);
+    double s = 0;
+    for (uint32_t q = off[v]; q < off[v + 1]; q++) s += c[nbr[q]];
+    double lose = (double)(off[v + 1] - off[v]) * t;
+    double r = c[v] - lose * c[v];
+    out[v] = clampc(r + t * s, cmax);
+  }
+}
+
+sessile_status sessile_growth_ref_translocate_sweep(const uint32_t *off, const uint32_t *nbr,
+                                                    uint32_t nv, double t, double cmax,
+                                                    const double *c, double *out) {
+  double *a = malloc((size_t)nv * sizeof *a + 1), *b = malloc((size_t)nv * sizeof *b + 1);
+  if (!a || !b) {
+    free(a), free(b);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", nv);
+  }
+  memcpy(a, c, (size_t)nv * sizeof *a);
+  for (int p = 0; p < SESSILE_TRANSLOCATE_SWEEP; p++) {
+    sessile_growth_ref_translocate_pass(off, nbr, nv, t, cmax, a, b);
+    double *x = a;
+    a = b, b = x;
+  }
+  memcpy(out, a, (size_t)nv * sizeof *a);
+  free(a), free(b);
+  return SESSILE_OK;
+}
+
+static void give(const uint32_t *off, const uint32_t *nbr, double t, double cmax, uint32_t y,
+                 double *c) {
+  double g = t * c[y];
+  for (uint32_t q = off[y]; q < off[y + 1]; q++) c[nbr[q]] = clampc(c[nbr[q]] + g, cmax);
+  c[y] = clampc(c[y] - (double)(off[y + 1] - off[y]) * g, cmax);
+}
+
+void sessile_growth_ref_translocate_sequential(const uint32_t *off, const uint32_t *nbr,
+                                               uint32_t nv, double t, double cmax, double *c) {
+  for (uint32_t v = 0; v < nv; v++) {
+    give(off, nbr, t, cmax, v, c);
+    for (uint32_t q = off[v]; q < off[v + 1]; q++) give(off, nbr, t, cmax, nbr[q], c);
   }
 }
 
@@ -128,6 +186,7 @@ void sessile_growth_ref_grow(const sessile_box *box, const double *pos, const do
                              double *dir_out) {
   double mx[3];
   sessile_box_max(box, mx);
+  if (p->ceiling > 0 && p->ceiling < mx[2]) mx[2] = p->ceiling;
   const double R = p->normal_offset_radius;
   for (uint32_t v = 0; v < nv; v++) {
     double dir[3] = {normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]};
@@ -167,12 +226,18 @@ sessile_status sessile_growth_ref_step(const sessile_box *box, const sessile_sur
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", nv);
   }
   sessile_surface_normals(s, nrm);
-  sessile_growth_ref_probe(box, s->pos, nrm, nv, field, p->probe_offset, p->probe_samples, a);
+  if (p->probe_flux)
+    sessile_growth_ref_probe_flux(box, s->pos, nrm, nv, field, p->probe_distance, p->flux_ref, a);
+  else
+    sessile_growth_ref_probe(box, s->pos, nrm, nv, field, p->probe_offset, p->probe_samples, a);
   if (probed) memcpy(probed, a, (size_t)nv * sizeof *a);
-  for (int pass = 0; pass < p->translocate_passes; pass++) {
-    sessile_growth_ref_translocate(off, nbr, nv, p->t_give, a, b);
-    double *t = a;
-    a = b, b = t;
+  double cmax = sessile_growth_translocate_cmax(p);
+  for (int sweep = 0; sweep < p->translocate_passes; sweep++) {
+    for (int q = 0; q < SESSILE_TRANSLOCATE_SWEEP; q++) {
+      sessile_growth_ref_translocate_pass(off, nbr, nv, p->t_give, cmax, a, b);
+      double *t = a;
+      a = b, b = t;
+    }
   }
   if (translocated) memcpy(translocated, a, (size_t)nv * sizeof *a);
   sessile_growth_ref_grow(box, s->pos, nrm, nv, a, p, seed, iteration, new_pos, length, NULL);

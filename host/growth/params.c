@@ -9,12 +9,18 @@
 
 static const char *const skeleton_names[] = {"radiate", "halichondrid", NULL};
 static const char *const domain_names[] = {"immersed", "conforming", NULL};
+static const char *const probe_names[] = {"flux", "paper", NULL};
+static const char *const far_names[] = {"height", "walls", NULL};
+static const char *const solver_names[] = {"mg", "jacobi", NULL};
 
 #define PT_REAL SESSILE_PT_REAL, NULL
 #define PT_INT SESSILE_PT_INT, NULL
 #define PT_BOOL SESSILE_PT_BOOL, NULL
 #define PT_ENUM_SKELETON SESSILE_PT_ENUM, skeleton_names
 #define PT_ENUM_DOMAIN SESSILE_PT_ENUM, domain_names
+#define PT_ENUM_PROBE SESSILE_PT_ENUM, probe_names
+#define PT_ENUM_FAR SESSILE_PT_ENUM, far_names
+#define PT_ENUM_SOLVER SESSILE_PT_ENUM, solver_names
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \

@@ -36,6 +36,7 @@ sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box 
   p.seed_lo = (uint32_t)seed;
   p.seed_hi = (uint32_t)(seed >> 32);
   p.iteration = iteration;
+  p.probe_flux = prm->probe_flux ? 1u : 0u;
   uint32_t groups = growth_groups(g->nv);
 
   SESSILE_CALL(sessile_cmd_begin(g->cmd));
@@ -43,12 +44,16 @@ sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box 
   sessile_buffer *bp[5] = {g->params, g->pos, g->nrm, sessile_vec_buffer(c), g->probed};
   SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_PROBE], groups, bp, &p));
   sessile_buffer *cur = g->probed;
-  for (int pass = 0; pass < prm->translocate_passes; pass++) {
-    sessile_buffer *dst = g->ctr[pass & 1];
-    sessile_buffer *bt[5] = {g->params, g->nbr_off, g->nbr, cur, dst};
-    SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_TRANSLOCATE], groups, bt, &p));
-    cur = dst;
-  }
+  /* translocate_passes sweeps, each SESSILE_TRANSLOCATE_SWEEP simultaneous
+   * passes (translocate.comp). */
+  uint32_t k = 0;
+  for (int sweep = 0; sweep < prm->translocate_passes; sweep++)
+    for (int pass = 0; pass < SESSILE_TRANSLOCATE_SWEEP; pass++, k++) {
+      sessile_buffer *dst = g->ctr[k & 1];
+      sessile_buffer *bt[5] = {g->params, g->nbr_off, g->nbr, cur, dst};
+      SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_TRANSLOCATE], groups, bt, &p));
+      cur = dst;
+    }
   sessile_buffer *bg[7] = {g->params, g->pos, g->nrm, cur, g->new_pos, g->len, g->dir};
   SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_GROW], groups, bg, &p));
   SESSILE_CALL(sessile_cmd_end(g->cmd));

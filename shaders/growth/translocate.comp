@@ -1,8 +1,16 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// One order-independent translocation pass (eqs 7-8 applied at once):
-// out = clamp(c - N T c + T sum_{nbr} c', 0, 1).  The paper's sequential form
-// is in the host reference; docs/growth.md measures how the two differ.
+// One pass of translocation (eqs 7-8), order-independent: every vertex gives
+// T c to each of its N neighbours and loses N T c at once:
+//   out = clamp(c - N T c + T sum_{nbr} c', 0, cmax).
+// The paper gives at each vertex and then at each of its neighbours, so a
+// vertex gives 1 + N times per sweep: the host runs a sweep as
+// SESSILE_TRANSLOCATE_SWEEP = 7 passes (1 + 6, a regular vertex).  Conserves
+// sum c and keeps a uniform field uniform, whatever the vertex order (the
+// paper's literal sweep does neither exactly); cmax is 1 for the paper's
+// concentrations, unbounded for the flux probe.  References:
+// sessile_growth_ref_translocate_pass, ..._sequential (the paper's literal
+// sweep); docs/growth.md compares them.
 #include "growth_common.glsl"
 
 void main() {
@@ -16,5 +24,5 @@ void main() {
   precise REAL r = c - lose * c;
   precise REAL give = t * s;
   r = r + give;
-  cout_[v] = clamp(r, REAL(0), REAL(1));
+  cout_[v] = clamp(r, REAL(0), gp[P_CMAX]);
 }

@@ -78,6 +78,7 @@ static void test_probe_and_step(const sessile_surface *s) {
   double *f = t_dalloc(nodes), *nrm = t_dalloc(3 * nv);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.translocate_passes = 0;
   double *pos = t_dalloc(3 * nv), *probed = t_dalloc(nv), *ref = t_dalloc(nv);
   t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
@@ -102,6 +103,21 @@ static void test_probe_and_step(const sessile_surface *s) {
     ref[i] = sum / p.probe_samples;
   }
   t_check("probe on a linear field vs closed form (rel)", t_relerr(probed, ref, nv), tol(1e-12, 1e-5));
+  /* The flux probe is exact on linear fields: (4 c(d) - c(2d)) / (2d) with
+   * c(s) = a + s b.N is (3a + 2 d b.N) / (2d), over flux_ref, floored at 0. */
+  p.probe_flux = 1;
+  p.probe_distance = 0.3;
+  p.flux_ref = 0.04;
+  t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, probed, NULL, NULL));
+  for (uint32_t i = 0; i < nv; i++) {
+    double a = a0, bn = 0;
+    for (int q = 0; q < 3; q++) a += bb[q] * s->pos[3 * i + q], bn += bb[q] * nrm[3 * i + q];
+    ref[i] = fmax((3 * a + 2 * p.probe_distance * bn) / (2 * p.probe_distance) / p.flux_ref, 0);
+  }
+  t_check("flux probe on a linear field vs closed form (rel)", t_relerr(probed, ref, nv), tol(1e-12, 1e-5));
+  sessile_growth_ref_probe_flux(&box, s->pos, nrm, nv, f, p.probe_distance, p.flux_ref, ref);
+  t_check("flux probe GPU vs reference (rel)", t_relerr(probed, ref, nv), tol(1e-13, 1e-5));
+  p.probe_flux = 0;
   sessile_vec_destroy(v);
 
   /* Smooth field: GPU vs reference for every output of the chained step,
@@ -120,6 +136,23 @@ static void test_probe_and_step(const sessile_surface *s) {
   t_check("step: translocated GPU vs reference (rel)", t_relerr(tr, rtr, nv), tol(1e-12, 1e-5));
   t_check("step: growth length GPU vs reference (rel)", t_relerr(len, rlen, nv), tol(1e-13, 1e-5));
   t_check("step: new positions GPU vs reference (abs, cm)", maxabs(pos, rpos, 3 * nv), tol(1e-13, 1e-5));
+  {
+    /* the same chain with the flux probe (no upper clamp in translocation) */
+    sessile_growth_params q = p;
+    q.probe_flux = 1;
+    q.probe_distance = 0.25;
+    q.flux_ref = 0.05;
+    q.ceiling = 5.0;
+    double *fp = t_dalloc(3 * nv), *rfp = t_dalloc(3 * nv), *ft = t_dalloc(nv), *rft = t_dalloc(nv);
+    t_must("step", sessile_growth_gpu_step(gg, &box, v, &q, 42, 7, fp, NULL, ft, NULL));
+    t_must("ref step", sessile_growth_ref_step(&box, s, f, &q, 42, 7, rfp, NULL, rft, NULL));
+    t_check("flux step: translocated GPU vs reference (rel)", t_relerr(ft, rft, nv), tol(1e-12, 1e-5));
+    t_check("flux step: new positions GPU vs reference (abs, cm)", maxabs(fp, rfp, 3 * nv), tol(1e-13, 1e-5));
+    double top = 0;
+    for (uint32_t i = 0; i < nv; i++) top = fmax(top, fp[3 * i + 2]);
+    t_check("flux step: no vertex above the ceiling (cm)", fmax(top - q.ceiling, 0), 0);
+    free(fp), free(rfp), free(ft), free(rft);
+  }
   /* Directions: the random vectors themselves. */
   t_must("directions", sessile_growth_gpu_directions(gg, dir));
   sessile_growth_ref_grow(&box, s->pos, nrm, nv, rtr, &p, 42, 7, rpos, rlen, rdir);
@@ -204,6 +237,7 @@ static void test_random(void) {
 static void test_chindapol(void) {
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.max_growth = 1e9; /* no clamp here: the formula alone (clampMG has its own check) */
   const double cs[] = {0.0, 0.1, 0.5, 1.0, 2.0};
   double e = 0;
@@ -228,11 +262,23 @@ static void test_translocate(const sessile_surface *s) {
   for (uint32_t i = 0; i < nv; i++) c[i] = 0.1 + 0.2 * sessile_growth_uniform(5, 0, i, 0);
   double s0 = 0, s1 = 0;
   for (uint32_t i = 0; i < nv; i++) s0 += c[i];
-  sessile_growth_ref_translocate(off, nbr, nv, 0.02, c, a);
+  t_must("sweep", sessile_growth_ref_translocate_sweep(off, nbr, nv, 0.02, 1.0, c, a));
   for (uint32_t i = 0; i < nv; i++) s1 += a[i];
-  t_check("parallel translocation conserves the sum (rel, no clamp)", fabs(s1 - s0) / s0, 1e-13);
+  t_check("order-independent sweep conserves the sum (rel, no clamp)", fabs(s1 - s0) / s0, 1e-13);
+  /* A sweep is 7 passes: a lone spike at a degree-N vertex loses 7 N T to
+   * first order (T = 1e-6, second-order terms ~1e-12). */
+  {
+    double *spike = t_dalloc(nv), *out = t_dalloc(nv), T = 1e-6;
+    uint32_t x = 17, N = off[x + 1] - off[x];
+    spike[x] = 1;
+    t_must("sweep", sessile_growth_ref_translocate_sweep(off, nbr, nv, T, 1.0, spike, out));
+    double lose = SESSILE_TRANSLOCATE_SWEEP * N * T;
+    t_check("sweep: a vertex of degree N loses 7 N T to first order (rel)",
+            fabs((1 - out[x]) - lose) / lose, 1e-4);
+    free(spike), free(out);
+  }
   memcpy(seq, c, nv * sizeof *c);
-  sessile_growth_ref_translocate_sequential(off, nbr, nv, 0.02, seq);
+  sessile_growth_ref_translocate_sequential(off, nbr, nv, 0.02, 1.0, seq);
   s1 = 0;
   for (uint32_t i = 0; i < nv; i++) s1 += seq[i];
   t_check("sequential translocation conserves the sum (rel, no clamp)", fabs(s1 - s0) / s0, 1e-13);
@@ -244,16 +290,18 @@ static void test_translocate(const sessile_surface *s) {
   sessile_vec *v = field_vec(f);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.translocate_passes = 5;
   p.t_give = 0.05;
   t_must("set_surface", sessile_growth_gpu_set_surface(gg, s));
   t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, pr, tr, NULL));
   memcpy(a, pr, nv * sizeof *a);
+  double cmax = sessile_growth_translocate_cmax(&p);
   for (int q = 0; q < 5; q++) {
-    sessile_growth_ref_translocate(off, nbr, nv, p.t_give, a, b);
+    t_must("sweep", sessile_growth_ref_translocate_sweep(off, nbr, nv, p.t_give, cmax, a, b));
     memcpy(a, b, nv * sizeof *a);
   }
-  t_check("translocation (5 passes) GPU vs parallel reference (rel)", t_relerr(tr, a, nv), tol(1e-12, 1e-5));
+  t_check("translocation (5 sweeps) GPU vs order-independent reference (rel)", t_relerr(tr, a, nv), tol(1e-12, 1e-5));
   double gs = 0, ps = 0;
   for (uint32_t i = 0; i < nv; i++) gs += tr[i], ps += pr[i];
   t_check("GPU translocation conserves the probed sum (rel, no clamp on this field)", fabs(gs - ps) / ps,
@@ -262,9 +310,9 @@ static void test_translocate(const sessile_surface *s) {
   for (int passes = 1; passes <= 5; passes += 4) {
     memcpy(a, pr, nv * sizeof *a), memcpy(seq, pr, nv * sizeof *a);
     for (int q = 0; q < passes; q++) {
-      sessile_growth_ref_translocate(off, nbr, nv, p.t_give, a, b);
+      t_must("sweep", sessile_growth_ref_translocate_sweep(off, nbr, nv, p.t_give, cmax, a, b));
       memcpy(a, b, nv * sizeof *a);
-      sessile_growth_ref_translocate_sequential(off, nbr, nv, p.t_give, seq);
+      sessile_growth_ref_translocate_sequential(off, nbr, nv, p.t_give, cmax, seq);
     }
     double mxd = 0, mean = 0, range_lo = 1, range_hi = 0, chg = 0;
     for (uint32_t i = 0; i < nv; i++) {
@@ -294,6 +342,7 @@ static void test_radiate_sphere(void) {
   sessile_vec *v = field_vec(f);
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.translocate_passes = 2;
   t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
   t_must("step", sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, len));
@@ -388,6 +437,7 @@ static void timing(void) {
   t_must("upload", sessile_vec_upload(v, f));
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.halichondrid = 1;
   t_must("set_surface", sessile_growth_gpu_set_surface(gg, &s));
   double best = 1e30;
@@ -412,15 +462,18 @@ static void timing(void) {
 static void test_errors(void) {
   sessile_growth_params p;
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.t_give = 1.5;
   t_true("t_give 1.5 is a usage error", sessile_growth_params_check(&p) == SESSILE_ERR_USAGE);
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   p.probe_samples = 1;
   t_true("1 probe sample is a usage error", sessile_growth_params_check(&p) == SESSILE_ERR_USAGE);
   sessile_vec *v = NULL;
   t_must("vec", sessile_vec_create(la, 10, &v));
   double pos[3 * 642];
   sessile_growth_params_default(&p);
+  p.probe_flux = 0; /* eq 6 unless a test says otherwise */
   t_true("field of the wrong size is a usage error",
          sessile_growth_gpu_step(gg, &box, v, &p, 1, 0, pos, NULL, NULL, NULL) == SESSILE_ERR_USAGE);
   sessile_vec_destroy(v);

@@ -26,6 +26,9 @@ typedef struct sessile_growth_gpu sessile_growth_gpu;
 
 /* The growth parameters the kernels need (docs/model.md has every source). */
 typedef struct sessile_growth_params {
+  int probe_flux;          /* 1: the absorbed flux (default), 0: the paper's eq 6 */
+  double probe_distance;   /* flux probe: samples at d and 2d along the normal, cm */
+  double flux_ref;         /* flux probe: the bare substratum's flux (1/cm), C = flux / this */
   double probe_offset;     /* concentration offset distance, cm (Table 1: 0.1) */
   uint32_t probe_samples;  /* samples along the normal, >= 2 (ours) */
   double t_give;           /* translocation coefficient, [0,1] (ours) */
@@ -39,6 +42,7 @@ typedef struct sessile_growth_params {
   double max_growth;       /* maxgrowth, cm (ours) */
   int halichondrid;        /* 0: radiate accretive (N), 1: Halichondrid (normalize(N + r)) */
   double normal_offset_radius; /* R: r uniform in [-R, R]^3 (Table 1: 0.02) */
+  double ceiling;          /* grown vertices stay at or below this z (cm; the far-field plane), 0: the box top */
 } sessile_growth_params;
 
 sessile_status sessile_growth_gpu_create(sessile_la *la, sessile_growth_gpu **out);

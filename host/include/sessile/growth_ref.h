@@ -82,15 +82,35 @@ void sessile_growth_ref_probe(const sessile_box *box, const double *pos, const d
                               uint32_t nv, const double *field, double offset, uint32_t samples,
                               double *probed);
 
-/* One order-independent translocation pass (eqs 7-8 summed at once):
- * out[x] = clamp(c[x] - N_x T c[x] + T sum_{x' in nbr(x)} c[x'], 0, 1). */
-void sessile_growth_ref_translocate(const uint32_t *nbr_off, const uint32_t *nbr, uint32_t nv,
-                                    double t_give, const double *c, double *out);
-/* The paper's sequential form, in place: for x = 0..nv-1 in order, each
- * neighbour gets clamp(c[x'] + T c[x]), then c[x] = clamp(c[x] - N_x T c[x]),
- * with the value of c[x] read when x's turn starts. */
+/* The flux probe: max(0, (4 c(x + d N) - c(x + 2 d N)) / (2 d) / flux_ref),
+ * c the P1 interpolant of field (the extended cut-cell solution). */
+void sessile_growth_ref_probe_flux(const sessile_box *box, const double *pos, const double *normals,
+                                   uint32_t nv, const double *field, double delta, double flux_ref,
+                                   double *probed);
+
+/* Translocation (eqs 7-8).  The paper gives at each vertex and then at each
+ * of its neighbours, so in one sweep a vertex of degree N gives 1 + N times.
+ * The order-independent sweep is SESSILE_TRANSLOCATE_SWEEP simultaneous
+ * passes (1 + 6, a regular vertex: every vertex gives in every pass, so
+ * uniform fields stay uniform and the sum is conserved):
+ *   out[x] = clamp(c[x] - N_x T c[x] + T sum_{x' in nbr(x)} c[x'], 0, cmax).
+ * _pass does one pass; _sweep all of them (out may equal c). */
+#define SESSILE_TRANSLOCATE_SWEEP 7
+void sessile_growth_ref_translocate_pass(const uint32_t *nbr_off, const uint32_t *nbr, uint32_t nv,
+                                         double t_give, double cmax, const double *c, double *out);
+sessile_status sessile_growth_ref_translocate_sweep(const uint32_t *nbr_off, const uint32_t *nbr,
+                                                    uint32_t nv, double t_give, double cmax,
+                                                    const double *c, double *out);
+/* The paper's literal sweep, in place and order-dependent: for x = 0..nv-1,
+ * give(x), then give(x') for each neighbour x' of x, where give(y) adds
+ * T c[y] to each neighbour of y (clamped to [0, cmax]) and sets
+ * c[y] = clamp(c[y] - N_y T c[y]), c[y] read when the give starts. */
 void sessile_growth_ref_translocate_sequential(const uint32_t *nbr_off, const uint32_t *nbr,
-                                               uint32_t nv, double t_give, double *c);
+                                               uint32_t nv, double t_give, double cmax, double *c);
+
+/* Translocation's upper clamp: 1 for the paper's concentrations, none
+ * (1e30) for the flux probe's C, which is not bounded by 1. */
+double sessile_growth_translocate_cmax(const sessile_growth_params *p);
 
 /* Eq 10 (Chindapol): clamp(Gr Lmax C^n / (K + C^n), 0, maxgrowth); C <= 0 gives 0. */
 double sessile_growth_chindapol(const sessile_growth_params *p, double c);

@@ -24,10 +24,23 @@ extern "C" {
 #define SESSILE_PARAMS(X)                                                                          \
   X(diffusion_limited, BOOL, 1, 0, 1, 0, "", "Table 1",                                               \
     "velocity set to 0 in the nutrient equation (Laplace); false: the flow advects it")           \
+  X(probe, ENUM_PROBE, 0, 0, 1, 0, "", "ours (docs/model.md)",                                       \
+    "what a vertex takes up: flux (the nutrient's normal derivative at the surface over the bare " \
+    "substratum's, C of order 1) or paper (eq 6: attenuated samples of c along the normal)")      \
+  X(probe_distance, REAL, 0.6, 0, 100, LO_OPEN, "cm", "ours (docs/model.md)",                         \
+    "flux probe: samples at this distance and twice it along the normal (fixed in cm, not grid units)") \
   X(concentration_offset_distance, REAL, 0.1, 0, 100, 0, "cm", "Table 1",                             \
-    "how far along the vertex normal the nutrient is probed")                                      \
+    "probe = paper: how far along the vertex normal the nutrient is probed")                       \
   X(probe_samples, INT, 8, 2, 256, 0, "", "ours",                                                     \
-    "samples along the normal, at d = k/(S-1), k = 0..S-1 (eq 6)")                                \
+    "probe = paper: samples along the normal, at d = k/(S-1), k = 0..S-1 (eq 6)")                 \
+  X(far_field, ENUM_FAR, 0, 0, 1, 0, "", "ours (docs/model.md)",                                     \
+    "the nutrient's far field: height (c = 1 at far_field_height, zero flux through the side "    \
+    "walls: the box size is a convergence parameter) or walls (c = 1 on every wall but the "      \
+    "substratum, the paper's box)")                                                                \
+  X(far_field_height, REAL, 28.8, 0, 1e6, LO_OPEN, "cm", "ours (docs/model.md)",                      \
+    "far_field = height: c = 1 at and above this height over the substratum (<= the box top)")   \
+  X(nutrient_solver, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
+    "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
     "box mesh subdivisions: 1 = the base grid, each step halves the cell size")                    \
   X(box_base_cell, REAL, 1.2, 0.01, 1000, 0, "cm", "ours", "cube edge of the base grid (resolution 1)") \
@@ -44,12 +57,12 @@ extern "C" {
   X(position_jitter, REAL, 0, 0, 1e6, 0, "cm", "ours (§4.7)",                                         \
     "random x/y shift of the sponge, uniform in [-j, j] from the seed (crella: 4)")                \
   X(growth_rate, REAL, 5, 0, 1e6, 0, "", "Table 1", "Gr in the Chindapol growth function (eq 10)")    \
-  X(l_max, REAL, 10.0, 0, 1e6, 0, "cm", "ours", "Lmax, asymptotic maximum growth (eq 10)")            \
+  X(l_max, REAL, 0.1, 0, 1e6, 0, "cm", "ours", "Lmax, asymptotic maximum growth per iteration (eq 10)")            \
   X(max_growth, REAL, 0.3, 0, 1e6, 0, "cm", "ours", "maxgrowth: clampMG's upper bound (eq 10)")       \
   X(kinetic_order, REAL, 1.4, 0, 100, LO_OPEN, "", "Table 1", "Chindapol kinetic order n (eq 10)")         \
   X(growth_constant, REAL, 1, 0, 1e6, LO_OPEN, "", "Table 1", "Chindapol characteristic growth constant K") \
   X(growth_threshold, REAL, 0, 0, 1e6, 0, "cm", "Table 1", "growth length a vertex needs to grow")    \
-  X(nutrient_threshold, REAL, 0.003, 0, 1, 0, "", "ours", "Iroquois: grow only where translocated C exceeds it") \
+  X(nutrient_threshold, REAL, 0, 0, 1e6, 0, "", "ours", "Iroquois: grow only where translocated C exceeds it") \
   X(t_give, REAL, 0.05, 0, 1, 0, "", "ours", "translocation: share given to each neighbour (eqs 7-8)") \
   X(translocate_passes, INT, 1, 0, 100, 0, "", "ours", "translocation sweeps per iteration (0: off)") \
   X(skeletal_growth, ENUM_SKELETON, 0, 0, 1, 0, "", "Table 1",                                        \
@@ -86,6 +99,9 @@ extern "C" {
 
 typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 } sessile_skeleton;
 typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sessile_domain;
+typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
+typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
+typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
 
 typedef struct sessile_params {
 #define SESSILE_PARAM_FIELD_REAL(n) double n;
@@ -93,6 +109,9 @@ typedef struct sessile_params {
 #define SESSILE_PARAM_FIELD_BOOL(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SKELETON(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_DOMAIN(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_PROBE(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_FAR(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_SOLVER(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
