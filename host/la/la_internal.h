@@ -19,15 +19,18 @@ struct sessile_la {
   int spmv_texel;             /* CSR SpMV may read through texel buffers (default
                                  on; sessile_la_options.spmv_storage forces storage buffers) */
   uint64_t max_chunk_bytes;   /* sessile_la_options.max_matrix_chunk_bytes (0: none) */
+  uint64_t vec_serial;        /* the last vector's serial (sessile_vec.serial) */
 };
 
 struct sessile_vec {
   sessile_la *la;
   uint32_t n, n4;
   sessile_buffer *buf;
+  uint64_t serial;            /* unique within its la: a recording made for this vector
+                                 is recognised even if a later vector reuses its address */
 };
 
-typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1, MAT_STENCIL7 = 2 } mat_kind;
+typedef enum { MAT_CSR = 0, MAT_BCSR4 = 1, MAT_STENCIL7 = 2, MAT_STENCIL7_CUT = 3 } mat_kind;
 
 /* A row range of an assembled matrix with its own buffers: row pointers
  * rebased to the chunk, columns global (x is read whole), values of the
@@ -52,9 +55,11 @@ struct sessile_mat {
   uint32_t rows_per;       /* rows per invocation in the SpMV kernel */
   int texel;               /* CSR: read through texel buffers (sizes within the
                               device's maxTexelBufferElements and la->spmv_texel) */
-  uint32_t grid[3];        /* STENCIL7: nodes per axis */
-  double h;                /* STENCIL7: grid spacing */
-  sessile_buffer *mask;    /* STENCIL7: Dirichlet mask (uint32 per node), not owned */
+  uint32_t grid[3];        /* STENCIL7(_CUT): nodes per axis */
+  double h;                /* STENCIL7(_CUT): grid spacing */
+  sessile_buffer *mask;    /* STENCIL7(_CUT): Dirichlet mask (uint32 per node), not owned */
+  const sessile_vec *diag; /* STENCIL7_CUT: the cut-cell diagonal, not owned */
+  int cut_texel;           /* STENCIL7_CUT: read mask, diag and x through texel buffers */
   struct la_ilu *ilu;      /* ILU(0) factors, computed on first use (ilu.c) */
 };
 
@@ -86,6 +91,14 @@ sessile_status rec_stencil7(sessile_la *la, sessile_cmd *c, const sessile_mat *a
 sessile_status la_stencil7_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
 /* Host copy of the mask for host residuals (fp32 refinement); free() it. */
 sessile_status la_stencil7_host_mask(const sessile_mat *a, uint32_t **mask);
+/* The cut-cell operator (stencil_cut.c): y = A x (x·y partials in set 0 when count is
+ * not NULL), its Jacobi, and a host copy of its diagonal (free() it). */
+sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x,
+                                vref y, int guard, uint32_t *count);
+sessile_status la_stencil7_cut_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
+sessile_status la_stencil7_cut_host_diag(const sessile_mat *a, double **diag);
+/* Multiply-high divisor of grid extent n (kernels: node -> (i, j, k) without division). */
+static inline uint32_t la_div_magic(uint32_t n) { return 0xffffffffu / n; }
 /* Groups for an element-wise kernel over n reals, and for a reduction. */
 uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
 uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);

@@ -56,6 +56,7 @@ static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard) {
   if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, NULL);
+  if (a->kind == MAT_STENCIL7_CUT) return rec_stencil7_cut(la, c, a, x, y, guard, NULL);
   la_kernel_id id = a->kind != MAT_CSR ? K_SPMV_BCSR4 : use_texel(la, a, x) ? K_SPMV_CSR_TEX : K_SPMV_CSR;
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, id, &k));
@@ -75,6 +76,7 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count) {
   if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, count);
+  if (a->kind == MAT_STENCIL7_CUT) return rec_stencil7_cut(la, c, a, x, y, guard, count);
   /* Block or split matrices: SpMV, then a separate dot (the fused kernel's
    * partials cover one dispatch). */
   if (a->kind != MAT_CSR || a->nchunks > 1) {

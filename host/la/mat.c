@@ -316,6 +316,7 @@ sessile_status sessile_mat_jacobi(sessile_la *la, const sessile_mat *a, sessile_
   SESSILE_CHECK(dinv->n == a->nrows, SESSILE_ERR_USAGE, "Jacobi: vector has %u entries, matrix %u rows",
                 dinv->n, a->nrows);
   if (a->kind == MAT_STENCIL7) return la_stencil7_jacobi(la, a, dinv);
+  if (a->kind == MAT_STENCIL7_CUT) return la_stencil7_cut_jacobi(la, a, dinv);
   double *d = malloc((size_t)a->nrows * sizeof *d);
   SESSILE_CHECK(d, SESSILE_ERR_NO_MEMORY, "out of host memory");
   sessile_status s = a->kind == MAT_CSR ? sessile_ref_jacobi_csr(&a->host, d)

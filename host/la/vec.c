@@ -11,6 +11,7 @@ sessile_status sessile_vec_create(sessile_la *la, uint32_t n, sessile_vec **out)
   v->la = la;
   v->n = n;
   v->n4 = (n + 3) / 4;
+  v->serial = ++la->vec_serial;
   sessile_status s = sessile_buffer_create(la->gpu, (size_t)v->n4 * 4 * la->real_bytes,
                                            SESSILE_BUFFER_DEVICE, &v->buf);
   if (s != SESSILE_OK) {

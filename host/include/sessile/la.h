@@ -90,12 +90,29 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
  * docs/fem.md. */
 sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
                                            double h, sessile_buffer *mask, sessile_mat **out);
+/* The cut-cell 7-point operator on an nx*ny*nz vertex grid of spacing h
+ * (node i + nx (j + ny k)).  Node n is a Dirichlet node when mask[n] != 0:
+ * identity row and column.  For a free node
+ *   (A x)_n = h (diag[n] x_n - sum over existing face neighbours m that are free of f_nm x_m)
+ * where f_nm, the face fraction of the edge n-m along axis a, is the product over the two
+ * other axes b of (1/2 if n lies on the grid's boundary in b (index 0 or n_b-1), else 1).
+ * A missing neighbour (outside the grid) contributes nothing: the grid's walls are zero-flux
+ * unless the caller makes wall nodes Dirichlet in the mask.  diag[n] (dimensionless, > 0 on
+ * free nodes) is supplied by the caller: sum over existing neighbours of f_nm w_nm, w = 1 for
+ * a free or Dirichlet-node neighbour and 1/theta for an edge cut by a Dirichlet boundary at
+ * fraction theta from n (Gibou et al. 2002, symmetric Shortley-Weller).  mask and diag are read
+ * at every application (change their contents between solves freely); the caller owns both
+ * and keeps them alive while the matrix exists.  mask: nx*ny*nz uint32; diag: nx*ny*nz reals.
+ * Jacobi: 1/(h diag) on free nodes, 1 on Dirichlet nodes.  docs/la.md. */
+sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
+                                               double h, sessile_buffer *mask, const sessile_vec *diag,
+                                               sessile_mat **out);
 void sessile_mat_destroy(sessile_mat *m);
 uint32_t sessile_mat_rows(const sessile_mat *m);
 uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */
 /* Row chunks the matrix is stored in (1 unless its arrays exceed
  * maxStorageBufferRange, or the la's max_matrix_chunk_bytes when set; 0 for
- * the matrix-free 7-point operator). */
+ * the matrix-free 7-point operators). */
 uint32_t sessile_mat_chunks(const sessile_mat *m);
 /* y = A x on the device. */
 sessile_status sessile_mat_mult(sessile_la *la, const sessile_mat *a, const sessile_vec *x,

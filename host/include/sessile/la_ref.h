@@ -32,6 +32,11 @@ void sessile_ref_spmv_bcsr4(const sessile_bcsr4 *a, const double *x, double *y);
 void sessile_ref_stencil7(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
                           const double *x, double *y);
 
+/* y = A x for the cut-cell 7-point operator of sessile_mat_create_stencil7_cut (mask != 0:
+ * Dirichlet node; diag: the caller's cut-cell diagonal). */
+void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
+                              const double *diag, const double *x, double *y);
+
 /* Inverse diagonal for Jacobi; fails (SESSILE_ERR_NUMERIC, message names the
  * row) on a zero or non-finite diagonal entry. */
 sessile_status sessile_ref_jacobi_csr(const sessile_csr *a, double *dinv);
@@ -84,6 +89,26 @@ sessile_ref_result sessile_ref_bicgstab(const sessile_csr *a, const double *dinv
                                         const double *b, double *x, double rtol, int max_it);
 sessile_ref_result sessile_ref_gmres(const sessile_csr *a, const double *dinv, const double *b,
                                      double *x, double rtol, int max_it, int restart);
+
+/* Geometric multigrid for the cut-cell operator: the algorithm of sessile_mg (sessile/mg.h)
+ * in double on the host.  Level 0 is the finest; level l+1 is nested in level l as
+ * sessile_mg_create requires (not checked here).  o: sessile_mg_options (mg.h). */
+typedef struct sessile_ref_mg_level {
+  uint32_t n[3];
+  double h;
+  const uint32_t *mask; /* != 0: Dirichlet */
+  const double *diag;
+} sessile_ref_mg_level;
+struct sessile_mg_options;
+/* z = M r: one V-cycle.  Fails only with SESSILE_ERR_NO_MEMORY. */
+sessile_status sessile_ref_mg_vcycle(int nlevels, const sessile_ref_mg_level *lv,
+                                     const struct sessile_mg_options *o, const double *r, double *z);
+/* CG preconditioned by one V-cycle per iteration, x = warm start on entry; convergence on the
+ * recursive residual ||r|| <= rtol ||b||, tested before the V-cycle of each iteration (as on
+ * the device); true_relres recomputed at the end. */
+sessile_ref_result sessile_ref_mg_pcg(int nlevels, const sessile_ref_mg_level *lv,
+                                      const struct sessile_mg_options *o, const double *b,
+                                      double *x, double rtol, int max_it);
 
 #ifdef __cplusplus
 }

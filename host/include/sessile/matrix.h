@@ -72,6 +72,17 @@ sessile_status sessile_csr_random(uint32_t n, uint32_t per_row, double dominance
 sessile_status sessile_bcsr4_random_on(const sessile_csr *pattern, uint64_t seed,
                                        sessile_bcsr4 *out);
 
+/* The cut-cell sphere problem of the multigrid tests and `sessile bench la`, on an
+ * nx*ny*nz vertex grid of spacing h, node (i,j,k) at (i h, j h, k h): a solid sphere
+ * (centre, radius), zero-flux side walls, Dirichlet bottom (k = 0) and top (k = nz-1)
+ * planes.  Writes mask (1 on nodes inside the sphere or on the bottom or top plane, else 0),
+ * diag (the cut-cell diagonal of sessile_mat_create_stencil7_cut, theta from the exact
+ * intersection of each grid edge with the sphere, clamped to >= 1e-3; 1 on Dirichlet nodes)
+ * and, when b is not NULL, the homogenised right-hand side of u = 1 on the top plane and
+ * u = 0 on the sphere and the bottom plane: b_n = h sum f_nm w_nm g_m over the Dirichlet
+ * neighbours m of a free node n, 0 on Dirichlet nodes. */
+void sessile_cut_sphere(uint32_t nx, uint32_t ny, uint32_t nz, double h, const double centre[3],
+                        double radius, uint32_t *mask, double *diag, double *b);
 /* Deterministic uniform doubles in [lo,hi) (splitmix64 stream from seed). */
 void sessile_fill_random(double *v, uint64_t n, double lo, double hi, uint64_t seed);
 

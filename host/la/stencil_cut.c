@@ -1,0 +1,123 @@
+/* The cut-cell 7-point operator (la.h: sessile_mat_create_stencil7_cut):
+ * zero-flux walls with half and quarter faces, Dirichlet nodes from a mask,
+ * and a caller-supplied diagonal that carries the Shortley-Weller weights of
+ * the edges a Dirichlet boundary cuts.  Matrix-free like stencil.c: mask and
+ * diag are read at every application.  Kernels: shaders/la/stencil7_cut*.comp
+ * (shared code in stencil7_cut.glsl); plain-C reference:
+ * sessile_ref_stencil7_cut. */
+#include <stdlib.h>
+#include "la_internal.h"
+#include "sessile/la_ref.h"
+
+/* Texel reads need every view within maxTexelBufferElements. */
+static int texel_fits(sessile_la *la, const sessile_buffer *mask, const sessile_vec *diag) {
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  return sessile_buffer_size(mask) / 4 <= maxt && sessile_buffer_size(diag->buf) / la->real_bytes <= maxt;
+}
+
+sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
+                                               double h, sessile_buffer *mask, const sessile_vec *diag,
+                                               sessile_mat **out) {
+  *out = NULL;
+  SESSILE_CHECK(nx >= 2 && ny >= 2 && nz >= 2, SESSILE_ERR_USAGE,
+                "cut-cell operator needs at least 2 nodes per axis (got %u x %u x %u)", nx, ny, nz);
+  double nodes = (double)nx * ny * nz;
+  SESSILE_CHECK(nodes <= 2147483647.0, SESSILE_ERR_TOO_LARGE,
+                "grid of %u x %u x %u nodes is too large for 32-bit indices", nx, ny, nz);
+  SESSILE_CHECK(h > 0 && h < 1e300, SESSILE_ERR_USAGE, "grid spacing must be positive (got %g)", h);
+  SESSILE_CHECK(mask, SESSILE_ERR_USAGE, "cut-cell operator needs a Dirichlet mask buffer");
+  SESSILE_CHECK(sessile_buffer_size(mask) >= (size_t)nodes * 4, SESSILE_ERR_USAGE,
+                "Dirichlet mask has %zu bytes, the %u x %u x %u grid needs %zu",
+                sessile_buffer_size(mask), nx, ny, nz, (size_t)nodes * 4);
+  SESSILE_CHECK(diag, SESSILE_ERR_USAGE, "cut-cell operator needs its diagonal vector");
+  SESSILE_CHECK(diag->la == la && diag->n == (uint32_t)nodes, SESSILE_ERR_USAGE,
+                "cut-cell diagonal has %u entries%s, the %u x %u x %u grid needs %u", diag->n,
+                diag->la == la ? "" : " of another la", nx, ny, nz, (uint32_t)nodes);
+  sessile_mat *m = calloc(1, sizeof *m);
+  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  m->la = la;
+  m->kind = MAT_STENCIL7_CUT;
+  m->nrows = (uint32_t)nodes;
+  m->nnz = 7 * (uint64_t)m->nrows;
+  m->grid[0] = nx;
+  m->grid[1] = ny;
+  m->grid[2] = nz;
+  m->h = h;
+  m->mask = mask;
+  m->diag = diag;
+  m->cut_texel = la->spmv_texel && texel_fits(la, mask, diag);
+  *out = m;
+  return SESSILE_OK;
+}
+
+static cut_push push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard) {
+  cut_push p = {.n0 = a->grid[0], .n1 = a->grid[1], .n2 = a->grid[2],
+                .m0 = la_div_magic(a->grid[0]), .m1 = la_div_magic(a->grid[1]),
+                .xoff = x.off4 * 4, .yoff = y.off4 * 4, .guard = guard,
+                .h = sessile_push_real_of(a->h, la->real_bytes)};
+  return p;
+}
+
+sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x,
+                                vref y, int guard, uint32_t *count) {
+  cut_push p = push_of(la, a, x, y, guard);
+  int tex = a->cut_texel &&
+            sessile_buffer_size(x.buf) / la->real_bytes <=
+                sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  la_kernel_id id = count ? (tex ? K_STENCIL7_CUT_TEX_DOT : K_STENCIL7_CUT_DOT)
+                          : (tex ? K_STENCIL7_CUT_TEX : K_STENCIL7_CUT);
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, id, &k));
+  sessile_buffer *bufs[6] = {la->scalars, a->mask, a->diag->buf, x.buf, y.buf, la->partials};
+  uint32_t groups = la_groups(la, id, a->nrows);
+  if (count) {
+    if (groups > MAXG) groups = MAXG;
+    *count = groups;
+  }
+  return sessile_cmd_dispatch(c, k, groups, bufs, &p);
+}
+
+sessile_status la_stencil7_cut_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv) {
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_STENCIL7_CUT_JACOBI, &k));
+  cut_push p = push_of(la, a, vref_of(dinv), vref_of(dinv), -1);
+  sessile_buffer *bufs[4] = {la->scalars, a->mask, a->diag->buf, dinv->buf};
+  SESSILE_CALL(sessile_cmd_begin(la->cmd));
+  SESSILE_CALL(sessile_cmd_dispatch(la->cmd, k, la_groups(la, K_STENCIL7_CUT_JACOBI, a->nrows), bufs, &p));
+  SESSILE_CALL(sessile_cmd_end(la->cmd));
+  return sessile_cmd_submit_wait(la->cmd);
+}
+
+sessile_status la_stencil7_cut_host_diag(const sessile_mat *a, double **diag) {
+  *diag = malloc((size_t)a->nrows * sizeof **diag);
+  SESSILE_CHECK(*diag, SESSILE_ERR_NO_MEMORY, "out of host memory copying the cut-cell diagonal");
+  sessile_status s = sessile_vec_download((sessile_vec *)a->diag, *diag);
+  if (s != SESSILE_OK) {
+    free(*diag);
+    *diag = NULL;
+  }
+  return s;
+}
+
+void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
+                              const double *diag, const double *x, double *y) {
+  const int64_t s1 = nx, s2 = (int64_t)nx * ny;
+#pragma omp parallel for schedule(static)
+  for (int64_t k = 0; k < (int64_t)nz; k++)
+    for (uint32_t j = 0; j < ny; j++)
+      for (uint32_t i = 0; i < nx; i++) {
+        int64_t n = i + s1 * j + s2 * k;
+        if (mask[n]) {
+          y[n] = x[n];
+          continue;
+        }
+        double bx = i == 0 || i == nx - 1 ? 0.5 : 1, by = j == 0 || j == ny - 1 ? 0.5 : 1;
+        double bz = k == 0 || k == nz - 1 ? 0.5 : 1;
+#define NB(ok, m) ((ok) && !mask[m] ? x[m] : 0.0)
+        double sx = NB(i > 0, n - 1) + NB(i + 1 < nx, n + 1);
+        double sy = NB(j > 0, n - s1) + NB(j + 1 < ny, n + s1);
+        double sz = NB(k > 0, n - s2) + NB(k + 1 < nz, n + s2);
+#undef NB
+        y[n] = h * (diag[n] * x[n] - (by * bz * sx + bx * bz * sy + bx * by * sz));
+      }
+}
