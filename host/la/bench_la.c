@@ -165,6 +165,57 @@ static sessile_status bench_spmv(bench *b, const char *name, const sessile_csr *
   return s;
 }
 
+/* The cut-cell operator on the sphere problem (sessile_cut_sphere) on N^3,
+ * through texel and storage buffers.  Traffic: x, diag, mask, y once. */
+typedef struct { uint32_t n[3]; double h; const uint32_t *mask; const double *diag; double *x, *y; } ref_cut_ctx;
+static void ref_cut_op(void *p) {
+  ref_cut_ctx *c = p;
+  sessile_ref_stencil7_cut(c->n[0], c->n[1], c->n[2], c->h, c->mask, c->diag, c->x, c->y);
+}
+
+static sessile_status bench_cut(bench *b, uint32_t N) {
+  uint32_t n = N * N * N;
+  double h = 1.0 / (N - 1), centre[3] = {0.45, 0.5, 0.4};
+  double *hd = malloc((size_t)n * 3 * sizeof *hd);
+  uint32_t *mask = malloc((size_t)n * sizeof *mask);
+  sessile_status s = hd && mask ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_buffer *mb = NULL;
+  sessile_vec *d = NULL, *x = NULL, *y = NULL;
+  sessile_mat *m = NULL;
+  if (s == SESSILE_OK) {
+    sessile_cut_sphere(N, N, N, h, centre, 0.3, mask, hd, NULL);
+    sessile_fill_random(hd + n, n, -1, 1, 5);
+    s = sessile_buffer_create(b->la->gpu, (size_t)n * 4, SESSILE_BUFFER_DEVICE, &mb);
+  }
+  if (s == SESSILE_OK) s = sessile_buffer_upload(mb, 0, mask, (size_t)n * 4);
+  if (s == SESSILE_OK) s = sessile_vec_create(b->la, n, &d);
+  if (s == SESSILE_OK) s = sessile_vec_create(b->la, n, &x);
+  if (s == SESSILE_OK) s = sessile_vec_create(b->la, n, &y);
+  if (s == SESSILE_OK) s = sessile_vec_upload(d, hd);
+  if (s == SESSILE_OK) s = sessile_vec_upload(x, hd + n);
+  if (s == SESSILE_OK) s = sessile_mat_create_stencil7_cut(b->la, N, N, N, h, mb, d, &m);
+  double tg = 0, rb = b->la->real_bytes, by = n * (3 * rb + 4), fl = 13.0 * n;
+  spmv_ctx c = {m, x, y};
+  ref_cut_ctx rc = {{N, N, N}, h, mask, hd, hd + n, hd + 2 * (size_t)n};
+  char name[64];
+  for (int storage = 0; s == SESSILE_OK && storage < 2; storage++) {
+    int tex = m->cut_texel;
+    if (storage) m->cut_texel = 0;
+    s = time_gpu(b, rec_spmv_op, &c, &tg);
+    m->cut_texel = tex;
+    snprintf(name, sizeof name, "stencil7 cut %u^3%s", N, storage ? " (ssbo)" : "");
+    if (s == SESSILE_OK) row(b, name, tg, ref_time(ref_cut_op, &rc, b->rep), fl, by);
+  }
+  sessile_mat_destroy(m);
+  sessile_vec_destroy(d);
+  sessile_vec_destroy(x);
+  sessile_vec_destroy(y);
+  sessile_buffer_destroy(mb);
+  free(hd);
+  free(mask);
+  return s;
+}
+
 static sessile_status bench_solve(bench *b, const char *name, const sessile_csr *a,
                                   sessile_ksp_type type) {
   uint32_t n = a->nrows;
@@ -275,6 +326,7 @@ static sessile_status run(bench *b, const sessile_bench_la_options *o) {
   if (s == SESSILE_OK) s = sessile_bcsr4_random_on(&pb, 9, &bb);
   snprintf(name, sizeof name, "spmv bcsr4 P1-tet %u^3", Nb);
   if (s == SESSILE_OK) s = bench_spmv(b, name, NULL, &bb);
+  if (s == SESSILE_OK) s = bench_cut(b, N);
   if (s == SESSILE_OK && o->solvers) {
     fprintf(b->out, "\n%-30s %10s %10s %8s %8s %8s   (rtol 1e-6, Jacobi)\n", "solve", "gpu ms",
             "C ms", "GFLOP/s", "GB/s", "C/gpu");

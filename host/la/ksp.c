@@ -143,18 +143,17 @@ static void host_residual(const sessile_mat *a, const uint32_t *mask, const doub
 }
 
 /* fp32 devices: iterative refinement, x_{k+1} = x_k + A⁻¹(b − A x_k) with the
- * residual in double on the host and the correction solved on the device.
+ * residual in double on the host and the correction solved on the device by
+ * `inner` (q and d: its right-hand side and solution).
  * The reported true residual is that of the x the caller gets back (stored
  * in fp32), so it is honest about what fp32 storage allows. */
-static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o,
-                                    const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
-                                    const la_pc *pc, sessile_vec *q,
-                                    sessile_solve_result *res) {
+sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                                const sessile_vec *b, sessile_vec *x, sessile_vec *q, sessile_vec *d,
+                                la_inner_fn inner, void *ctx, sessile_solve_result *res) {
   uint32_t n = a->nrows;
   double *bh = malloc((size_t)n * 3 * sizeof(double));
   SESSILE_CHECK(bh, SESSILE_ERR_NO_MEMORY, "out of host memory");
   double *xh = bh + n, *rh = xh + n;
-  sessile_vec *d = NULL;
   uint32_t *mask = NULL;
   double *diag = NULL;
   sessile_status s = sessile_vec_download((sessile_vec *)b, bh);
@@ -162,10 +161,9 @@ static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o
     s = la_stencil7_host_mask(a, &mask);
   if (s == SESSILE_OK && a->kind == MAT_STENCIL7_CUT) s = la_stencil7_cut_host_diag(a, &diag);
   if (s == SESSILE_OK) s = sessile_vec_download(x, xh);
-  if (s == SESSILE_OK) s = sessile_vec_create(la, n, &d);
   double bnorm = sessile_ref_nrm2(n, bh);
-  sessile_ksp_options inner = *o;
-  inner.rtol = fmax(o->rtol, 1e-4); /* what fp32 Krylov reliably reaches */
+  sessile_ksp_options in = *o;
+  in.rtol = fmax(o->rtol, 1e-4); /* what fp32 Krylov reliably reaches */
   for (int k = 0; s == SESSILE_OK && k < 30; k++) {
     host_residual(a, mask, diag, bh, xh, rh);
     double rel = sessile_ref_nrm2(n, rh) / bnorm;
@@ -188,8 +186,8 @@ static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o
     /* Solve A d = r to inner.rtol relative to ‖r‖. */
     if ((s = sessile_vec_upload(q, rh)) != SESSILE_OK) break;
     if ((s = sessile_vec_fill(la, 0.0, d)) != SESSILE_OK) break;
-    inner.max_it = o->max_it - res->iterations;
-    if ((s = run_type(la, &inner, a, q, d, pc, res)) != SESSILE_OK) break;
+    in.max_it = o->max_it - res->iterations;
+    if ((s = inner(ctx, &in, q, d, res)) != SESSILE_OK) break;
     res->refinements++;
     if (res->status == SESSILE_SOLVE_BREAKDOWN) break;
     if ((s = sessile_vec_download(d, rh)) != SESSILE_OK) break;
@@ -207,11 +205,17 @@ static sessile_status solve_refined(sessile_la *la, const sessile_ksp_options *o
                res->true_relres);
     }
   }
-  sessile_vec_destroy(d);
   free(mask);
   free(diag);
   free(bh);
   return s;
+}
+
+typedef struct { sessile_la *la; const sessile_mat *a; const la_pc *pc; } ksp_inner_ctx;
+static sessile_status ksp_inner(void *ctx, const sessile_ksp_options *o, const sessile_vec *r,
+                                sessile_vec *d, sessile_solve_result *res) {
+  ksp_inner_ctx *c = ctx;
+  return run_type(c->la, o, c->a, r, d, c->pc, res);
 }
 
 sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
@@ -250,18 +254,21 @@ sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
     res->seconds = sessile_wall_seconds() - t0;
     return SESSILE_OK;
   }
-  sessile_vec *dinv = NULL, *q = NULL;
+  sessile_vec *dinv = NULL, *q = NULL, *d = NULL;
   la_pc pc = {o.pc, NULL, NULL};
   sessile_status s = SESSILE_OK;
   if (o.pc == SESSILE_PC_ILU0) s = la_ilu_get(la, a, &pc.ilu); /* once per matrix */
   if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &dinv);
   if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &q);
+  if (s == SESSILE_OK && la->real_bytes != 8) s = sessile_vec_create(la, a->nrows, &d);
   if (s == SESSILE_OK)
     s = o.pc == SESSILE_PC_JACOBI ? sessile_mat_jacobi(la, a, dinv) : sessile_vec_fill(la, 1.0, dinv);
   pc.dinv = dinv;
+  ksp_inner_ctx ctx = {la, a, &pc};
   if (s == SESSILE_OK)
     s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, &pc, q, bnorm, res)
-                            : solve_refined(la, &o, a, b, x, &pc, q, res);
+                            : la_solve_refined(la, &o, a, b, x, q, d, ksp_inner, &ctx, res);
+  sessile_vec_destroy(d);
   sessile_vec_destroy(q);
   sessile_vec_destroy(dinv);
   res->seconds = sessile_wall_seconds() - t0;

@@ -29,6 +29,7 @@ sessile_status sessile_la_create_with(sessile_gpu *g, const sessile_la_options *
   SESSILE_CHECK(la, SESSILE_ERR_NO_MEMORY, "out of host memory");
   la->gpu = g;
   la->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  la->fused_groups = strcmp(sessile_gpu_info_of(g)->type, "cpu") == 0 ? 128 : MAXG;
   sessile_la_set_options(la, &o);
   sessile_status s = la_init(la);
   if (s != SESSILE_OK) {

@@ -20,6 +20,10 @@ struct sessile_la {
                                  on; sessile_la_options.spmv_storage forces storage buffers) */
   uint64_t max_chunk_bytes;   /* sessile_la_options.max_matrix_chunk_bytes (0: none) */
   uint64_t vec_serial;        /* the last vector's serial (sessile_vec.serial) */
+  uint32_t fused_groups;      /* at most this many groups for the grid-stride kernels with
+                                 a reduction of the cut-cell operator and the multigrid:
+                                 128 on CPU devices (lavapipe runs a group's barriers as
+                                 coroutine switches: 1024 groups cost ~1.5x the work), else MAXG */
 };
 
 struct sessile_vec {
@@ -102,6 +106,8 @@ static inline uint32_t la_div_magic(uint32_t n) { return 0xffffffffu / n; }
 /* Groups for an element-wise kernel over n reals, and for a reduction. */
 uint32_t la_groups(sessile_la *la, la_kernel_id id, uint32_t n4);
 uint32_t la_reduce_groups(sessile_la *la, uint32_t n4);
+/* la_groups capped at la->fused_groups (and at least 1). */
+uint32_t la_fused_groups(sessile_la *la, la_kernel_id id, uint32_t items);
 
 /* Host <-> device transfers in the stored precision (vec.c). */
 
@@ -143,6 +149,14 @@ sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit,
 /* Formats one line and hands it to o->monitor (nothing when it is NULL). */
 void la_monitorf(const sessile_ksp_options *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void la_solver_reset(sessile_la *la, const sessile_ksp_options *o);
+
+/* fp32 contexts (ksp.c): iterative refinement with the residual b - A x in
+ * double on the host; `inner` solves A d = q on the device in fp32. */
+typedef sessile_status (*la_inner_fn)(void *ctx, const sessile_ksp_options *o, const sessile_vec *q,
+                                      sessile_vec *d, sessile_solve_result *res);
+sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
+                                const sessile_vec *b, sessile_vec *x, sessile_vec *q, sessile_vec *d,
+                                la_inner_fn inner, void *ctx, sessile_solve_result *res);
 
 /* Shared by the solvers: reads STOP/ITER, fills status and reason. */
 void la_solver_outcome(sessile_la *la, sessile_solve_result *res, double est_relres);

@@ -13,6 +13,12 @@ uint32_t la_reduce_groups(sessile_la *la, uint32_t n4) {
   return g ? g : 1;
 }
 
+uint32_t la_fused_groups(sessile_la *la, la_kernel_id id, uint32_t items) {
+  uint32_t g = la_groups(la, id, items);
+  if (g > la->fused_groups) g = la->fused_groups;
+  return g ? g : 1;
+}
+
 sessile_status rec_vec(sessile_la *la, sessile_cmd *c, la_kernel_id id, uint32_t n, vref a,
                        vref b, vref w, int a_slot, uint32_t flags, int guard) {
   sessile_kernel *k;

@@ -69,11 +69,8 @@ sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_ma
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, id, &k));
   sessile_buffer *bufs[6] = {la->scalars, a->mask, a->diag->buf, x.buf, y.buf, la->partials};
-  uint32_t groups = la_groups(la, id, a->nrows);
-  if (count) {
-    if (groups > MAXG) groups = MAXG;
-    *count = groups;
-  }
+  uint32_t groups = count ? la_fused_groups(la, id, a->nrows) : la_groups(la, id, a->nrows);
+  if (count) *count = groups;
   return sessile_cmd_dispatch(c, k, groups, bufs, &p);
 }
 

@@ -9,35 +9,18 @@
 // 1 from the uniform texel buffers mask_t, diag_t, x_t (lavapipe gathers texels
 // with vector loads; docs/la.md).  Push fields: n0, n1, n2, m0, m1, xoff, h.
 #include "la_kernels.glsl"
+#include "grid_index.glsl"
 
 #if CUT_TEXEL
+#include "texel_real.glsl"
 uint ct_mask(uint i) { return texelFetch(mask_t, int(i)).x; }
-#if SESSILE_F64
-REAL ct_x(uint i) { return packDouble2x32(texelFetch(x_t, int(pc.xoff + i)).xy); }
-REAL ct_diag(uint i) { return packDouble2x32(texelFetch(diag_t, int(i)).xy); }
-#else
-REAL ct_x(uint i) { return uintBitsToFloat(texelFetch(x_t, int(pc.xoff + i)).x); }
-REAL ct_diag(uint i) { return uintBitsToFloat(texelFetch(diag_t, int(i)).x); }
-#endif
+REAL ct_x(uint i) { return texel_real(x_t, pc.xoff + i); }
+REAL ct_diag(uint i) { return texel_real(diag_t, i); }
 #else
 uint ct_mask(uint i) { return mask[i]; }
 REAL ct_x(uint i) { return x[pc.xoff + i]; }
 REAL ct_diag(uint i) { return diag[i]; }
 #endif
-
-// a / d as the multiply-high by m = 0xffffffff / d, exact after one correction
-// (the estimate is the quotient or one less): lavapipe has no vector integer
-// division and would divide lane by lane.
-uint ct_div(uint a, uint d, uint m) {
-  uint q, lo;
-  umulExtended(a, m, q, lo);
-  return a - q * d >= d ? q + 1u : q;
-}
-
-uvec3 ct_ijk(uint node) {
-  uint t = ct_div(node, pc.n0, pc.m0), k = ct_div(t, pc.n1, pc.m1);
-  return uvec3(node - t * pc.n0, t - k * pc.n1, k);
-}
 
 // x_m when neighbour m exists (ok) and is free, else 0.  Both reads happen
 // anyway (a missing neighbour reads the node itself) so the lanes stay in step.
@@ -63,5 +46,5 @@ REAL ct_sum(uint n, uvec3 p) {
 REAL ct_apply(uint node) {
   REAL xc = ct_x(node);
   if (ct_mask(node) != 0u) return xc;
-  return pc.h * (ct_diag(node) * xc - ct_sum(node, ct_ijk(node)));
+  return pc.h * (ct_diag(node) * xc - ct_sum(node, grid_ijk(node)));
 }

@@ -45,9 +45,9 @@ sessile_status sessile_mg_create(sessile_la *la, int nlevels, const sessile_mg_l
 void sessile_mg_destroy(sessile_mg *mg);
 /* PCG on the finest operator, preconditioned by one V-cycle; x = warm start on entry.
  * Converges on the true relative residual rtol (res->true_relres recomputed at the end),
- * same result struct and monitor as sessile_ksp_solve.  Of the options only rtol, max_it,
- * check_every (iterations per submit, at most 4 are used: see mg_solve.c) and the monitor
- * apply; the method is always CG with the V-cycle.  A solve with the same b and x objects
+ * same result struct and monitor as sessile_ksp_solve.  Of the options only rtol, max_it
+ * and the monitor apply: the method is always CG with the V-cycle, submitted one iteration
+ * at a time (docs/la.md says why).  A solve with the same b and x objects
  * as the previous one re-records nothing.  fp32 contexts: mixed-precision refinement as in
  * sessile_ksp_solve. */
 sessile_status sessile_mg_solve(sessile_mg *mg, const sessile_ksp_options *o, const sessile_vec *b,

@@ -1,0 +1,9 @@
+// One real from a texel buffer of raw bits: RG32UI per double (fp64), R32UI
+// per float (fp32); the `texel NAME real` bindings of kernels.def.
+REAL texel_real(usamplerBuffer t, uint i) {
+#if SESSILE_F64
+  return packDouble2x32(texelFetch(t, int(i)).xy);
+#else
+  return uintBitsToFloat(texelFetch(t, int(i)).x);
+#endif
+}
