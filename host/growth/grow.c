@@ -70,10 +70,16 @@ static sessile_status setup(grow_run *r) {
   for (uint32_t v = 0; v < r->surf.nv; v++)
     if (r->surf.pos[3 * v + 2] < r->box.origin[2]) r->surf.pos[3 * v + 2] = r->box.origin[2];
   SESSILE_CALL(sessile_la_create(r->gpu, &r->la));
-  SESSILE_CALL(sessile_nutrient_create(r->la, &r->box, &r->nutrient));
+  sessile_cut_bc bc;
+  sessile_cut_bc_default(&bc);
+  bc.far_field = p->far_field == SESSILE_FAR_WALLS ? SESSILE_FAR_FIELD_WALLS : SESSILE_FAR_FIELD_HEIGHT;
+  bc.height = sessile_params_far_field_height(p);
+  SESSILE_CALL(sessile_cut_nutrient_create(r->la, &r->box, &bc,
+                                           p->nutrient_solver == SESSILE_SOLVER_MG ? 12 : 1,
+                                           &r->nutrient));
   SESSILE_CALL(sessile_growth_gpu_create(r->la, &r->growth));
   uint32_t nodes = sessile_box_nodes(&r->box);
-  SESSILE_CALL(sessile_buffer_create(r->gpu, (size_t)nodes * 4, SESSILE_BUFFER_DEVICE, &r->solid));
+  sessile_cut_nutrient_level(r->nutrient, 0, NULL, &r->solid, NULL);
   SESSILE_CALL(sessile_vec_create(r->la, nodes, &r->c));
   /* Start from c = 1 (the far field); the first solve fixes the rest. */
   SESSILE_CALL(sessile_vec_fill(r->la, 1.0, r->c));
@@ -84,9 +90,8 @@ static sessile_status setup(grow_run *r) {
 static void teardown(grow_run *r) {
   grow_flow_teardown(r);
   sessile_vec_destroy(r->c);
-  sessile_buffer_destroy(r->solid);
   sessile_growth_gpu_destroy(r->growth);
-  sessile_nutrient_destroy(r->nutrient);
+  sessile_cut_nutrient_destroy(r->nutrient);
   sessile_la_destroy(r->la);
   sessile_surface_free(&r->surf);
   for (int i = 0; i < r->nvtu; i++) free(r->vtu_files[i]);
@@ -120,7 +125,14 @@ static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *
   SESSILE_CALL(sessile_growth_gpu_set_surface(r->growth, &r->surf));
   t[1] = sessile_wall_seconds();
   progress(r, it, "classify", 0);
-  SESSILE_CALL(sessile_growth_gpu_classify(r->growth, &r->box, r->solid));
+  /* The solid mask and the cut fractions on every box level (the nutrient's
+   * multigrid rediscretises the cut cells on each). */
+  for (int l = 0; l < sessile_cut_nutrient_levels(r->nutrient); l++) {
+    sessile_box lb;
+    sessile_buffer *solid, *theta;
+    sessile_cut_nutrient_level(r->nutrient, l, &lb, &solid, &theta);
+    SESSILE_CALL(sessile_growth_gpu_cut(r->growth, &lb, solid, theta));
+  }
   t[2] = sessile_wall_seconds();
 
   /* The flow feeds the nutrient unless diffusion limited; then it is solved
@@ -157,13 +169,20 @@ static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *
   ko.rtol = r->p->linear_rtol;
   ko.max_it = r->p->linear_max_iterations;
   sessile_solve_result res;
+  sessile_cut_solver solver =
+      r->p->nutrient_solver == SESSILE_SOLVER_MG ? SESSILE_CUT_SOLVER_MG : SESSILE_CUT_SOLVER_JACOBI;
   if (advect) SESSILE_CALL(grow_nutrient_advected(r, &res));
-  else SESSILE_CALL(sessile_nutrient_solve(r->nutrient, r->solid, r->c, &ko, &res));
+  else SESSILE_CALL(sessile_cut_nutrient_solve(r->nutrient, solver, r->c, &ko, &res));
+  /* The flux probe reads the field extended across the surface. */
+  if (advect && r->p->probe == SESSILE_PROBE_FLUX) SESSILE_CALL(sessile_cut_nutrient_extend(r->nutrient, r->c));
+  const sessile_vec *probe_field =
+      r->p->probe == SESSILE_PROBE_FLUX ? sessile_cut_nutrient_extended(r->nutrient) : r->c;
   t[4] = sessile_wall_seconds();
   cJSON *ns = cJSON_AddObjectToObject(rec, "nutrient_solve");
   cJSON_AddStringToObject(ns, "equation", advect ? "advection-diffusion (SUPG), u from the flow"
-                                                 : "Laplace (diffusion limited)");
-  cJSON_AddStringToObject(ns, "solver", advect ? "bicgstab+jacobi" : "pcg+jacobi");
+                                                 : "Laplace (diffusion limited), cut-cell boundary");
+  cJSON_AddStringToObject(ns, "solver", advect ? "bicgstab+jacobi"
+                                        : solver == SESSILE_CUT_SOLVER_MG ? "pcg+multigrid" : "pcg+jacobi");
   cJSON_AddNumberToObject(ns, "iterations", res.iterations);
   cJSON_AddNumberToObject(ns, "true_relres", res.true_relres);
   cJSON_AddStringToObject(ns, "status", sessile_solve_status_name(res.status));
@@ -184,7 +203,7 @@ static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *
   *newpos = np;
   double *pv = malloc((size_t)nv * 3 * sizeof *pv);
   SESSILE_CHECK(pv, SESSILE_ERR_NO_MEMORY, "out of host memory for %d vertices", nv);
-  sessile_status gs = sessile_growth_gpu_step(r->growth, &r->box, r->c, gp, r->o->seed, (uint32_t)it,
+  sessile_status gs = sessile_growth_gpu_step(r->growth, &r->box, probe_field, gp, r->o->seed, (uint32_t)it,
                                               np, pv, pv + nv, pv + 2 * nv);
   if (gs == SESSILE_OK) {
     /* Per-vertex summaries: what the surface saw and how much it grew. */

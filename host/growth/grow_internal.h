@@ -8,7 +8,7 @@
 #include "sessile/grow.h"
 #include "sessile/growth_gpu.h"
 #include "sessile/la.h"
-#include "sessile/nutrient.h"
+#include "sessile/nutrient_cut.h"
 #include "sessile/surface.h"
 #include "sessile/advdiff.h"
 #include "sessile/fluid.h"
@@ -28,9 +28,9 @@ typedef struct grow_run {
   sessile_box box;
   double center[3];
   sessile_surface surf;
-  sessile_nutrient *nutrient;
+  sessile_cut_nutrient *nutrient; /* the cut-cell nutrient and its box levels */
   sessile_growth_gpu *growth;
-  sessile_buffer *solid;
+  sessile_buffer *solid;          /* the finest level's solid mask (the nutrient's) */
   sessile_vec *c;
   int nplanes;
   grow_plane planes[16];

@@ -15,9 +15,9 @@ void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *
   /* The bare substratum's flux: c = 1 at H over c = 0 on the floor, dc/dz =
    * 1/H (far_field = walls: H the box top; the side walls then feed the
    * box's middle a little more than that, docs/model.md). */
-  double top = p->box_base_cell * p->box_cells_z;
-  g->flux_ref = 1.0 / (p->far_field == SESSILE_FAR_HEIGHT ? p->far_field_height : top);
-  if (p->far_field == SESSILE_FAR_HEIGHT) g->ceiling = p->far_field_height;
+  double top = p->box_base_cell * p->box_cells_z, H = sessile_params_far_field_height(p);
+  g->flux_ref = 1.0 / (p->far_field == SESSILE_FAR_HEIGHT ? H : top);
+  if (p->far_field == SESSILE_FAR_HEIGHT) g->ceiling = H;
   g->probe_samples = (uint32_t)p->probe_samples;
   g->t_give = p->t_give;
   g->translocate_passes = p->translocate_passes;
@@ -94,7 +94,7 @@ void sessile_growth_ref_probe_flux(const sessile_box *box, const double *pos, co
     for (int k = 0; k < 2; k++) {
       double s = (k + 1) * delta, p[3];
       for (int a = 0; a < 3; a++) p[a] = pos[3 * v + a] + s * normals[3 * v + a];
-      c[k] = sessile_box_interpolate(box, field, p);
+      c[k] = sessile_box_trilinear(box, field, p);
     }
     double flux = (4 * c[0] - c[1]) / (2 * delta);
     flux /= flux_ref;

@@ -63,6 +63,10 @@ sessile_status sessile_params_preset(sessile_params *p, const char *name) {
   return sessile_error_set(SESSILE_ERR_USAGE, "unknown preset '%s' (presets: radiate, crella)", name);
 }
 
+double sessile_params_far_field_height(const sessile_params *p) {
+  return p->far_field_height < 0 ? p->box_base_cell * p->box_cells_z : p->far_field_height;
+}
+
 /* Box nodes at the nutrient's resolution (each level halves the cell). */
 static double box_nodes(const sessile_params *p, int level) {
   double k = ldexp(1.0, level - 1);
@@ -114,6 +118,17 @@ static sessile_status validate(const void *values) {
                 SESSILE_ERR_USAGE,
                 "the sponge centre (%g, %g) cm puts the sponge (radius %g cm) within one node "
                 "spacing (%g cm) of a side wall or outside the box (%g x %g cm)", cx, cy, R, h, sx, sy);
+  if (p->far_field == SESSILE_FAR_HEIGHT) {
+    double H = sessile_params_far_field_height(p);
+    SESSILE_CHECK(p->far_field_height == -1 || p->far_field_height > 0, SESSILE_ERR_USAGE,
+                  "far_field_height must be positive, or -1 for the box top (got %g)", p->far_field_height);
+    SESSILE_CHECK(H <= top * (1 + 1e-12), SESSILE_ERR_USAGE,
+                  "far_field_height (%g cm) must not exceed the box top (%g cm = box_base_cell x "
+                  "box_cells_z); raise box_cells_z or lower far_field_height", H, top);
+    SESSILE_CHECK(p->sponge_z + R + h < H, SESSILE_ERR_USAGE,
+                  "the sponge (top at %g cm) plus one node spacing (%g cm) must stay below "
+                  "far_field_height (%g cm)", p->sponge_z + R, h, H);
+  }
   SESSILE_CHECK(p->vertex_insertion_threshold > p->vertex_fusion_threshold, SESSILE_ERR_USAGE,
                 "vertex_insertion_threshold (%g) must exceed vertex_fusion_threshold (%g)",
                 p->vertex_insertion_threshold, p->vertex_fusion_threshold);

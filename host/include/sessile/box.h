@@ -155,6 +155,35 @@ static inline double sessile_box_interpolate(const sessile_box *b, const double 
          w[3] * field[nodes[3]];
 }
 
+/* The trilinear (Q1) interpolant of a nodal field at p (clamped into the
+ * box): isotropic where the Kuhn P1 interpolant has the cube diagonal as a
+ * preferred direction; the flux probe reads the field through it
+ * (docs/model.md).  Mirrored by box_trilinear in
+ * shaders/growth/growth_common.glsl. */
+static inline double sessile_box_trilinear(const sessile_box *b, const double *field, const double p[3]) {
+  uint32_t c[3];
+  double u[3];
+  for (int a = 0; a < 3; a++) {
+    double x = (p[a] - b->origin[a]) / b->h;
+    double cells = (double)(b->n[a] - 1);
+    if (!(x > 0)) x = 0;
+    if (x > cells) x = cells;
+    double f = floor(x);
+    if (f > cells - 1) f = cells - 1;
+    c[a] = (uint32_t)f;
+    u[a] = x - f;
+  }
+  double sum = 0;
+  for (int k = 0; k < 2; k++)
+    for (int j = 0; j < 2; j++)
+      for (int i = 0; i < 2; i++) {
+        double w = (i ? u[0] : 1 - u[0]) * (j ? u[1] : 1 - u[1]);
+        w = w * (k ? u[2] : 1 - u[2]);
+        sum += w * field[sessile_box_index(b, c[0] + i, c[1] + j, c[2] + k)];
+      }
+  return sum;
+}
+
 #ifdef __cplusplus
 }
 #endif

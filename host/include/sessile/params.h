@@ -27,7 +27,7 @@ extern "C" {
   X(probe, ENUM_PROBE, 0, 0, 1, 0, "", "ours (docs/model.md)",                                       \
     "what a vertex takes up: flux (the nutrient's normal derivative at the surface over the bare " \
     "substratum's, C of order 1) or paper (eq 6: attenuated samples of c along the normal)")      \
-  X(probe_distance, REAL, 0.6, 0, 100, LO_OPEN, "cm", "ours (docs/model.md)",                         \
+  X(probe_distance, REAL, 1.0, 0, 100, LO_OPEN, "cm", "ours (docs/model.md)",                         \
     "flux probe: samples at this distance and twice it along the normal (fixed in cm, not grid units)") \
   X(concentration_offset_distance, REAL, 0.1, 0, 100, 0, "cm", "Table 1",                             \
     "probe = paper: how far along the vertex normal the nutrient is probed")                       \
@@ -37,8 +37,9 @@ extern "C" {
     "the nutrient's far field: height (c = 1 at far_field_height, zero flux through the side "    \
     "walls: the box size is a convergence parameter) or walls (c = 1 on every wall but the "      \
     "substratum, the paper's box)")                                                                \
-  X(far_field_height, REAL, 28.8, 0, 1e6, LO_OPEN, "cm", "ours (docs/model.md)",                      \
-    "far_field = height: c = 1 at and above this height over the substratum (<= the box top)")   \
+  X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/model.md)",                           \
+    "far_field = height: c = 1 at and above this height over the substratum (<= the box top); "  \
+    "-1 = the box top (28.8 cm in the default box)")                                               \
   X(nutrient_solver, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
     "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
@@ -57,7 +58,7 @@ extern "C" {
   X(position_jitter, REAL, 0, 0, 1e6, 0, "cm", "ours (§4.7)",                                         \
     "random x/y shift of the sponge, uniform in [-j, j] from the seed (crella: 4)")                \
   X(growth_rate, REAL, 5, 0, 1e6, 0, "", "Table 1", "Gr in the Chindapol growth function (eq 10)")    \
-  X(l_max, REAL, 0.1, 0, 1e6, 0, "cm", "ours", "Lmax, asymptotic maximum growth per iteration (eq 10)")            \
+  X(l_max, REAL, 0.06, 0, 1e6, 0, "cm", "ours", "Lmax: Gr Lmax is the asymptotic growth per iteration (eq 10)")            \
   X(max_growth, REAL, 0.3, 0, 1e6, 0, "cm", "ours", "maxgrowth: clampMG's upper bound (eq 10)")       \
   X(kinetic_order, REAL, 1.4, 0, 100, LO_OPEN, "", "Table 1", "Chindapol kinetic order n (eq 10)")         \
   X(growth_constant, REAL, 1, 0, 1e6, LO_OPEN, "", "Table 1", "Chindapol characteristic growth constant K") \
@@ -132,6 +133,9 @@ sessile_status sessile_params_set(sessile_params *p, const char *key, const char
  * sponge inside the box with its wall margin, box sizes within 32-bit
  * indices and host memory, ...). */
 sessile_status sessile_params_validate(const sessile_params *p);
+/* The far-field height in cm: far_field_height, or the box top for -1. */
+double sessile_params_far_field_height(const sessile_params *p);
+
 /* Bytes of device memory the growth loop needs at least (box vectors, the
  * nutrient operator, the flow at snapshots): the run refuses to start when
  * it exceeds the device's heap. */
