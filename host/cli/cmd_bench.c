@@ -6,7 +6,7 @@
 
 static const char *help =
     "usage: sessile bench la|grow|fluid ...   ('sessile bench grow --help', 'sessile bench fluid --help')\n"
-    "       sessile bench la [--size N] [--repeat R] [--no-solvers] [--device D] [--precision 32|64]\n"
+    "       sessile bench la [--size N] [--repeat R] [--no-solvers] [--mg K] [--device D] [--precision 32|64]\n"
     "\n"
     "Times every linear-algebra kernel on the device and its plain-C reference\n"
     "(OpenMP, all cores) in the same run, and prints for each: time per call\n"
@@ -16,7 +16,9 @@ static const char *help =
     "  --repeat R    repetitions per kernel (default 20)\n"
     "  --no-solvers  skip the solves: PCG (7-point N^3); BiCGSTAB and GMRES(30) with Jacobi\n"
     "                and with ILU(0) (conv-diff (N/2)^3 at cell Peclet 2 and 10; the Jacobi\n"
-    "                variants are the in-run baseline of the ILU(0) lines)\n"
+    "                variants are the in-run baseline of the ILU(0) lines), and multigrid PCG\n"
+    "  --mg K        multigrid PCG against Jacobi-PCG on the cut-cell sphere problem at the first\n"
+    "                K of 33x33x25, 65x65x49, 129x129x97 nodes (default 3; 0 skips)\n"
     "Figures are for the record (docs/performance.md), never pass/fail.\n";
 
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
@@ -30,7 +32,7 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
   if (strcmp(argv[1], "la") != 0)
     return cli_usage_error("bench", "unknown benchmark '%s' (available: la, grow, fluid)", argv[1]);
   cli_gpu_opts o = *global;
-  sessile_bench_la_options bo = {.size = 64, .repeat = 20, .solvers = 1};
+  sessile_bench_la_options bo = {.size = 64, .repeat = 20, .solvers = 1, .mg_sizes = 3};
   for (int i = 2; i < argc; i++) {
     const char *a = argv[i];
     if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
@@ -43,6 +45,8 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
     if (strcmp(a, "--no-solvers") == 0) bo.solvers = 0;
     else if (strcmp(a, "--size") == 0) {
       if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 2, 400, &bo.size)) return EXIT_USAGE;
+    } else if (strcmp(a, "--mg") == 0) {
+      if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 0, 3, &bo.mg_sizes)) return EXIT_USAGE;
     } else if (strcmp(a, "--repeat") == 0) {
       if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 1, 10000, &bo.repeat)) return EXIT_USAGE;
     } else return cli_usage_error("bench la", "unknown option '%s'", a);

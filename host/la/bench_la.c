@@ -8,7 +8,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
-#include "la_internal.h"
+#include "mg_internal.h"
 #include "sessile/bench.h"
 #include "sessile/la_ref.h"
 
@@ -302,12 +302,27 @@ static sessile_status bench_ilu(bench *b, const char *name, const sessile_csr *a
   return s;
 }
 
+/* The machine's load averages (1, 5, 15 min) from /proc/loadavg, for the
+ * record: the timings here are only comparable at similar load. */
+static void print_load(FILE *out, const char *when) {
+  char line[128] = "";
+  FILE *f = fopen("/proc/loadavg", "r");
+  if (!f || !fgets(line, sizeof line, f)) snprintf(line, sizeof line, "unavailable");
+  if (f) fclose(f);
+  double l1, l5, l15;
+  if (sscanf(line, "%lf %lf %lf", &l1, &l5, &l15) == 3)
+    fprintf(out, "load average %s: %.2f %.2f %.2f (1, 5, 15 min)\n", when, l1, l5, l15);
+  else fprintf(out, "load average %s: unavailable\n", when);
+}
+
 static sessile_status run(bench *b, const sessile_bench_la_options *o) {
   uint32_t N = o->size, n = N * N * N;
   const sessile_gpu_info *gi = sessile_gpu_info_of(b->la->gpu);
   fprintf(b->out, "sessile bench la: device %s (%s), driver %s, fp%d; C reference on %d threads\n",
           gi->name, gi->type, gi->driver, gi->precision, omp_get_max_threads());
-  fprintf(b->out, "grid %u^3, %u repetitions per kernel\n\n", N, o->repeat);
+  fprintf(b->out, "grid %u^3, %u repetitions per kernel\n", N, o->repeat);
+  print_load(b->out, "at start");
+  fprintf(b->out, "\n");
   fprintf(b->out, "%-30s %10s %10s %8s %8s %8s\n", "kernel", "gpu ms", "C ms", "GFLOP/s",
           "GB/s", "C/gpu");
   SESSILE_CALL(bench_vectors(b, n));
@@ -349,8 +364,10 @@ static sessile_status run(bench *b, const sessile_bench_la_options *o) {
       snprintf(name, sizeof name, "gmres(30)+ilu0 cd Pe=%g %u^3", pe, Nb);
       if (s == SESSILE_OK) s = bench_ilu(b, name, &cd, SESSILE_KSP_GMRES);
     }
+    if (s == SESSILE_OK && o->mg_sizes) s = la_bench_mg(b->la, o->mg_sizes, b->out);
   }
   fprintf(b->out, "\nC/gpu > 1: the device is faster than the C reference.\n");
+  print_load(b->out, "at end");
   sessile_csr_free(&a);
   sessile_csr_free(&p);
   sessile_csr_free(&pb);

@@ -12,7 +12,7 @@ void sessile_mg_options_default(sessile_mg_options *o) {
   o->pre_smooth = 2;
   o->post_smooth = 2;
   o->omega = 6.0 / 7.0;
-  o->coarse_sweeps = 16;
+  o->coarse_sweeps = 8;
 }
 
 static sessile_status check_options(const sessile_mg_options *o) {

@@ -17,7 +17,7 @@ run --version
 check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessile " "$T/out"'
 
 for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
-            "bench la --repeat 0" "bench la --wat" "devices --wat" "--precision 16 devices" \
+            "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
@@ -29,9 +29,11 @@ check "'sessile devices' lists a chosen device with its limits" eval \
 run --device 0 devices
 check "'sessile --device 0 devices' works" eval 'rc_is 0'
 
-run --validation bench la --size 8 --repeat 2
+run --validation bench la --size 8 --repeat 2 --mg 1
 check "'sessile bench la --size 8' prints kernels, solves and ratios" eval \
   'rc_is 0 && grep -q "^spmv csr P1-tet 8^3" "$T/out" && grep -q "^pcg 7-point 8^3" "$T/out" && grep -q "C/gpu" "$T/out"'
+check "'sessile bench la --mg 1' compares multigrid and Jacobi-PCG on 33x33x25" eval \
+  'rc_is 0 && grep -q "^33x33x25 " "$T/out" && grep -q "mg/jacobi" "$T/out" && grep -q "load average" "$T/out"'
 check "bench under the validation layer is silent" no_validation
 run --precision 32 bench la --size 8 --repeat 1 --no-solvers
 check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'

@@ -9,6 +9,8 @@ typedef struct sessile_bench_la_options {
   unsigned size;    /* grid edge: vectors of size^3, 7-point and P1-tet matrices on size^3 */
   unsigned repeat;  /* repetitions per kernel (GPU: recorded in one submit) */
   int solvers;      /* also time PCG, BiCGSTAB, GMRES */
+  unsigned mg_sizes; /* with solvers: multigrid PCG beside Jacobi-PCG on the cut-cell sphere
+                        problem at the first mg_sizes of 33x33x25, 65x65x49, 129x129x97 (0: none) */
 } sessile_bench_la_options;
 
 sessile_status sessile_bench_la(sessile_gpu *g, const sessile_bench_la_options *o, FILE *out);

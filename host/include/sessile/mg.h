@@ -33,7 +33,7 @@ typedef struct sessile_mg_options {
   double omega;                /* Jacobi damping, in (0, 1] (default 6/7) */
   int coarse_sweeps;           /* Jacobi sweeps on the coarsest level (a fixed linear operator) */
 } sessile_mg_options;
-/* pre_smooth = post_smooth = 2, omega = 6/7, coarse_sweeps = 16 (docs/la.md has the
+/* pre_smooth = post_smooth = 2, omega = 6/7, coarse_sweeps = 8 (docs/la.md has the
  * measurements behind them). */
 void sessile_mg_options_default(sessile_mg_options *o);
 /* Checks the levels (sizes nested, spacings doubling, buffers present and large enough) and
