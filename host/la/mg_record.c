@@ -8,9 +8,10 @@
  *   coarsest level coarse_sweeps sweeps from zero.  Sweeps alternate between
  *   two buffers; the residual goes to the free one.  Per finest-level CG
  *   iteration: the operator with p·Ap, the update with the first sweep and
- *   r·r, 2 pre + 2 post sweeps (the last with r·z), the residual, the
- *   restriction and the prolongation read the fine grid, and the direction
- *   update; about 10 fine-grid passes, plus 1/8 of that per coarser level.
+ *   r·r, the second pre-sweep, the residual, the restriction (reading the
+ *   fine residual), the prolongation, 2 post-sweeps (the last with r·z) and
+ *   the direction update: 9 fine-grid passes, plus 1/8 of the V-cycle's per
+ *   coarser level.
  *
  * CG (as cg.c, on the unpreconditioned residual), recorded so that every
  * submit ends at a convergence test: the start ends with the first half of
