@@ -1,0 +1,450 @@
+/* Self-intersection and contact inhibition (docs/intersection.md): the pair
+ * test on hand-made cases (shared vertices and edges, coplanar, touching)
+ * and against an independent separating-axis test on random pairs;
+ * icospheres have no pairs; two overlapping icospheres in one surface give
+ * the pairs a brute-force O(n^2) loop gives, and every triangle that surely
+ * crosses the other sphere is in one; seeded random perturbations, the
+ * hierarchy against brute force; the motion guard on a pancake whose top is
+ * pushed through its bottom; the triangle grid's query.  Pure C. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "sessile/intersect.h"
+#include "sessile/surface.h"
+#include "testutil.h"
+
+static const double ORIGIN[3] = {0, 0, 0};
+
+static double now(void) { /* CPU time of this process: the machine is shared */
+  struct timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+static uint64_t rng_state;
+static double urand(void) { /* splitmix64 -> [0, 1) */
+  uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return (double)((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+}
+
+static void corners(const sessile_surface *s, uint32_t f, double out[9]) {
+  for (int i = 0; i < 3; i++) memcpy(out + 3 * i, s->pos + 3 * s->tri[3 * f + i], 3 * sizeof *out);
+}
+
+static uint64_t count_pairs(const sessile_surface *s) {
+  uint64_t n = 0;
+  t_ok("self-intersections", sessile_surface_self_intersections(s, 0, NULL, &n));
+  return n;
+}
+
+/* Every pair by brute force, (f, g) with f < g in order; returns the count. */
+static uint64_t brute_pairs(const sessile_surface *s, uint32_t *out, uint64_t cap) {
+  uint64_t n = 0;
+  for (uint32_t f = 0; f < s->nf; f++) {
+    double a[9], b[9];
+    corners(s, f, a);
+    for (uint32_t g = f + 1; g < s->nf; g++) {
+      corners(s, g, b);
+      if (sessile_triangles_intersect(a, s->tri + 3 * f, b, s->tri + 3 * g)) {
+        if (n < cap) out[2 * n] = f, out[2 * n + 1] = g;
+        n++;
+      }
+    }
+  }
+  return n;
+}
+
+/* Appends b's vertices and triangles to a (one surface of two pieces). */
+static void append(sessile_surface *a, const sessile_surface *b) {
+  t_ok("reserve", sessile_surface_reserve(a, a->nv + b->nv, a->nf + b->nf));
+  memcpy(a->pos + 3 * a->nv, b->pos, (size_t)b->nv * 3 * sizeof *a->pos);
+  for (uint32_t k = 0; k < 3 * b->nf; k++) a->tri[3 * a->nf + k] = b->tri[k] + a->nv;
+  a->nv += b->nv, a->nf += b->nf;
+}
+
+/* --- the pair test ------------------------------------------------------ */
+
+static int tt(const double *a, const uint32_t *va, const double *b, const uint32_t *vb) {
+  return sessile_triangles_intersect(a, va, b, vb);
+}
+
+static void hand_cases(void) {
+  const uint32_t i012[3] = {0, 1, 2}, i345[3] = {3, 4, 5};
+  const double base[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  /* A vertical triangle through the base's interior, and one beside it. */
+  const double cross[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.2, 0.3, 1};
+  const double beside[9] = {2, 0, -1, 2, 1, 1, 3, 0, 1};
+  t_true("pair: a triangle piercing another intersects", tt(base, i012, cross, i345));
+  t_true("pair: a triangle beside another does not", !tt(base, i012, beside, i345));
+  const double touch_v[9] = {1, 0, 0, 2, 0, 1, 2, 1, -1}; /* a corner on a corner */
+  t_true("pair: touching at a point (no shared id) intersects", tt(base, i012, touch_v, i345));
+  const double above[9] = {0, 0, 1e-9, 1, 0, 1e-9, 0, 1, 1e-9};
+  t_true("pair: parallel 1e-9 apart does not", !tt(base, i012, above, i345));
+  const double cop_ov[9] = {0.5, 0.5, 0, -0.5, 0.2, 0, 0.2, -0.5, 0};
+  const double cop_far[9] = {1, 1, 0, 2, 1, 0, 1, 2, 0};
+  const double cop_edge[9] = {1, 0, 0, 0, 1, 0, 1, 1, 0}; /* shares the hypotenuse, other ids */
+  t_true("pair: coplanar overlapping intersects", tt(base, i012, cop_ov, i345));
+  t_true("pair: coplanar apart does not", !tt(base, i012, cop_far, i345));
+  t_true("pair: coplanar touching along an edge (other ids) intersects",
+         tt(base, i012, cop_edge, i345));
+  /* Shared edge 1-2 (ids 1, 2): folded open, coplanar flat, coplanar folded. */
+  const uint32_t e12[3] = {2, 1, 7};
+  const double open[9] = {0, 1, 0, 1, 0, 0, 1, 1, 1};
+  const double flat[9] = {0, 1, 0, 1, 0, 0, 1, 1, 0};
+  const double fold[9] = {0, 1, 0, 1, 0, 0, 0.2, 0.2, 0};
+  t_true("pair: shared edge, bent: no intersection", !tt(base, i012, open, e12));
+  t_true("pair: shared edge, coplanar on both sides: none", !tt(base, i012, flat, e12));
+  t_true("pair: shared edge, coplanar fold onto each other: intersects",
+         tt(base, i012, fold, e12));
+  t_true("pair: the fold without shared ids is a plain overlap", tt(base, i012, fold, i345));
+  /* Shared vertex 0 (id 0): a neighbour in the fan, one piercing the base,
+   * a coplanar one in another sector, a coplanar one overlapping. */
+  const uint32_t v0[3] = {0, 8, 9};
+  const double fan[9] = {0, 0, 0, 0, -1, 0.3, -1, 0, 0.2};
+  const double pierce[9] = {0, 0, 0, 0.4, 0.4, -1, 0.4, 0.3, 1};
+  const double sector[9] = {0, 0, 0, -1, 0, 0, 0, -1, 0};
+  const double overlap[9] = {0, 0, 0, 2, 0.5, 0, 0.5, 2, 0};
+  t_true("pair: shared vertex, fan neighbour: none", !tt(base, i012, fan, v0));
+  t_true("pair: shared vertex, the other crosses the base: intersects", tt(base, i012, pierce, v0));
+  t_true("pair: shared vertex, coplanar in another sector: none", !tt(base, i012, sector, v0));
+  t_true("pair: shared vertex, coplanar overlapping sectors: intersects",
+         tt(base, i012, overlap, v0));
+  t_true("pair: the same triangle twice intersects", tt(base, i012, base, i012));
+}
+
+/* Independent reference for triangles in general position: the separating
+ * axis test (the two normals and the nine edge-edge cross products). */
+static int sat_intersect(const double *a, const double *b) {
+  double ea[3][3], eb[3][3], axes[11][3];
+  int n = 0;
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) {
+      ea[i][k] = a[3 * ((i + 1) % 3) + k] - a[3 * i + k];
+      eb[i][k] = b[3 * ((i + 1) % 3) + k] - b[3 * i + k];
+    }
+#define CROSS(o, u, v)                                                                             \
+  (o)[0] = (u)[1] * (v)[2] - (u)[2] * (v)[1], (o)[1] = (u)[2] * (v)[0] - (u)[0] * (v)[2],         \
+  (o)[2] = (u)[0] * (v)[1] - (u)[1] * (v)[0]
+  CROSS(axes[n], ea[0], ea[1]), n++;
+  CROSS(axes[n], eb[0], eb[1]), n++;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) CROSS(axes[n], ea[i], eb[j]), n++;
+#undef CROSS
+  for (int x = 0; x < n; x++) {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int t = 0; t < 2; t++)
+      for (int i = 0; i < 3; i++) {
+        const double *p = (t ? b : a) + 3 * i;
+        double d = p[0] * axes[x][0] + p[1] * axes[x][1] + p[2] * axes[x][2];
+        lo[t] = fmin(lo[t], d), hi[t] = fmax(hi[t], d);
+      }
+    if (hi[0] < lo[1] || hi[1] < lo[0]) return 0;
+  }
+  return 1;
+}
+
+static void random_pairs(void) {
+  rng_state = 0x1234;
+  int n = 200000, disagree = 0, hits = 0;
+  for (int i = 0; i < n; i++) {
+    double a[9], b[9];
+    for (int k = 0; k < 9; k++) a[k] = urand(), b[k] = 0.6 * urand() + 0.3;
+    int x = sessile_triangles_intersect(a, NULL, b, NULL), y = sat_intersect(a, b);
+    hits += x;
+    if (x != y && disagree++ < 3) printf("     disagreement on pair %d: %d vs SAT %d\n", i, x, y);
+  }
+  printf("     %d random pairs, %d intersecting\n", n, hits);
+  t_check("pair test vs separating axes, random pairs (disagreements)", disagree, 0);
+  t_true("random pairs: both outcomes occur", hits > n / 10 && hits < n - n / 10);
+}
+
+/* --- surfaces --------------------------------------------------------------- */
+
+static void spheres_clean(void) {
+  uint64_t worst = 0;
+  for (int level = 1; level <= 5; level++) {
+    sessile_surface s = {0};
+    t_ok("icosphere", sessile_surface_icosphere(level, 1.0 + level, ORIGIN, &s));
+    uint64_t n = count_pairs(&s);
+    worst = n > worst ? n : worst;
+    sessile_surface_free(&s);
+  }
+  t_check("icospheres, levels 1-5: intersecting pairs", (double)worst, 0);
+  /* The growth loop's start: the part below the floor flattened onto it
+   * (exactly coplanar triangles around shared vertices and edges). */
+  sessile_surface s = {0};
+  const double c[3] = {0, 0, 1.0};
+  t_ok("icosphere", sessile_surface_icosphere(4, 2.0, c, &s));
+  for (uint32_t v = 0; v < s.nv; v++) s.pos[3 * v + 2] = fmax(s.pos[3 * v + 2], 0.0);
+  t_check("icosphere flattened on a floor: intersecting pairs", (double)count_pairs(&s), 0);
+  sessile_surface_free(&s);
+}
+
+static void two_spheres(void) {
+  const double R = 1.0, ca[3] = {0, 0, 0}, cb[3] = {1.3, 0.2, 0.1};
+  sessile_surface s = {0}, b = {0};
+  t_ok("icosphere a", sessile_surface_icosphere(4, R, ca, &s));
+  t_ok("icosphere b", sessile_surface_icosphere(4, R, cb, &b));
+  uint32_t na = s.nf;
+  append(&s, &b);
+  uint64_t n = 0;
+  uint32_t *p = malloc((size_t)s.nf * 8 * sizeof *p), *q = malloc((size_t)s.nf * 8 * sizeof *q);
+  double t0 = now();
+  t_ok("self-intersections", sessile_surface_self_intersections(&s, s.nf * 4, p, &n));
+  double t1 = now();
+  uint64_t m = brute_pairs(&s, q, (uint64_t)s.nf * 4);
+  double t2 = now();
+  printf("     %u triangles: %llu pairs; hierarchy %.2f ms, brute force %.0f ms (CPU)\n", s.nf,
+         (unsigned long long)n, 1e3 * (t1 - t0), 1e3 * (t2 - t1));
+  t_true("two spheres: pairs found", n > 0);
+  t_true("two spheres: hierarchy count == brute-force count", n == m);
+  t_true("two spheres: the same pairs in the same order",
+         n == m && !memcmp(p, q, (size_t)n * 2 * sizeof *p));
+  int cross = 1;
+  for (uint64_t i = 0; i < n; i++) cross &= (p[2 * i] < na) != (p[2 * i + 1] < na);
+  t_true("two spheres: every pair has one triangle of each sphere", cross);
+  /* A triangle of a with a corner surely inside b's polyhedron (within its
+   * inscribed ball) and one surely outside (beyond radius R) crosses b. */
+  uint8_t *in_pair = calloc(s.nf, 1);
+  for (uint64_t i = 0; i < n; i++) in_pair[p[2 * i]] = in_pair[p[2 * i + 1]] = 1;
+  sessile_surface_stats st;
+  sessile_surface_stats_of(&b, &st);
+  double r_in = R * cos(asin(st.edge_max / (2 * R))) * cos(asin(st.edge_max / (2 * R)));
+  uint32_t expected = 0, missed = 0;
+  for (uint32_t f = 0; f < na; f++) {
+    int inside = 0, outside = 0;
+    for (int k = 0; k < 3; k++) {
+      const double *x = s.pos + 3 * s.tri[3 * f + k];
+      double d = sqrt((x[0] - cb[0]) * (x[0] - cb[0]) + (x[1] - cb[1]) * (x[1] - cb[1]) +
+                      (x[2] - cb[2]) * (x[2] - cb[2]));
+      inside |= d < r_in, outside |= d > R;
+    }
+    if (inside && outside) expected++, missed += !in_pair[f];
+  }
+  printf("     %u triangles of a surely cross b\n", expected);
+  t_true("two spheres: some triangles surely cross", expected > 10);
+  t_check("two spheres: sure crossings not in a pair", missed, 0);
+  free(in_pair), free(p), free(q);
+  sessile_surface_free(&s), sessile_surface_free(&b);
+}
+
+static void fuzz(void) {
+  int bad = 0, total_pairs = 0;
+  for (int seed = 1; seed <= 12; seed++) {
+    rng_state = 0xF00Du * seed;
+    sessile_surface s = {0};
+    t_ok("icosphere", sessile_surface_icosphere(3, 1.0, ORIGIN, &s));
+    double amp = 0.05 * seed; /* edges ~0.3: from a few pairs to many */
+    for (uint32_t i = 0; i < 3 * s.nv; i++) s.pos[i] += amp * (urand() - 0.5);
+    /* now and then exact coincidences: a vertex onto another, a coordinate onto a plane */
+    if (seed % 3 == 0) memcpy(s.pos + 3 * 5, s.pos + 3 * 77, 3 * sizeof *s.pos);
+    if (seed % 4 == 0)
+      for (uint32_t v = 0; v < s.nv; v++) s.pos[3 * v + 2] = fmax(s.pos[3 * v + 2], 0.1);
+    uint64_t n = count_pairs(&s), m = brute_pairs(&s, NULL, 0);
+    total_pairs += (int)n;
+    if (n != m && bad++ < 3) printf("     seed %d: hierarchy %llu, brute force %llu\n", seed,
+                                    (unsigned long long)n, (unsigned long long)m);
+    sessile_surface_free(&s);
+  }
+  printf("     12 perturbed level-3 spheres: %d pairs in all\n", total_pairs);
+  t_check("fuzz: perturbed spheres where the hierarchy count != brute force", bad, 0);
+  t_true("fuzz: pairs occurred", total_pairs > 100);
+}
+
+static void timing(void) {
+  sessile_surface s = {0};
+  t_ok("icosphere", sessile_surface_icosphere(7, 30.0, ORIGIN, &s));
+  double t0 = now();
+  uint64_t n = count_pairs(&s);
+  printf("     TIME self-intersections of %u triangles: %.1f ms CPU (%llu pairs)\n", s.nf,
+         1e3 * (now() - t0), (unsigned long long)n);
+  sessile_surface_free(&s);
+}
+
+/* --- the motion guard --------------------------------------------------- */
+
+/* A pancake (a level-4 sphere of radius 3 flattened to 0.6 cm): everything
+ * grows 0.02 cm along its normal, and the top's middle sinks by up to 0.9 cm,
+ * through the bottom.  The guard must keep it clean, holding back only near
+ * where top and bottom would meet. */
+static void guard_pancake(void) {
+  sessile_surface s = {0};
+  t_ok("icosphere", sessile_surface_icosphere(4, 3.0, ORIGIN, &s));
+  for (uint32_t v = 0; v < s.nv; v++) s.pos[3 * v + 2] *= 0.1;
+  t_true("pancake: clean to start", count_pairs(&s) == 0);
+  double *n = malloc((size_t)s.nv * 3 * sizeof *n), *np = malloc((size_t)s.nv * 3 * sizeof *np);
+  double *np2 = malloc((size_t)s.nv * 3 * sizeof *np2);
+  sessile_surface_normals(&s, n);
+  const double rho = 1.2;
+  for (uint32_t v = 0; v < s.nv; v++) {
+    const double *x = s.pos + 3 * v;
+    double r = hypot(x[0], x[1]), sink = x[2] > 0 && r < rho ? 0.9 * (1 - (r / rho) * (r / rho)) : 0;
+    for (int k = 0; k < 3; k++) np[3 * v + k] = x[k] + 0.02 * n[3 * v + k];
+    np[3 * v + 2] -= sink;
+  }
+  sessile_surface moved = {0};
+  t_ok("copy", sessile_surface_copy(&s, &moved));
+  memcpy(moved.pos, np, (size_t)s.nv * 3 * sizeof *np);
+  uint64_t before = count_pairs(&moved);
+  printf("     the unguarded motion: %llu intersecting pairs\n", (unsigned long long)before);
+  t_true("pancake: the unguarded motion crosses", before > 0);
+  for (int halfway = 0; halfway <= 1; halfway++) {
+    memcpy(np2, np, (size_t)s.nv * 3 * sizeof *np);
+    sessile_guard_stats st;
+    double t0 = now();
+    t_ok("guard", sessile_surface_guard_motion(&s, np2, halfway, &st));
+    double t1 = now();
+    memcpy(moved.pos, np2, (size_t)s.nv * 3 * sizeof *np2);
+    /* How far from the contact is a held-back vertex?  Contact: where the
+     * sunk top would pass z = -0.3 * sqrt(1 - r^2/9) (the bottom). */
+    double far = 0;
+    for (uint32_t v = 0; v < s.nv; v++) {
+      if (np2[3 * v] == np[3 * v] && np2[3 * v + 1] == np[3 * v + 1] && np2[3 * v + 2] == np[3 * v + 2])
+        continue;
+      far = fmax(far, hypot(s.pos[3 * v], s.pos[3 * v + 1]));
+    }
+    printf("     halfway %d: %u moved, %u held back, %u halfway, %u rounds, kept %.1f of %.1f cm, "
+           "%.1f ms CPU; farthest held-back vertex at r = %.2f\n",
+           halfway, st.moved, st.held_back, st.halfway, st.rounds, st.kept_cm, st.proposed_cm,
+           1e3 * (t1 - t0), far);
+    t_check("pancake: pairs after the guard", (double)count_pairs(&moved), 0);
+    t_true("pancake: some vertices held back", st.held_back + st.halfway > 0);
+    /* The contact lies where the sink exceeds the gap: r < ~0.9; one ring of
+     * triangles (edges ~0.45 cm) around it may be pulled in. */
+    t_check("pancake: held back only near the contact (r of the farthest, cm)", far, 0.95 + 2 * 0.45);
+    t_true("pancake: most of the growth kept (> 80% of the vertices)",
+           st.held_back + st.halfway < st.moved / 5);
+    t_ok("pancake: invariants after the guard", sessile_surface_check(&moved, 2, 0));
+    double *again = malloc((size_t)s.nv * 3 * sizeof *again);
+    memcpy(again, np, (size_t)s.nv * 3 * sizeof *np);
+    t_ok("guard again", sessile_surface_guard_motion(&s, again, halfway, NULL));
+    t_true("pancake: same input, same output (bit for bit)",
+           !memcmp(again, np2, (size_t)s.nv * 3 * sizeof *np2));
+    free(again);
+  }
+  free(n), free(np), free(np2);
+  sessile_surface_free(&s), sessile_surface_free(&moved);
+}
+
+/* Two overlapping spheres moved at random: the pairs they had stay (the
+ * guard cannot undo them), no new one appears. */
+static void guard_preexisting(void) {
+  const double cb[3] = {1.3, 0.2, 0.1};
+  sessile_surface s = {0}, b = {0}, m = {0};
+  t_ok("icosphere a", sessile_surface_icosphere(3, 1.0, ORIGIN, &s));
+  t_ok("icosphere b", sessile_surface_icosphere(3, 1.0, cb, &b));
+  append(&s, &b);
+  uint64_t n0 = count_pairs(&s);
+  uint32_t *p0 = malloc((size_t)n0 * 2 * sizeof *p0 + 8), *p1 = malloc((size_t)s.nf * 8 * sizeof *p1);
+  t_ok("pairs", sessile_surface_self_intersections(&s, (uint32_t)n0, p0, &n0));
+  t_ok("copy", sessile_surface_copy(&s, &m));
+  rng_state = 99;
+  for (uint32_t i = 0; i < 3 * m.nv; i++) m.pos[i] += 0.3 * (urand() - 0.5);
+  sessile_guard_stats st;
+  t_ok("guard", sessile_surface_guard_motion(&s, m.pos, 1, &st));
+  uint64_t n1 = 0;
+  t_ok("pairs after", sessile_surface_self_intersections(&m, s.nf * 4, p1, &n1));
+  uint64_t fresh = 0;
+  for (uint64_t i = 0, j = 0; i < n1; i++) { /* both lists sorted */
+    while (j < n0 && ((uint64_t)p0[2 * j] << 32 | p0[2 * j + 1]) < ((uint64_t)p1[2 * i] << 32 | p1[2 * i + 1])) j++;
+    fresh += !(j < n0 && p0[2 * j] == p1[2 * i] && p0[2 * j + 1] == p1[2 * i + 1]);
+  }
+  printf("     %llu pairs before, %llu after (%llu left alone), %u of %u vertices held back, %u halfway\n",
+         (unsigned long long)n0, (unsigned long long)n1, (unsigned long long)st.preexisting,
+         st.held_back, st.moved, st.halfway);
+  t_check("pre-existing pairs: new pairs after the guard", (double)fresh, 0);
+  t_true("pre-existing pairs: reported", st.preexisting > 0);
+  free(p0), free(p1);
+  sessile_surface_free(&s), sessile_surface_free(&b), sessile_surface_free(&m);
+}
+
+/* --- the grid query ---------------------------------------------------- */
+
+static void grid_query(void) {
+  sessile_surface s = {0};
+  t_ok("icosphere", sessile_surface_icosphere(4, 2.0, ORIGIN, &s));
+  sessile_tri_grid *g = NULL;
+  t_ok("grid", sessile_tri_grid_create(&s, &g));
+  double p[9], c[3] = {0, 0, 0}, q[9];
+  corners(&s, 0, p);
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) c[k] += p[3 * i + k] / 3;
+  const uint32_t fresh[3] = {s.nv, s.nv + 1, s.nv + 2};
+  /* Triangle 0 scaled by 0.999 about the centre: inside the sphere. */
+  for (int i = 0; i < 9; i++) q[i] = 0.999 * p[i];
+  t_true("grid: triangle 0 scaled into the sphere hits nothing",
+         !sessile_tri_grid_hits(g, &s, NULL, 1, fresh, q, NULL, 0));
+  /* A radial sliver through triangle 0's centroid. */
+  double perp[3] = {c[1], -c[0], 0}, lp = hypot(c[0], c[1]);
+  for (int k = 0; k < 3; k++) {
+    q[k] = 0.9 * c[k];
+    q[3 + k] = 1.1 * c[k] + 0.01 * perp[k] / lp;
+    q[6 + k] = 1.1 * c[k] - 0.01 * perp[k] / lp;
+  }
+  t_true("grid: a triangle through the surface hits",
+         sessile_tri_grid_hits(g, &s, NULL, 1, fresh, q, NULL, 0));
+  uint8_t *alive = calloc(s.nf, 1);
+  t_true("grid: dead triangles are skipped",
+         !sessile_tri_grid_hits(g, &s, alive, 1, fresh, q, NULL, 0));
+  free(alive);
+  /* Triangle 0 itself: with other ids it touches itself and its neighbours;
+   * with those excluded nothing; with its own ids only itself. */
+  uint32_t ex[32], nex = 0;
+  for (uint32_t f = 0; f < s.nf && nex < 32; f++) {
+    const uint32_t *t = s.tri + 3 * f;
+    int near = 0;
+    for (int i = 0; i < 3; i++)
+      for (int j = 0; j < 3; j++) near |= t[i] == s.tri[j];
+    if (near) ex[nex++] = f;
+  }
+  t_true("grid: triangle 0 with other ids hits", sessile_tri_grid_hits(g, &s, NULL, 1, fresh, p, NULL, 0));
+  t_true("grid: ... not with triangle 0 and its neighbours excluded",
+         !sessile_tri_grid_hits(g, &s, NULL, 1, fresh, p, ex, nex));
+  t_true("grid: triangle 0 with its own ids hits itself",
+         sessile_tri_grid_hits(g, &s, NULL, 1, s.tri, p, NULL, 0));
+  t_true("grid: ... and nothing else", !sessile_tri_grid_hits(g, &s, NULL, 1, s.tri, p, ex, 1));
+  /* Two candidates crossing each other. */
+  double two[18];
+  memcpy(two, q, sizeof q);
+  for (int i = 0; i < 9; i++) two[9 + i] = 0.5 * q[i] + 0.5 * q[(i + 3) % 9];
+  two[9 + 2] += 0.3, two[12 + 2] -= 0.3;
+  const uint32_t ids2[6] = {s.nv, s.nv + 1, s.nv + 2, s.nv + 3, s.nv + 4, s.nv + 5};
+  t_true("grid: candidates crossing each other hit",
+         sessile_tri_grid_hits(g, &s, NULL, 2, ids2, two, NULL, 0));
+  sessile_tri_grid_destroy(g);
+  sessile_surface_free(&s);
+}
+
+static void errors(void) {
+  sessile_surface s = {0};
+  t_ok("icosphere", sessile_surface_icosphere(2, 1.0, ORIGIN, &s));
+  double *np = malloc((size_t)s.nv * 3 * sizeof *np);
+  memcpy(np, s.pos, (size_t)s.nv * 3 * sizeof *np);
+  np[7] = NAN;
+  t_true("guard rejects a NaN position",
+         sessile_surface_guard_motion(&s, np, 0, NULL) == SESSILE_ERR_NUMERIC);
+  printf("     %s\n", sessile_error_message());
+  s.tri[4] = s.nv;
+  uint64_t n;
+  t_true("self-intersections reject an index out of range",
+         sessile_surface_self_intersections(&s, 0, NULL, &n) == SESSILE_ERR_USAGE);
+  free(np);
+  sessile_surface_free(&s);
+}
+
+int main(void) {
+  hand_cases();
+  random_pairs();
+  spheres_clean();
+  two_spheres();
+  fuzz();
+  timing();
+  guard_pancake();
+  guard_preexisting();
+  grid_query();
+  errors();
+  return t_finish(NULL);
+}
