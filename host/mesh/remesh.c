@@ -17,6 +17,7 @@ void sessile_remesh_options_default(sessile_remesh_options *o) {
   o->max_passes = 8;
   o->max_turn_deg = 60.0;
   for (int a = 0; a < 3; a++) o->clamp_lo[a] = -INFINITY, o->clamp_hi[a] = INFINITY;
+  o->guard_intersections = 1;
 }
 
 void sessile_surface_curve_midpoint(const double p0[3], const double n0[3], const double p1[3],
@@ -70,7 +71,7 @@ sessile_status sessile_remesh(sessile_surface *s, const double *normals,
   SESSILE_CHECK(n, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", s->nv);
   if (normals) memcpy(n, normals, (size_t)s->nv * 3 * sizeof *n);
   else sessile_surface_normals(s, n);
-  sessile_status r = remesh_split(s, &n, opt, &st->splits);
+  sessile_status r = remesh_split(s, &n, opt, &st->splits, &st->chord_splits);
   free(n);
   SESSILE_CALL(r);
   return remesh_collapse(s, opt, st);

@@ -6,7 +6,9 @@
  *       valence 3 (the result stays a closed 2-manifold without duplicate
  *       triangles: Dey et al.'s condition for triangulated surfaces),
  *   (c) no remaining triangle's normal turns by more than max_turn_deg and
- *       none degenerates (no fold-overs).
+ *       none degenerates (no fold-overs),
+ *   (d) with guard_intersections, no new triangle crosses the surface
+ *       (remesh_contact.c).
  * Candidates are visited shortest first; sweeps repeat, re-visiting only
  * candidates near a change (dirty 2-rings), until a sweep changes nothing.
  * Every decision depends on the mesh alone (the normals used here are
@@ -32,6 +34,7 @@ typedef struct {
   double *nrm;             /* cached vertex normals, valid where nok[v] */
   uint8_t *nok;
   double L2, cos_turn, deg_area;
+  remesh_contact *contact; /* (d), NULL when guard_intersections is off */
 } cctx;
 
 typedef struct { uint32_t a, b; } cand;
@@ -192,6 +195,10 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
       if (!(cn[0] * co[0] + cn[1] * co[1] + cn[2] * co[2] >= c->cos_turn * ln * lo_)) return -1;
     }
   }
+  /* (d) last, the dearest: no new triangle crosses the surface. */
+  if (c->contact && remesh_contact_blocks(c->contact, s, c->falive, lo, hi, p, c->fa, na, c->fb,
+                                          nb, sh))
+    return -1;
   /* Commit: drop the two triangles of the edge, hand hi's corners to lo. */
   c->falive[sh[0]] = c->falive[sh[1]] = 0;
   uint32_t *tail = &c->head[lo];
@@ -201,8 +208,10 @@ static int try_collapse(cctx *c, uint32_t a, uint32_t b) {
   c->head[hi] = NONE;
   c->valive[hi] = 0;
   memcpy(s->pos + 3 * lo, p, sizeof p);
-  /* Decisions within the 2-ring of lo may change: re-examine them next sweep. */
+  /* Decisions within the 2-ring of lo may change: re-examine them next sweep
+   * (and refusals by (d) whose fan is near the change). */
   na = gather(c, lo, c->fa);
+  if (c->contact) remesh_contact_commit(c->contact, s, c->fa, na, c->ndirty);
   for (uint32_t i = 0; i < na; i++)
     for (int k = 0; k < 3; k++) {
       uint32_t w = s->tri[3 * c->fa[i] + k];
@@ -258,6 +267,8 @@ static sessile_status compact(cctx *c) {
 sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options *o,
                                sessile_remesh_stats *st) {
   cctx c = {.s = s, .o = o};
+  remesh_contact contact;
+  memset(&contact, 0, sizeof contact);
   c.L2 = o->insert_len * o->insert_len;
   c.cos_turn = cos(o->max_turn_deg * acos(-1.0) / 180.0);
   /* "Degenerate": far below any area the thresholds care about. */
@@ -283,6 +294,10 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
       !c.fb || !c.fc || !c.nrm || !c.nok || !ec || !ekey || !fkey || !ktmp || !fcand) {
     r = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory remeshing %zu triangles", nf);
     goto done;
+  }
+  if (o->guard_intersections) {
+    if ((r = remesh_contact_begin(&contact, s)) != SESSILE_OK) goto done;
+    c.contact = &contact;
   }
   memset(c.falive, 1, nf);
   memset(c.valive, 1, nv);
@@ -331,8 +346,14 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
     uint8_t *t = c.dirty;
     c.dirty = c.ndirty;
     c.ndirty = t;
+    if (contact.failed) {
+      r = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for the contact guard of "
+                            "%zu triangles", nf);
+      goto done;
+    }
     if (!changed) break;
   }
+  st->contact_refusals = contact.refusals;
   /* What is left below the thresholds was refused by a guard. */
   for (uint32_t f = 0; f < nf; f++) {
     if (!c.falive[f]) continue;
@@ -344,6 +365,7 @@ sessile_status remesh_collapse(sessile_surface *s, const sessile_remesh_options 
   }
   r = compact(&c);
 done:
+  remesh_contact_end(&contact);
   free(c.head), free(c.next), free(c.mark), free(c.falive), free(c.valive), free(c.dirty);
   free(c.ndirty), free(c.fa), free(c.fb), free(c.fc), free(c.nrm), free(c.nok), free(ec), free(fcand);
   free(ekey), free(fkey), free(ktmp);

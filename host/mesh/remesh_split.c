@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "mesh/intersect_internal.h"
 #include "mesh/mesh_internal.h"
 
 #define NONE UINT32_MAX
@@ -60,8 +61,31 @@ static uint32_t *refine(const sessile_surface *s, const uint32_t v[3], const uin
   return emit(t, a, mbc, c);
 }
 
+/* Contact inhibition for the sweep's new vertices: a curve point may not
+ * make the surface cross itself.  Put on its edge's midpoint instead, a new
+ * vertex only re-triangulates the old flat triangles, which cannot cross
+ * anything they did not cross before; so the motion guard runs from those
+ * midpoints to the curve points and sends back (all the way) the vertices
+ * of every pair it finds. */
+static sessile_status guard_points(sessile_surface *s, const uint32_t *off, const uint32_t *nbr,
+                                   const uint32_t *mid, uint32_t nv0, uint32_t *chord) {
+  double *flat = malloc((size_t)s->nv * 3 * sizeof *flat);
+  SESSILE_CHECK(flat, SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", s->nv);
+  memcpy(flat, s->pos, (size_t)s->nv * 3 * sizeof *flat);
+  for (uint32_t a = 0; a < nv0; a++)
+    for (uint32_t k = off[a]; k < off[a + 1]; k++)
+      if (mid[k] != NONE)
+        for (int c = 0; c < 3; c++)
+          flat[3 * mid[k] + c] = 0.5 * (s->pos[3 * a + c] + s->pos[3 * nbr[k] + c]);
+  sessile_guard_stats gs;
+  sessile_status r = isect_guard(s->tri, s->nf, s->nv, flat, s->pos, 0, &gs);
+  *chord += gs.held_back;
+  free(flat);
+  return r;
+}
+
 sessile_status remesh_split(sessile_surface *s, double **normals, const sessile_remesh_options *o,
-                            uint32_t *splits) {
+                            uint32_t *splits, uint32_t *chord) {
   const double L2 = o->insert_len * o->insert_len;
   for (int pass = 0;; pass++) {
     uint32_t *off, *nbr;
@@ -125,6 +149,8 @@ sessile_status remesh_split(sessile_surface *s, double **normals, const sessile_
     s->nf = (uint32_t)((t - nt) / 3);
     memcpy(s->tri, nt, (size_t)s->nf * 3 * sizeof *nt);
     *splits += nlong;
+    r = o->guard_intersections ? guard_points(s, off, nbr, mid, nv0, chord) : SESSILE_OK;
     free(off), free(nbr), free(mid), free(nt);
+    SESSILE_CALL(r);
   }
 }

@@ -5,7 +5,8 @@
  * the pairs a brute-force O(n^2) loop gives, and every triangle that surely
  * crosses the other sphere is in one; seeded random perturbations, the
  * hierarchy against brute force; the motion guard on a pancake whose top is
- * pushed through its bottom; the triangle grid's query.  Pure C. */
+ * pushed through its bottom; the triangle grid's query; the remesher's guards
+ * on a collapse and on splits built to cross.  Pure C. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -418,6 +419,190 @@ static void grid_query(void) {
   sessile_surface_free(&s);
 }
 
+/* --- the remesher's guards ------------------------------------------------ */
+
+/* One surface of two pieces: a level-3 sphere with a pit (its top vertex
+ * pushed 0.45 cm in, a neighbour drawn towards it so their edge is the only
+ * short one) and a thin tetrahedron (never collapsed: its vertices have
+ * valence 3) that pierces where the pit's fan will be after the collapse. */
+static void remesh_collapse_guard(void) {
+  sessile_surface s = {0};
+  t_ok("icosphere", sessile_surface_icosphere(3, 2.0, ORIGIN, &s));
+  uint32_t top = 0;
+  for (uint32_t v = 1; v < s.nv; v++)
+    if (s.pos[3 * v + 2] > s.pos[3 * top + 2]) top = v;
+  uint32_t nb = UINT32_MAX;
+  for (uint32_t f = 0; f < s.nf && nb == UINT32_MAX; f++)
+    for (int k = 0; k < 3; k++)
+      if (s.tri[3 * f + k] == top) nb = s.tri[3 * f + (k + 1) % 3];
+  double *T = s.pos + 3 * top, *N = s.pos + 3 * nb;
+  for (int k = 0; k < 3; k++) T[k] *= (2.0 - 0.45) / 2.0;
+  for (int k = 0; k < 3; k++) N[k] = T[k] + 0.6 * (N[k] - T[k]);
+  double tn = sqrt((T[0] - N[0]) * (T[0] - N[0]) + (T[1] - N[1]) * (T[1] - N[1]) + (T[2] - N[2]) * (T[2] - N[2]));
+  sessile_surface_stats st0;
+  sessile_surface_stats_of(&s, &st0);
+  printf("     the short edge %.3f cm, the others from %.3f\n", tn, st0.edge_min);
+  int nshort = 0;
+  for (uint32_t f = 0; f < s.nf; f++)
+    for (int k = 0; k < 3; k++) {
+      const double *x = s.pos + 3 * s.tri[3 * f + k], *y = s.pos + 3 * s.tri[3 * f + (k + 1) % 3];
+      nshort += sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                     (x[2] - y[2]) * (x[2] - y[2])) < 1.01 * tn;
+    }
+  t_true("collapse guard: the pit's edge is the only short one", nshort == 2); /* both directions */
+  sessile_remesh_options o;
+  sessile_remesh_options_default(&o);
+  o.insert_len = 10, o.fuse_len = 1.01 * tn, o.min_area = 0, o.max_turn_deg = 179;
+  /* Where the pit's fan goes: collapse a copy without the guard. */
+  sessile_surface c = {0};
+  sessile_remesh_stats rs;
+  t_ok("copy", sessile_surface_copy(&s, &c));
+  o.guard_intersections = 0;
+  t_ok("remesh (unguarded)", sessile_remesh(&c, NULL, &o, &rs));
+  t_true("collapse guard: unguarded, the edge is fused", rs.fusions == 1);
+  /* The fan triangle that moved farthest from its old plane (triangles keep
+   * their order and, but for the two deleted, their corners' order). */
+  uint32_t lo = top < nb ? top : nb;
+  double best = 0, at[3] = {0}, dir[3] = {0};
+  for (uint32_t f = 0, g = 0; f < s.nf; f++) {
+    const uint32_t *t = s.tri + 3 * f;
+    int has_t = t[0] == top || t[1] == top || t[2] == top, has_n = t[0] == nb || t[1] == nb || t[2] == nb;
+    if (has_t && has_n) continue; /* deleted by the collapse */
+    uint32_t gi = g++;
+    if (!has_t && !has_n) continue;
+    double a[9], b[9], u[3], w[3], nn[3], cen[3] = {0, 0, 0}, cold[3] = {0, 0, 0};
+    corners(&s, f, a);
+    corners(&c, gi, b);
+    for (int k = 0; k < 3; k++) u[k] = a[3 + k] - a[k], w[k] = a[6 + k] - a[k];
+    nn[0] = u[1] * w[2] - u[2] * w[1], nn[1] = u[2] * w[0] - u[0] * w[2], nn[2] = u[0] * w[1] - u[1] * w[0];
+    double ln = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+    for (int k = 0; k < 3; k++) {
+      nn[k] /= ln;
+      for (int i = 0; i < 3; i++) cen[k] += b[3 * i + k] / 3, cold[k] += a[3 * i + k] / 3;
+    }
+    double d = fabs((cen[0] - cold[0]) * nn[0] + (cen[1] - cold[1]) * nn[1] + (cen[2] - cold[2]) * nn[2]);
+    if (d > best) best = d, memcpy(at, cen, sizeof at), memcpy(dir, nn, sizeof dir);
+  }
+  (void)lo;
+  printf("     a fan triangle moves %.3f cm off its old plane\n", best);
+  t_true("collapse guard: the collapse moves a fan triangle off its plane", best > 0.02);
+  /* The needle: from 0.4 best below the new centroid to 0.4 best above,
+   * 0.004 cm thick, oriented outwards. */
+  double h = 0.4 * best, e1[3], e2[3];
+  e1[0] = -dir[1], e1[1] = dir[0], e1[2] = 0;
+  double l1 = hypot(e1[0], e1[1]);
+  if (l1 < 1e-9) e1[0] = 1, e1[1] = 0, l1 = 1;
+  e1[0] /= l1, e1[1] /= l1;
+  e2[0] = dir[1] * e1[2] - dir[2] * e1[1], e2[1] = dir[2] * e1[0] - dir[0] * e1[2];
+  e2[2] = dir[0] * e1[1] - dir[1] * e1[0];
+  sessile_surface needle = {0};
+  t_ok("reserve", sessile_surface_reserve(&needle, 4, 4));
+  for (int k = 0; k < 3; k++) {
+    needle.pos[k] = at[k] - h * dir[k];
+    needle.pos[3 + k] = at[k] + h * dir[k] + 0.004 * e1[k];
+    needle.pos[6 + k] = at[k] + h * dir[k] - 0.002 * e1[k] + 0.0035 * e2[k];
+    needle.pos[9 + k] = at[k] + h * dir[k] - 0.002 * e1[k] - 0.0035 * e2[k];
+  }
+  const uint32_t tet[12] = {0, 2, 1, 0, 3, 2, 0, 1, 3, 1, 2, 3};
+  memcpy(needle.tri, tet, sizeof tet);
+  needle.nv = needle.nf = 4;
+  sessile_surface_stats ns;
+  sessile_surface_stats_of(&needle, &ns);
+  if (ns.volume < 0)
+    for (int f = 0; f < 4; f++) {
+      uint32_t x = needle.tri[3 * f + 1];
+      needle.tri[3 * f + 1] = needle.tri[3 * f + 2], needle.tri[3 * f + 2] = x;
+    }
+  append(&s, &needle);
+  append(&c, &needle);
+  t_true("collapse guard: clean before the remesh", count_pairs(&s) == 0);
+  t_true("collapse guard: the unguarded collapse would cross the needle", count_pairs(&c) > 0);
+  sessile_surface u = {0};
+  t_ok("copy", sessile_surface_copy(&s, &u));
+  t_ok("remesh (unguarded, with the needle)", sessile_remesh(&u, NULL, &o, &rs));
+  printf("     unguarded: %u fusions, %llu pairs after\n", rs.fusions,
+         (unsigned long long)count_pairs(&u));
+  t_true("collapse guard: unguarded, the surface crosses itself", count_pairs(&u) > 0);
+  o.guard_intersections = 1;
+  t_ok("remesh (guarded)", sessile_remesh(&s, NULL, &o, &rs));
+  printf("     guarded: %u fusions, %u contact refusals, %u left\n", rs.fusions,
+         rs.contact_refusals, rs.rejected);
+  t_true("collapse guard: the collapse is refused", rs.fusions == 0 && rs.contact_refusals >= 1);
+  t_check("collapse guard: pairs after the guarded remesh", (double)count_pairs(&s), 0);
+  t_ok("collapse guard: invariants", sessile_surface_check(&s, 4, 0));
+  sessile_surface_free(&s), sessile_surface_free(&c), sessile_surface_free(&u);
+  sessile_surface_free(&needle);
+}
+
+/* Splits: two level-3 spheres of radius 3 (edges ~0.75 cm, all above
+ * insert_len), turned so that a triangle's centre faces the other sphere,
+ * 0.04 cm apart; normals from a point 0.45 cm under each facing triangle,
+ * so they diverge more than the sphere's and curve points bulge ~0.08 cm
+ * out of the facing triangles.  Unguarded the pieces cross; guarded not. */
+static void remesh_split_guard(void) {
+  const double R = 3.0, gap = 0.04;
+  sessile_surface s = {0}, b = {0};
+  t_ok("icosphere a", sessile_surface_icosphere(3, R, ORIGIN, &s));
+  /* Rodrigues: the rotation taking triangle 0's centre direction u to +x. */
+  double u[3] = {0, 0, 0}, x[3] = {1, 0, 0}, w[3], rot[9];
+  for (int i = 0; i < 3; i++)
+    for (int k = 0; k < 3; k++) u[k] += s.pos[3 * s.tri[i] + k];
+  double lu = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+  for (int k = 0; k < 3; k++) u[k] /= lu;
+  w[0] = u[1] * x[2] - u[2] * x[1], w[1] = u[2] * x[0] - u[0] * x[2], w[2] = u[0] * x[1] - u[1] * x[0];
+  double sn = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]), cs = u[0];
+  for (int k = 0; k < 3; k++) w[k] /= sn;
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double kx[3][3] = {{0, -w[2], w[1]}, {w[2], 0, -w[0]}, {-w[1], w[0], 0}};
+      double k2 = 0;
+      for (int m = 0; m < 3; m++) k2 += kx[i][m] * kx[m][j];
+      rot[3 * i + j] = (i == j) + sn * kx[i][j] + (1 - cs) * k2;
+    }
+  for (uint32_t v = 0; v < s.nv; v++) {
+    double p[3];
+    for (int i = 0; i < 3; i++)
+      p[i] = rot[3 * i] * s.pos[3 * v] + rot[3 * i + 1] * s.pos[3 * v + 1] + rot[3 * i + 2] * s.pos[3 * v + 2];
+    memcpy(s.pos + 3 * v, p, sizeof p);
+  }
+  /* b: a turned half a turn about z (facing -x), moved beside a. */
+  double xf = 0;
+  for (int i = 0; i < 3; i++) xf += s.pos[3 * s.tri[i]] / 3;
+  t_ok("copy", sessile_surface_copy(&s, &b));
+  for (uint32_t v = 0; v < b.nv; v++) {
+    b.pos[3 * v] = 2 * xf + gap - b.pos[3 * v];
+    b.pos[3 * v + 1] = -b.pos[3 * v + 1];
+  }
+  uint32_t na = s.nv;
+  append(&s, &b);
+  t_true("split guard: clean to start", count_pairs(&s) == 0);
+  double *n = malloc((size_t)s.nv * 3 * sizeof *n);
+  for (uint32_t v = 0; v < s.nv; v++) {
+    double q[3] = {v < na ? xf - 0.45 : xf + gap + 0.45, 0, 0}, l = 0;
+    for (int k = 0; k < 3; k++) n[3 * v + k] = s.pos[3 * v + k] - q[k], l += n[3 * v + k] * n[3 * v + k];
+    for (int k = 0; k < 3; k++) n[3 * v + k] /= sqrt(l);
+  }
+  sessile_remesh_options o;
+  sessile_remesh_options_default(&o);
+  o.insert_len = 0.6, o.fuse_len = 0, o.min_area = 0;
+  sessile_remesh_stats rs;
+  sessile_surface u2 = {0};
+  t_ok("copy", sessile_surface_copy(&s, &u2));
+  o.guard_intersections = 0;
+  t_ok("remesh (unguarded)", sessile_remesh(&u2, n, &o, &rs));
+  uint64_t pu = count_pairs(&u2);
+  printf("     unguarded: %u splits, %llu pairs\n", rs.splits, (unsigned long long)pu);
+  t_true("split guard: unguarded, the curve points cross", pu > 0);
+  o.guard_intersections = 1;
+  t_ok("remesh (guarded)", sessile_remesh(&s, n, &o, &rs));
+  printf("     guarded: %u splits, %u on the chord\n", rs.splits, rs.chord_splits);
+  t_true("split guard: some points put on the chord", rs.chord_splits > 0 && rs.chord_splits < rs.splits);
+  t_check("split guard: pairs after the guarded remesh", (double)count_pairs(&s), 0);
+  t_ok("split guard: invariants", sessile_surface_check(&s, 4, 0));
+  free(n);
+  sessile_surface_free(&s), sessile_surface_free(&b), sessile_surface_free(&u2);
+}
+
 static void errors(void) {
   sessile_surface s = {0};
   t_ok("icosphere", sessile_surface_icosphere(2, 1.0, ORIGIN, &s));
@@ -445,6 +630,8 @@ int main(void) {
   guard_pancake();
   guard_preexisting();
   grid_query();
+  remesh_collapse_guard();
+  remesh_split_guard();
   errors();
   return t_finish(NULL);
 }

@@ -89,6 +89,11 @@ typedef struct sessile_remesh_options {
    * [clamp_lo, clamp_hi] (default: unbounded), and a vertex lying on a box
    * face keeps its position when an edge to a vertex off the faces is fused. */
   double clamp_lo[3], clamp_hi[3];
+  /* Contact inhibition (docs/intersection.md; default 1): no split or
+   * collapse makes the surface cross itself.  An inserted vertex whose curve
+   * point would cross goes to the edge's midpoint (on the edge: that cannot
+   * cross); a collapse whose new triangles would cross is refused. */
+  int guard_intersections;
 } sessile_remesh_options;
 void sessile_remesh_options_default(sessile_remesh_options *o);
 
@@ -96,6 +101,11 @@ typedef struct sessile_remesh_stats {
   /* rejected: candidates (short edges + small triangles) left at the end
    * because a guard refused every collapse of them */
   uint32_t splits, fusions, area_collapses, rejected;
+  /* contact_refusals: collapses refused because their new triangles would
+   * cross the surface (attempts: a candidate refused in two sweeps counts
+   * twice); chord_splits: inserted vertices put on the edge's midpoint
+   * instead of the curve point, which would have crossed */
+  uint32_t contact_refusals, chord_splits;
 } sessile_remesh_stats;
 
 /* Remeshes in place.  normals: the current vertex normals (3 nv), used to
@@ -105,7 +115,8 @@ typedef struct sessile_remesh_stats {
  * in docs/remesh.md.  Splits run first until no edge exceeds insert_len; then
  * collapses (short edges, small triangles) each guarded so that no edge
  * exceeds insert_len, the link condition holds, no normal turns more than
- * max_turn_deg and no triangle degenerates.  Deterministic; the result is a
+ * max_turn_deg, no triangle degenerates and (guard_intersections) no new
+ * triangle crosses the surface.  Deterministic; the result is a
  * fixed point (remeshing it again changes nothing); vertex and triangle
  * arrays are compacted keeping their relative order.  Fails with
  * SESSILE_ERR_NUMERIC on non-finite positions or when max_passes split
