@@ -226,6 +226,7 @@ static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *
   }
   free(pv);
   SESSILE_CALL(gs);
+  SESSILE_CALL(grow_guard_motion(r, it, np, rec)); /* contact inhibition: grow_guard.c */
   memcpy(r->surf.pos, np, (size_t)nv * 3 * sizeof *np);
   t[5] = sessile_wall_seconds();
 
@@ -266,6 +267,7 @@ static sessile_status iterate(grow_run *r, int it, cJSON *rec, grow_flow_saved *
   cJSON_AddNumberToObject(rm, "fusions", rs.fusions);
   cJSON_AddNumberToObject(rm, "area_collapses", rs.area_collapses);
   cJSON_AddNumberToObject(rm, "rejected_collapses", rs.rejected);
+  SESSILE_CALL(grow_guard_check(r, it, &rs, rec)); /* no self-intersection: grow_guard.c */
   t[6] = sessile_wall_seconds();
 
   progress(r, it, "output", 0);

@@ -117,6 +117,15 @@ sessile_status grow_flow_keep(grow_run *r, grow_flow_saved *k);
 void grow_flow_putback(grow_run *r, grow_flow_saved *k);
 void grow_flow_saved_free(grow_flow_saved *k);
 
+/* Contact inhibition (grow_guard.c, docs/intersection.md).  motion: newpos
+ * (the growth step's positions; r->surf still at the old ones) guarded so
+ * the surface does not cross itself; records "held_back_vertices" and more
+ * under "growth".  check: after the remesh, the remesher's contact figures
+ * under "remesh"; with check_every_iteration, "self_intersections", which
+ * must be 0 (else SESSILE_ERR_INTERNAL). */
+sessile_status grow_guard_motion(grow_run *r, int it, double *newpos, cJSON *rec);
+sessile_status grow_guard_check(grow_run *r, int it, const sessile_remesh_stats *rs, cJSON *rec);
+
 /* Checkpoint (grow_checkpoint.c): the state after iteration it, and back. */
 sessile_status grow_checkpoint_save(grow_run *r, int it);
 sessile_status grow_checkpoint_restore(grow_run *r, const sessile_ckpt *c);
