@@ -99,6 +99,7 @@ static int grow_main(int argc, char **argv, grow_args *a) {
   int rc = parse(argc, argv, a);
   if (rc >= 0) return rc;
   a->o.seed = a->ra.seed, a->o.iterations = a->ra.iterations, a->o.every = a->ra.every;
+  a->o.preset = a->preset; /* the manifest's and the config's preset name */
   sessile_params p;
   sessile_status s = SESSILE_OK;
   if (!a->ra.resume) {

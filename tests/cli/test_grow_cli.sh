@@ -63,6 +63,8 @@ for f in manifest.json records.jsonl checkpoint.bin sponge/iter_0001.ply sponge/
          fields/iter_0001.vtu fields/iter_0002.vtu fields/series.pvd; do
   check "run directory holds $f" test -s "$T/r1/$f"
 done
+check "the manifest names the preset crella (top level and config)" eval \
+  '[ "$(grep -c "\"preset\":[[:space:]]*\"crella\"" "$T/r1/manifest.json")" = 2 ]'
 check "no temporary files are left behind" eval '[ -z "$(find "$T/r1" -name "*.tmp*" -o -name "*sessile-tmp*")" ]'
 check "the manifest says completed, with seed, device, command and times; records hold the solves" eval \
   'grep -q "\"state\":.*\"completed\"" "$T/r1/manifest.json" && grep -q "\"seed\":.*\"7\"" "$T/r1/manifest.json" && grep -q "\"driver\"" "$T/r1/manifest.json" && grep -q "\"end_time\":.*Z\"" "$T/r1/manifest.json" && grep -q "true_relres" "$T/r1/records.jsonl" && [ "$(wc -l <"$T/r1/records.jsonl")" = 2 ]'
