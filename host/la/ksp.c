@@ -183,7 +183,7 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
       snprintf(res->reason, sizeof res->reason, "reached the iteration limit before rtol");
       break;
     }
-    /* Solve A d = r to inner.rtol relative to ‖r‖. */
+    /* Solve A d = r to in.rtol relative to ‖r‖. */
     if ((s = sessile_vec_upload(q, rh)) != SESSILE_OK) break;
     if ((s = sessile_vec_fill(la, 0.0, d)) != SESSILE_OK) break;
     in.max_it = o->max_it - res->iterations;
