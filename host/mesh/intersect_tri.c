@@ -132,12 +132,17 @@ static int general(const double *p, const double *q) {
   return 0;
 }
 
-/* One shared vertex: p = (s, a, b) and q = (s, c, d) after rotation. */
+/* One shared vertex: p = (s, a, b) and q = (s, c, d) after rotation.  When
+ * a and b lie strictly on one side of q's plane, p meets that plane in s
+ * alone: nothing more to test (the usual case, two orientations). */
 static int share_vertex(const double *p, int i, const double *q, int j) {
   const double *a = p + 3 * ((i + 1) % 3), *b = p + 3 * ((i + 2) % 3);
   const double *c = q + 3 * ((j + 1) % 3), *d = q + 3 * ((j + 2) % 3);
-  if (seg_tri(a, b, orient3d(q, q + 3, q + 6, a), orient3d(q, q + 3, q + 6, b), q)) return 1;
-  return seg_tri(c, d, orient3d(p, p + 3, p + 6, c), orient3d(p, p + 3, p + 6, d), p);
+  int sa = orient3d(q, q + 3, q + 6, a), sb = orient3d(q, q + 3, q + 6, b);
+  if (sa * sb > 0) return 0;
+  int sc = orient3d(p, p + 3, p + 6, c), sd = orient3d(p, p + 3, p + 6, d);
+  if (sc * sd > 0) return 0;
+  return seg_tri(a, b, sa, sb, q) || seg_tri(c, d, sc, sd, p);
 }
 
 /* Shared edge: p's corners other than i are the edge, q's corner j is off it.

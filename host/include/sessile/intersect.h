@@ -37,9 +37,10 @@ sessile_status sessile_surface_self_intersections(const sessile_surface *s, uint
 /* --- incremental query: a grid of triangle boxes -------------------------- */
 /* For a surface whose triangles change a few at a time (the remesher's
  * collapses): a uniform hash grid of the triangles' bounding boxes, cell size
- * the largest box side at creation.  It never moves an entry: after
- * triangles change, insert them again; a query reads every triangle at its
- * current position in s and skips dead ones, so stale entries cost time only. */
+ * twice the mean of their largest sides at creation.  Triangles that move must be
+ * inserted again (a query finds a triangle through its box at its last
+ * insertion, then tests it at its current position in s); entries are never
+ * removed, dead triangles are skipped, so stale entries cost time only. */
 typedef struct sessile_tri_grid sessile_tri_grid;
 sessile_status sessile_tri_grid_create(const sessile_surface *s, sessile_tri_grid **out);
 void sessile_tri_grid_destroy(sessile_tri_grid *g);
