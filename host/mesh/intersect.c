@@ -261,7 +261,7 @@ sessile_status sessile_surface_self_intersections(const sessile_surface *s, uint
   isect_pairs p = {0};
   sessile_status r = isect_self_pairs(s->tri, s->nf, s->pos, NULL, &p);
   *count = r == SESSILE_OK ? p.n : 0;
-  if (r == SESSILE_OK && pairs)
+  if (r == SESSILE_OK && pairs && p.n) /* p.p is NULL when there are none */
     memcpy(pairs, p.p, (p.n < max_pairs ? p.n : max_pairs) * 2 * sizeof *pairs);
   free(p.p);
   return r;
