@@ -3,7 +3,8 @@
  * only rounding is in the signs.  Each sign is trusted beyond Shewchuk's
  * static error bound and read as 0 below it; every test is closed (0 counts
  * as touching), so an uncertain sign can only add a pair that lies within
- * rounding of touching, never lose one (docs/intersection.md).
+ * rounding of touching, never lose one; except the shared-edge fold, which
+ * needs strict sides (docs/intersection.md).
  *
  * Two non-coplanar triangles meet exactly when an edge of one meets the
  * other (their common points lie on the planes' line; an end of that

@@ -6,7 +6,8 @@
  * crosses the other sphere is in one; seeded random perturbations, the
  * hierarchy against brute force; the motion guard on a pancake whose top is
  * pushed through its bottom; the triangle grid's query; the remesher's guards
- * on a collapse and on splits built to cross.  Pure C. */
+ * on a collapse and on splits built to cross; 60 rounds of two spheres
+ * growing into each other, guarded.  Pure C. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -603,6 +604,65 @@ static void remesh_split_guard(void) {
   sessile_surface_free(&s), sessile_surface_free(&b), sessile_surface_free(&u2);
 }
 
+/* The growth loop's pattern on the host: two spheres 0.05 cm apart grow
+ * into each other (0.03-0.07 cm along the normals per round, noise 0.01),
+ * the motion guard holding them back, then a guarded remesh; 60 rounds.
+ * Every round must end without a crossing, with a remesh output that is a
+ * fixed point (refusals by the contact guard are re-examined when their
+ * surroundings change) and the same for the same input. */
+static void contact_rounds(void) {
+  const double cb[3] = {3.05, 0.2, -0.1};
+  sessile_surface s = {0}, b = {0}, c = {0};
+  t_ok("icosphere a", sessile_surface_icosphere(4, 1.5, ORIGIN, &s));
+  t_ok("icosphere b", sessile_surface_icosphere(4, 1.5, cb, &b));
+  append(&s, &b);
+  sessile_remesh_options o;
+  sessile_remesh_options_default(&o);
+  rng_state = 777;
+  int bad_pairs = 0, bad_fixed = 0, bad_same = 0, bad_inv = 0;
+  uint64_t held = 0, half = 0, refusals = 0, chord = 0, fusions = 0;
+  double *n = NULL, *np = NULL;
+  for (int round = 0; round < 60; round++) {
+    n = realloc(n, (size_t)s.nv * 3 * sizeof *n);
+    np = realloc(np, (size_t)s.nv * 3 * sizeof *np);
+    sessile_surface_normals(&s, n);
+    double g = 0.03 + 0.04 * urand();
+    for (uint32_t v = 0; v < s.nv; v++)
+      for (int k = 0; k < 3; k++)
+        np[3 * v + k] = s.pos[3 * v + k] + g * n[3 * v + k] + 0.01 * (urand() - 0.5);
+    sessile_guard_stats gs;
+    t_ok("guard", sessile_surface_guard_motion(&s, np, 1, &gs));
+    held += gs.held_back, half += gs.halfway;
+    memcpy(s.pos, np, (size_t)s.nv * 3 * sizeof *np);
+    sessile_surface_normals(&s, n);
+    sessile_remesh_stats rs, r2;
+    t_ok("copy", sessile_surface_copy(&s, &c));
+    t_ok("remesh", sessile_remesh(&s, n, &o, &rs));
+    refusals += rs.contact_refusals, chord += rs.chord_splits, fusions += rs.fusions;
+    t_ok("remesh the copy", sessile_remesh(&c, n, &o, &r2));
+    bad_same += !(c.nv == s.nv && c.nf == s.nf &&
+                  !memcmp(c.pos, s.pos, (size_t)s.nv * 3 * sizeof *s.pos) &&
+                  !memcmp(c.tri, s.tri, (size_t)s.nf * 3 * sizeof *s.tri));
+    t_ok("remesh the output", sessile_remesh(&c, NULL, &o, &r2));
+    bad_fixed += !(r2.splits == 0 && r2.fusions == 0 && r2.area_collapses == 0 && c.nv == s.nv &&
+                   !memcmp(c.pos, s.pos, (size_t)s.nv * 3 * sizeof *s.pos));
+    bad_pairs += count_pairs(&s) > 0;
+    bad_inv += sessile_surface_check(&s, 4, 0) != SESSILE_OK;
+  }
+  printf("     60 rounds: %llu vertices held back, %llu halfway; remesh %llu fusions, %llu contact "
+         "refusals, %llu splits on the chord; final %u triangles\n", (unsigned long long)held,
+         (unsigned long long)half, (unsigned long long)fusions, (unsigned long long)refusals,
+         (unsigned long long)chord, s.nf);
+  t_true("contact rounds: the spheres met (vertices held back)", held + half > 0);
+  t_true("contact rounds: the remesh refused collapses at the contact", refusals > 0);
+  t_check("contact rounds: rounds ending with a crossing", bad_pairs, 0);
+  t_check("contact rounds: rounds breaking an invariant", bad_inv, 0);
+  t_check("contact rounds: rounds whose remesh is not a fixed point", bad_fixed, 0);
+  t_check("contact rounds: rounds whose remesh differs for the same input", bad_same, 0);
+  free(n), free(np);
+  sessile_surface_free(&s), sessile_surface_free(&b), sessile_surface_free(&c);
+}
+
 static void errors(void) {
   sessile_surface s = {0};
   t_ok("icosphere", sessile_surface_icosphere(2, 1.0, ORIGIN, &s));
@@ -632,6 +692,7 @@ int main(void) {
   grid_query();
   remesh_collapse_guard();
   remesh_split_guard();
+  contact_rounds();
   errors();
   return t_finish(NULL);
 }

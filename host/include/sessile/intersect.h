@@ -6,7 +6,8 @@
  * common vertices (by index) make them share: touching counts.  The
  * orientation predicates trust a sign only beyond Shewchuk's error bound and
  * read anything below it as zero (on the plane), so a pair is reported when
- * it intersects or lies within rounding of touching, and never missed. */
+ * it intersects or lies within rounding of touching; the one miss possible
+ * is a fold over a shared edge by a triangle of next to no area. */
 #ifndef SESSILE_INTERSECT_H
 #define SESSILE_INTERSECT_H
 
