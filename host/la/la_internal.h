@@ -89,6 +89,11 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
 /* y = A x with the partial sums of x·y in set 0 (CG's p·Ap). */
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count);
+/* A matrix-free stencil matrix of `kind` (stencil.c): the grid, spacing and
+ * mask checked (`what` names the operator in messages), nothing else set. */
+sessile_status la_stencil_mat(sessile_la *la, mat_kind kind, const char *what, uint32_t nx,
+                              uint32_t ny, uint32_t nz, double h, sessile_buffer *mask,
+                              sessile_mat **out);
 /* The masked 7-point operator (stencil.c): y = A x, with x·y partials in set 0. */
 sessile_status rec_stencil7(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count);

@@ -9,23 +9,24 @@
 #include "la_internal.h"
 #include "sessile/la_ref.h"
 
-sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
-                                           double h, sessile_buffer *mask, sessile_mat **out) {
+sessile_status la_stencil_mat(sessile_la *la, mat_kind kind, const char *what, uint32_t nx,
+                              uint32_t ny, uint32_t nz, double h, sessile_buffer *mask,
+                              sessile_mat **out) {
   *out = NULL;
   SESSILE_CHECK(nx >= 2 && ny >= 2 && nz >= 2, SESSILE_ERR_USAGE,
-                "7-point operator needs at least 2 nodes per axis (got %u x %u x %u)", nx, ny, nz);
+                "%s needs at least 2 nodes per axis (got %u x %u x %u)", what, nx, ny, nz);
   double nodes = (double)nx * ny * nz;
   SESSILE_CHECK(nodes <= 2147483647.0, SESSILE_ERR_TOO_LARGE,
                 "grid of %u x %u x %u nodes is too large for 32-bit indices", nx, ny, nz);
   SESSILE_CHECK(h > 0 && h < 1e300, SESSILE_ERR_USAGE, "grid spacing must be positive (got %g)", h);
-  SESSILE_CHECK(mask, SESSILE_ERR_USAGE, "7-point operator needs a Dirichlet mask buffer");
+  SESSILE_CHECK(mask, SESSILE_ERR_USAGE, "%s needs a Dirichlet mask buffer", what);
   SESSILE_CHECK(sessile_buffer_size(mask) >= (size_t)nodes * 4, SESSILE_ERR_USAGE,
                 "Dirichlet mask has %zu bytes, the %u x %u x %u grid needs %zu",
                 sessile_buffer_size(mask), nx, ny, nz, (size_t)nodes * 4);
   sessile_mat *m = calloc(1, sizeof *m);
   SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
   m->la = la;
-  m->kind = MAT_STENCIL7;
+  m->kind = kind;
   m->nrows = (uint32_t)nodes;
   m->nnz = 7 * (uint64_t)m->nrows; /* the stencil's entries (nothing is stored) */
   m->grid[0] = nx;
@@ -35,6 +36,11 @@ sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t
   m->mask = mask;
   *out = m;
   return SESSILE_OK;
+}
+
+sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
+                                           double h, sessile_buffer *mask, sessile_mat **out) {
+  return la_stencil_mat(la, MAT_STENCIL7, "7-point operator", nx, ny, nz, h, mask, out);
 }
 
 static stencil_push push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard) {

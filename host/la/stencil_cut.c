@@ -18,32 +18,17 @@ static int texel_fits(sessile_la *la, const sessile_buffer *mask, const sessile_
 sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
                                                double h, sessile_buffer *mask, const sessile_vec *diag,
                                                sessile_mat **out) {
-  *out = NULL;
-  SESSILE_CHECK(nx >= 2 && ny >= 2 && nz >= 2, SESSILE_ERR_USAGE,
-                "cut-cell operator needs at least 2 nodes per axis (got %u x %u x %u)", nx, ny, nz);
+  sessile_mat *m;
+  SESSILE_CALL(la_stencil_mat(la, MAT_STENCIL7_CUT, "cut-cell operator", nx, ny, nz, h, mask, &m));
   double nodes = (double)nx * ny * nz;
-  SESSILE_CHECK(nodes <= 2147483647.0, SESSILE_ERR_TOO_LARGE,
-                "grid of %u x %u x %u nodes is too large for 32-bit indices", nx, ny, nz);
-  SESSILE_CHECK(h > 0 && h < 1e300, SESSILE_ERR_USAGE, "grid spacing must be positive (got %g)", h);
-  SESSILE_CHECK(mask, SESSILE_ERR_USAGE, "cut-cell operator needs a Dirichlet mask buffer");
-  SESSILE_CHECK(sessile_buffer_size(mask) >= (size_t)nodes * 4, SESSILE_ERR_USAGE,
-                "Dirichlet mask has %zu bytes, the %u x %u x %u grid needs %zu",
-                sessile_buffer_size(mask), nx, ny, nz, (size_t)nodes * 4);
-  SESSILE_CHECK(diag, SESSILE_ERR_USAGE, "cut-cell operator needs its diagonal vector");
-  SESSILE_CHECK(diag->la == la && diag->n == (uint32_t)nodes, SESSILE_ERR_USAGE,
-                "cut-cell diagonal has %u entries%s, the %u x %u x %u grid needs %u", diag->n,
-                diag->la == la ? "" : " of another la", nx, ny, nz, (uint32_t)nodes);
-  sessile_mat *m = calloc(1, sizeof *m);
-  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  m->la = la;
-  m->kind = MAT_STENCIL7_CUT;
-  m->nrows = (uint32_t)nodes;
-  m->nnz = 7 * (uint64_t)m->nrows;
-  m->grid[0] = nx;
-  m->grid[1] = ny;
-  m->grid[2] = nz;
-  m->h = h;
-  m->mask = mask;
+  if (!diag || diag->la != la || diag->n != (uint32_t)nodes) {
+    free(m);
+    SESSILE_CHECK(diag, SESSILE_ERR_USAGE, "cut-cell operator needs its diagonal vector");
+    return sessile_error_set(SESSILE_ERR_USAGE,
+                             "cut-cell diagonal has %u entries%s, the %u x %u x %u grid needs %u",
+                             diag->n, diag->la == la ? "" : " of another la", nx, ny, nz,
+                             (uint32_t)nodes);
+  }
   m->diag = diag;
   m->cut_texel = la->spmv_texel && texel_fits(la, mask, diag);
   *out = m;
