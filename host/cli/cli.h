@@ -2,6 +2,7 @@
 #ifndef SESSILE_CLI_H
 #define SESSILE_CLI_H
 #include <signal.h>
+#include <stdio.h>
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
 #include "sessile/params.h"
@@ -61,4 +62,19 @@ int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_sphere(int argc, char **argv, const cli_gpu_opts *global);
+/* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */
+int cmd_coral(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_coral_lsystem(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_coral_venation(int argc, char **argv, const cli_gpu_opts *global);
+/* `sessile sponge particles`: Coralize's particle-fed sponge. */
+int cmd_sponge(int argc, char **argv, const cli_gpu_opts *global);
+/* `sessile bench coral`: one section per generator (cmd_bench_coral_*.c). */
+int cmd_bench_coral(int argc, char **argv, const cli_gpu_opts *global);
+typedef struct bench_coral_opts {
+  int quick; /* smaller sizes: a smoke run for the tests */
+} bench_coral_opts;
+sessile_status bench_coral_lsystem(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
+sessile_status bench_coral_weld(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
+sessile_status bench_coral_venation(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
+sessile_status bench_coral_particles(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
 #endif

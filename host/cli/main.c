@@ -14,8 +14,10 @@ static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
 static const cli_command commands[] = {
     {"grow", "grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'", cmd_grow},
     {"sphere", "the smallest generator: a seeded noisy icosphere through the run framework", cmd_sphere},
+    {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
+    {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
     {"devices", "list the Vulkan devices and the one sessile uses", cmd_devices},
-    {"bench", "benchmarks: 'bench la', 'bench grow', 'bench fluid' (figures, never pass/fail)", cmd_bench},
+    {"bench", "benchmarks: 'bench la|grow|fluid|coral' (figures, never pass/fail)", cmd_bench},
     {"help", "this text; 'sessile COMMAND --help' explains a command", cmd_help},
     {"version", "print the version", cmd_version},
 };

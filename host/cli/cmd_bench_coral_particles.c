@@ -1,0 +1,6 @@
+/* PLACEHOLDER until the particles generator lands (replaced by its owner). */
+#include "cli.h"
+sessile_status bench_coral_particles(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
+  (void)g, (void)o, (void)out;
+  return sessile_error_set(SESSILE_ERR_USAGE, "bench coral particles: not built yet");
+}

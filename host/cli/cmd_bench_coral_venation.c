@@ -1,0 +1,6 @@
+/* PLACEHOLDER until the venation generator lands (replaced by its owner). */
+#include "cli.h"
+sessile_status bench_coral_venation(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
+  (void)g, (void)o, (void)out;
+  return sessile_error_set(SESSILE_ERR_USAGE, "bench coral venation: not built yet");
+}
