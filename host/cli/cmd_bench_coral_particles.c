@@ -11,7 +11,7 @@
 #include "sessile/rng.h"
 
 sessile_status bench_coral_particles(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
-  /* a bumpy sphere of radius 2 cm, icosphere level 7 (163842 vertices; level
+  /* a bumpy sphere of radius 2 cm, icosphere level 7 (40962 vertices; level
    * 5 quick), and particles of radius 0.05 cm in its bounding box, half of
    * them near the surface so that the pass does real work */
   int level = o->quick ? 5 : 7;
@@ -71,8 +71,13 @@ sessile_status bench_coral_particles(sessile_gpu *g, const bench_coral_opts *o, 
       uint64_t hits = 0, diff = 0;
       for (uint32_t i = 0; i < np; i++) {
         hits += cg[i];
-        diff += cg[i] != ch[i] || memcmp(hg + (size_t)feed * i, hh + (size_t)feed * i, feed * 4);
-        if (i < sample) diff += cb[i] != cg[i] || memcmp(hb + (size_t)feed * i, hg + (size_t)feed * i, feed * 4);
+        int d = cg[i] != ch[i] || memcmp(hg + (size_t)feed * i, hh + (size_t)feed * i, feed * 4);
+        if (i < sample) d |= cb[i] != cg[i] || memcmp(hb + (size_t)feed * i, hg + (size_t)feed * i, feed * 4);
+        if (d && diff < 3)
+          fprintf(out, "  particle %u (%.9g %.9g %.9g) differs: GPU %u hits (first %u), host grid %u (first %u)\n", i,
+                  (double)part[4 * i], (double)part[4 * i + 1], (double)part[4 * i + 2], cg[i], hg[(size_t)feed * i],
+                  ch[i], hh[(size_t)feed * i]);
+        diff += d;
       }
       double kms = kns * 1e-6;
       fprintf(out, "particles: %u particles (radius %g cm) vs %u vertices, feed %u; grid %ux%ux%u (built %.1f ms)\n",

@@ -151,7 +151,8 @@ static inline int cell_range(const sessile_psponge_grid *g, int a, float p, floa
   float x0 = (p - r - g->lo[a]) * g->inv_h - CELL_MARGIN;
   float x1 = (p + r - g->lo[a]) * g->inv_h + CELL_MARGIN;
   float top = (float)(g->d[a] - 1);
-  if (!(x1 >= 0) || !(x0 <= top)) return 0;
+  /* the last cell spans [d - 1, d) in cell units */
+  if (!(x1 >= 0) || !(x0 < (float)g->d[a])) return 0;
   *c0 = x0 <= 0 ? 0 : (uint32_t)x0;
   *c1 = x1 >= top ? g->d[a] - 1 : (uint32_t)x1;
   return 1;

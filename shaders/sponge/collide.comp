@@ -23,7 +23,8 @@ void main() {
     precise float x0 = (p[a] - pc.radius - lo[a]) * pc.inv_h - pc.margin;
     precise float x1 = (p[a] + pc.radius - lo[a]) * pc.inv_h + pc.margin;
     float top = float(dims[a] - 1u);
-    if (!(x1 >= 0.0) || !(x0 <= top)) inside = false;
+    // the last cell spans [d - 1, d) in cell units
+    if (!(x1 >= 0.0) || !(x0 < float(dims[a]))) inside = false;
     c0[a] = x0 <= 0.0 ? 0u : uint(x0);
     c1[a] = x1 >= top ? dims[a] - 1u : uint(x1);
   }
