@@ -26,7 +26,7 @@ static const char *help =
     "Parameters, units and the paper's names: --print-config.\n"
     "\n"
     "  --seed N        seed of the particles, 0..2^64-1 (default 1)\n"
-    "  --iterations N  iterations (default 60)      --every K  snapshot interval (default 20)\n"
+    "  --iterations N  iterations (default 50)      --every K  snapshot interval (default 10)\n"
     "  --out DIR       run directory (default runs/sponge); must be new or empty\n"
     "  --force         replace the earlier run in DIR     --resume DIR  continue it\n"
     "  --check         check every iteration: closed 2-manifold, no self-intersection\n"
@@ -107,7 +107,7 @@ static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_
 
 static int particles(int argc, char **argv, const cli_gpu_opts *global) {
   cli_run_args a;
-  if (cli_run_args_init(&a, argc, 1, 60, 20) != 0) {
+  if (cli_run_args_init(&a, argc, 1, 50, 10) != 0) {
     cli_run_args_free(&a);
     fprintf(stderr, "sessile " CMD ": error: out of host memory\n");
     return EXIT_RUNTIME;

@@ -9,7 +9,7 @@ static const char *const collider_names[] = {"gpu", "host", NULL};
 
 static const sessile_param_desc descs[] = {
     {"mesh_detail", SESSILE_PT_INT, F(mesh_detail), 4, 2, 6, 0, "", "Mesh detail",
-     "the starting hemisphere's detail as an icosphere level (3: 91 vertices, 4: 341, 5: 1313)", NULL},
+     "the starting hemisphere's detail: an icosphere level whose lower half is flattened into the base (3: 162 vertices, 4: 642, 5: 2562)", NULL},
     {"radius", SESSILE_PT_REAL, F(radius), 1, 0, 100, SESSILE_PARAM_LO_OPEN, "cm", "ours",
      "radius of the starting hemisphere, centred on the cube's floor", NULL},
     {"cube_size", SESSILE_PT_REAL, F(cube_size), 4, 0, 1000, SESSILE_PARAM_LO_OPEN, "cm",
