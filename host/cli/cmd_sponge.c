@@ -34,6 +34,14 @@ static const char *help =
 
 #define CMD "sponge particles"
 
+/* A failure before the run directory opens: one line naming the command. */
+static int fail(sessile_status s) {
+  char msg[1100];
+  snprintf(msg, sizeof msg, "%s", sessile_error_message());
+  fprintf(stderr, "sessile " CMD ": error: %s\n", msg);
+  return s == SESSILE_ERR_USAGE ? EXIT_USAGE : EXIT_RUNTIME;
+}
+
 static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   int check = 0;
@@ -61,10 +69,10 @@ static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_
   if (!a->resume) {
     s = cli_run_apply_params(&sessile_psponge_param_table, &p, a);
     if (s == SESSILE_OK) s = sessile_params_check(&sessile_psponge_param_table, &p);
-    if (s != SESSILE_OK) return cli_fail(s);
+    if (s != SESSILE_OK) return fail(s);
     if (a->print_config) {
       s = sessile_params_print(&sessile_psponge_param_table, &p, stdout);
-      return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
+      return s == SESSILE_OK ? EXIT_OK : fail(s);
     }
   }
   const char *dir = a->resume ? a->resume : a->out ? a->out : "runs/sponge";

@@ -55,29 +55,29 @@ static const sessile_param_desc descs[] = {
 static sessile_status validate(const void *values) {
   const sessile_psponge_params *p = values;
   SESSILE_CHECK(p->cube_size > 2 * p->radius, SESSILE_ERR_USAGE,
-                "particles: cube_size %g cm must exceed the hemisphere's diameter 2 radius = %g cm",
+                "cube_size %g cm must exceed the hemisphere's diameter 2 radius = %g cm",
                 p->cube_size, 2 * p->radius);
   SESSILE_CHECK(p->collapse_threshold < p->splitting_threshold, SESSILE_ERR_USAGE,
-                "particles: collapse_threshold %g cm must be below splitting_threshold %g cm",
+                "collapse_threshold %g cm must be below splitting_threshold %g cm",
                 p->collapse_threshold, p->splitting_threshold);
   SESSILE_CHECK(p->nutrient_radius < p->cube_size / 2, SESSILE_ERR_USAGE,
-                "particles: nutrient_radius %g cm must be below half the cube (%g cm)", p->nutrient_radius,
+                "nutrient_radius %g cm must be below half the cube (%g cm)", p->nutrient_radius,
                 p->cube_size / 2);
   /* a step longer than the particle's diameter could pass a vertex untouched */
   double vz = p->current_z - p->fall_speed;
   double step = sqrt(p->current_x * p->current_x + p->current_y * p->current_y + vz * vz);
   SESSILE_CHECK(step <= 2 * p->nutrient_radius, SESSILE_ERR_USAGE,
-                "particles: a particle's step (fall_speed and current) is %g cm, more than its diameter "
+                "a particle's step (fall_speed and current) is %g cm, more than its diameter "
                 "2 nutrient_radius = %g cm: it could pass vertices untouched; lower the speeds or "
                 "raise nutrient_radius", step, 2 * p->nutrient_radius);
   SESSILE_CHECK(vz < 0, SESSILE_ERR_USAGE,
-                "particles: current_z %g must be below fall_speed %g: the particles must fall", p->current_z,
+                "current_z %g must be below fall_speed %g: the particles must fall", p->current_z,
                 p->fall_speed);
   /* the most particles alive at once, and what they need */
   double np = (double)p->nutrients_per_iteration * (p->nutrient_lifetime + 1.0);
   double hit_bytes = np * p->particle_feed * 4, part_bytes = np * 16;
   SESSILE_CHECK(hit_bytes <= BUFFER_RANGE && part_bytes <= BUFFER_RANGE, SESSILE_ERR_USAGE,
-                "particles: up to %.0f particles alive (nutrients_per_iteration x (nutrient_lifetime + 1)) "
+                "up to %.0f particles alive (nutrients_per_iteration x (nutrient_lifetime + 1)) "
                 "need %.0f MiB of hits and %.0f MiB of positions on the device, more than a storage "
                 "buffer's 128 MiB; lower nutrients_per_iteration, nutrient_lifetime or particle_feed",
                 np, hit_bytes / 1048576, part_bytes / 1048576);

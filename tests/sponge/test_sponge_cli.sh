@@ -55,7 +55,7 @@ bad() { # description, --set arguments...
   rm -rf "$T/bad"
   run sponge particles "$@" --out "$T/bad" --quiet
   check "$what: exit 2, one line, nothing written" eval \
-    'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "error" "$T/err" && test ! -e "$T/bad"'
+    'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "^sessile sponge particles: error: " "$T/err" && test ! -e "$T/bad"'
 }
 for kv in mesh_detail=1 mesh_detail=7 radius=0 radius=101 cube_size=0 cube_size=1001 \
           nutrients_per_iteration=0 nutrients_per_iteration=1000001 nutrient_radius=0 nutrient_radius=101 \
