@@ -1,0 +1,90 @@
+/* The GPU nearest-node search (sessile/venation.h): uploads nodes, the grid
+ * and the auxins, records shaders/coral/nearest.comp, downloads the answer.
+ * Buffers grow by doubling and are kept between iterations. */
+#include <stdlib.h>
+#include <string.h>
+#include "coral_kernels.h"
+#include "sessile/venation.h"
+
+enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_COUNT };
+
+struct sessile_venation_gpu {
+  sessile_gpu *gpu;
+  sessile_kernel *k;
+  sessile_cmd *cmd;
+  sessile_buffer *b[B_COUNT];
+  size_t cap[B_COUNT]; /* bytes */
+  int real_bytes;
+};
+
+void sessile_venation_gpu_destroy(sessile_venation_gpu *vg) {
+  if (!vg) return;
+  sessile_kernel_destroy(vg->k);
+  sessile_cmd_destroy(vg->cmd);
+  for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(vg->b[i]);
+  free(vg);
+}
+
+sessile_status sessile_venation_gpu_create(sessile_gpu *g, sessile_venation_gpu **out) {
+  *out = NULL;
+  sessile_venation_gpu *vg = calloc(1, sizeof *vg);
+  SESSILE_CHECK(vg, SESSILE_ERR_NO_MEMORY, "out of host memory for the venation search");
+  vg->gpu = g;
+  vg->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_status s = sessile_kernel_create_decl(g, &sessile_coral_kernels[CK_NEAREST], (uint32_t)vg->real_bytes,
+                                                0, &vg->k);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &vg->cmd);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, NN_COUNT * 8, SESSILE_BUFFER_MAPPED, &vg->b[B_GP]);
+  if (s != SESSILE_OK) {
+    sessile_venation_gpu_destroy(vg);
+    return s;
+  }
+  vg->cap[B_GP] = NN_COUNT * 8;
+  *out = vg;
+  return SESSILE_OK;
+}
+
+/* Buffer i holds at least `bytes` (contents not kept). */
+static sessile_status ensure(sessile_venation_gpu *vg, int i, size_t bytes) {
+  if (bytes < 16) bytes = 16;
+  if (vg->b[i] && vg->cap[i] >= bytes) return SESSILE_OK;
+  size_t cap = vg->cap[i] ? vg->cap[i] : 16;
+  while (cap < bytes) cap *= 2;
+  sessile_buffer_destroy(vg->b[i]);
+  vg->b[i] = NULL, vg->cap[i] = 0;
+  SESSILE_CALL(sessile_buffer_create(vg->gpu, cap, SESSILE_BUFFER_DEVICE, &vg->b[i]));
+  vg->cap[i] = cap;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sessile_venation_grid *g,
+                                            const double *nodes, const double *pts, uint32_t m,
+                                            uint32_t *idx, double *d2, double *kernel_ns) {
+  if (kernel_ns) *kernel_ns = 0;
+  if (m == 0) return SESSILE_OK;
+  size_t rb = (size_t)vg->real_bytes;
+  SESSILE_CALL(ensure(vg, B_NODE, 3 * (size_t)g->n * rb));
+  SESSILE_CALL(ensure(vg, B_OFF, ((size_t)g->ncells + 1) * sizeof(uint32_t)));
+  SESSILE_CALL(ensure(vg, B_CELL, (size_t)g->n * sizeof(uint32_t)));
+  SESSILE_CALL(ensure(vg, B_PTS, 3 * (size_t)m * rb));
+  SESSILE_CALL(ensure(vg, B_NEAR, (size_t)m * sizeof(uint32_t)));
+  SESSILE_CALL(ensure(vg, B_D2, (size_t)m * rb));
+  double pr[NN_COUNT] = {g->lo[0], g->lo[1], g->lo[2], g->h, rb == 8 ? 1e-9 : 1e-4};
+  SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_GP], 0, pr, NN_COUNT));
+  SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_NODE], 0, nodes, 3 * (size_t)g->n));
+  SESSILE_CALL(sessile_buffer_upload(vg->b[B_OFF], 0, g->cell_off, ((size_t)g->ncells + 1) * sizeof(uint32_t)));
+  SESSILE_CALL(sessile_buffer_upload(vg->b[B_CELL], 0, g->cell_node, (size_t)g->n * sizeof(uint32_t)));
+  SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_PTS], 0, pts, 3 * (size_t)m));
+  nearest_push push = {.m = m, .d0 = g->dims[0], .d1 = g->dims[1], .d2 = g->dims[2]};
+  uint32_t ls = sessile_kernel_local_size(vg->k);
+  SESSILE_CALL(sessile_cmd_begin(vg->cmd));
+  SESSILE_CALL(sessile_cmd_timestamp(vg->cmd, 0));
+  SESSILE_CALL(sessile_cmd_dispatch(vg->cmd, vg->k, (m + ls - 1) / ls, vg->b, &push));
+  SESSILE_CALL(sessile_cmd_timestamp(vg->cmd, 1));
+  SESSILE_CALL(sessile_cmd_end(vg->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(vg->cmd));
+  if (kernel_ns) SESSILE_CALL(sessile_cmd_elapsed_ns(vg->cmd, 0, 1, kernel_ns));
+  if (idx) SESSILE_CALL(sessile_buffer_download(vg->b[B_NEAR], 0, idx, (size_t)m * sizeof(uint32_t)));
+  if (d2) SESSILE_CALL(sessile_buffer_download_reals(vg->b[B_D2], 0, d2, m));
+  return SESSILE_OK;
+}
