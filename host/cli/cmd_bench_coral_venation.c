@@ -58,11 +58,12 @@ sessile_status bench_coral_venation(sessile_gpu *g, const bench_coral_opts *o, F
     for (uint32_t i = 0; i < m; i++) diff_g += ig[i] != ib[i], diff_h += ih[i] != ib[i];
     fprintf(out,
             "venation nearest node: %u auxins, %u vein nodes, grid %ux%ux%u cells of %.3g cm (device: %s)\n"
-            "  gpu (upload+kernel+download) %.4f s, kernel %.4f s\n"
+            "  gpu (upload+kernel+download) %.4f s, kernel %.4f s in %llu passes\n"
             "  host grid search (OpenMP)    %.4f s   gpu speed-up x%.2f (kernel x%.2f)\n"
             "  host brute force             %.4f s   gpu speed-up x%.1f (kernel x%.1f)\n"
             "  answers differing from brute force: gpu %u, host grid %u\n",
             m, n, grid.dims[0], grid.dims[1], grid.dims[2], grid.h, sessile_gpu_info_of(g)->name, t_gpu, t_kernel,
+            (unsigned long long)sessile_venation_gpu_passes(vg),
             t_grid, t_grid / t_gpu, t_grid / t_kernel, t_brute, t_brute / t_gpu, t_brute / t_kernel, diff_g, diff_h);
     if (diff_g || diff_h)
       s = sessile_error_set(SESSILE_ERR_INTERNAL, "the nearest-node searches disagree with brute force");

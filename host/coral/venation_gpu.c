@@ -6,7 +6,7 @@
 #include "coral_kernels.h"
 #include "sessile/venation.h"
 
-enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_COUNT };
+enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_ST, B_TODO, B_COUNT };
 
 struct sessile_venation_gpu {
   sessile_gpu *gpu;
@@ -15,6 +15,7 @@ struct sessile_venation_gpu {
   sessile_buffer *b[B_COUNT];
   size_t cap[B_COUNT]; /* bytes */
   int real_bytes;
+  uint64_t passes; /* of the last search */
 };
 
 void sessile_venation_gpu_destroy(sessile_venation_gpu *vg) {
@@ -35,11 +36,12 @@ sessile_status sessile_venation_gpu_create(sessile_gpu *g, sessile_venation_gpu 
                                                 0, &vg->k);
   if (s == SESSILE_OK) s = sessile_cmd_create(g, &vg->cmd);
   if (s == SESSILE_OK) s = sessile_buffer_create(g, NN_COUNT * 8, SESSILE_BUFFER_MAPPED, &vg->b[B_GP]);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 16, SESSILE_BUFFER_DEVICE, &vg->b[B_TODO]);
   if (s != SESSILE_OK) {
     sessile_venation_gpu_destroy(vg);
     return s;
   }
-  vg->cap[B_GP] = NN_COUNT * 8;
+  vg->cap[B_GP] = NN_COUNT * 8, vg->cap[B_TODO] = 16;
   *out = vg;
   return SESSILE_OK;
 }
@@ -75,6 +77,14 @@ sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sess
   SESSILE_CALL(sessile_buffer_upload(vg->b[B_OFF], 0, g->cell_off, ((size_t)g->ncells + 1) * sizeof(uint32_t)));
   SESSILE_CALL(sessile_buffer_upload(vg->b[B_CELL], 0, g->cell_node, (size_t)g->n * sizeof(uint32_t)));
   SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_PTS], 0, pts, 3 * (size_t)m));
+  /* every auxin starts anew (status 0) */
+  size_t stb = (size_t)NN_ST_COUNT * m * sizeof(uint32_t);
+  SESSILE_CALL(ensure(vg, B_ST, stb));
+  uint32_t *zero = calloc(1, stb);
+  SESSILE_CHECK(zero, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_status s = sessile_buffer_upload(vg->b[B_ST], 0, zero, stb);
+  free(zero);
+  SESSILE_CALL(s);
   nearest_push push = {.m = m, .d0 = g->dims[0], .d1 = g->dims[1], .d2 = g->dims[2]};
   uint32_t ls = sessile_kernel_local_size(vg->k);
   SESSILE_CALL(sessile_cmd_begin(vg->cmd));
@@ -82,9 +92,25 @@ sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sess
   SESSILE_CALL(sessile_cmd_dispatch(vg->cmd, vg->k, (m + ls - 1) / ls, vg->b, &push));
   SESSILE_CALL(sessile_cmd_timestamp(vg->cmd, 1));
   SESSILE_CALL(sessile_cmd_end(vg->cmd));
-  SESSILE_CALL(sessile_cmd_submit_wait(vg->cmd));
-  if (kernel_ns) SESSILE_CALL(sessile_cmd_elapsed_ns(vg->cmd, 0, 1, kernel_ns));
+  /* passes until no auxin is left: each does at most NN_BUDGET loop
+   * iterations per auxin, so the whole search needs at most this many */
+  uint64_t max_pass = 16 + 4 * ((uint64_t)g->ncells + g->n) / NN_BUDGET + 4 * (uint64_t)g->ncells;
+  uint32_t todo = 1;
+  for (uint64_t pass = 0; todo; pass++) {
+    SESSILE_CHECK(pass < max_pass, SESSILE_ERR_INTERNAL, "the nearest-node search did not finish in %llu passes",
+                  (unsigned long long)max_pass);
+    todo = 0;
+    SESSILE_CALL(sessile_buffer_upload(vg->b[B_TODO], 0, &todo, sizeof todo));
+    SESSILE_CALL(sessile_cmd_submit_wait(vg->cmd));
+    double ns = 0;
+    if (kernel_ns) SESSILE_CALL(sessile_cmd_elapsed_ns(vg->cmd, 0, 1, &ns));
+    if (kernel_ns) *kernel_ns += ns;
+    SESSILE_CALL(sessile_buffer_download(vg->b[B_TODO], 0, &todo, sizeof todo));
+    vg->passes = pass + 1;
+  }
   if (idx) SESSILE_CALL(sessile_buffer_download(vg->b[B_NEAR], 0, idx, (size_t)m * sizeof(uint32_t)));
   if (d2) SESSILE_CALL(sessile_buffer_download_reals(vg->b[B_D2], 0, d2, m));
   return SESSILE_OK;
 }
+
+uint64_t sessile_venation_gpu_passes(const sessile_venation_gpu *vg) { return vg ? vg->passes : 0; }

@@ -84,6 +84,8 @@ void sessile_venation_gpu_destroy(sessile_venation_gpu *vg);
 sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sessile_venation_grid *g,
                                             const double *nodes, const double *pts, uint32_t m,
                                             uint32_t *idx, double *d2, double *kernel_ns);
+/* Passes the last search took (each pass is bounded: docs/venation.md). */
+uint64_t sessile_venation_gpu_passes(const sessile_venation_gpu *vg);
 
 /* --- the model --------------------------------------------------------------- */
 typedef struct sessile_venation {
