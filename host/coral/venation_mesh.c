@@ -60,13 +60,13 @@ sessile_status sessile_venation_skeleton(const sessile_venation *v, const sessil
   for (uint32_t i = 1; i < v->n && s == SESSILE_OK; i++) {
     uint32_t a = v->parent[i];
     transport(v->pos + 3 * a, tan + 3 * a, up + 3 * a, v->pos + 3 * i, tan + 3 * i, up + 3 * i);
-    s = sessile_skeleton_add(sk, v->pos + 3 * a, v->pos + 3 * i, rad[a], rad[i], up + 3 * i, v->ti[i]);
+    s = sessile_skeleton_add(sk, v->pos + 3 * a, v->pos + 3 * i, rad[a], rad[i], up + 3 * i, v->ti[a]);
   }
   for (uint32_t e = 0; e < v->ne && s == SESSILE_OK; e++) {
     uint32_t a = v->edge[2 * e], b = v->edge[2 * e + 1];
     double t1[3], r1[3];
     transport(v->pos + 3 * a, tan + 3 * a, up + 3 * a, v->pos + 3 * b, t1, r1);
-    s = sessile_skeleton_add(sk, v->pos + 3 * a, v->pos + 3 * b, rad[a], rad[b], r1, v->ti[b]);
+    s = sessile_skeleton_add(sk, v->pos + 3 * a, v->pos + 3 * b, rad[a], rad[b], r1, v->ti[a]);
   }
   free(tan), free(up), free(rad);
   return s;

@@ -116,7 +116,8 @@ sessile_status sessile_venation_step(sessile_venation *v, const sessile_venation
 /* Radius of a node from its normalised thickness index t in [0, 1]. */
 double sessile_venation_radius(const sessile_venation_params *p, double t);
 /* The vein graph as a skeleton: one segment per edge, rotation-minimising
- * frames, radii from the thickness curve, value = the child's TI. */
+ * frames, radii from the thickness curve, value = the TI of the segment's
+ * base (its parent end: the root's segments carry the node count). */
 sessile_status sessile_venation_skeleton(const sessile_venation *v, const sessile_venation_params *p,
                                          struct sessile_skeleton *sk);
 
