@@ -45,7 +45,7 @@ int main(void) {
   sessile_venation_gpu *vg = NULL;
   t_must("create the search", sessile_venation_gpu_create(g, &vg));
   uint64_t r = sessile_rng_stream(3, 9);
-  enum { N = 20000, M = 4000 };
+  enum { N = 20000, M = 2000 };
   double *nodes = t_dalloc(3 * N), *pts = t_dalloc(3 * M);
 
   /* uniform cloud; points over a box twice as large (outside the grid too) */
