@@ -133,51 +133,87 @@ static int cand_cmp(const void *x, const void *y) {
 }
 
 /* Runions §4: v is in the relative neighbourhood of auxin s when no other node
- * u is closer to both s and v than they are to each other; only nodes closer
- * to s than v can be, so the candidates sorted by distance are tested against
- * those before them.  Candidates: nodes within influence_radius, and the
- * nearest node (always a member). */
-static sessile_status relative_neighbourhood(const sessile_venation *v, const sessile_venation_params *p,
-                                             const sessile_venation_grid *g, const double *s, uint32_t nearest,
-                                             uint32_t **list, uint32_t *cap, cand **cs, uint32_t *ccap,
-                                             uint32_t *nrn) {
-  uint32_t n = 0;
-  SESSILE_CALL(venation_grid_within(g, v->pos, s, p->influence_radius, list, &n, cap));
-  if (*ccap < n + 1) {
-    cand *c = realloc(*cs, (size_t)(n + 1) * sizeof *c);
-    SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory");
-    *cs = c, *ccap = n + 1;
+ * u is closer to both s and v than they are to each other.  Candidates: the
+ * nodes within influence_radius of s and the nearest node (always a member),
+ * sorted by squared distance to s then index; only the entries before v can
+ * block it.  All auxins' lists go into one flat array (coff: each auxin's
+ * first entry) so the quadratic test can run on the GPU. */
+static sessile_status rn_candidates(const sessile_venation *v, const sessile_venation_params *p,
+                                    const sessile_venation_grid *g, const uint32_t *nearest, uint32_t **list,
+                                    uint32_t *lcap, cand **cs, size_t *ccap, uint32_t *coff) {
+  coff[0] = 0;
+  for (uint32_t a = 0; a < v->na; a++) {
+    const double *s = v->aux + 3 * a;
+    uint32_t n = 0;
+    SESSILE_CALL(venation_grid_within(g, v->pos, s, p->influence_radius, list, &n, lcap));
+    size_t need = (size_t)coff[a] + n + 1;
+    SESSILE_CHECK(need < 0xFFFFFFF0u, SESSILE_ERR_TOO_LARGE,
+                  "closed venation: %zu relative-neighbourhood candidates (influence_radius too large)", need);
+    if (*ccap < need) {
+      size_t nc = 2 * need;
+      cand *c = realloc(*cs, nc * sizeof *c);
+      SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory for %zu candidates", nc);
+      *cs = c, *ccap = nc;
+    }
+    cand *c = *cs + coff[a];
+    uint32_t m = 0;
+    int have_nearest = 0;
+    for (uint32_t k = 0; k < n; k++) {
+      uint32_t j = (*list)[k];
+      have_nearest |= j == nearest[a];
+      c[m++] = (cand){d2of(s, v->pos + 3 * j), j};
+    }
+    if (!have_nearest) c[m++] = (cand){d2of(s, v->pos + 3 * nearest[a]), nearest[a]};
+    qsort(c, m, sizeof *c, cand_cmp);
+    coff[a + 1] = coff[a] + m;
   }
-  uint32_t m = 0;
-  int have_nearest = 0;
-  for (uint32_t k = 0; k < n; k++) {
-    uint32_t j = (*list)[k];
-    have_nearest |= j == nearest;
-    (*cs)[m++] = (cand){d2of(s, v->pos + 3 * j), j};
-  }
-  if (!have_nearest) (*cs)[m++] = (cand){d2of(s, v->pos + 3 * nearest), nearest};
-  qsort(*cs, m, sizeof **cs, cand_cmp);
-  uint32_t out = 0;
-  for (uint32_t k = 0; k < m; k++) {
-    const double *pv = v->pos + 3 * (*cs)[k].j;
-    int blocked = 0;
-    for (uint32_t u = 0; u < k && !blocked; u++)
-      blocked = (*cs)[u].d2 < (*cs)[k].d2 && d2of(v->pos + 3 * (*cs)[u].j, pv) < (*cs)[k].d2;
-    if (!blocked) (*cs)[out++] = (*cs)[k];
-  }
-  *nrn = out;
   return SESSILE_OK;
 }
 
+/* The blocked flags of entries [b, e) (one auxin's list). */
+static void rn_blocked_host(const sessile_venation *v, const cand *c, uint32_t b, uint32_t e, uint32_t *blk) {
+  for (uint32_t k = b; k < e; k++) {
+    const double *pv = v->pos + 3 * c[k].j;
+    uint32_t hit = 0;
+    for (uint32_t u = b; u < k && !hit; u++) hit = c[u].d2 < c[k].d2 && d2of(v->pos + 3 * c[u].j, pv) < c[k].d2;
+    blk[k] = hit;
+  }
+}
+
+/* Every auxin's blocked flags: on the GPU (lists of at most RN_MAX_CAND
+ * entries) or the host. */
+static sessile_status rn_blocked(const sessile_venation *v, sessile_venation_gpu *vg, const cand *c,
+                                 const uint32_t *coff, uint32_t *blk) {
+  uint32_t total = coff[v->na];
+  if (!vg) {
+    for (uint32_t a = 0; a < v->na; a++) rn_blocked_host(v, c, coff[a], coff[a + 1], blk);
+    return SESSILE_OK;
+  }
+  uint32_t *j = malloc((size_t)total * sizeof *j), *start = malloc((size_t)total * sizeof *start);
+  double *d2 = malloc((size_t)total * sizeof *d2);
+  sessile_status s = j && start && d2 ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t a = 0; a < v->na && s == SESSILE_OK; a++) {
+    int host = coff[a + 1] - coff[a] > SESSILE_VENATION_RN_MAX_CAND;
+    for (uint32_t k = coff[a]; k < coff[a + 1]; k++)
+      j[k] = c[k].j, d2[k] = c[k].d2, start[k] = host ? SESSILE_VENATION_NONE : coff[a];
+  }
+  if (s == SESSILE_OK) s = sessile_venation_gpu_rn(vg, v->pos, v->n, j, d2, start, total, blk);
+  for (uint32_t a = 0; a < v->na && s == SESSILE_OK; a++)
+    if (coff[a + 1] - coff[a] > SESSILE_VENATION_RN_MAX_CAND) rn_blocked_host(v, c, coff[a], coff[a + 1], blk);
+  free(j), free(start), free(d2);
+  return s;
+}
+
 typedef struct work {
-  uint32_t *near, *cnt, *list, lcap, ccap, *rn, rncap, *rnoff;
+  uint32_t *near, *cnt, *list, lcap, *rn, rncap, *rnoff, *coff, *blk;
+  size_t ccap;
   double *d2, *dir;
   cand *cs;
   unsigned char *dead;
 } work;
 
 static void work_free(work *w) {
-  free(w->near), free(w->cnt), free(w->list), free(w->rn), free(w->rnoff);
+  free(w->near), free(w->cnt), free(w->list), free(w->rn), free(w->rnoff), free(w->coff), free(w->blk);
   free(w->d2), free(w->dir), free(w->cs), free(w->dead);
 }
 
@@ -196,15 +232,24 @@ static void pull(const sessile_venation *v, work *w, uint32_t j, const double *s
  * joined at a node placed on it (the veins meet: a cycle when two or more);
  * otherwise it pulls each member that has not arrived. */
 static sessile_status closed_pulls(sessile_venation *v, const sessile_venation_params *p,
-                                   const sessile_venation_grid *g, work *w) {
+                                   const sessile_venation_grid *g, sessile_venation_gpu *vg, work *w) {
   double k2 = p->kill_radius * p->kill_radius;
   uint32_t na = v->na;
+  w->coff = malloc(((size_t)na + 1) * sizeof *w->coff);
+  SESSILE_CHECK(w->coff, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  SESSILE_CALL(rn_candidates(v, p, g, w->near, &w->list, &w->lcap, &w->cs, &w->ccap, w->coff));
+  w->blk = malloc(((size_t)w->coff[na] + 1) * sizeof *w->blk);
+  SESSILE_CHECK(w->blk, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  SESSILE_CALL(rn_blocked(v, vg, w->cs, w->coff, w->blk));
   for (uint32_t s = 0; s < na; s++) {
-    uint32_t m = 0;
     const double *ps = v->aux + 3 * s;
-    SESSILE_CALL(relative_neighbourhood(v, p, g, ps, w->near[s], &w->list, &w->lcap, &w->cs, &w->ccap, &m));
+    /* the members, in the list's order, compacted in place */
+    cand *c = w->cs + w->coff[s];
+    uint32_t m = 0;
+    for (uint32_t k = w->coff[s]; k < w->coff[s + 1]; k++)
+      if (!w->blk[k]) c[m++] = w->cs[k];
     int arrived = 1;
-    for (uint32_t k = 0; k < m; k++) arrived &= w->cs[k].d2 < k2;
+    for (uint32_t k = 0; k < m; k++) arrived &= c[k].d2 < k2;
     if (arrived) {
       w->dead[s] = 1;
       if (m >= 2) {
@@ -215,13 +260,13 @@ static sessile_status closed_pulls(sessile_venation *v, const sessile_venation_p
           SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
           w->rn = r, w->rncap = nc;
         }
-        for (uint32_t k = 0; k < m; k++) w->rn[w->rnoff[s] + k] = w->cs[k].j;
+        for (uint32_t k = 0; k < m; k++) w->rn[w->rnoff[s] + k] = c[k].j;
         w->rnoff[s + 1] = w->rnoff[s] + m;
         continue;
       }
     } else {
       for (uint32_t k = 0; k < m; k++)
-        if (w->cs[k].d2 >= k2) pull(v, w, w->cs[k].j, ps);
+        if (c[k].d2 >= k2) pull(v, w, c[k].j, ps);
     }
     w->rnoff[s + 1] = w->rnoff[s];
   }
@@ -311,7 +356,7 @@ static sessile_status step(sessile_venation *v, const sessile_venation_params *p
   if (s == SESSILE_OK && na) {
     if (p->open)
       for (uint32_t a = 0; a < na; a++) pull(v, w, w->near[a], v->aux + 3 * a);
-    else s = closed_pulls(v, p, &g, w);
+    else s = closed_pulls(v, p, &g, vg, w);
   }
   if (s == SESSILE_OK && na) s = grow(v, p, &g, w, n0);
   if (s == SESSILE_OK && na && !p->open) s = join_consumed(v, w, na);

@@ -6,11 +6,11 @@
 #include "coral_kernels.h"
 #include "sessile/venation.h"
 
-enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_ST, B_TODO, B_COUNT };
+enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_ST, B_TODO, B_CAND, B_CD2, B_START, B_BLK, B_COUNT };
 
 struct sessile_venation_gpu {
   sessile_gpu *gpu;
-  sessile_kernel *k;
+  sessile_kernel *k, *k_rn;
   sessile_cmd *cmd;
   sessile_buffer *b[B_COUNT];
   size_t cap[B_COUNT]; /* bytes */
@@ -21,6 +21,7 @@ struct sessile_venation_gpu {
 void sessile_venation_gpu_destroy(sessile_venation_gpu *vg) {
   if (!vg) return;
   sessile_kernel_destroy(vg->k);
+  sessile_kernel_destroy(vg->k_rn);
   sessile_cmd_destroy(vg->cmd);
   for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(vg->b[i]);
   free(vg);
@@ -34,6 +35,8 @@ sessile_status sessile_venation_gpu_create(sessile_gpu *g, sessile_venation_gpu 
   vg->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
   sessile_status s = sessile_kernel_create_decl(g, &sessile_coral_kernels[CK_NEAREST], (uint32_t)vg->real_bytes,
                                                 0, &vg->k);
+  if (s == SESSILE_OK)
+    s = sessile_kernel_create_decl(g, &sessile_coral_kernels[CK_RN], (uint32_t)vg->real_bytes, 0, &vg->k_rn);
   if (s == SESSILE_OK) s = sessile_cmd_create(g, &vg->cmd);
   if (s == SESSILE_OK) s = sessile_buffer_create(g, NN_COUNT * 8, SESSILE_BUFFER_MAPPED, &vg->b[B_GP]);
   if (s == SESSILE_OK) s = sessile_buffer_create(g, 16, SESSILE_BUFFER_DEVICE, &vg->b[B_TODO]);
@@ -114,3 +117,29 @@ sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sess
 }
 
 uint64_t sessile_venation_gpu_passes(const sessile_venation_gpu *vg) { return vg ? vg->passes : 0; }
+
+sessile_status sessile_venation_gpu_rn(sessile_venation_gpu *vg, const double *nodes, uint32_t n,
+                                       const uint32_t *j, const double *d2, const uint32_t *start,
+                                       uint32_t total, uint32_t *blocked) {
+  _Static_assert(SESSILE_VENATION_RN_MAX_CAND == RN_MAX_CAND, "the host and the kernel agree on the list limit");
+  if (total == 0) return SESSILE_OK;
+  size_t rb = (size_t)vg->real_bytes;
+  SESSILE_CALL(ensure(vg, B_NODE, 3 * (size_t)n * rb));
+  SESSILE_CALL(ensure(vg, B_CAND, (size_t)total * sizeof(uint32_t)));
+  SESSILE_CALL(ensure(vg, B_CD2, (size_t)total * rb));
+  SESSILE_CALL(ensure(vg, B_START, (size_t)total * sizeof(uint32_t)));
+  SESSILE_CALL(ensure(vg, B_BLK, (size_t)total * sizeof(uint32_t)));
+  SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_NODE], 0, nodes, 3 * (size_t)n));
+  SESSILE_CALL(sessile_buffer_upload(vg->b[B_CAND], 0, j, (size_t)total * sizeof(uint32_t)));
+  SESSILE_CALL(sessile_buffer_upload_reals(vg->b[B_CD2], 0, d2, total));
+  SESSILE_CALL(sessile_buffer_upload(vg->b[B_START], 0, start, (size_t)total * sizeof(uint32_t)));
+  sessile_buffer *b[5] = {vg->b[B_NODE], vg->b[B_CAND], vg->b[B_CD2], vg->b[B_START], vg->b[B_BLK]};
+  rn_push push = {.total = total};
+  uint32_t ls = sessile_kernel_local_size(vg->k_rn);
+  SESSILE_CALL(sessile_cmd_begin(vg->cmd));
+  SESSILE_CALL(sessile_cmd_dispatch(vg->cmd, vg->k_rn, (total + ls - 1) / ls, b, &push));
+  SESSILE_CALL(sessile_cmd_end(vg->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(vg->cmd));
+  /* skipped entries keep what the host writes after */
+  return sessile_buffer_download(vg->b[B_BLK], 0, blocked, (size_t)total * sizeof(uint32_t));
+}

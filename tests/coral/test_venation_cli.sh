@@ -56,6 +56,8 @@ check "search=host gives the GPU search's bytes" eval 'rc_is 0 && same "$T/a" "$
 run coral venation --out "$T/cl" --set open=false --quiet
 check "closed venation: more edges than nodes (cycles) in the records" eval \
   'rc_is 0 && tail -1 "$T/cl/records.jsonl" | "$PY" -c "import json,sys; r=json.load(sys.stdin); sys.exit(0 if r[\"edges\"] >= r[\"nodes\"] else 1)"'
+run coral venation --out "$T/clh" --set open=false --set search=host --quiet
+check "closed venation: search=host (host relative neighbourhood) gives the GPU's bytes" eval 'rc_is 0 && same "$T/cl" "$T/clh"'
 run coral venation --out "$T/box" --set planar=false --set auxins_per_iteration=20 --iterations 30 --quiet
 check "a 3-D box run completes" eval 'rc_is 0 && test -s "$T/box/coral/final.ply"'
 

@@ -5,7 +5,8 @@
  * the lowest index wins), grids with mostly empty cells, points far outside
  * the grid, a flat (one cell thick) cloud and a single node.  The two
  * clusters (10 000 nodes in a cell) make the kernel stop and resume across
- * passes (its per-pass loop budget: shaders/coral/kernels.def). */
+ * passes (its per-pass loop budget: shaders/coral/kernels.def).  Also the
+ * closed venation's relative-neighbourhood kernel against its definition. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,6 +39,65 @@ static uint64_t compare(sessile_gpu *g, sessile_venation_gpu *vg, const char *wh
   sessile_venation_grid_free(&grid);
   free(ib), free(ih), free(ig), free(db), free(dh), free(dg);
   return sessile_venation_gpu_passes(vg);
+}
+
+typedef struct ent {
+  double d2;
+  uint32_t j;
+} ent;
+static int ent_cmp(const void *x, const void *y) {
+  const ent *a = x, *b = y;
+  return a->d2 < b->d2 ? -1 : a->d2 > b->d2 ? 1 : a->j < b->j ? -1 : a->j > b->j;
+}
+
+/* The relative-neighbourhood kernel against the definition, pair by pair:
+ * candidate v of auxin s is blocked iff some candidate u of s has
+ * |u - s|^2 < |v - s|^2 and |u - v|^2 < |v - s|^2.  Nodes on a lattice (exact
+ * ties in both distances), every third auxin's list marked for the host. */
+static void check_rn(sessile_venation_gpu *vg, uint64_t *r) {
+  enum { NN = 4096, NA = 200, R = 4 };
+  double *nodes = t_dalloc(3 * NN);
+  for (int i = 0; i < NN; i++)
+    for (int a = 0; a < 3; a++) nodes[3 * i + a] = (double)(sessile_rng_next(r) % 16);
+  ent *e = t_xalloc((size_t)NA * NN * sizeof *e);
+  uint32_t *off = t_xalloc((NA + 1) * sizeof *off), total = 0;
+  double *aux = t_dalloc(3 * NA);
+  for (int s = 0; s < NA; s++) {
+    for (int a = 0; a < 3; a++) aux[3 * s + a] = 0.5 * (double)(sessile_rng_next(r) % 32);
+    off[s] = total;
+    for (uint32_t j = 0; j < NN; j++) {
+      double dx = aux[3 * s] - nodes[3 * j], dy = aux[3 * s + 1] - nodes[3 * j + 1], dz = aux[3 * s + 2] - nodes[3 * j + 2];
+      double d = dx * dx + dy * dy + dz * dz;
+      if (d <= R * R) e[total++] = (ent){d, j};
+    }
+    qsort(e + off[s], total - off[s], sizeof *e, ent_cmp);
+  }
+  off[NA] = total;
+  uint32_t *j = t_xalloc((size_t)total * 4), *start = t_xalloc((size_t)total * 4), *blk = t_xalloc((size_t)total * 4);
+  double *d2 = t_dalloc(total);
+  for (int s = 0; s < NA; s++)
+    for (uint32_t k = off[s]; k < off[s + 1]; k++)
+      j[k] = e[k].j, d2[k] = e[k].d2, start[k] = s % 3 == 2 ? SESSILE_VENATION_NONE : off[s];
+  t_ok("gpu relative neighbourhood", sessile_venation_gpu_rn(vg, nodes, NN, j, d2, start, total, blk));
+  uint32_t bad = 0, members = 0, checked = 0;
+  for (int s = 0; s < NA; s++) {
+    if (s % 3 == 2) continue;
+    for (uint32_t k = off[s]; k < off[s + 1]; k++) {
+      uint32_t want = 0;
+      for (uint32_t u = off[s]; u < off[s + 1] && !want; u++) {
+        const double *pu = nodes + 3 * e[u].j, *pv = nodes + 3 * e[k].j;
+        double dx = pu[0] - pv[0], dy = pu[1] - pv[1], dz = pu[2] - pv[2];
+        want = e[u].d2 < e[k].d2 && dx * dx + dy * dy + dz * dz < e[k].d2;
+      }
+      bad += blk[k] != want, members += !want, checked++;
+    }
+  }
+  char msg[200];
+  snprintf(msg, sizeof msg, "relative neighbourhood: gpu = the definition on %u entries (%u members, lattice ties; mismatches)",
+           checked, members);
+  t_check(msg, bad, 0);
+  t_true("... both blocked and free candidates occur", members > 0 && members < checked);
+  free(nodes), free(e), free(off), free(aux), free(j), free(start), free(blk), free(d2);
 }
 
 int main(void) {
@@ -81,6 +141,8 @@ int main(void) {
   /* one node */
   nodes[0] = 1, nodes[1] = 2, nodes[2] = 3;
   compare(g, vg, "one node", nodes, 1, pts, M);
+
+  check_rn(vg, &r);
 
   /* m = 0 is a no-op */
   t_ok("no points", sessile_venation_gpu_nearest(vg, NULL, nodes, pts, 0, NULL, NULL, NULL));

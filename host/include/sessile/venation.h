@@ -84,6 +84,16 @@ void sessile_venation_gpu_destroy(sessile_venation_gpu *vg);
 sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sessile_venation_grid *g,
                                             const double *nodes, const double *pts, uint32_t m,
                                             uint32_t *idx, double *d2, double *kernel_ns);
+/* Closed venation's relative-neighbourhood test (shaders/coral/rn.comp):
+ * total entries, each a candidate node j[k] of an auxin with its squared
+ * distance d2[k], the auxin's entries contiguous and sorted by (d2, j),
+ * start[k] its auxin's first entry (SESSILE_VENATION_NONE: skipped, for
+ * lists longer than SESSILE_VENATION_RN_MAX_CAND); blocked[k] = 1 when an
+ * entry before it has a smaller d2 and lies closer to j[k] than d2[k]. */
+#define SESSILE_VENATION_RN_MAX_CAND 8000
+sessile_status sessile_venation_gpu_rn(sessile_venation_gpu *vg, const double *nodes, uint32_t n,
+                                       const uint32_t *j, const double *d2, const uint32_t *start,
+                                       uint32_t total, uint32_t *blocked);
 /* Passes the last search took (each pass is bounded: docs/venation.md). */
 uint64_t sessile_venation_gpu_passes(const sessile_venation_gpu *vg);
 
