@@ -1,12 +1,156 @@
-/* PLACEHOLDER until the welded surface lands (replaced by its owner). */
-#include "sessile/skeleton.h"
+/* The welded surface on the GPU (sessile/skeleton.h, docs/weld.md): the
+ * host builds the grid and the brick lists (weld_grid.c); the kernels
+ * shaders/mesh/weld_*.comp sample the signed distance, count per row, and
+ * after the host's scan of the row totals write vertices and triangles in
+ * row order, so the mesh does not depend on scheduling. */
+#include <stdlib.h>
+#include <string.h>
+#include "weld_internal.h"
+
+typedef struct weld_dev {
+  sessile_kernel *k[4];
+  sessile_buffer *cap, *boff, *blist, *field, *packed, *rows, *vbase, *pos, *nearest, *tri;
+  sessile_cmd *cmd;
+} weld_dev;
+
+static void weld_dev_free(weld_dev *d) {
+  for (int i = 0; i < 4; i++) sessile_kernel_destroy(d->k[i]);
+  sessile_buffer *b[10] = {d->cap, d->boff, d->blist, d->field, d->packed, d->rows, d->vbase, d->pos, d->nearest, d->tri};
+  for (int i = 0; i < 10; i++) sessile_buffer_destroy(b[i]);
+  sessile_cmd_destroy(d->cmd);
+}
+
+static sessile_status buf(sessile_gpu *g, size_t bytes, sessile_buffer **b) {
+  return sessile_buffer_create(g, bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE, b);
+}
+
+static weld_push push_of(const weld_grid *g, uint32_t rb) {
+  weld_push p = {.nx = g->n[0], .ny = g->n[1], .nz = g->n[2], .bx = g->nb[0], .by = g->nb[1], .bz = g->nb[2],
+                 .brick = WELD_BRICK};
+  p.lox = sessile_push_real_of(g->lo[0], rb), p.loy = sessile_push_real_of(g->lo[1], rb);
+  p.loz = sessile_push_real_of(g->lo[2], rb), p.h = sessile_push_real_of(g->h, rb);
+  p.clampv = sessile_push_real_of(g->clampv, rb), p.blend = sessile_push_real_of(g->blend, rb);
+  p.tmin = sessile_push_real_of(WELD_TMIN, rb);
+  return p;
+}
+
+static uint32_t groups(uint64_t n, const sessile_kernel *k) {
+  uint32_t ls = sessile_kernel_local_size(k);
+  return (uint32_t)((n + ls - 1) / ls);
+}
+
+/* Refuses what would not fit: any one array over maxStorageBufferRange, or
+ * the whole above half the device's memory (it shares it with the rest). */
+static sessile_status fits(const weld_grid *g, const sessile_gpu_info *in, double total, double largest,
+                           const char *what) {
+  double limit = 0.5 * (double)in->device_local_bytes;
+  if (total > limit) return weld_refuse(g, total, limit, what);
+  if (largest > (double)in->max_storage_buffer_range)
+    return weld_refuse(g, largest, (double)in->max_storage_buffer_range, "one device buffer (its largest array)");
+  return SESSILE_OK;
+}
+
+static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid *g, double grid_bytes,
+                          weld_dev *d, sessile_surface *out, double **vertex_value, weld_times *tm) {
+  const sessile_gpu_info *in = sessile_gpu_info_of(gpu);
+  uint32_t rb = in->precision == 64 ? 8 : 4;
+  size_t nodes = (size_t)g->nodes;
+  SESSILE_CALL(fits(g, in, grid_bytes, 4.0 * (double)nodes, "device memory"));
+  double t0 = sessile_wall_seconds();
+  SESSILE_CALL(weld_grid_lists(s, g));
+  uint32_t nb = g->nb[0] * g->nb[1] * g->nb[2], nrows = g->n[1] * g->n[2];
+  size_t nlist = g->boff[nb];
+  for (int i = 0; i < 4; i++)
+    SESSILE_CALL(sessile_kernel_create_decl(gpu, &sessile_mesh_kernels[MK_WELD_SDF + i], rb, 0, &d->k[i]));
+  SESSILE_CALL(buf(gpu, (size_t)g->ncap * WC_STRIDE * rb, &d->cap));
+  SESSILE_CALL(buf(gpu, ((size_t)nb + 1) * 4, &d->boff));
+  SESSILE_CALL(buf(gpu, nlist * 4, &d->blist));
+  SESSILE_CALL(buf(gpu, nodes * 4, &d->field));
+  SESSILE_CALL(buf(gpu, nodes * 4, &d->packed));
+  SESSILE_CALL(buf(gpu, nodes * 4, &d->vbase));
+  SESSILE_CALL(buf(gpu, (size_t)nrows * 8, &d->rows));
+  SESSILE_CALL(sessile_buffer_upload_reals(d->cap, 0, g->cap, (size_t)g->ncap * WC_STRIDE));
+  SESSILE_CALL(sessile_buffer_upload(d->boff, 0, g->boff, ((size_t)nb + 1) * 4));
+  if (nlist) SESSILE_CALL(sessile_buffer_upload(d->blist, 0, g->blist, nlist * 4));
+  SESSILE_CALL(sessile_cmd_create(gpu, &d->cmd));
+  weld_push pc = push_of(g, rb);
+
+  /* the node values, then the count pass */
+  double t1 = sessile_wall_seconds();
+  SESSILE_CALL(sessile_cmd_begin(d->cmd));
+  sessile_buffer *b_sdf[4] = {d->cap, d->boff, d->blist, d->field};
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[0], groups(nodes, d->k[0]), b_sdf, &pc));
+  SESSILE_CALL(sessile_cmd_end(d->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
+  double t2 = sessile_wall_seconds();
+  SESSILE_CALL(sessile_cmd_begin(d->cmd));
+  sessile_buffer *b_cnt[3] = {d->field, d->packed, d->rows};
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[1], groups(nrows, d->k[1]), b_cnt, &pc));
+  SESSILE_CALL(sessile_cmd_end(d->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
+
+  /* the scan of the row totals (one pair per row: small) */
+  uint32_t *rows = malloc((size_t)nrows * 8);
+  SESSILE_CHECK(rows, SESSILE_ERR_NO_MEMORY, "welded surface: out of host memory for %u rows", nrows);
+  uint32_t nv = 0, nf = 0;
+  sessile_status st = sessile_buffer_download(d->rows, 0, rows, (size_t)nrows * 8);
+  if (st == SESSILE_OK) st = weld_scan_rows(rows, nrows, &nv, &nf);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(d->rows, 0, rows, (size_t)nrows * 8);
+  free(rows);
+  SESSILE_CALL(st);
+  double pos_bytes = 3.0 * nv * rb, tri_bytes = 12.0 * nf;
+  SESSILE_CALL(fits(g, in, grid_bytes + pos_bytes + 4.0 * nv + tri_bytes,
+                    pos_bytes > tri_bytes ? pos_bytes : tri_bytes, "device memory (grid and surface)"));
+  SESSILE_CALL(buf(gpu, (size_t)pos_bytes, &d->pos));
+  SESSILE_CALL(buf(gpu, (size_t)nv * 4, &d->nearest));
+  SESSILE_CALL(buf(gpu, (size_t)tri_bytes, &d->tri));
+  double t3 = sessile_wall_seconds();
+
+  /* the vertices and triangles */
+  SESSILE_CALL(sessile_cmd_begin(d->cmd));
+  sessile_buffer *b_v[9] = {d->cap, d->boff, d->blist, d->field, d->packed, d->rows, d->vbase, d->pos, d->nearest};
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[2], groups(nrows, d->k[2]), b_v, &pc));
+  sessile_buffer *b_t[4] = {d->packed, d->vbase, d->rows, d->tri};
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[3], groups(nrows, d->k[3]), b_t, &pc));
+  SESSILE_CALL(sessile_cmd_end(d->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
+  double t4 = sessile_wall_seconds();
+
+  double *pos = malloc(((size_t)nv * 3 + 1) * sizeof *pos);
+  uint32_t *tri = malloc(((size_t)nf * 3 + 1) * sizeof *tri), *nearest = malloc(((size_t)nv + 1) * 4);
+  st = pos && tri && nearest ? SESSILE_OK
+                             : sessile_error_set(SESSILE_ERR_NO_MEMORY, "welded surface: out of host memory for %u vertices", nv);
+  if (st == SESSILE_OK && nv) st = sessile_buffer_download_reals(d->pos, 0, pos, (size_t)nv * 3);
+  if (st == SESSILE_OK && nv) st = sessile_buffer_download(d->nearest, 0, nearest, (size_t)nv * 4);
+  if (st == SESSILE_OK && nf) st = sessile_buffer_download(d->tri, 0, tri, (size_t)nf * 12);
+  if (st == SESSILE_OK) st = weld_output(s, nv, nf, pos, tri, nearest, out, vertex_value);
+  if (st == SESSILE_OK) pos = NULL, tri = NULL;
+  free(pos), free(tri), free(nearest);
+  double t5 = sessile_wall_seconds();
+  if (tm) {
+    tm->sdf = t2 - t1, tm->count = t3 - t2, tm->emit = t4 - t3, tm->download = t5 - t4;
+    tm->total = t5 - t0;
+  }
+  return st;
+}
+
+sessile_status weld_gpu(sessile_gpu *gpu, const sessile_skeleton *s, const sessile_weld_params *p,
+                        sessile_surface *out, double **vertex_value, weld_times *tm) {
+  if (vertex_value) *vertex_value = NULL;
+  if (tm) memset(tm, 0, sizeof *tm);
+  weld_grid g;
+  double bytes;
+  SESSILE_CALL(weld_grid_plan(s, p, &g, &bytes));
+  if (s->n == 0) return weld_output(s, 0, 0, NULL, NULL, NULL, out, vertex_value);
+  weld_dev d;
+  memset(&d, 0, sizeof d);
+  sessile_status st = run(gpu, s, &g, bytes, &d, out, vertex_value, tm);
+  weld_dev_free(&d);
+  weld_grid_free(&g);
+  return st;
+}
+
 sessile_status sessile_skeleton_weld(sessile_gpu *g, const sessile_skeleton *s, const sessile_weld_params *p,
                                      sessile_surface *out, double **vertex_value) {
-  (void)g, (void)s, (void)p, (void)out, (void)vertex_value;
-  return sessile_error_set(SESSILE_ERR_USAGE, "the welded surface is not built yet");
-}
-sessile_status sessile_skeleton_weld_ref(const sessile_skeleton *s, const sessile_weld_params *p,
-                                         sessile_surface *out, double **vertex_value) {
-  (void)s, (void)p, (void)out, (void)vertex_value;
-  return sessile_error_set(SESSILE_ERR_USAGE, "the welded surface is not built yet");
+  return weld_gpu(g, s, p, out, vertex_value, NULL);
 }
