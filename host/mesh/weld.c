@@ -55,7 +55,7 @@ static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid
   const sessile_gpu_info *in = sessile_gpu_info_of(gpu);
   uint32_t rb = in->precision == 64 ? 8 : 4;
   size_t nodes = (size_t)g->nodes;
-  SESSILE_CALL(fits(g, in, grid_bytes, 4.0 * (double)nodes, "device memory"));
+  SESSILE_CALL(fits(g, in, grid_bytes, (double)rb * (double)nodes, "device memory"));
   double t0 = sessile_wall_seconds();
   SESSILE_CALL(weld_grid_lists(s, g));
   uint32_t nb = g->nb[0] * g->nb[1] * g->nb[2], nrows = g->n[1] * g->n[2];
@@ -65,7 +65,7 @@ static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid
   SESSILE_CALL(buf(gpu, (size_t)g->ncap * WC_STRIDE * rb, &d->cap));
   SESSILE_CALL(buf(gpu, ((size_t)nb + 1) * 4, &d->boff));
   SESSILE_CALL(buf(gpu, nlist * 4, &d->blist));
-  SESSILE_CALL(buf(gpu, nodes * 4, &d->field));
+  SESSILE_CALL(buf(gpu, nodes * rb, &d->field));
   SESSILE_CALL(buf(gpu, nodes * 4, &d->packed));
   SESSILE_CALL(buf(gpu, nodes * 4, &d->vbase));
   SESSILE_CALL(buf(gpu, (size_t)nrows * 8, &d->rows));

@@ -1,7 +1,6 @@
 /* The welded surface's grid: parameters, sizing, memory estimate, capsule
  * constants and the brick lists (docs/weld.md).  Shared by the GPU path
  * (weld.c) and the reference (weld_ref.c), so both see the same lists. */
-#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 #include "weld_internal.h"
@@ -16,6 +15,13 @@
 static const double R[9] = {(49. + 4 - 9 - 25) / 87, 2 * (6. - 35) / 87,      2 * (10. + 21) / 87,
                             2 * (6. + 35) / 87,      (49. - 4 + 9 - 25) / 87, 2 * (15. - 14) / 87,
                             2 * (10. - 21) / 87,     2 * (15. + 14) / 87,     (49. - 4 - 9 + 25) / 87};
+
+/* The grid's origin moves off the centred position by these fractions of
+ * a cell: centred, a sphere at the skeleton's extreme sits at a fixed
+ * offset from the nodes (half a cell for round sizes), where its distance
+ * is mirror-symmetric across a node plane and again gives exactly coplanar
+ * triangles (fractional parts of k phi, minus 1/2). */
+static const double OFFSET[3] = {0.1180339887498949, -0.2639320225002103, 0.3541019662496845};
 
 void weld_to_grid(const double w[3], double g[3]) {
   for (int i = 0; i < 3; i++) g[i] = R[i] * w[0] + R[3 + i] * w[1] + R[6 + i] * w[2];
@@ -60,26 +66,26 @@ sessile_status weld_grid_plan(const sessile_skeleton *s, const sessile_weld_para
   /* pad = 2 h + blend on each side, so the longest axis spans
    * ext + 2 pad = max_cells h */
   double h = p->cell > 0 ? p->cell : (ext + 2 * p->blend) / (double)(p->max_cells - 4);
-  SESSILE_CHECK(h > 0 && isfinite(h), SESSILE_ERR_USAGE, "welded surface: the skeleton has no extent");
+  SESSILE_CHECK(h > 1e-30 && isfinite(h), SESSILE_ERR_USAGE, "welded surface: the cell %g is too small", h);
   double pad = 2 * h + p->blend;
   uint64_t nodes = 1;
   for (int a = 0; a < 3; a++) {
-    double cells = ceil((hi[a] - lo[a] + 2 * pad) / h - 1e-9);
-    if (cells < 2) cells = 2;
+    /* one spare cell, so that the origin can move by up to h / 2 */
+    double cells = ceil((hi[a] - lo[a] + 2 * pad) / h - 1e-9) + 1;
     if (cells > 4e9) cells = 4e9; /* refused below */
     g->n[a] = (uint32_t)cells + 1;
-    g->lo[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * cells * h;
+    g->lo[a] = 0.5 * (lo[a] + hi[a]) - 0.5 * cells * h + OFFSET[a] * h;
     g->nb[a] = (g->n[a] + WELD_BRICK - 1) / WELD_BRICK;
     nodes = nodes * g->n[a] > (1ull << 62) / 4 ? (1ull << 62) / 4 : nodes * g->n[a];
   }
   g->h = h;
   g->clampv = 2 * h;
   g->nodes = nodes;
-  /* field (float), packed word and first vertex per node, 8 bytes per row;
+  /* field (fp64), packed word and first vertex per node, 8 bytes per row;
    * lists are small beside these */
   double rows = (double)g->n[1] * g->n[2];
-  *grid_bytes = 12.0 * (double)nodes + 8.0 * rows;
-  if (nodes > (1ull << 31)) return weld_refuse(g, *grid_bytes, 12.0 * (1ull << 31), "memory (2^31 nodes at most)");
+  *grid_bytes = 16.0 * (double)nodes + 8.0 * rows;
+  if (nodes > (1ull << 31)) return weld_refuse(g, *grid_bytes, 16.0 * (1ull << 31), "memory (2^31 nodes at most)");
   return SESSILE_OK;
 }
 
@@ -168,7 +174,7 @@ sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
   return SESSILE_OK;
 }
 
-float weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z) {
+double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z) {
   double v = g->clampv;
   if (x > 0 && y > 0 && z > 0 && x + 1 < g->n[0] && y + 1 < g->n[1] && z + 1 < g->n[2]) {
     double px = g->lo[0] + g->h * (double)x, py = g->lo[1] + g->h * (double)y, pz = g->lo[2] + g->h * (double)z;
@@ -179,9 +185,8 @@ float weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z) {
       f = g->blend > 0 ? weld_smin(f, d, g->blend) : weld_min(f, d);
     }
     v = weld_min(f, g->clampv);
-    if (fabs(v) < (double)FLT_MIN) v = 0;
   }
-  return (float)v;
+  return v;
 }
 
 sessile_status weld_output(const sessile_skeleton *s, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,

@@ -71,12 +71,12 @@ static inline double weld_smin(double a, double b, double k) {
   return weld_min(a, b) - hh * hh * k * 0.25;
 }
 
-/* The node value as weld_sdf.comp (rounded to float, denormals flushed). */
-float weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z);
+/* The node value as weld_sdf.comp. */
+double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z);
 
 /* The host's row passes, as weld_count/vert/tri.comp; row r = y + ny z. */
-void weld_count_row(const weld_grid *g, const float *field, uint32_t r, uint32_t *packed, uint32_t rows[2]);
-void weld_vert_row(const weld_grid *g, const float *field, const uint32_t *packed, uint32_t r,
+void weld_count_row(const weld_grid *g, const double *field, uint32_t r, uint32_t *packed, uint32_t rows[2]);
+void weld_vert_row(const weld_grid *g, const double *field, const uint32_t *packed, uint32_t r,
                    uint32_t v, uint32_t *vbase, double *pos, uint32_t *nearest);
 void weld_tri_row(const weld_grid *g, const uint32_t *packed, const uint32_t *vbase, uint32_t r, uint32_t t,
                   uint32_t *tri);

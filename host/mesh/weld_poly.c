@@ -22,11 +22,11 @@ static uint32_t cube_triangles(uint32_t cube) {
   return t;
 }
 
-static int inside_at(const weld_grid *g, const float *field, uint32_t x, uint32_t y, uint32_t z) {
-  return field[x + (size_t)g->n[0] * (y + (size_t)g->n[1] * z)] < 0.0f;
+static int inside_at(const weld_grid *g, const double *field, uint32_t x, uint32_t y, uint32_t z) {
+  return field[x + (size_t)g->n[0] * (y + (size_t)g->n[1] * z)] < 0.0;
 }
 
-void weld_count_row(const weld_grid *g, const float *field, uint32_t r, uint32_t *packed, uint32_t rows[2]) {
+void weld_count_row(const weld_grid *g, const double *field, uint32_t r, uint32_t *packed, uint32_t rows[2]) {
   uint32_t nx = g->n[0], ny = g->n[1], nz = g->n[2];
   uint32_t y = r % ny, z = r / ny, nv = 0, nt = 0;
   for (uint32_t x = 0; x < nx; x++) {
@@ -50,7 +50,7 @@ void weld_count_row(const weld_grid *g, const float *field, uint32_t r, uint32_t
   rows[0] = nv, rows[1] = nt;
 }
 
-void weld_vert_row(const weld_grid *g, const float *field, const uint32_t *packed, uint32_t r, uint32_t v,
+void weld_vert_row(const weld_grid *g, const double *field, const uint32_t *packed, uint32_t r, uint32_t v,
                    uint32_t *vbase, double *pos, uint32_t *nearest) {
   uint32_t nx = g->n[0], ny = g->n[1];
   uint32_t y = r % ny, z = r / ny;
@@ -60,14 +60,14 @@ void weld_vert_row(const weld_grid *g, const float *field, const uint32_t *packe
     uint32_t w = packed[i];
     vbase[i] = v;
     if ((w & 127u) == 0) continue;
-    double f0 = (double)field[i];
+    double f0 = field[i];
     double px = g->lo[0] + h * (double)x, py = g->lo[1] + h * (double)y, pz = g->lo[2] + h * (double)z;
     uint32_t b = weld_brick_of(g, x, y, z);
     uint32_t e0 = g->boff[b], e1 = g->boff[b + 1];
     for (uint32_t e = 1; e < 8; e++) {
       if (!(w & (1u << (e - 1)))) continue;
       uint32_t dx = e & 1, dy = (e >> 1) & 1, dz = e >> 2;
-      double f1 = (double)field[i + dx + (size_t)nx * (dy + (size_t)ny * dz)];
+      double f1 = field[i + dx + (size_t)nx * (dy + (size_t)ny * dz)];
       double t = f0 / (f0 - f1);
       t = weld_min(weld_max(t, WELD_TMIN), 1.0 - WELD_TMIN);
       double qx = px + t * (h * (double)dx), qy = py + t * (h * (double)dy), qz = pz + t * (h * (double)dz);

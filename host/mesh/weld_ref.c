@@ -15,7 +15,7 @@ sessile_status sessile_skeleton_weld_ref(const sessile_skeleton *s, const sessil
   sessile_status st = weld_grid_lists(s, &g);
   size_t nodes = (size_t)g.nodes;
   uint32_t nrows = g.n[1] * g.n[2], nv = 0, nf = 0;
-  float *field = NULL;
+  double *field = NULL;
   uint32_t *packed = NULL, *vbase = NULL, *rows = NULL, *tri = NULL, *nearest = NULL;
   double *pos = NULL;
   if (st == SESSILE_OK) {

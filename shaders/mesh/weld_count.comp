@@ -7,7 +7,7 @@
 #include "mesh_kernels.glsl"
 #include "weld_tables.glsl"
 
-bool inside_at(uint x, uint y, uint z) { return field[x + pc.nx * (y + pc.ny * z)] < 0.0; }
+bool inside_at(uint x, uint y, uint z) { return field[x + pc.nx * (y + pc.ny * z)] < REAL(0); }
 
 void main() {
   uint r = sessile_gid();

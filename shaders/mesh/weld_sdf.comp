@@ -23,8 +23,6 @@ void main() {
       f = pc.blend > REAL(0) ? weld_smin(f, d, pc.blend) : min(f, d);
     }
     v = min(f, pc.clampv);
-    // flushed here, not by the conversion (denormals are unspecified)
-    if (abs(v) < REAL(1.17549435e-38)) v = REAL(0);
   }
-  field[i] = float(v);
+  field[i] = v;
 }

@@ -19,14 +19,14 @@ void main() {
     uint w = packed[i];
     vbase[i] = v;
     if ((w & 127u) == 0u) continue;
-    REAL f0 = REAL(field[i]);
+    REAL f0 = field[i];
     precise REAL px = pc.lox + pc.h * REAL(x), py = pc.loy + pc.h * REAL(y), pz = pc.loz + pc.h * REAL(z);
     uint b = brick_of(x, y, z);
     uint e0 = boff[b], e1 = boff[b + 1u];
     for (uint e = 1u; e < 8u; e++) {
       if ((w & (1u << (e - 1u))) == 0u) continue;
       uint dx = e & 1u, dy = (e >> 1) & 1u, dz = e >> 2;
-      REAL f1 = REAL(field[i + dx + pc.nx * (dy + pc.ny * dz)]);
+      REAL f1 = field[i + dx + pc.nx * (dy + pc.ny * dz)];
       precise REAL t = f0 / (f0 - f1);
       t = min(max(t, pc.tmin), REAL(1) - pc.tmin);
       precise REAL qx = px + t * (pc.h * REAL(dx)), qy = py + t * (pc.h * REAL(dy)),

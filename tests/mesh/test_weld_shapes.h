@@ -5,18 +5,18 @@
 #include "sessile/skeleton.h"
 #include "testutil.h"
 
-static void shape_capsule(sessile_skeleton *s, double r, double len) {
+static inline void shape_capsule(sessile_skeleton *s, double r, double len) {
   const double a[3] = {0, 0, 0}, b[3] = {len, 0.3 * len, 0.1 * len}, up[3] = {0, 0, 1};
   t_must("capsule", sessile_skeleton_add(s, a, b, r, r, up, 7));
 }
 /* Three tapered arms from one point, not in one plane. */
-static void shape_y(sessile_skeleton *s) {
+static inline void shape_y(sessile_skeleton *s) {
   const double o[3] = {0, 0, 0}, up[3] = {0, 0, 1};
   const double e[3][3] = {{0, 0, -4}, {3, 0.5, 3}, {-2.5, 1, 3.2}};
   for (int i = 0; i < 3; i++) t_must("Y arm", sessile_skeleton_add(s, o, e[i], 0.8, 0.5, up, i));
 }
 /* n capsules around a circle of radius R: a torus-like ring (genus 1). */
-static void shape_ring(sessile_skeleton *s, int n, double R, double r) {
+static inline void shape_ring(sessile_skeleton *s, int n, double R, double r) {
   const double up[3] = {0, 0, 1};
   for (int i = 0; i < n; i++) {
     double t0 = 2 * 3.141592653589793 * i / n, t1 = 2 * 3.141592653589793 * (i + 1) / n;
