@@ -7,16 +7,19 @@
 #include <string.h>
 #include "weld_internal.h"
 
+#define NK 5 /* kernels: sdf, count, rowscan, vert, tri */
+
 typedef struct weld_dev {
-  sessile_kernel *k[4];
-  sessile_buffer *cap, *boff, *blist, *field, *packed, *rows, *vbase, *pos, *nearest, *tri;
+  sessile_kernel *k[NK];
+  sessile_buffer *cap, *boff, *blist, *field, *nnear, *packed, *rows, *vbase, *vnode, *clist, *ctri, *pos, *nearest, *tri;
   sessile_cmd *cmd;
 } weld_dev;
 
 static void weld_dev_free(weld_dev *d) {
-  for (int i = 0; i < 4; i++) sessile_kernel_destroy(d->k[i]);
-  sessile_buffer *b[10] = {d->cap, d->boff, d->blist, d->field, d->packed, d->rows, d->vbase, d->pos, d->nearest, d->tri};
-  for (int i = 0; i < 10; i++) sessile_buffer_destroy(b[i]);
+  for (int i = 0; i < NK; i++) sessile_kernel_destroy(d->k[i]);
+  sessile_buffer *b[14] = {d->cap,   d->boff,  d->blist, d->field, d->nnear,   d->packed, d->rows,
+                           d->vbase, d->vnode, d->clist, d->ctri,  d->pos,     d->nearest, d->tri};
+  for (int i = 0; i < 14; i++) sessile_buffer_destroy(b[i]);
   sessile_cmd_destroy(d->cmd);
 }
 
@@ -50,6 +53,15 @@ static sessile_status fits(const weld_grid *g, const sessile_gpu_info *in, doubl
   return SESSILE_OK;
 }
 
+/* Records one dispatch and runs it (each stage is its own submission so
+ * that the stages can be timed). */
+static sessile_status dispatch1(weld_dev *d, int k, uint64_t n, sessile_buffer *const *b, const weld_push *pc) {
+  SESSILE_CALL(sessile_cmd_begin(d->cmd));
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[k], groups(n, d->k[k]), b, pc));
+  SESSILE_CALL(sessile_cmd_end(d->cmd));
+  return sessile_cmd_submit_wait(d->cmd);
+}
+
 static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid *g, double grid_bytes,
                           weld_dev *d, sessile_surface *out, double **vertex_value, weld_times *tm) {
   const sessile_gpu_info *in = sessile_gpu_info_of(gpu);
@@ -60,58 +72,65 @@ static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid
   SESSILE_CALL(weld_grid_lists(s, g));
   uint32_t nb = g->nb[0] * g->nb[1] * g->nb[2], nrows = g->n[1] * g->n[2];
   size_t nlist = g->boff[nb];
-  for (int i = 0; i < 4; i++)
+  for (int i = 0; i < NK; i++)
     SESSILE_CALL(sessile_kernel_create_decl(gpu, &sessile_mesh_kernels[MK_WELD_SDF + i], rb, 0, &d->k[i]));
+  for (int i = 0; i < 2; i++)
+    SESSILE_CHECK(sessile_kernel_local_size(d->k[i]) == WELD_LOCAL, SESSILE_ERR_INTERNAL,
+                  "welded surface: weld_sdf and weld_count need workgroups of %d (one per brick of 8^3 nodes), "
+                  "the device gave %u",
+                  WELD_LOCAL, sessile_kernel_local_size(d->k[i]));
   SESSILE_CALL(buf(gpu, (size_t)g->ncap * WC_STRIDE * rb, &d->cap));
   SESSILE_CALL(buf(gpu, ((size_t)nb + 1) * 4, &d->boff));
   SESSILE_CALL(buf(gpu, nlist * 4, &d->blist));
   SESSILE_CALL(buf(gpu, nodes * rb, &d->field));
+  SESSILE_CALL(buf(gpu, nodes * 4, &d->nnear));
   SESSILE_CALL(buf(gpu, nodes * 4, &d->packed));
   SESSILE_CALL(buf(gpu, nodes * 4, &d->vbase));
-  SESSILE_CALL(buf(gpu, (size_t)nrows * 8, &d->rows));
+  SESSILE_CALL(buf(gpu, (size_t)nrows * 12, &d->rows));
   SESSILE_CALL(sessile_buffer_upload_reals(d->cap, 0, g->cap, (size_t)g->ncap * WC_STRIDE));
   SESSILE_CALL(sessile_buffer_upload(d->boff, 0, g->boff, ((size_t)nb + 1) * 4));
   if (nlist) SESSILE_CALL(sessile_buffer_upload(d->blist, 0, g->blist, nlist * 4));
   SESSILE_CALL(sessile_cmd_create(gpu, &d->cmd));
   weld_push pc = push_of(g, rb);
 
-  /* the node values, then the count pass */
+  /* the node values; the count pass (rows start zeroed: fresh buffer) */
   double t1 = sessile_wall_seconds();
-  SESSILE_CALL(sessile_cmd_begin(d->cmd));
-  sessile_buffer *b_sdf[4] = {d->cap, d->boff, d->blist, d->field};
-  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[0], groups(nodes, d->k[0]), b_sdf, &pc));
-  SESSILE_CALL(sessile_cmd_end(d->cmd));
-  SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
+  sessile_buffer *b_sdf[5] = {d->cap, d->boff, d->blist, d->field, d->nnear};
+  SESSILE_CALL(dispatch1(d, 0, (uint64_t)nb * sessile_kernel_local_size(d->k[0]), b_sdf, &pc));
   double t2 = sessile_wall_seconds();
-  SESSILE_CALL(sessile_cmd_begin(d->cmd));
-  sessile_buffer *b_cnt[3] = {d->field, d->packed, d->rows};
-  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[1], groups(nrows, d->k[1]), b_cnt, &pc));
-  SESSILE_CALL(sessile_cmd_end(d->cmd));
-  SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
+  sessile_buffer *b_cnt[4] = {d->boff, d->field, d->packed, d->rows};
+  SESSILE_CALL(dispatch1(d, 1, (uint64_t)nb * sessile_kernel_local_size(d->k[1]), b_cnt, &pc));
 
-  /* the scan of the row totals (one pair per row: small) */
-  uint32_t *rows = malloc((size_t)nrows * 8);
+  /* the scan of the row totals (three per row: small) */
+  uint32_t *rows = malloc((size_t)nrows * 12), tot[3] = {0, 0, 0};
   SESSILE_CHECK(rows, SESSILE_ERR_NO_MEMORY, "welded surface: out of host memory for %u rows", nrows);
-  uint32_t nv = 0, nf = 0;
-  sessile_status st = sessile_buffer_download(d->rows, 0, rows, (size_t)nrows * 8);
-  if (st == SESSILE_OK) st = weld_scan_rows(rows, nrows, &nv, &nf);
-  if (st == SESSILE_OK) st = sessile_buffer_upload(d->rows, 0, rows, (size_t)nrows * 8);
+  sessile_status st = sessile_buffer_download(d->rows, 0, rows, (size_t)nrows * 12);
+  if (st == SESSILE_OK) st = weld_scan_rows(rows, nrows, tot);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(d->rows, 0, rows, (size_t)nrows * 12);
   free(rows);
   SESSILE_CALL(st);
-  double pos_bytes = 3.0 * nv * rb, tri_bytes = 12.0 * nf;
-  SESSILE_CALL(fits(g, in, grid_bytes + pos_bytes + 4.0 * nv + tri_bytes,
-                    pos_bytes > tri_bytes ? pos_bytes : tri_bytes, "device memory (grid and surface)"));
+  uint32_t nv = tot[0], nf = tot[1], nc = tot[2];
+  double pos_bytes = 3.0 * nv * rb, tri_bytes = 12.0 * nf, more = pos_bytes + 8.0 * nv + tri_bytes + 8.0 * nc;
+  SESSILE_CALL(fits(g, in, grid_bytes + more, pos_bytes > tri_bytes ? pos_bytes : tri_bytes,
+                    "device memory (grid and surface)"));
   SESSILE_CALL(buf(gpu, (size_t)pos_bytes, &d->pos));
   SESSILE_CALL(buf(gpu, (size_t)nv * 4, &d->nearest));
+  SESSILE_CALL(buf(gpu, (size_t)nv * 4, &d->vnode));
   SESSILE_CALL(buf(gpu, (size_t)tri_bytes, &d->tri));
+  SESSILE_CALL(buf(gpu, (size_t)nc * 4, &d->clist));
+  SESSILE_CALL(buf(gpu, (size_t)nc * 4, &d->ctri));
   double t3 = sessile_wall_seconds();
 
-  /* the vertices and triangles */
+  /* numbering, then vertices and triangles, in one submission */
   SESSILE_CALL(sessile_cmd_begin(d->cmd));
-  sessile_buffer *b_v[9] = {d->cap, d->boff, d->blist, d->field, d->packed, d->rows, d->vbase, d->pos, d->nearest};
-  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[2], groups(nrows, d->k[2]), b_v, &pc));
-  sessile_buffer *b_t[4] = {d->packed, d->vbase, d->rows, d->tri};
-  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[3], groups(nrows, d->k[3]), b_t, &pc));
+  sessile_buffer *b_rs[6] = {d->packed, d->rows, d->vbase, d->vnode, d->clist, d->ctri};
+  SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[2], groups(nrows, d->k[2]), b_rs, &pc));
+  pc.count = nv;
+  sessile_buffer *b_v[8] = {d->cap, d->nnear, d->field, d->packed, d->vbase, d->vnode, d->pos, d->nearest};
+  if (nv) SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[3], groups(nv, d->k[3]), b_v, &pc));
+  pc.count = nc;
+  sessile_buffer *b_t[5] = {d->packed, d->vbase, d->clist, d->ctri, d->tri};
+  if (nc) SESSILE_CALL(sessile_cmd_dispatch(d->cmd, d->k[4], groups(nc, d->k[4]), b_t, &pc));
   SESSILE_CALL(sessile_cmd_end(d->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(d->cmd));
   double t4 = sessile_wall_seconds();

@@ -81,11 +81,11 @@ sessile_status weld_grid_plan(const sessile_skeleton *s, const sessile_weld_para
   g->h = h;
   g->clampv = 2 * h;
   g->nodes = nodes;
-  /* field (fp64), packed word and first vertex per node, 8 bytes per row;
+  /* field (fp64), nearest capsule, packed word and first vertex per node, 8 bytes per row;
    * lists are small beside these */
   double rows = (double)g->n[1] * g->n[2];
-  *grid_bytes = 16.0 * (double)nodes + 8.0 * rows;
-  if (nodes > (1ull << 31)) return weld_refuse(g, *grid_bytes, 16.0 * (1ull << 31), "memory (2^31 nodes at most)");
+  *grid_bytes = 20.0 * (double)nodes + 12.0 * rows;
+  if (nodes > (1ull << 31)) return weld_refuse(g, *grid_bytes, 20.0 * (1ull << 31), "memory (2^31 nodes at most)");
   return SESSILE_OK;
 }
 
@@ -131,6 +131,21 @@ static void capsule_bricks(const weld_grid *g, const double *c, double margin, u
   }
 }
 
+/* Can capsule c come within margin of a node of brick (x, y, z)?  The
+ * distance is 1-Lipschitz: at most the half-diagonal less at any node than
+ * at the centre of the brick's nodes. */
+static int brick_near(const weld_grid *g, const double *c, uint32_t x, uint32_t y, uint32_t z, double margin) {
+  uint32_t b[3] = {x, y, z};
+  double p[3], d2 = 0;
+  for (int a = 0; a < 3; a++) {
+    uint32_t i0 = b[a] * WELD_BRICK, i1 = i0 + WELD_BRICK - 1;
+    if (i1 > g->n[a] - 1) i1 = g->n[a] - 1;
+    p[a] = g->lo[a] + g->h * 0.5 * (double)(i0 + i1);
+    d2 += 0.25 * g->h * g->h * (double)(i1 - i0) * (double)(i1 - i0);
+  }
+  return weld_capsule_sdf(c, p[0], p[1], p[2]) - sqrt(d2) <= margin;
+}
+
 sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
   uint32_t nb = g->nb[0] * g->nb[1] * g->nb[2];
   g->ncap = s->n;
@@ -138,10 +153,12 @@ sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
   g->boff = calloc((size_t)nb + 1, sizeof *g->boff);
   SESSILE_CHECK(g->cap && g->boff, SESSILE_ERR_NO_MEMORY, "welded surface: out of host memory for %u capsules",
                 s->n);
-  /* A capsule farther than clamp + 2 blend + 2 h from every node of a brick
-   * cannot change a node value there (values are clamped at 2 h), nor be the
-   * nearest capsule at a vertex on an edge from one of its nodes. */
-  double margin = 2 * g->h + 2 * g->blend + 2 * g->h;
+  /* A capsule farther than 3 h + 2 blend from every node of a brick cannot
+   * change a node value there (values are clamped at 2 h; blend 0: exactly)
+   * nor be the nearest capsule at a vertex on an edge (at most sqrt(3) h
+   * long) from one of its nodes.  Tested by the capsule's box and by its
+   * distance from the brick's centre less the brick's half-diagonal. */
+  double margin = 3 * g->h + 2 * g->blend;
   for (uint32_t i = 0; i < s->n; i++) capsule_constants(s, i, g->cap + (size_t)i * WC_STRIDE);
   uint64_t total = 0;
   for (int pass = 0; pass < 2; pass++) {
@@ -154,6 +171,7 @@ sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
         for (uint32_t y = b0[1]; y <= b1[1]; y++)
           for (uint32_t x = b0[0]; x <= b1[0]; x++) {
             uint32_t b = x + g->nb[0] * (y + g->nb[1] * z);
+            if (!brick_near(g, g->cap + (size_t)i * WC_STRIDE, x, y, z, margin)) continue;
             if (pass == 0) g->boff[b + 1]++, total++;
             else g->blist[g->boff[b]++] = i; /* ascending i: the fold order */
           }
@@ -174,19 +192,19 @@ sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
   return SESSILE_OK;
 }
 
-double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z) {
-  double v = g->clampv;
-  if (x > 0 && y > 0 && z > 0 && x + 1 < g->n[0] && y + 1 < g->n[1] && z + 1 < g->n[2]) {
-    double px = g->lo[0] + g->h * (double)x, py = g->lo[1] + g->h * (double)y, pz = g->lo[2] + g->h * (double)z;
-    uint32_t b = weld_brick_of(g, x, y, z);
-    double f = (double)1e30f; /* GLSL: REAL(1e30), a float literal */
-    for (uint32_t e = g->boff[b]; e < g->boff[b + 1]; e++) {
-      double d = weld_capsule_sdf(g->cap + (size_t)g->blist[e] * WC_STRIDE, px, py, pz);
-      f = g->blend > 0 ? weld_smin(f, d, g->blend) : weld_min(f, d);
-    }
-    v = weld_min(f, g->clampv);
+double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z, uint32_t *nearest) {
+  double px = g->lo[0] + g->h * (double)x, py = g->lo[1] + g->h * (double)y, pz = g->lo[2] + g->h * (double)z;
+  uint32_t b = weld_brick_of(g, x, y, z), best = UINT32_MAX;
+  double f = (double)1e30f, bd = 0; /* GLSL: REAL(1e30), a float literal */
+  for (uint32_t e = g->boff[b]; e < g->boff[b + 1]; e++) {
+    uint32_t c = g->blist[e];
+    double d = weld_capsule_sdf(g->cap + (size_t)c * WC_STRIDE, px, py, pz);
+    f = g->blend > 0 ? weld_smin(f, d, g->blend) : weld_min(f, d);
+    if (best == UINT32_MAX || d < bd) best = c, bd = d;
   }
-  return v;
+  *nearest = best;
+  int interior = x > 0 && y > 0 && z > 0 && x + 1 < g->n[0] && y + 1 < g->n[1] && z + 1 < g->n[2];
+  return interior ? weld_min(f, g->clampv) : g->clampv;
 }
 
 sessile_status weld_output(const sessile_skeleton *s, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,

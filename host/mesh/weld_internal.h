@@ -10,7 +10,8 @@
 #include "mesh_kernels.h"
 #include "sessile/skeleton.h"
 
-/* cells per brick edge: the capsule lists are per brick of WELD_BRICK^3 nodes */
+/* nodes per brick edge: the capsule lists are per brick of WELD_BRICK^3
+ * nodes (8: weld_sdf.comp's workgroup of 64 columns of 8) */
 #define WELD_BRICK 8u
 /* the interpolation parameter is kept in [WELD_TMIN, 1 - WELD_TMIN] */
 #define WELD_TMIN 1e-3
@@ -71,19 +72,25 @@ static inline double weld_smin(double a, double b, double k) {
   return weld_min(a, b) - hh * hh * k * 0.25;
 }
 
-/* The node value as weld_sdf.comp. */
-double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z);
+/* The node value and nearest capsule (UINT32_MAX: none listed) as
+ * weld_sdf.comp. */
+double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z, uint32_t *nearest);
 
-/* The host's row passes, as weld_count/vert/tri.comp; row r = y + ny z. */
-void weld_count_row(const weld_grid *g, const double *field, uint32_t r, uint32_t *packed, uint32_t rows[2]);
-void weld_vert_row(const weld_grid *g, const double *field, const uint32_t *packed, uint32_t r,
-                   uint32_t v, uint32_t *vbase, double *pos, uint32_t *nearest);
-void weld_tri_row(const weld_grid *g, const uint32_t *packed, const uint32_t *vbase, uint32_t r, uint32_t t,
-                  uint32_t *tri);
+/* The host's passes, as weld_count/rowscan/vert/tri.comp: the packed word
+ * of node i; the numbering of row r (y + ny z) from its base (first
+ * vertex, triangle, active cell); vertex v; the triangles of the active
+ * cell at node i from triangle t. */
+uint32_t weld_count_node(const weld_grid *g, const double *field, size_t i);
+void weld_rowscan_row(const weld_grid *g, const uint32_t *packed, uint32_t r, const uint32_t base[3], uint32_t *vbase,
+                      uint32_t *vnode, uint32_t *clist, uint32_t *ctri);
+void weld_vertex(const weld_grid *g, const double *field, const uint32_t *nnear, const uint32_t *packed,
+                 const uint32_t *vbase, const uint32_t *vnode, uint32_t v, double *pos, uint32_t *nearest);
+void weld_cell_tris(const weld_grid *g, const uint32_t *packed, const uint32_t *vbase, size_t i, uint32_t t,
+                    uint32_t *tri);
 
-/* Exclusive scan of the per-row (vertices, triangles) in place; totals out.
- * Fails when a total exceeds what 32-bit indices address. */
-sessile_status weld_scan_rows(uint32_t *rows, uint32_t nrows, uint32_t *nv, uint32_t *nt);
+/* Exclusive scan of the per-row (vertices, triangles, active cells) in
+ * place; totals in tot.  Fails when they exceed 32-bit indices. */
+sessile_status weld_scan_rows(uint32_t *rows, uint32_t nrows, uint32_t tot[3]);
 
 /* Hands pos and tri (malloc'd; owned by out on success) to out, replacing
  * its contents, and maps nearest capsules to s->value. */

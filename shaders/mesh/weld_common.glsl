@@ -8,22 +8,22 @@
 // it) the side is the line tangent to both circles; s is the coordinate
 // along that line, 0 at its contact with sphere a and L cos at sphere b.
 REAL capsule_sdf(uint c, REAL px, REAL py, REAL pz) {
-  uint o = c * uint(WC_STRIDE);
-  precise REAL pa0 = px - cap[o + 0u], pa1 = py - cap[o + 1u], pa2 = pz - cap[o + 2u];
-  REAL u0 = cap[o + 4u], u1 = cap[o + 5u], u2 = cap[o + 6u];
-  precise REAL y = pa0 * u0 + pa1 * u1 + pa2 * u2;
-  precise REAL r0 = pa0 - y * u0, r1 = pa1 - y * u1, r2 = pa2 - y * u2;
+  uint o = c * uint(WC_STRIDE / 4);
+  REAL4 ca = cap[o], cu = cap[o + 1u], cb = cap[o + 2u], cs4 = cap[o + 3u];
+  precise REAL pa0 = px - ca.x, pa1 = py - ca.y, pa2 = pz - ca.z;
+  precise REAL y = pa0 * cu.x + pa1 * cu.y + pa2 * cu.z;
+  precise REAL r0 = pa0 - y * cu.x, r1 = pa1 - y * cu.y, r2 = pa2 - y * cu.z;
   precise REAL x = sqrt(r0 * r0 + r1 * r1 + r2 * r2);
-  REAL sn = cap[o + uint(WC_SIN)], cs = cap[o + uint(WC_COS)];
+  REAL sn = cs4.x, cs = cs4.y;
   precise REAL s = y * cs - x * sn;
   precise REAL d;
   if (s < REAL(0)) {
-    d = sqrt(pa0 * pa0 + pa1 * pa1 + pa2 * pa2) - cap[o + uint(WC_RA)];
-  } else if (s > cap[o + uint(WC_L)] * cs) {
-    precise REAL pb0 = px - cap[o + 8u], pb1 = py - cap[o + 9u], pb2 = pz - cap[o + 10u];
-    d = sqrt(pb0 * pb0 + pb1 * pb1 + pb2 * pb2) - cap[o + uint(WC_RB)];
+    d = sqrt(pa0 * pa0 + pa1 * pa1 + pa2 * pa2) - cu.w;
+  } else if (s > ca.w * cs) {
+    precise REAL pb0 = px - cb.x, pb1 = py - cb.y, pb2 = pz - cb.z;
+    d = sqrt(pb0 * pb0 + pb1 * pb1 + pb2 * pb2) - cb.w;
   } else {
-    d = y * sn + x * cs - cap[o + uint(WC_RA)];
+    d = y * sn + x * cs - cu.w;
   }
   return d;
 }
@@ -34,8 +34,4 @@ REAL weld_smin(REAL a, REAL b, REAL k) {
   precise REAL hh = max(k - abs(a - b), REAL(0)) / k;
   precise REAL r = min(a, b) - hh * hh * k * REAL(0.25);
   return r;
-}
-
-uint brick_of(uint x, uint y, uint z) {
-  return x / pc.brick + pc.bx * (y / pc.brick + pc.by * (z / pc.brick));
 }

@@ -1,9 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Pass 2b, one invocation per row of nodes: the triangles of the row's cells
-// in cell order, then Kuhn tet order, numbered from the row's first triangle
-// (the host's scan), counter-clockwise seen from outside (value >= 0).  As
-// weld_tri_row (host/mesh/weld_poly.c).
+// Pass 3b, one invocation per active cell (cells in node order, from
+// weld_rowscan): its triangles in Kuhn tet order from the cell's first
+// triangle, counter-clockwise seen from outside (value >= 0).  As
+// weld_cell_tris (host/mesh/weld_poly.c).
 #include "mesh_kernels.glsl"
 #include "weld_tables.glsl"
 
@@ -20,16 +20,15 @@ uint edge_vertex(uint x, uint y, uint z, uint ca, uint cb) {
 }
 
 void main() {
-  uint r = sessile_gid();
-  if (r >= pc.ny * pc.nz) return;
-  uint y = r % pc.ny, z = r / pc.ny;
-  if (y + 1u >= pc.ny || z + 1u >= pc.nz) return;
-  uint t = rowbase[2u * r + 1u];
-  for (uint x = 0u; x + 1u < pc.nx; x++) {
-    if (((packed[x + pc.nx * r] >> WP_TRI_SHIFT) & 15u) == 0u) continue;
+  uint c = sessile_gid();
+  if (c >= pc.count) return;
+  uint i = clist[c], t = ctri[c];
+  uint nxy = pc.nx * pc.ny;
+  uint x = i % pc.nx, y = (i / pc.nx) % pc.ny, z = i / nxy;
+  {
     uint in8 = 0u;
-    for (uint c = 0u; c < 8u; c++)
-      if ((packed[node_of(x, y, z, c)] & WP_INSIDE) != 0u) in8 |= 1u << c;
+    for (uint cc = 0u; cc < 8u; cc++)
+      if ((packed[node_of(x, y, z, cc)] & WP_INSIDE) != 0u) in8 |= 1u << cc;
     for (uint k = 0u; k < 6u; k++) {
       uint q[4] = uint[4](KUHN[4u * k], KUHN[4u * k + 1u], KUHN[4u * k + 2u], KUHN[4u * k + 3u]);
       uint m = 0u, n = 0u;
@@ -49,10 +48,10 @@ void main() {
         uint o[4];
         uint lone = tet_lone_order(m, n, o);
         uint a = edge_vertex(x, y, z, q[o[0]], q[o[1]]), b = edge_vertex(x, y, z, q[o[0]], q[o[2]]),
-             c = edge_vertex(x, y, z, q[o[0]], q[o[3]]);
+             d = edge_vertex(x, y, z, q[o[0]], q[o[3]]);
         tri[3u * t] = a;
-        tri[3u * t + 1u] = lone == 1u ? b : c;
-        tri[3u * t + 2u] = lone == 1u ? c : b;
+        tri[3u * t + 1u] = lone == 1u ? b : d;
+        tri[3u * t + 2u] = lone == 1u ? d : b;
         t++;
       }
     }
