@@ -2,7 +2,8 @@
  * equals the host reference's (connectivity identical, positions to 1e-9
  * relative on fp64 contexts), is a closed consistently oriented 2-manifold
  * with the shape's Euler characteristic and no self-intersection, outward
- * (positive volume), deterministic to the byte; an empty skeleton gives an
+ * (positive volume), also on a lattice-aligned frame with round cells,
+ * deterministic to the byte; an empty skeleton gives an
  * empty surface; an oversized grid is refused with its estimate. */
 #include <stdlib.h>
 #include <string.h>
@@ -86,6 +87,14 @@ int main(void) {
   shape_ring(&ring, 16, 4.0, 0.9);
   p.max_cells = 64;
   weld_both(g, "ring of 16 capsules", &ring, &p, 0, &m);
+
+  sessile_skeleton frame = {0};
+  shape_frame(&frame);
+  sessile_weld_params pf = {.cell = 0.1, .max_cells = 0, .blend = 0};
+  weld_both(g, "lattice frame, cell 0.1", &frame, &pf, 6, &m);
+  pf.cell = 0.125, pf.blend = 0.25;
+  weld_both(g, "lattice frame, cell 0.125, blend 0.25", &frame, &pf, 6, &m);
+  sessile_skeleton_free(&frame);
 
   sessile_skeleton tree = {0};
   t_must("tree", weld_random_tree(5, 40, 0.6, &tree));

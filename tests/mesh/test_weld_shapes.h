@@ -24,4 +24,17 @@ static inline void shape_ring(sessile_skeleton *s, int n, double R, double r) {
     t_must("ring", sessile_skeleton_add(s, a, b, r, r, up, i));
   }
 }
+/* An L-system-like frame on the integer lattice: vertical posts, slanted
+ * rungs, 45-degree tips; with round cell sizes the worst case for exactly
+ * coplanar output (docs/weld.md): 3 components. */
+static inline void shape_frame(sessile_skeleton *s) {
+  const double up[3] = {0, 0, 1};
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      double a[3] = {i, j, 0}, b[3] = {i, j, 2}, c[3] = {i + 1, j, 1}, d[3] = {i + 0.5, j + 0.5, 2.5};
+      t_must("frame", sessile_skeleton_add(s, a, b, 0.3, 0.2, up, 0));
+      t_must("frame", sessile_skeleton_add(s, a, c, 0.25, 0.25, up, 1));
+      t_must("frame", sessile_skeleton_add(s, b, d, 0.2, 0.1, up, 2));
+    }
+}
 #endif
