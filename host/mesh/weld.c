@@ -1,8 +1,9 @@
 /* The welded surface on the GPU (sessile/skeleton.h, docs/weld.md): the
  * host builds the grid and the brick lists (weld_grid.c); the kernels
- * shaders/mesh/weld_*.comp sample the signed distance, count per row, and
- * after the host's scan of the row totals write vertices and triangles in
- * row order, so the mesh does not depend on scheduling. */
+ * shaders/mesh/weld_*.comp sample the signed distance per brick, count per
+ * node into row totals, and after the host's scan of those number the rows
+ * and write vertices and triangles in node order, so the mesh does not
+ * depend on scheduling. */
 #include <stdlib.h>
 #include <string.h>
 #include "weld_internal.h"
