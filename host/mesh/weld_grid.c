@@ -92,10 +92,10 @@ sessile_status weld_grid_plan(const sessile_skeleton *s, const sessile_weld_para
 /* The capsule constants (WC_* slots): axis, length, and the slope of the
  * side; a cone whose smaller sphere lies inside the larger (L <= |ra - rb|)
  * is that larger sphere, written with L = 0, sin = 0, cos = 1. */
-static void capsule_constants(const sessile_skeleton *s, uint32_t i, double *c) {
+static void capsule_constants(const sessile_skeleton *s, uint32_t i, double rmin, double *c) {
   double a[3], b[3];
   weld_to_grid(s->a + 3 * (size_t)i, a), weld_to_grid(s->b + 3 * (size_t)i, b);
-  double ra = s->ra[i], rb = s->rb[i];
+  double ra = fmax(s->ra[i], rmin), rb = fmax(s->rb[i], rmin);
   double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   double L = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   memset(c, 0, WC_STRIDE * sizeof *c);
@@ -159,7 +159,11 @@ sessile_status weld_grid_lists(const sessile_skeleton *s, weld_grid *g) {
    * long) from one of its nodes.  Tested by the capsule's box and by its
    * distance from the brick's centre less the brick's half-diagonal. */
   double margin = 3 * g->h + 2 * g->blend;
-  for (uint32_t i = 0; i < s->n; i++) capsule_constants(s, i, g->cap + (size_t)i * WC_STRIDE);
+  /* A branch thinner than a cell can fall between the nodes and break into
+   * pieces: radii are raised to WELD_MIN_RADIUS_CELLS cells (inside the
+   * 2 h pad of the plan, so the grid still holds every capsule). */
+  double rmin = WELD_MIN_RADIUS_CELLS * g->h;
+  for (uint32_t i = 0; i < s->n; i++) capsule_constants(s, i, rmin, g->cap + (size_t)i * WC_STRIDE);
   uint64_t total = 0;
   for (int pass = 0; pass < 2; pass++) {
     for (uint32_t i = 0; i < s->n; i++) {

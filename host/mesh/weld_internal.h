@@ -13,6 +13,8 @@
 /* nodes per brick edge: the capsule lists are per brick of WELD_BRICK^3
  * nodes (8: weld_sdf.comp's workgroup of 64 columns of 8) */
 #define WELD_BRICK 8u
+/* radii below this many cells are raised to it (weld_grid.c, docs/weld.md) */
+#define WELD_MIN_RADIUS_CELLS 1.0
 /* the interpolation parameter is kept in [WELD_TMIN, 1 - WELD_TMIN] */
 #define WELD_TMIN 1e-3
 
