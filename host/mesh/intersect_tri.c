@@ -23,7 +23,12 @@
 static const double O3D_BOUND = (7.0 + 56.0 * EPS) * EPS;
 static const double O2D_BOUND = (3.0 + 16.0 * EPS) * EPS;
 
-/* Sign of det[a - d; b - d; c - d] (Shewchuk's orient3d order of operations). */
+/* Beyond the bound but within NEAR of it: a sign that is right but whose
+ * point lies within rounding, times NEAR, of the plane (docs/intersection.md). */
+#define NEAR 0x1p20
+
+/* Sign of det[a - d; b - d; c - d] (Shewchuk's orient3d order of operations):
+ * 0 below the error bound, +-1 within NEAR times it, +-2 beyond. */
 static int orient3d(const double *a, const double *b, const double *c, const double *d) {
   double adx = a[0] - d[0], bdx = b[0] - d[0], cdx = c[0] - d[0];
   double ady = a[1] - d[1], bdy = b[1] - d[1], cdy = c[1] - d[1];
@@ -35,7 +40,8 @@ static int orient3d(const double *a, const double *b, const double *c, const dou
   double perm = (fabs(bdxcdy) + fabs(cdxbdy)) * fabs(adz) + (fabs(cdxady) + fabs(adxcdy)) * fabs(bdz) +
                 (fabs(adxbdy) + fabs(bdxady)) * fabs(cdz);
   double bound = O3D_BOUND * perm;
-  return det > bound ? 1 : det < -bound ? -1 : 0;
+  if (!(fabs(det) > bound)) return 0;
+  return (det > 0 ? 1 : -1) * (fabs(det) > NEAR * bound ? 2 : 1);
 }
 
 static int orient2d(const double *a, const double *b, const double *c) {
@@ -107,10 +113,16 @@ static int tri_tri2(const double *p3, const double *q3) {
  * (orient3d(t0, t1, t2, .)). */
 static int seg_tri(const double *a, const double *b, int sa, int sb, const double *t) {
   if (sa * sb > 0) return 0;
-  if (!sa && !sb) return seg_tri2(a, b, t, drop_axis(t));
+  /* Both ends on t's plane or within rounding (times NEAR) of it: the line
+   * below is then nearly parallel to the plane and its signs say nothing
+   * reliable about where it meets it (side-by-side split triangles in one
+   * plane came out crossing): test the segment in the plane. */
+  if (sa > -2 && sa < 2 && sb > -2 && sb < 2) return seg_tri2(a, b, t, drop_axis(t));
   /* The line ab crosses the plane (at a, at b, or between): inside the
    * triangle when it passes every edge on the same side. */
   int s0 = orient3d(a, b, t, t + 3), s1 = orient3d(a, b, t + 3, t + 6), s2 = orient3d(a, b, t + 6, t);
+  /* All three 0: the line lies in t's plane as far as these signs can tell. */
+  if (!s0 && !s1 && !s2) return seg_tri2(a, b, t, drop_axis(t));
   return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
 
