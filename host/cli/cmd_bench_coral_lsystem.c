@@ -1,6 +1,9 @@
-/* PLACEHOLDER until the lsystem generator lands (replaced by its owner). */
+/* `sessile bench coral lsystem`: 1 M turtle modules (100 k with --quick)
+ * derived, interpreted and meshed as tubes (host/coral/lsystem_bench.c). */
 #include "cli.h"
+#include "sessile/lsystem.h"
+
 sessile_status bench_coral_lsystem(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
-  (void)g, (void)o, (void)out;
-  return sessile_error_set(SESSILE_ERR_USAGE, "bench coral lsystem: not built yet");
+  (void)g; /* every stage is host code */
+  return sessile_coral_lsystem_bench(o->quick ? 100000 : 1000000, out);
 }

@@ -34,7 +34,7 @@ double *lsys_string_push(sessile_lsys_string *s, uint8_t sym, uint8_t np) {
     s->off = o;
     s->cap = cap;
   }
-  if (s->npar + np > s->parcap) {
+  if (!s->par || s->npar + np > s->parcap) {
     size_t cap = s->parcap ? 2 * s->parcap : 256;
     while (cap < s->npar + np) cap *= 2;
     if (cap > UINT32_MAX) return NULL;

@@ -60,7 +60,7 @@ sessile_status lsys_expr_compile(sessile_lsys *g, const char *text, int nnames, 
   if (bad) {
     const char *m = mupGetErrorMsg(h);
     int pos = mupGetErrorPos(h);
-    *errpos = pos >= 0 && (size_t)pos <= strlen(text) ? pos : 0;
+    *errpos = pos < 0 ? 0 : (size_t)pos > strlen(text) ? (int)strlen(text) : pos;
     snprintf(msg, msgn, "%s", m && *m ? m : "bad expression");
     /* muparser's messages end with a full stop or position note: keep one line */
     for (char *c = msg; *c; c++)

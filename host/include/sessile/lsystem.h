@@ -11,6 +11,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include "sessile/param_table.h"
 #include "sessile/run.h"
 #include "sessile/gpu.h"
@@ -146,6 +147,10 @@ sessile_status sessile_coral_lsystem_build(const sessile_coral_lsystem_params *p
 sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral_lsystem_params *p,
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
                                            size_t len, const sessile_coral_lsystem_result *r);
+
+/* The benchmark: a lophelia-like grammar derived until it holds at least
+ * target modules, interpreted and meshed as tubes; stage times to out. */
+sessile_status sessile_coral_lsystem_bench(uint32_t target, FILE *out);
 
 #ifdef __cplusplus
 }
