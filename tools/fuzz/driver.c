@@ -95,6 +95,7 @@ static int add_path(const char *path) {
   return 0;
 }
 
+#ifndef FUZZ_WORDS
 /* Tokens worth inserting: JSON structure, numbers at the edges of the
  * ranges and of double, spellings strtod takes that JSON does not. */
 static const char *const tokens[] = {
@@ -106,6 +107,8 @@ static const char *const tokens[] = {
     "{\"", "\":", "\": \"", "1.00000000000000000001", "99999999999999999999999", "\t", "\r",
 };
 
+#endif
+
 static void insert(buf *b, size_t at, const unsigned char *s, size_t n) {
   if (b->n + n > MAX_INPUT) return;
   memmove(b->p + at + n, b->p + at, b->n - at);
@@ -113,10 +116,14 @@ static void insert(buf *b, size_t at, const unsigned char *s, size_t n) {
   b->n += n;
 }
 
+#ifdef FUZZ_WORDS
+#include FUZZ_WORDS /* another target's tokens[] and param_name() */
+#else
 static const char *param_name(void) {
   const sessile_param_table *t = below(8) ? &sessile_grow_param_table : &sessile_sphere_param_table;
   return t->params[below((size_t)t->count)].name;
 }
+#endif
 
 static void mutate(buf *b) {
   int rounds = 1 + (int)below(8);
