@@ -119,6 +119,7 @@ sessile_status sessile_turtle_interpret(const sessile_lsys_string *s, const sess
       if (s->sym[i] == 'F') {
         status = sessile_skeleton_add(out, a, cur.pos, cur.width, cur.width, cur.r, cur.depth);
         st.segments++, st.length += len;
+        if (cur.depth > st.max_depth) st.max_depth = cur.depth;
         if (use_tropism) tropism(&cur, T, p->tropism_strength);
       }
       break;
@@ -151,7 +152,6 @@ sessile_status sessile_turtle_interpret(const sessile_lsys_string *s, const sess
       stack[top++] = cur;
       cur.depth++;
       st.branches++;
-      if (cur.depth > st.max_depth) st.max_depth = cur.depth;
       break;
     case ']':
       if (top) cur = stack[--top]; /* an unmatched ']' is ignored */

@@ -31,6 +31,21 @@ ok = ok and m["result"]["segments"] > 100 and "coral/final.ply" in m["files"]
 print(m["state"], it, m["result"]["modules"], m["result"]["segments"])
 sys.exit(0 if ok else 1)
 PYEOF
+check "the PLY: 4 x mesh_detail triangles per segment, 'value' = branch depth from 0 to the manifest's maximum" \
+  "$PY" - "$T/a" <<'PYEOF'
+import json, struct, sys
+d = sys.argv[1]; m = json.load(open(d + "/manifest.json")); r = m["result"]
+data = open(d + "/coral/final.ply", "rb").read()
+head, body = data.split(b"end_header\n", 1)
+props = [l.split()[2] for l in head.decode().splitlines() if l.startswith("property float")]
+nv = int([l for l in head.decode().splitlines() if l.startswith("element vertex")][0].split()[2])
+vals = [struct.unpack_from("<%df" % len(props), body, 4 * len(props) * i)[props.index("value")] for i in range(nv)]
+sides = m["parameters"]["mesh_detail"]["value"]
+ok = r["triangles"] == 4 * sides * r["segments"] and nv == r["vertices"] == (2 * sides + 2) * r["segments"]
+ok = ok and min(vals) == 0 and max(vals) == r["max_branch_order"] and all(v == int(v) for v in vals)
+print(nv, r["triangles"], r["segments"], min(vals), max(vals), r["max_branch_order"])
+sys.exit(0 if ok else 1)
+PYEOF
 run coral lsystem --out "$T/b" --quiet
 run coral lsystem --out "$T/c" --seed 2 --quiet
 check "the same seed gives byte-identical PLY and OBJ; another seed another coral" eval \

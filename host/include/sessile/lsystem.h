@@ -84,7 +84,7 @@ typedef struct sessile_turtle_params {
 } sessile_turtle_params;
 
 typedef struct sessile_turtle_stats {
-  uint32_t segments, branches, max_depth;
+  uint32_t segments, branches, max_depth; /* max_depth: of the drawn segments */
   double length; /* cm, drawn */
 } sessile_turtle_stats;
 
