@@ -49,18 +49,21 @@ double *lsys_string_push(sessile_lsys_string *s, uint8_t sym, uint8_t np) {
   return p;
 }
 
-static sessile_status too_long(uint64_t now, uint64_t max_modules, double estimate) {
+/* The refusal, with the step's estimated size: modules and bytes (6 per
+ * module plus 8 per parameter, at the string's mean parameter count). */
+static sessile_status too_long(const sessile_lsys_string *out, uint64_t max_modules, double estimate) {
+  double per = 6 + 8.0 * (out->n ? (double)out->npar / out->n : 0);
   return sessile_error_set(SESSILE_ERR_TOO_LARGE,
-                           "the derivation would exceed max_modules = %llu (reached %llu modules, estimate %.3g "
+                           "the derivation would exceed max_modules = %llu (reached %u modules, estimate %.3g "
                            "modules, about %.3g MB): use fewer iterations or raise max_modules",
-                           (unsigned long long)max_modules, (unsigned long long)now, estimate, estimate * 14e-6);
+                           (unsigned long long)max_modules, out->n, estimate, estimate * per * 1e-6);
 }
 
 sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, sessile_lsys_string *out,
                          uint64_t max_modules) {
   for (uint32_t k = 0; k < n; k++) {
     const lsys_tpl *t = &g->tpl[first + k];
-    if ((uint64_t)out->n + 1 > max_modules) return too_long(out->n, max_modules, (double)out->n + 1);
+    if ((uint64_t)out->n + 1 > max_modules) return too_long(out, max_modules, (double)out->n + 1);
     double *p = lsys_string_push(out, t->sym, t->np);
     SESSILE_CHECK(p, SESSILE_ERR_NO_MEMORY, "out of host memory for a string of %u modules", out->n);
     for (uint8_t a = 0; a < t->np; a++) {
@@ -200,7 +203,7 @@ static sessile_status step(const sessile_lsys *g, const sessile_lsys_string *in,
     }
     if (chosen < 0) { /* identity */
       if ((uint64_t)out->n + 1 > max_modules) {
-        st = too_long(out->n, max_modules, (double)out->n * in->n / (i + 1));
+        st = too_long(out, max_modules, (double)out->n * in->n / (i + 1));
         break;
       }
       double *p = lsys_string_push(out, c, in->np[i]);
@@ -216,7 +219,7 @@ static sessile_status step(const sessile_lsys *g, const sessile_lsys_string *in,
      * candidate: each production owns its slots */
     st = lsys_emit(g, p->succ_first, p->nsucc, out, max_modules);
     if (st == SESSILE_ERR_TOO_LARGE)
-      st = too_long(out->n, max_modules, (double)out->n * in->n / (i + 1));
+      st = too_long(out, max_modules, (double)out->n * in->n / (i + 1));
     else if (st == SESSILE_ERR_NUMERIC)
       st = sessile_error_set(st, "%s (production at line %d)", sessile_error_message(), p->line);
   }

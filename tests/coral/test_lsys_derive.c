@@ -92,6 +92,9 @@ int main(void) {
   expect("left context skips a completed branch", "axiom: B[A]C\nB < C -> X\n", 1, "B[A]X");
   expect("left context does not see into a completed branch", "axiom: B[A]C\nA < C -> X\n", 1, "B[A]C");
   expect("left context climbs to the parent", "axiom: B[C]\nB < C -> X\n", 1, "B[X]");
+  expect("left context from a later sibling branch reaches the parent", "axiom: A[B][C]\nA < C -> X\n", 1, "A[B][X]");
+  expect("multi-module left context over completed branches", "axiom: A[X]B[Y]C\nA B < C -> Z\n", 1, "A[X]B[Y]Z");
+  expect("multi-module right context over a branch", "axiom: AB[X]C\nA > B C -> Z\n", 1, "ZB[X]C");
   expect("ignored symbols are skipped", "ignore: +-\naxiom: B+C-D\nB < C > D -> X\n", 1, "B+X-D");
   expect("... and not without ignore", "axiom: B+C-D\nB < C > D -> X\n", 1, "B+C-D");
   expect("multi-module contexts with parameters", "axiom: A(1)B(2)C(4)D(8)E(16)\nA(a) B(b) < C(c) > D(d) E(e) -> C(a + b + c + d + e)\n",
