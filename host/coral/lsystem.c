@@ -44,7 +44,10 @@ static const sessile_param_desc descs[] = {
     {"min_radius", SESSILE_PT_REAL, OFF(min_radius), 0.01, 0, 1, SESSILE_PARAM_LO_OPEN, "cm", "ours",
      "radii never fall below this", NULL},
     {"max_modules", SESSILE_PT_INT, OFF(max_modules), 4000000, 1, 50000000, 0, "", "ours",
-     "refuse a derivation whose string would exceed this many modules (about 14 bytes each)", NULL},
+     "refuse a derivation whose string would exceed this many modules (6 bytes + 8 per parameter each)", NULL},
+    {"taper", SESSILE_PT_BOOL, OFF(taper), 1, 0, 1, 0, "", "ours",
+     "segments run from the radius the previous one ended with to the current one (false: cylinders, Coralize)",
+     NULL},
 };
 #undef OFF
 
@@ -109,7 +112,8 @@ static sessile_status build(const sessile_coral_lsystem_params *p, const sessile
                               .width_factor = sessile_lsys_width_factor(g),
                               .tropism = {p->tropism_x, p->tropism_y, p->tropism_z},
                               .tropism_strength = p->tropism_strength,
-                              .min_radius = p->min_radius};
+                              .min_radius = p->min_radius,
+                              .taper = p->taper};
   uint64_t trng = sessile_rng_stream(seed, STREAM_TURTLE);
   r->skel = calloc(1, sizeof *r->skel);
   SESSILE_CHECK(r->skel, SESSILE_ERR_NO_MEMORY, "out of host memory");

@@ -46,7 +46,7 @@ sessile_status sessile_coral_lsystem_bench(uint32_t target, FILE *out) {
   }
   double t1 = now_s(), t2 = t1, t3 = t1;
   sessile_turtle_params tp = {.step = 0.5, .angle = 25, .thickness = 0.2, .thickness_variance = 0.1,
-                              .width_factor = 0.8, .tropism = {0, 0, 1}, .tropism_strength = 0.1, .min_radius = 0.01};
+                              .width_factor = 0.8, .tropism = {0, 0, 1}, .tropism_strength = 0.1, .min_radius = 0.01, .taper = 1};
   uint64_t trng = sessile_rng_stream(1, 2);
   sessile_turtle_stats st = {0};
   if (s == SESSILE_OK) s = sessile_turtle_interpret(&a, &tp, &trng, &sk, &st);

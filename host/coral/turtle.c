@@ -14,6 +14,7 @@ typedef struct tstate {
   double pos[3], H[3], L[3], U[3];
   double r[3], t[3]; /* the RMF normal and the tangent it belongs to */
   double width;
+  double end_width; /* radius at the end of the last segment on this path (< 0: none yet) */
   uint32_t depth;
 } tstate;
 
@@ -104,6 +105,7 @@ sessile_status sessile_turtle_interpret(const sessile_lsys_string *s, const sess
   int use_tropism = p->tropism_strength != 0 && dot3(T, T) > 0;
   tstate cur = {.H = {0, 0, 1}, .L = {0, 1, 0}, .U = {-1, 0, 0}, .r = {-1, 0, 0}, .t = {0, 0, 1}};
   cur.width = p->thickness < p->min_radius ? p->min_radius : p->thickness;
+  cur.end_width = -1;
   tstate *stack = NULL;
   uint32_t top = 0, cap = 0;
   sessile_status status = SESSILE_OK;
@@ -117,7 +119,9 @@ sessile_status sessile_turtle_interpret(const sessile_lsys_string *s, const sess
       transport(&cur, cur.H);
       for (int k = 0; k < 3; k++) cur.pos[k] += len * cur.H[k];
       if (s->sym[i] == 'F') {
-        status = sessile_skeleton_add(out, a, cur.pos, cur.width, cur.width, cur.r, cur.depth);
+        double ra = p->taper && cur.end_width > 0 ? cur.end_width : cur.width;
+        status = sessile_skeleton_add(out, a, cur.pos, ra, cur.width, cur.r, cur.depth);
+        cur.end_width = cur.width;
         st.segments++, st.length += len;
         if (cur.depth > st.max_depth) st.max_depth = cur.depth;
         if (use_tropism) tropism(&cur, T, p->tropism_strength);

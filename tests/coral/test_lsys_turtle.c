@@ -15,7 +15,8 @@ static const double TOL = 1e-12;
 
 static sessile_turtle_params defaults(void) {
   sessile_turtle_params p = {.step = 1, .angle = 90, .thickness = 0.1, .thickness_variance = 0,
-                             .width_factor = 0.5, .tropism = {0, 0, 1}, .tropism_strength = 0, .min_radius = 1e-6};
+                             .width_factor = 0.5, .tropism = {0, 0, 1}, .tropism_strength = 0, .min_radius = 1e-6,
+                             .taper = 1};
   return p;
 }
 
@@ -84,10 +85,24 @@ int main(void) {
   t_check("F(2.5) f(1) F(0.5): lengths, f moves without drawing", seg_err(&sk, 2, w6), TOL);
 
   draw("!(2)F#F!F!(3)F", &p, &sk);
-  t_check("radii: !(2) = 2 thickness, # divides by width_factor, ! multiplies, !(3) sets",
-          sk.n == 4 ? fmax(fmax(fabs(sk.ra[0] - 0.2), fabs(sk.ra[1] - 0.4)), fmax(fabs(sk.ra[2] - 0.2), fabs(sk.rb[3] - 0.3)))
-                    : INFINITY,
-          TOL);
+  {
+    static const double ra[4] = {0.2, 0.2, 0.4, 0.2}, rb[4] = {0.2, 0.4, 0.2, 0.3};
+    double er = sk.n == 4 ? 0 : INFINITY;
+    for (uint32_t i = 0; i < sk.n && i < 4; i++) er = fmax(er, fmax(fabs(sk.ra[i] - ra[i]), fabs(sk.rb[i] - rb[i])));
+    t_check("radii (taper): !(2) = 2 thickness, # divides by width_factor, ! multiplies, !(3) sets; each "
+            "segment starts where the previous ended",
+            er, TOL);
+    p.taper = 0;
+    draw("!(2)F#F!F!(3)F", &p, &sk);
+    er = sk.n == 4 ? 0 : INFINITY;
+    for (uint32_t i = 0; i < sk.n && i < 4; i++) er = fmax(er, fmax(fabs(sk.ra[i] - rb[i]), fabs(sk.rb[i] - rb[i])));
+    t_check("radii without taper: cylinders of the current radius", er, TOL);
+    p.taper = 1;
+    draw("!(2)F[!(1)F]!(3)F", &p, &sk);
+    t_true("a branch's first segment starts at its parent's radius; the parent goes on from its own",
+           sk.n == 3 && fabs(sk.ra[1] - 0.2) < TOL && fabs(sk.rb[1] - 0.1) < TOL && fabs(sk.ra[2] - 0.2) < TOL &&
+               fabs(sk.rb[2] - 0.3) < TOL);
+  }
 
   /* RMF: a planar bend keeps the normal of its plane (-x, the turtle's up) */
   draw("F+(30)F+(30)F+(30)F-(70)F", &p, &sk);

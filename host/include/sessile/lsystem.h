@@ -81,6 +81,8 @@ typedef struct sessile_turtle_params {
   double tropism[3];         /* T: the direction the heading bends toward (need not be unit) */
   double tropism_strength;   /* e: after each F the heading turns by e |H x T| toward T (ABOP) */
   double min_radius;         /* radii are clamped to at least this, cm (> 0) */
+  int taper;                 /* 1: a segment starts at the radius the previous segment on its path
+                                ended with (cones, no steps); 0: cylinders (Coralize) */
 } sessile_turtle_params;
 
 typedef struct sessile_turtle_stats {
@@ -118,6 +120,7 @@ typedef struct sessile_coral_lsystem_params {
   double tropism_x, tropism_y, tropism_z, tropism_strength;
   double min_radius;
   int max_modules;
+  int taper;
 } sessile_coral_lsystem_params;
 
 extern const sessile_param_table sessile_coral_lsystem_param_table;
