@@ -79,11 +79,30 @@ static void bind(double *slots, const lsys_pat *pt, const sessile_lsys_string *s
 }
 
 /* Right context: from i + 1, skipping ignored symbols and whole [ ... ]
- * sub-branches; a ']' ends the branch and fails the match. */
+ * sub-branches; a ']' ends the branch and fails the match.  A '[' in the
+ * pattern enters the next sub-branch (the first one: no backtracking over
+ * siblings), a ']' in the pattern skips the rest of the entered branch. */
 static int match_right(const lsys_prod *p, const sessile_lsys_string *s, const int32_t *mate, const uint8_t *ign,
                        uint32_t i) {
   uint32_t j = i + 1;
   for (int k = 0; k < p->nright; k++) {
+    uint8_t want = p->right[k].sym;
+    if (want == '[') {
+      while (j < s->n && s->sym[j] != '[' && ign[s->sym[j]]) j++;
+      if (j >= s->n || s->sym[j] != '[' || mate[j] < 0) return 0;
+      j++;
+      continue;
+    }
+    if (want == ']') {
+      int depth = 0; /* to the ']' closing the entered branch */
+      for (; j < s->n; j++) {
+        if (s->sym[j] == '[') depth++;
+        else if (s->sym[j] == ']' && depth-- == 0) break;
+      }
+      if (j >= s->n) return 0;
+      j++;
+      continue;
+    }
     while (j < s->n) {
       uint8_t c = s->sym[j];
       if (c == '[' && mate[j] >= 0) j = (uint32_t)mate[j] + 1;
@@ -91,7 +110,7 @@ static int match_right(const lsys_prod *p, const sessile_lsys_string *s, const i
       else break;
     }
     if (j >= s->n || s->sym[j] == ']') return 0;
-    if (s->sym[j] != p->right[k].sym || s->np[j] != p->right[k].np) return 0;
+    if (s->sym[j] != want || s->np[j] != p->right[k].np) return 0;
     bind(p->slots, &p->right[k], s, j);
     j++;
   }

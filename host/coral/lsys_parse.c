@@ -233,6 +233,15 @@ static sessile_status parse_production(pctx *c, const char *p, const char *end, 
     SESSILE_CALL(parse_pattern(c, gt + 1, head_end, pr->right, LSYS_MAX_CONTEXT, &pr->nright, names, &nnames));
     if (!pr->nright) return perr(c, gt, "'>' without a right context after it");
   }
+  for (int k = 0; k < pr->nleft; k++)
+    if (pr->left[k].sym == '[' || pr->left[k].sym == ']')
+      return perr(c, p, "brackets are not supported in a left context (it skips branches by itself)");
+  for (int k = 0, depth = 0; k < pr->nright; k++) {
+    uint8_t b = pr->right[k].sym;
+    if ((b == '[' || b == ']') && pr->right[k].np) return perr(c, gt, "a bracket in a context takes no parameters");
+    if (b == '[') depth++;
+    if (b == ']' && depth-- == 0) return perr(c, gt, "a ']' without its '[' in the right context");
+  }
   if (pr->nleft || pr->nright) g->has_context = 1;
   uint32_t idx;
   if (colon) {

@@ -95,6 +95,10 @@ int main(void) {
   expect("left context from a later sibling branch reaches the parent", "axiom: A[B][C]\nA < C -> X\n", 1, "A[B][X]");
   expect("multi-module left context over completed branches", "axiom: A[X]B[Y]C\nA B < C -> Z\n", 1, "A[X]B[Y]Z");
   expect("multi-module right context over a branch", "axiom: AB[X]C\nA > B C -> Z\n", 1, "ZB[X]C");
+  expect("bracketed right context enters a branch", "axiom: A[B]C\nA > [B]C -> X\n", 1, "X[B]C");
+  expect("... the ']' skips the rest of the entered branch", "axiom: A[BDE[F]]C\nA > [B]C -> X\n", 1, "X[BDE[F]]C");
+  expect("... and the branch must hold the pattern", "axiom: A[D]C\nA > [B]C -> X\n", 1, "A[D]C");
+  expect("... an open '[' matches a branch's first module", "axiom: A[B]\nA > [B -> X\n", 1, "X[B]");
   expect("ignored symbols are skipped", "ignore: +-\naxiom: B+C-D\nB < C > D -> X\n", 1, "B+X-D");
   expect("... and not without ignore", "axiom: B+C-D\nB < C > D -> X\n", 1, "B+C-D");
   expect("multi-module contexts with parameters", "axiom: A(1)B(2)C(4)D(8)E(16)\nA(a) B(b) < C(c) > D(d) E(e) -> C(a + b + c + d + e)\n",

@@ -46,6 +46,8 @@ int main(void) {
   BAD("axiom: A\nA -> B\x01\n", "g.lsys:2:7: ", "printable");
   BAD("axiom: A\r\nA -> B\0C\n", "g.lsys:2:7: ", "NUL");
   BAD("axiom: A\nangle: 1e400\n", "g.lsys:2:", "1e400");
+  BAD("axiom: A\nB [ < A -> C\n", "g.lsys:2:1: ", "left context");
+  BAD("axiom: A\nA > B] -> C\n", "g.lsys:2:3: ", "without its '['");
   {
     /* a define that does not exist cannot be overridden */
     const char *t = "axiom: A\n", *on[1] = {"nope"};
