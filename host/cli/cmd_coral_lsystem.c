@@ -157,7 +157,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     for (int i = 0; i < sessile_lsys_define_count(g); i++) {
       double v;
       const char *nm = sessile_lsys_define_name(g, i, &v);
-      printf("  define %-24s %.17g\n", nm, v);
+      printf("  define %-24s %.15g\n", nm, v);
     }
     sessile_lsys_destroy(g);
     free(owned);
