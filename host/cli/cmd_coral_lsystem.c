@@ -167,8 +167,8 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   if (p.geometry == 1) s = cli_gpu_create(&go, &gpu);
   sessile_coral_lsystem_result r = {0};
   if (s == SESSILE_OK) s = sessile_coral_lsystem_build(&p, g, a->have_iterations ? a->iterations : -1, a->seed, gpu, &r);
-  sessile_gpu_destroy(gpu);
   if (s != SESSILE_OK) {
+    sessile_gpu_destroy(gpu);
     sessile_lsys_destroy(g);
     free(owned);
     /* refused before starting (max_modules, a grammar that draws nothing): bad input */
@@ -193,7 +193,8 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     }
   }
-  if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r);
+  if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r, gpu);
+  sessile_gpu_destroy(gpu);
   s = sessile_run_close(run, s);
   if (s == SESSILE_OK && !a->quiet)
     printf("coral lsystem: %s, %d iterations, %u modules, %u segments, %u triangles; run in %s\n", gname,

@@ -162,7 +162,8 @@ static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem
 
 sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral_lsystem_params *p,
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
-                                           size_t len, const sessile_coral_lsystem_result *r) {
+                                           size_t len, const sessile_coral_lsystem_result *r,
+                                           const sessile_gpu *gpu) {
   char path[4096];
   SESSILE_CALL(sessile_run_file(run, "coral/grammar.lsys", path, sizeof path));
   SESSILE_CALL(sessile_write_file_atomic(path, text, len));
@@ -193,6 +194,18 @@ sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral
   }
   cJSON_DeleteItemFromObjectCaseSensitive(m, "grammar");
   cJSON_AddItemToObject(m, "grammar", gj);
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "device");
+  if (gpu) {
+    const sessile_gpu_info *gi = sessile_gpu_info_of(gpu);
+    cJSON *dev = cJSON_AddObjectToObject(m, "device");
+    if (dev) {
+      cJSON_AddStringToObject(dev, "name", gi->name);
+      cJSON_AddStringToObject(dev, "type", gi->type);
+      cJSON_AddStringToObject(dev, "driver", gi->driver);
+    }
+  } else {
+    cJSON_AddStringToObject(m, "device", "none: every stage ran on the host");
+  }
   cJSON *st = cJSON_CreateObject();
   SESSILE_CHECK(st, SESSILE_ERR_NO_MEMORY, "out of host memory");
   cJSON_AddNumberToObject(st, "modules", r->str.n);

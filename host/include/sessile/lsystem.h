@@ -146,10 +146,12 @@ sessile_status sessile_coral_lsystem_build(const sessile_coral_lsystem_params *p
                                            sessile_coral_lsystem_result *out);
 /* Writes coral/final.ply (per-vertex property "value": the branch order),
  * coral/final.obj, coral/grammar.lsys (the text used), one record per
- * derivation step and the manifest's parameters, grammar and statistics. */
+ * derivation step and the manifest's parameters, grammar, device (gpu may
+ * be NULL: tubes are host code) and statistics. */
 sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral_lsystem_params *p,
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
-                                           size_t len, const sessile_coral_lsystem_result *r);
+                                           size_t len, const sessile_coral_lsystem_result *r,
+                                           const sessile_gpu *gpu);
 
 /* The benchmark: a lophelia-like grammar derived until it holds at least
  * target modules, interpreted and meshed as tubes; stage times to out. */
