@@ -64,7 +64,9 @@ const char *sessile_lsys_define_name(const sessile_lsys *g, int i, double *value
 
 /* The axiom rewritten `iterations` times in parallel; every random choice
  * (stochastic productions, uniform() in expressions) from *rng.  Refuses a
- * string that would grow beyond max_modules, with an estimate of its size. */
+ * string that would grow beyond max_modules, with an estimate of its size.
+ * The grammar points at *rng for the call (uniform()): one derivation per
+ * grammar at a time. */
 sessile_status sessile_lsys_derive(const sessile_lsys *g, int iterations, uint64_t *rng, uint64_t max_modules,
                                    sessile_lsys_string *out);
 /* One parallel rewriting step (in != out). */
