@@ -181,7 +181,7 @@ static void cut(sessile_lsys_string *s) {
   s->n = w, s->npar = pw;
 }
 
-static sessile_status step(const sessile_lsys *g, const sessile_lsys_string *in, uint64_t max_modules,
+static sessile_status step(const sessile_lsys *g, int set, const sessile_lsys_string *in, uint64_t max_modules,
                            sessile_lsys_string *out) {
   int32_t *mate = NULL;
   if (g->has_context) SESSILE_CALL(brackets(in, &mate));
@@ -191,11 +191,11 @@ static sessile_status step(const sessile_lsys *g, const sessile_lsys_string *in,
   double w[LSYS_MAX_PRODS];
   for (uint32_t i = 0; i < in->n && st == SESSILE_OK; i++) {
     uint8_t c = in->sym[i];
-    uint32_t nb = g->by_count[c], nc = 0;
+    uint32_t nb = g->by_count[set][c], nc = 0;
     int chosen = -1;
     double total = 0;
     for (uint32_t k = 0; k < nb; k++) {
-      const lsys_prod *p = &g->prods[g->by_list[g->by_first[c] + k]];
+      const lsys_prod *p = &g->prods[g->by_list[g->by_first[set][c] + k]];
       if (p->pred_np != in->np[i]) continue;
       memcpy(p->slots + p->pred_slot, in->par + in->off[i], p->pred_np * sizeof *p->slots);
       if (p->nleft && !match_left(p, in, mate, g->ignore, i)) continue;
@@ -251,7 +251,16 @@ sessile_status sessile_lsys_step(const sessile_lsys *g, const sessile_lsys_strin
                                  uint64_t max_modules, sessile_lsys_string *out) {
   sessile_lsys *gm = (sessile_lsys *)g; /* the stream uniform() reads: set for this call only */
   gm->rng = rng;
-  sessile_status s = step(g, in, max_modules, out);
+  sessile_status s = step(g, LSYS_DERIVATION, in, max_modules, out);
+  gm->rng = NULL;
+  return s;
+}
+
+sessile_status sessile_lsys_homomorphism(const sessile_lsys *g, const sessile_lsys_string *in, uint64_t *rng,
+                                         uint64_t max_modules, sessile_lsys_string *out) {
+  sessile_lsys *gm = (sessile_lsys *)g;
+  gm->rng = rng;
+  sessile_status s = step(g, LSYS_HOMOMORPHISM, in, max_modules, out);
   gm->rng = NULL;
   return s;
 }
@@ -264,7 +273,7 @@ sessile_status sessile_lsys_derive(const sessile_lsys *g, int iterations, uint64
   sessile_status s = lsys_emit(g, g->axiom_first, g->naxiom, &a, max_modules);
   if (s == SESSILE_OK && g->has_cut) cut(&a);
   for (int it = 0; it < iterations && s == SESSILE_OK; it++) {
-    s = step(g, &a, max_modules, &b);
+    s = step(g, LSYS_DERIVATION, &a, max_modules, &b);
     sessile_lsys_string t = a;
     a = b, b = t;
   }

@@ -14,6 +14,9 @@ enum {
   LSYS_MAX_PRODS = 1024,
   LSYS_MAX_TEXT = 1 << 20  /* grammar bytes */
 };
+/* Production sets: the derivation's, and the homomorphism applied once to
+ * the derived string before the turtle draws it (L-Py's "homomorphism:"). */
+enum { LSYS_DERIVATION = 0, LSYS_HOMOMORPHISM = 1 };
 
 /* An expression: a constant, or a muparser handle whose variables point at
  * the owning production's slots and the grammar's defines. */
@@ -36,6 +39,7 @@ typedef struct lsys_pat {
 
 typedef struct lsys_prod {
   int line;
+  int set; /* LSYS_DERIVATION or LSYS_HOMOMORPHISM */
   uint8_t pred, pred_np, pred_slot;
   int nleft, nright;
   lsys_pat left[LSYS_MAX_CONTEXT], right[LSYS_MAX_CONTEXT];
@@ -55,9 +59,10 @@ struct sessile_lsys {
   double *dval; /* LSYS_MAX_DEFINES: stable addresses bound into every parser */
   lsys_prod *prods;
   int nprods;
-  /* productions by predecessor symbol, in file order */
-  uint32_t by_first[256], by_count[256];
+  /* productions of each set by predecessor symbol, in file order */
+  uint32_t by_first[2][256], by_count[2][256];
   uint32_t *by_list;
+  int nset[2]; /* productions per set */
   lsys_tpl *tpl;
   uint32_t ntpl, captpl;
   lsys_expr *exprs;

@@ -17,6 +17,7 @@ typedef struct pctx {
   const char *const *onames;
   const double *ovalues;
   char *oused;
+  int set; /* where productions go: LSYS_DERIVATION until "homomorphism:" */
 } pctx;
 
 static sessile_status perr(const pctx *c, const char *at, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
@@ -209,6 +210,8 @@ static sessile_status parse_production(pctx *c, const char *p, const char *end, 
   SESSILE_CHECK(pr->slots, SESSILE_ERR_NO_MEMORY, "out of host memory");
   g->nprods++; /* owned from here: freed with the grammar */
   pr->line = c->line;
+  pr->set = c->set;
+  g->nset[c->set]++;
   const char *colon = find_depth0(p, arrow, ':');
   const char *head_end = colon ? colon : arrow;
   const char *lt = find_depth0(p, head_end, '<');
@@ -320,6 +323,12 @@ static sessile_status parse_line(pctx *c, const char *p, const char *end, int *h
     *have_axiom = 1;
     return parse_modules(c, rest, end, 0, NULL, NULL, &g->axiom_first, &g->naxiom);
   }
+  if (directive_is(p, end, "homomorphism", &rest)) {
+    if (skip_blank(rest, end) != end) return perr(c, skip_blank(rest, end), "'homomorphism:' stands alone on its line");
+    if (c->set == LSYS_HOMOMORPHISM) return perr(c, p, "a second 'homomorphism:'");
+    c->set = LSYS_HOMOMORPHISM;
+    return SESSILE_OK;
+  }
   if (directive_is(p, end, "ignore", &rest)) {
     for (const char *q = skip_blank(rest, end); q < end; q = skip_blank(q + 1, end)) {
       if (!is_symbol((unsigned char)*q)) return perr(c, q, "'%c' cannot be a module's symbol", *q);
@@ -351,7 +360,7 @@ static sessile_status parse_line(pctx *c, const char *p, const char *end, int *h
   const char *w = p;
   while (w < end && (isalnum((unsigned char)*w) || *w == '_')) w++;
   if (w > p && skip_blank(w, end) < end && *skip_blank(w, end) == ':')
-    return perr(c, p, "unknown directive '%.*s' (axiom, iterations, angle, width_factor, ignore, define)",
+    return perr(c, p, "unknown directive '%.*s' (axiom, iterations, angle, width_factor, ignore, define, homomorphism)",
                 (int)(w - p > 40 ? 40 : w - p), p);
   return perr(c, p, "neither a production (no '->') nor a directive");
 }
@@ -369,12 +378,12 @@ static const char *comment_start(const char *p, const char *end) {
 
 static void build_index(sessile_lsys *g) {
   memset(g->by_count, 0, sizeof g->by_count);
-  for (int i = 0; i < g->nprods; i++) g->by_count[g->prods[i].pred]++;
-  uint32_t acc = 0;
-  for (int s = 0; s < 256; s++) g->by_first[s] = acc, acc += g->by_count[s];
-  uint32_t fill[256];
+  for (int i = 0; i < g->nprods; i++) g->by_count[g->prods[i].set][g->prods[i].pred]++;
+  uint32_t acc = 0, fill[2][256];
+  for (int k = 0; k < 2; k++)
+    for (int s = 0; s < 256; s++) g->by_first[k][s] = acc, acc += g->by_count[k][s];
   memcpy(fill, g->by_first, sizeof fill);
-  for (int i = 0; i < g->nprods; i++) g->by_list[fill[g->prods[i].pred]++] = (uint32_t)i;
+  for (int i = 0; i < g->nprods; i++) g->by_list[fill[g->prods[i].set][g->prods[i].pred]++] = (uint32_t)i;
 }
 
 static sessile_status parse_all(pctx *c, const char *text, size_t len) {
@@ -420,7 +429,7 @@ sessile_status sessile_lsys_parse(const char *text, size_t len, const char *wher
   sessile_lsys *g = calloc(1, sizeof *g);
   SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory");
   g->dval = calloc(LSYS_MAX_DEFINES, sizeof *g->dval);
-  pctx c = {g, where, 0, text, noverrides, override_names, override_values, calloc((size_t)noverrides + 1, 1)};
+  pctx c = {g, where, 0, text, noverrides, override_names, override_values, calloc((size_t)noverrides + 1, 1), 0};
   if (!g->dval || !c.oused) {
     free(c.oused);
     sessile_lsys_destroy(g);
@@ -450,6 +459,7 @@ void sessile_lsys_destroy(sessile_lsys *g) {
 }
 
 int sessile_lsys_iterations(const sessile_lsys *g) { return g->iterations; }
+int sessile_lsys_has_homomorphism(const sessile_lsys *g) { return g->nset[LSYS_HOMOMORPHISM] > 0; }
 double sessile_lsys_angle(const sessile_lsys *g) { return g->angle; }
 double sessile_lsys_width_factor(const sessile_lsys *g) { return g->width_factor; }
 int sessile_lsys_define_count(const sessile_lsys *g) { return g->ndefines; }

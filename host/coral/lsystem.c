@@ -102,6 +102,15 @@ static sessile_status build(const sessile_coral_lsystem_params *p, const sessile
     r->str = next, next = t;
     r->modules_per_step[it] = r->str.n;
   }
+  if (sessile_lsys_has_homomorphism(g)) {
+    sessile_status s = sessile_lsys_homomorphism(g, &r->str, &rng, (uint64_t)p->max_modules, &next);
+    if (s != SESSILE_OK) {
+      sessile_lsys_string_free(&next);
+      return sessile_error_set(s, "homomorphism: %s", sessile_error_message());
+    }
+    sessile_lsys_string t = r->str;
+    r->str = next, next = t;
+  }
   sessile_lsys_string_free(&next);
   double t1 = now_s();
   r->derive_s = t1 - t0;
@@ -208,7 +217,8 @@ sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral
   }
   cJSON *st = cJSON_CreateObject();
   SESSILE_CHECK(st, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  cJSON_AddNumberToObject(st, "modules", r->str.n);
+  cJSON_AddNumberToObject(st, "modules", r->modules_per_step[r->iterations]);
+  cJSON_AddNumberToObject(st, "modules_drawn", r->str.n); /* after the homomorphism */
   cJSON_AddNumberToObject(st, "segments", r->turtle.segments);
   cJSON_AddNumberToObject(st, "branches", r->turtle.branches);
   cJSON_AddNumberToObject(st, "max_branch_order", r->turtle.max_depth);

@@ -130,6 +130,23 @@ int main(void) {
     t_true("uniform(2, 3) draws lie in [2, 3), 1024 of them", inr && cnt == 1024);
     free(a), free(b), free(c);
   }
+  {
+    /* the homomorphism: applied once to the derived string, not derived */
+    const char *t = "axiom: A\nA -> AB\nhomomorphism:\nA -> F(2)\nB -> f[B]\n";
+    sessile_lsys *g = NULL;
+    t_must("parse", sessile_lsys_parse(t, strlen(t), "t.lsys", 0, NULL, NULL, &g));
+    sessile_lsys_string a = {0}, b = {0};
+    uint64_t rng = 1;
+    char *sa = NULL, *sb = NULL;
+    t_must("derive", sessile_lsys_derive(g, 2, &rng, 1000, &a));
+    t_must("homomorphism", sessile_lsys_homomorphism(g, &a, &rng, 1000, &b));
+    sessile_lsys_string_format(&a, &sa), sessile_lsys_string_format(&b, &sb);
+    t_true("homomorphism: derivation ABB unchanged by it, drawn as F(2)f[B]f[B]", sa && sb && !strcmp(sa, "ABB") &&
+           !strcmp(sb, "F(2)f[B]f[B]") && sessile_lsys_has_homomorphism(g));
+    free(sa), free(sb);
+    sessile_lsys_string_free(&a), sessile_lsys_string_free(&b);
+    sessile_lsys_destroy(g);
+  }
   chi_square();
   {
     /* the limit: doubling 30 times refuses with an estimate */

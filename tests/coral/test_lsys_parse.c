@@ -46,6 +46,8 @@ int main(void) {
   BAD("axiom: A\nA -> B\x01\n", "g.lsys:2:7: ", "printable");
   BAD("axiom: A\r\nA -> B\0C\n", "g.lsys:2:7: ", "NUL");
   BAD("axiom: A\nangle: 1e400\n", "g.lsys:2:", "1e400");
+  BAD("axiom: A\nhomomorphism:\nhomomorphism:\n", "g.lsys:3:1: ", "second 'homomorphism:'");
+  BAD("axiom: A\nhomomorphism: A\n", "g.lsys:2:15: ", "alone");
   BAD("axiom: A\nB [ < A -> C\n", "g.lsys:2:1: ", "left context");
   BAD("axiom: A\nA > B] -> C\n", "g.lsys:2:3: ", "without its '['");
   {

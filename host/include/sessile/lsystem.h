@@ -69,6 +69,12 @@ const char *sessile_lsys_define_name(const sessile_lsys *g, int i, double *value
  * grammar at a time. */
 sessile_status sessile_lsys_derive(const sessile_lsys *g, int iterations, uint64_t *rng, uint64_t max_modules,
                                    sessile_lsys_string *out);
+/* The grammar's homomorphism (productions after "homomorphism:"): one
+ * parallel step with them, applied to the derived string before the turtle
+ * draws it (in != out).  Whether the grammar has any: */
+int sessile_lsys_has_homomorphism(const sessile_lsys *g);
+sessile_status sessile_lsys_homomorphism(const sessile_lsys *g, const sessile_lsys_string *in, uint64_t *rng,
+                                         uint64_t max_modules, sessile_lsys_string *out);
 /* One parallel rewriting step (in != out). */
 sessile_status sessile_lsys_step(const sessile_lsys *g, const sessile_lsys_string *in, uint64_t *rng,
                                  uint64_t max_modules, sessile_lsys_string *out);
@@ -129,7 +135,7 @@ extern const sessile_param_table sessile_coral_lsystem_param_table;
 
 /* Everything a run makes, before anything is written. */
 typedef struct sessile_coral_lsystem_result {
-  sessile_lsys_string str;
+  sessile_lsys_string str;        /* the string drawn (after the homomorphism, if any) */
   struct sessile_skeleton *skel; /* owned */
   sessile_surface mesh;
   double *vertex_value; /* mesh.nv: the branch order */
