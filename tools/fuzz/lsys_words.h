@@ -10,5 +10,5 @@ static const char *const tokens[] = {
 static const char *const words[] = {
     "axiom: ", "iterations: ", "angle: ", "width_factor: ", "ignore: ", "define a = ", "define ",
     "A -> ", "A(x) : x > 0 -> ", "A < B > C -> ", "A(x) < B(y) -> ", "# comment", " # c\n", "-(0.3)-> ",
-    "axiom: A\n", "A -> F[+A][-A]\n", "iterations: 30\n", "define x = 1\n", "A -> AA\n"};
+    "axiom: A\n", "A -> F[+A][-A]\n", "iterations: 30\n", "define x = 1\n", "A -> AA\n", "homomorphism:\n"};
 static const char *param_name(void) { return words[below(sizeof words / sizeof words[0])]; }

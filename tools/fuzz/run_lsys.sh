@@ -40,7 +40,7 @@ done
 
 # A dictionary: directives, syntax, turtle symbols, muparser words.
 DICT="$WORK/lsys.dict"
-printf '%s\n' '"axiom:"' '"iterations:"' '"angle:"' '"width_factor:"' '"ignore:"' '"define "' '"->"' \
+printf '%s\n' '"axiom:"' '"iterations:"' '"angle:"' '"width_factor:"' '"ignore:"' '"define "' '"homomorphism:"' '"->"' \
   '"-(0.5)->"' '"<"' '">"' '":"' '"["' '"]"' '"%"' '"#"' '"!"' '"F("' '"uniform("' '"sqrt("' '"?"' \
   '"&&"' '"=="' '"1e308"' '"nan"' '"inf"' | awk '{print "kw" NR "=" $0}' >"$DICT"
 
