@@ -3,9 +3,9 @@
  * SESSILE_ERR_USAGE with one line "fuzz.lsys:LINE:COLUMN: ..." (LINE within
  * the input's lines); an accepted one is derived up to 6 steps within
  * 20000 modules (only the size limit, a non-finite parameter or memory may
- * stop it) and the string must be consistent (offsets, parameter counts,
- * format), then drawn by the turtle into finite segments with positive
- * radii.  Anything else aborts.  Built with libFuzzer by run_lsys.sh, or
+ * stop it), its homomorphism applied, and the string must be consistent
+ * (offsets, parameter counts, format), then drawn by the turtle into finite
+ * segments with positive radii.  Anything else aborts.  Built with libFuzzer by run_lsys.sh, or
  * with driver.c (-DFUZZ_WORDS) by CMake's fuzz_lsys_short. */
 #include <math.h>
 #include <stdint.h>
@@ -65,6 +65,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   sessile_lsys_string str = {0};
   uint64_t rng = 1;
   s = sessile_lsys_derive(g, it < 6 ? it : 6, &rng, 20000, &str);
+  if (s == SESSILE_OK && sessile_lsys_has_homomorphism(g)) {
+    check_string(&str);
+    sessile_lsys_string h = {0};
+    s = sessile_lsys_homomorphism(g, &str, &rng, 20000, &h);
+    sessile_lsys_string_free(&str);
+    str = h;
+  }
   if (s == SESSILE_OK) {
     if (str.n > 20000) fail("the string exceeds max_modules");
     check_string(&str);
