@@ -143,7 +143,7 @@ static sessile_status run(sessile_gpu *gpu, const sessile_skeleton *s, weld_grid
   if (st == SESSILE_OK && nv) st = sessile_buffer_download_reals(d->pos, 0, pos, (size_t)nv * 3);
   if (st == SESSILE_OK && nv) st = sessile_buffer_download(d->nearest, 0, nearest, (size_t)nv * 4);
   if (st == SESSILE_OK && nf) st = sessile_buffer_download(d->tri, 0, tri, (size_t)nf * 12);
-  if (st == SESSILE_OK) st = weld_output(s, nv, nf, pos, tri, nearest, out, vertex_value);
+  if (st == SESSILE_OK) st = weld_output(s, g->h, nv, nf, pos, tri, nearest, out, vertex_value);
   if (st == SESSILE_OK) pos = NULL, tri = NULL;
   free(pos), free(tri), free(nearest);
   double t5 = sessile_wall_seconds();
@@ -161,7 +161,7 @@ sessile_status weld_gpu(sessile_gpu *gpu, const sessile_skeleton *s, const sessi
   weld_grid g;
   double bytes;
   SESSILE_CALL(weld_grid_plan(s, p, &g, &bytes));
-  if (s->n == 0) return weld_output(s, 0, 0, NULL, NULL, NULL, out, vertex_value);
+  if (s->n == 0) return weld_output(s, 0, 0, 0, NULL, NULL, NULL, out, vertex_value);
   weld_dev d;
   memset(&d, 0, sizeof d);
   sessile_status st = run(gpu, s, &g, bytes, &d, out, vertex_value, tm);

@@ -211,8 +211,9 @@ double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z, u
   return interior ? weld_min(f, g->clampv) : g->clampv;
 }
 
-sessile_status weld_output(const sessile_skeleton *s, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,
-                           const uint32_t *nearest, sessile_surface *out, double **vertex_value) {
+sessile_status weld_output(const sessile_skeleton *s, double h, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,
+                           uint32_t *nearest, sessile_surface *out, double **vertex_value) {
+  SESSILE_CALL(weld_drop_pockets(pos, &nv, tri, &nf, nearest, h * h * h));
   double *val = NULL;
   if (vertex_value && nv) {
     val = malloc((size_t)nv * sizeof *val);

@@ -94,10 +94,17 @@ void weld_cell_tris(const weld_grid *g, const uint32_t *packed, const uint32_t *
  * place; totals in tot.  Fails when they exceed 32-bit indices. */
 sessile_status weld_scan_rows(uint32_t *rows, uint32_t nrows, uint32_t tot[3]);
 
-/* Hands pos and tri (malloc'd; owned by out on success) to out, replacing
- * its contents, and maps nearest capsules to s->value. */
-sessile_status weld_output(const sessile_skeleton *s, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,
-                           const uint32_t *nearest, sessile_surface *out, double **vertex_value);
+/* Drops the inward-facing components (pockets of water enclosed where
+ * branches fuse: buried faces) and those enclosing less than min_volume
+ * (sampling specks), compacting pos, nearest and tri in order
+ * (weld_clean.c). */
+sessile_status weld_drop_pockets(double *pos, uint32_t *nv, uint32_t *tri, uint32_t *nf, uint32_t *nearest,
+                                 double min_volume);
+/* Drops pockets and specks (cells of size h), hands pos and tri (malloc'd;
+ * owned by out on success) to out, replacing its contents, and maps nearest
+ * capsules to s->value. */
+sessile_status weld_output(const sessile_skeleton *s, double h, uint32_t nv, uint32_t nf, double *pos, uint32_t *tri,
+                           uint32_t *nearest, sessile_surface *out, double **vertex_value);
 
 /* The GPU path with its stage times (seconds, wall clock): the node values,
  * the count pass with the host scan, the emit passes, the download. */

@@ -52,7 +52,7 @@ static sessile_status run(const sessile_skeleton *s, weld_grid *g, double bytes,
     weld_vertex(g, a->field, a->nnear, a->packed, a->vbase, a->vnode, (uint32_t)v, a->pos, a->nearest);
 #pragma omp parallel for schedule(dynamic, 1024)
   for (int64_t c = 0; c < (int64_t)nc; c++) weld_cell_tris(g, a->packed, a->vbase, a->clist[c], a->ctri[c], a->tri);
-  SESSILE_CALL(weld_output(s, nv, nf, a->pos, a->tri, a->nearest, out, vertex_value));
+  SESSILE_CALL(weld_output(s, g->h, nv, nf, a->pos, a->tri, a->nearest, out, vertex_value));
   a->pos = NULL, a->tri = NULL; /* owned by out now */
   return SESSILE_OK;
 }
@@ -63,7 +63,7 @@ sessile_status sessile_skeleton_weld_ref(const sessile_skeleton *s, const sessil
   weld_grid g;
   double bytes;
   SESSILE_CALL(weld_grid_plan(s, p, &g, &bytes));
-  if (s->n == 0) return weld_output(s, 0, 0, NULL, NULL, NULL, out, vertex_value);
+  if (s->n == 0) return weld_output(s, 0, 0, 0, NULL, NULL, NULL, out, vertex_value);
   ref_arrays a;
   memset(&a, 0, sizeof a);
   sessile_status st = run(s, &g, bytes, &a, out, vertex_value);

@@ -1,5 +1,6 @@
-/* The generators' skeletons welded (GPU): the default open, closed and 3-D
- * venation corals become closed, consistently oriented 2-manifolds (Euler
+/* The generators' skeletons welded (GPU): the three shipped L-system
+ * grammars (their defaults, on a coarser grid to keep the test short) and
+ * the default open, closed and 3-D venation corals become closed, consistently oriented 2-manifolds (Euler
  * characteristic V - E + F with E = 3F/2, which sessile_surface_check also
  * verifies edge by edge) with no self-intersecting triangle pair, in ONE
  * connected piece (the vein graph is connected; tips thinner than a cell
@@ -7,7 +8,9 @@
  * positive genus for a closed one (its cycles are handles). */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include "sessile/intersect.h"
+#include "sessile/lsystem.h"
 #include "sessile/skeleton.h"
 #include "sessile/venation.h"
 #include "testutil.h"
@@ -74,8 +77,36 @@ static void venation(sessile_gpu *g, const char *name, const char *const *sets, 
   sessile_venation_free(&v);
 }
 
+static void lsystem(sessile_gpu *g, const char *grammar) {
+  sessile_coral_lsystem_params p;
+  sessile_params_defaults(&sessile_coral_lsystem_param_table, &p);
+  char set[64];
+  snprintf(set, sizeof set, "grammar=%s", grammar);
+  t_must(set, sessile_params_set_kv(&sessile_coral_lsystem_param_table, &p, set));
+  t_must("weld", sessile_params_set_kv(&sessile_coral_lsystem_param_table, &p, "geometry=weld"));
+  t_must("cells", sessile_params_set_kv(&sessile_coral_lsystem_param_table, &p, "weld_cells=128"));
+  size_t len = 0;
+  const char *text = sessile_lsys_builtin_find(grammar, &len);
+  t_true(grammar, text != NULL);
+  sessile_lsys *gr = NULL;
+  t_must("parse", sessile_lsys_parse(text, len, grammar, 0, NULL, NULL, &gr));
+  sessile_coral_lsystem_result r;
+  memset(&r, 0, sizeof r);
+  t_must("build", sessile_coral_lsystem_build(&p, gr, -1, 1, g, &r));
+  char name[64];
+  snprintf(name, sizeof name, "lsystem %s", grammar);
+  /* branches of a Lophelia colony touch and fuse (handles): connected, any genus */
+  sessile_weld_params wp = {.cell = p.weld_cell, .max_cells = (uint32_t)p.weld_cells, .blend = p.weld_blend};
+  check_weld(g, name, r.skel, &wp, 99);
+  sessile_coral_lsystem_result_free(&r);
+  sessile_lsys_destroy(gr);
+}
+
 int main(void) {
   sessile_gpu *g = t_gpu(0);
+  lsystem(g, "lophelia1");
+  lsystem(g, "lophelia2");
+  lsystem(g, "flat");
   venation(g, "venation open", NULL, 0, 2);
   const char *closed[] = {"open=false"};
   venation(g, "venation closed", closed, 1, 1);
