@@ -18,3 +18,7 @@ cmake --build build -j"$(nproc)"
 # incrustans sponge grown for 50 iterations (Table 1 + the crella preset).
 ./build/sessile devices
 ./build/sessile grow --preset crella --iterations 50 --seed 7 --out runs/crella --force
+# Coralize's three generators on their defaults (each under a second).
+./build/sessile coral lsystem --force
+./build/sessile coral venation --force
+./build/sessile sponge particles --force
