@@ -8,42 +8,16 @@
 #include "venation_internal.h"
 
 cJSON *sessile_venation_config(const sessile_venation_params *p, const sessile_venation_options *o) {
-  cJSON *c = cJSON_CreateObject();
-  if (!c) return NULL;
-  char seed[32];
-  snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);
-  cJSON_AddStringToObject(c, "seed", seed);
-  cJSON_AddNumberToObject(c, "iterations", o->iterations);
-  cJSON_AddNumberToObject(c, "every", o->every);
-  cJSON *params = sessile_params_to_config(&sessile_venation_param_table, p);
-  if (!params || !cJSON_AddItemToObject(c, "parameters", params)) {
-    cJSON_Delete(params);
-    cJSON_Delete(c);
-    return NULL;
-  }
+  cJSON *c = sessile_run_config_make(&sessile_venation_param_table, p, o->seed, o->iterations, o->every);
   return c;
 }
 
 sessile_status sessile_venation_config_read(const cJSON *cfg, sessile_venation_params *p,
                                             sessile_venation_options *o) {
-  const cJSON *seed = cJSON_GetObjectItemCaseSensitive(cfg, "seed");
-  const cJSON *its = cJSON_GetObjectItemCaseSensitive(cfg, "iterations");
-  const cJSON *every = cJSON_GetObjectItemCaseSensitive(cfg, "every");
-  const cJSON *params = cJSON_GetObjectItemCaseSensitive(cfg, "parameters");
-  SESSILE_CHECK(cJSON_IsString(seed) && cJSON_IsNumber(its) && cJSON_IsNumber(every) && cJSON_IsObject(params) &&
-                    its->valuedouble >= 0 && every->valuedouble >= 0,
-                SESSILE_ERR_USAGE, "the run's stored configuration is damaged");
-  char *end = NULL;
-  errno = 0;
-  o->seed = strtoull(seed->valuestring, &end, 10);
-  SESSILE_CHECK(seed->valuestring[0] >= '0' && seed->valuestring[0] <= '9' && !*end && !errno, SESSILE_ERR_USAGE,
-                "the run's stored seed is damaged");
-  o->iterations = (int)its->valuedouble;
-  o->every = (int)every->valuedouble;
-  sessile_params_defaults(&sessile_venation_param_table, p);
-  sessile_status s =
-      sessile_params_apply_json(&sessile_venation_param_table, p, params, "the run's stored configuration");
-  return s == SESSILE_OK ? sessile_params_check(&sessile_venation_param_table, p) : s;
+  uint64_t seed = 0;
+  SESSILE_CALL(sessile_run_config_take(cfg, &sessile_venation_param_table, p, &seed, &o->iterations, &o->every));
+  o->seed = seed;
+  return SESSILE_OK;
 }
 
 /* The mesh (tubes or weld) with the thickness index per vertex: PLY, and OBJ

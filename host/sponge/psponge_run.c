@@ -9,17 +9,8 @@
 #include "sessile/io.h"
 
 cJSON *sessile_psponge_config(const sessile_psponge_params *p, const sessile_psponge_options *o) {
-  cJSON *c = cJSON_CreateObject();
-  if (!c) return NULL;
-  char seed[32];
-  snprintf(seed, sizeof seed, "%llu", (unsigned long long)o->seed);
-  cJSON_AddStringToObject(c, "seed", seed);
-  cJSON_AddNumberToObject(c, "iterations", o->iterations);
-  cJSON_AddNumberToObject(c, "every", o->every);
-  cJSON_AddBoolToObject(c, "check", o->check);
-  cJSON *params = sessile_params_to_config(&sessile_psponge_param_table, p);
-  if (!params || !cJSON_AddItemToObject(c, "parameters", params)) {
-    cJSON_Delete(params);
+  cJSON *c = sessile_run_config_make(&sessile_psponge_param_table, p, o->seed, o->iterations, o->every);
+  if (c && !cJSON_AddBoolToObject(c, "check", o->check)) {
     cJSON_Delete(c);
     return NULL;
   }
@@ -28,27 +19,13 @@ cJSON *sessile_psponge_config(const sessile_psponge_params *p, const sessile_psp
 
 sessile_status sessile_psponge_config_read(const cJSON *cfg, sessile_psponge_params *p,
                                            sessile_psponge_options *o) {
-  const cJSON *seed = cJSON_GetObjectItemCaseSensitive(cfg, "seed");
-  const cJSON *its = cJSON_GetObjectItemCaseSensitive(cfg, "iterations");
-  const cJSON *every = cJSON_GetObjectItemCaseSensitive(cfg, "every");
+  uint64_t seed = 0;
+  SESSILE_CALL(sessile_run_config_take(cfg, &sessile_psponge_param_table, p, &seed, &o->iterations, &o->every));
+  o->seed = seed;
   const cJSON *check = cJSON_GetObjectItemCaseSensitive(cfg, "check");
-  const cJSON *params = cJSON_GetObjectItemCaseSensitive(cfg, "parameters");
-  SESSILE_CHECK(cJSON_IsString(seed) && cJSON_IsNumber(its) && cJSON_IsNumber(every) &&
-                    cJSON_IsBool(check) && cJSON_IsObject(params) && its->valuedouble >= 0 &&
-                    every->valuedouble >= 0,
-                SESSILE_ERR_USAGE, "the run's stored configuration is damaged");
-  char *end = NULL;
-  errno = 0;
-  o->seed = strtoull(seed->valuestring, &end, 10);
-  SESSILE_CHECK(seed->valuestring[0] >= '0' && seed->valuestring[0] <= '9' && !*end && !errno,
-                SESSILE_ERR_USAGE, "the run's stored seed is damaged");
-  o->iterations = (int)its->valuedouble;
-  o->every = (int)every->valuedouble;
+  SESSILE_CHECK(cJSON_IsBool(check), SESSILE_ERR_USAGE, "the run's stored configuration is damaged");
   o->check = cJSON_IsTrue(check);
-  sessile_params_defaults(&sessile_psponge_param_table, p);
-  sessile_status s =
-      sessile_params_apply_json(&sessile_psponge_param_table, p, params, "the run's stored configuration");
-  return s == SESSILE_OK ? sessile_params_check(&sessile_psponge_param_table, p) : s;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_psponge_checkpoint(sessile_psponge *ps, sessile_run *run) {

@@ -17,6 +17,8 @@
 #include <signal.h>
 #include <stddef.h>
 #include <cjson/cJSON.h>
+#include <stdint.h>
+#include "sessile/param_table.h"
 #include "sessile/status.h"
 
 #ifdef __cplusplus
@@ -59,6 +61,15 @@ cJSON *sessile_run_manifest(sessile_run *r);
  * once; get returns the stored one (on resume: the older run's). */
 sessile_status sessile_run_set_config(sessile_run *r, cJSON *config);
 const cJSON *sessile_run_config(const sessile_run *r);
+/* The usual configuration of a generator with iterations: {"seed": "N" (as
+ * text: 64 bits survive), "iterations": I, "every": K, "parameters": {the
+ * table's values}}; the caller may add members.  NULL when out of memory. */
+cJSON *sessile_run_config_make(const sessile_param_table *t, const void *params, uint64_t seed, int iterations,
+                               int every);
+/* Reads it back (a stored config: values bit for bit), checks the values
+ * against the table; SESSILE_ERR_USAGE when damaged. */
+sessile_status sessile_run_config_take(const cJSON *cfg, const sessile_param_table *t, void *params, uint64_t *seed,
+                                       int *iterations, int *every);
 /* Writes manifest.json now (atomically). */
 sessile_status sessile_run_write_manifest(sessile_run *r);
 
