@@ -1,0 +1,131 @@
+/* The morphogen step on the GPU (shaders/sdsproc/morph_step.comp): buffers
+ * kept between calls, nsteps ping-pong dispatches in one submission. */
+#include <math.h>
+#include <stdlib.h>
+#include "sdsproc_kernels.h"
+#include "sessile/sds_process.h"
+
+enum { B_POS, B_RADIUS, B_OFF, B_NBR, B_COEF, B_SRC, B_PHI0, B_PHI1, B_COUNT };
+
+struct sessile_morph_gpu {
+  sessile_gpu *gpu;
+  sessile_kernel *k;
+  sessile_cmd *cmd;
+  uint32_t real_bytes;
+  sessile_buffer *b[B_COUNT];
+  size_t bytes[B_COUNT];
+  int ncells, nmorph, cur; /* cur: which of PHI0/PHI1 holds the amounts */
+  double dt_max;
+};
+
+static sessile_status ensure(sessile_morph_gpu *m, int i, size_t bytes) {
+  if (bytes < 16) bytes = 16;
+  if (m->b[i] && m->bytes[i] >= bytes) return SESSILE_OK;
+  sessile_buffer_destroy(m->b[i]);
+  m->b[i] = NULL, m->bytes[i] = 0;
+  SESSILE_CALL(sessile_buffer_create(m->gpu, bytes, SESSILE_BUFFER_DEVICE, &m->b[i]));
+  m->bytes[i] = bytes;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_morph_gpu_create(sessile_gpu *g, sessile_morph_gpu **out) {
+  *out = NULL;
+  sessile_morph_gpu *m = calloc(1, sizeof *m);
+  SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory for the morphogen kernel");
+  m->gpu = g;
+  m->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_status st = sessile_kernel_create_decl(g, &sessile_sdsproc_kernels[SPK_MORPH_STEP], m->real_bytes, 0, &m->k);
+  if (st == SESSILE_OK) st = sessile_cmd_create(g, &m->cmd);
+  if (st != SESSILE_OK) {
+    sessile_morph_gpu_destroy(m);
+    return st;
+  }
+  *out = m;
+  return SESSILE_OK;
+}
+
+void sessile_morph_gpu_destroy(sessile_morph_gpu *m) {
+  if (!m) return;
+  for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(m->b[i]);
+  sessile_cmd_destroy(m->cmd);
+  sessile_kernel_destroy(m->k);
+  free(m);
+}
+
+sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_morph_cells *cl,
+                                           const sessile_morph_coef *co) {
+  SESSILE_CHECK(cl->ncells > 0 && co->nmorph > 0, SESSILE_ERR_USAGE,
+                "morphogen kernel: %d cells and %d morphogens (both must be positive)", cl->ncells, co->nmorph);
+  size_t nc = (size_t)cl->ncells, ne = cl->nbr_off[nc], rb = m->real_bytes, nm = (size_t)co->nmorph;
+  double *coef = malloc(3 * nm * sizeof *coef);
+  SESSILE_CHECK(coef, SESSILE_ERR_NO_MEMORY, "out of host memory for the morphogen coefficients");
+  for (size_t k = 0; k < nm; k++) {
+    coef[3 * k] = co->diffusion[k];
+    coef[3 * k + 1] = co->decay[k];
+    coef[3 * k + 2] = (!co->capped || co->capped[k]) ? 1.0 : 0.0;
+  }
+  sessile_status st = ensure(m, B_POS, 3 * nc * rb);
+  if (st == SESSILE_OK) st = ensure(m, B_RADIUS, nc * rb);
+  if (st == SESSILE_OK) st = ensure(m, B_OFF, (nc + 1) * 4);
+  if (st == SESSILE_OK) st = ensure(m, B_NBR, ne * 4);
+  if (st == SESSILE_OK) st = ensure(m, B_COEF, 3 * nm * rb);
+  if (st == SESSILE_OK) st = ensure(m, B_SRC, nc * nm * rb);
+  if (st == SESSILE_OK) st = ensure(m, B_PHI0, nc * nm * rb);
+  if (st == SESSILE_OK) st = ensure(m, B_PHI1, nc * nm * rb);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(m->b[B_POS], 0, cl->pos, 3 * nc);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(m->b[B_RADIUS], 0, cl->radius, nc);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(m->b[B_OFF], 0, cl->nbr_off, (nc + 1) * 4);
+  if (st == SESSILE_OK && ne) st = sessile_buffer_upload(m->b[B_NBR], 0, cl->nbr, ne * 4);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(m->b[B_COEF], 0, coef, 3 * nm);
+  free(coef);
+  SESSILE_CALL(st);
+  m->ncells = cl->ncells, m->nmorph = co->nmorph;
+  m->dt_max = sessile_morph_dt_max(cl, co);
+  SESSILE_CHECK(m->dt_max > 0, SESSILE_ERR_NUMERIC, "morphogen kernel: two adjacent cells coincide");
+  return SESSILE_OK;
+}
+
+sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi, const double *src) {
+  SESSILE_CHECK(m->ncells > 0, SESSILE_ERR_USAGE, "morphogen kernel: set_cells first");
+  size_t n = (size_t)m->ncells * m->nmorph;
+  m->cur = 0;
+  SESSILE_CALL(sessile_buffer_upload_reals(m->b[B_PHI0], 0, phi, n));
+  if (src) return sessile_buffer_upload_reals(m->b[B_SRC], 0, src, n);
+  double *z = calloc(n, sizeof *z);
+  SESSILE_CHECK(z, SESSILE_ERR_NO_MEMORY, "out of host memory for zero sources");
+  sessile_status st = sessile_buffer_upload_reals(m->b[B_SRC], 0, z, n);
+  free(z);
+  return st;
+}
+
+sessile_status sessile_morph_gpu_step(sessile_morph_gpu *m, double dt, int nsteps) {
+  SESSILE_CHECK(m->ncells > 0, SESSILE_ERR_USAGE, "morphogen kernel: set_cells first");
+  SESSILE_CHECK(dt > 0 && isfinite(dt) && nsteps >= 0, SESSILE_ERR_USAGE,
+                "morphogen kernel: dt = %g, %d steps (dt must be positive, steps >= 0)", dt, nsteps);
+  SESSILE_CHECK(dt <= m->dt_max * (1 + 1e-12), SESSILE_ERR_USAGE,
+                "morphogen kernel: dt = %g exceeds the explicit Euler bound %g; sub-step with dt <= %g", dt,
+                m->dt_max, m->dt_max);
+  if (nsteps == 0) return SESSILE_OK;
+  uint32_t local = sessile_kernel_local_size(m->k);
+  uint32_t groups = ((uint32_t)m->ncells + local - 1) / local;
+  sdsproc_push p = {0};
+  p.ncells = (uint32_t)m->ncells;
+  p.nmorph = (uint32_t)m->nmorph;
+  p.dt = sessile_push_real_of(dt, m->real_bytes);
+  SESSILE_CALL(sessile_cmd_begin(m->cmd));
+  for (int s = 0; s < nsteps; s++) {
+    int in = (m->cur + s) & 1;
+    sessile_buffer *b[8] = {m->b[B_POS], m->b[B_RADIUS], m->b[B_OFF], m->b[B_NBR], m->b[B_COEF],
+                            m->b[B_SRC], m->b[in ? B_PHI1 : B_PHI0], m->b[in ? B_PHI0 : B_PHI1]};
+    SESSILE_CALL(sessile_cmd_dispatch(m->cmd, m->k, groups, b, &p));
+  }
+  SESSILE_CALL(sessile_cmd_end(m->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(m->cmd));
+  m->cur = (m->cur + nsteps) & 1;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_morph_gpu_get_phi(sessile_morph_gpu *m, double *phi) {
+  SESSILE_CHECK(m->ncells > 0, SESSILE_ERR_USAGE, "morphogen kernel: set_cells first");
+  return sessile_buffer_download_reals(m->b[m->cur ? B_PHI1 : B_PHI0], 0, phi, (size_t)m->ncells * m->nmorph);
+}
