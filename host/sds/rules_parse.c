@@ -423,6 +423,7 @@ sessile_status sessile_sds_model_parse(const char *text, const char *file, sessi
   }
   if (st == SESSILE_OK && m->nrules == 0) {
     c.s = "", c.p = 0;
+    if (c.line == 0) c.line = 1; /* an empty text */
     st = fail(&c, 0, "the model has no rules");
   }
   if (st != SESSILE_OK) {
