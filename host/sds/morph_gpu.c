@@ -54,8 +54,9 @@ void sessile_morph_gpu_destroy(sessile_morph_gpu *m) {
 
 sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_morph_cells *cl,
                                            const sessile_morph_coef *co) {
-  SESSILE_CHECK(cl->ncells > 0 && co->nmorph > 0, SESSILE_ERR_USAGE,
-                "morphogen kernel: %d cells and %d morphogens (both must be positive)", cl->ncells, co->nmorph);
+  SESSILE_CHECK(cl->ncells > 0 && co->nmorph > 0 && co->nmorph <= SDSPROC_MAX_MORPH, SESSILE_ERR_USAGE,
+                "morphogen kernel: %d cells and %d morphogens (cells > 0, 1 to %d morphogens)", cl->ncells,
+                co->nmorph, SDSPROC_MAX_MORPH);
   size_t nc = (size_t)cl->ncells, ne = cl->nbr_off[nc], rb = m->real_bytes, nm = (size_t)co->nmorph;
   double *coef = malloc(3 * nm * sizeof *coef);
   SESSILE_CHECK(coef, SESSILE_ERR_NO_MEMORY, "out of host memory for the morphogen coefficients");
