@@ -1,5 +1,5 @@
 /* The table of embedded grammars, generated at configure time
- * (cmake/EmbedGrammars.cmake) from host/coral/grammars/ *.lsys. */
+ * (cmake/EmbedTexts.cmake) from host/coral/grammars/ *.lsys. */
 #ifndef SESSILE_LSYS_BUILTIN_H
 #define SESSILE_LSYS_BUILTIN_H
 #include <stddef.h>
