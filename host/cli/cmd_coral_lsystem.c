@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "cli_run.h"
+#include "sessile/io.h"
 #include "sessile/lsystem.h"
 
 static const char *CMD = "coral lsystem";
@@ -67,27 +68,9 @@ static int is_file_name(const char *g) {
   return strchr(g, '/') || (n > 5 && !strcmp(g + n - 5, ".lsys"));
 }
 
-/* A grammar file: regular, at most 1 MiB, read whole (O_NONBLOCK: a FIFO
- * must not hang the command). */
+/* A grammar file: regular, at most 1 MiB (sessile_read_small_file). */
 static sessile_status read_grammar(const char *path, char **text, size_t *len) {
-  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot open the grammar '%.200s': %s", path, strerror(errno));
-  struct stat st;
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > (1 << 20)) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_USAGE, "the grammar '%.200s' is not a regular file of at most 1 MiB", path);
-  }
-  char *t = malloc((size_t)st.st_size + 1);
-  if (!t) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
-  }
-  size_t n = 0;
-  for (ssize_t k; n < (size_t)st.st_size && (k = read(fd, t + n, (size_t)st.st_size - n)) > 0;) n += (size_t)k;
-  close(fd);
-  t[n] = 0;
-  *text = t, *len = n;
-  return SESSILE_OK;
+  return sessile_read_small_file(path, (size_t)1 << 20, "grammar", text, len);
 }
 
 static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_args *a, lsys_cli *c) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "rules_internal.h"
+#include "sessile/io.h"
 
 typedef struct cur {
   const sessile_sds_model *m;
@@ -436,18 +437,9 @@ sessile_status sessile_sds_model_parse(const char *text, const char *file, sessi
 
 sessile_status sessile_sds_model_load(const char *path, sessile_sds_model **out) {
   *out = NULL;
-  FILE *f = fopen(path, "rb");
-  SESSILE_CHECK(f, SESSILE_ERR_USAGE, "%s: cannot open the model file", path);
   char *text = NULL;
-  long n = -1;
-  if (fseek(f, 0, SEEK_END) == 0) n = ftell(f);
-  if (n >= 0 && n <= (1 << 20) && fseek(f, 0, SEEK_SET) == 0) {
-    text = malloc((size_t)n + 1);
-    if (text && fread(text, 1, (size_t)n, f) != (size_t)n) free(text), text = NULL;
-    if (text) text[n] = 0;
-  }
-  fclose(f);
-  SESSILE_CHECK(text, SESSILE_ERR_USAGE, "%s: cannot read the model file (or it is over 1 MiB)", path);
+  size_t len = 0;
+  SESSILE_CALL(sessile_read_small_file(path, (size_t)1 << 20, "model file", &text, &len));
   sessile_status st = sessile_sds_model_parse(text, path, out);
   free(text);
   return st;

@@ -42,6 +42,10 @@ sessile_status sessile_atomic_commit(sessile_atomic_file *af); /* closes; remove
 void sessile_atomic_abort(sessile_atomic_file *af);           /* closes and removes tmp; NULL-safe */
 /* Whole buffer to path, atomically. */
 sessile_status sessile_write_file_atomic(const char *path, const void *data, size_t bytes);
+/* A small input file read whole (text[len] = 0; caller frees): a regular
+ * file of at most max bytes, opened so that a FIFO or device cannot hang
+ * (SESSILE_ERR_USAGE naming `what` and the path otherwise). */
+sessile_status sessile_read_small_file(const char *path, size_t max, const char *what, char **text, size_t *len);
 /* mkdir -p; fails with SESSILE_ERR_IO naming the folder and errno's text. */
 sessile_status sessile_mkdirs(const char *path);
 
