@@ -1,0 +1,223 @@
+/* sessile — SDS, the Simplicial Developmental System (Porter & McCormack):
+ * the organism (a tetrahedral complex whose vertices are the cells) and its
+ * physics (scale-free edge and volume springs, damping, gravity, a box,
+ * obstacles, attraction points), on the host (the reference) and on the GPU
+ * (gather kernels, shaders/sds).  docs/sds.md, "Organism" and "Physics".
+ *
+ * Ownership: a sessile_sds owns every array in it; sessile_sds_free releases
+ * them (a zeroed struct is valid and empty).  Arrays are plain and public so
+ * that the topology, morphogen and rule code can work on them directly; after
+ * changing x/tet (topology) call sessile_sds_rebuild, which recomputes the
+ * derived arrays (marked "derived" below).
+ *
+ * Units (docs/sds.md): lengths in model units u (an imported icosphere of
+ * radius 1 is 1 u across its radius), time in model seconds, mass in
+ * density x u^3 (density 1 by default), so gravity 10 is 10 u/s^2. */
+#ifndef SESSILE_SDS_H
+#define SESSILE_SDS_H
+
+#include <stdint.h>
+#include <stdio.h>
+#include "sessile/gpu.h"
+#include "sessile/status.h"
+#include "sessile/surface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* --- the organism (§3.1, §3.2.1) ------------------------------------------ */
+typedef struct sessile_sds {
+  /* cells: one per vertex of the complex */
+  uint32_t ncells, cap_cells;
+  uint32_t nmorph, nstate; /* morphogens and state variables per cell */
+  double *x;       /* 3 ncells: positions, u */
+  double *v;       /* 3 ncells: velocities, u/s */
+  double *r;       /* ncells: radius, u (§3.2.1: mean half edge length at import) */
+  double *m;       /* ncells: mass = density 4/3 pi r^3 */
+  double *phi;     /* ncells nmorph: morphogen k of cell c at phi[c nmorph + k] */
+  double *state;   /* ncells nstate: state variable k of cell c at state[c nstate + k] */
+  int32_t *attract; /* ncells: index of the attraction point pulling the cell, -1 none */
+  uint8_t *surface; /* derived, ncells: 1 if the cell is a vertex of a boundary face */
+
+  /* tetrahedra: positively oriented, det[x1-x0, x2-x0, x3-x0] > 0 */
+  uint32_t ntets, cap_tets;
+  uint32_t *tet;   /* 4 ntets */
+  double *tet_sm;  /* ntets: spring multiplier s_m (R' = s_m R); <= 0 marks a new tet for rebuild */
+  uint8_t *tet_surface; /* derived, ntets: 1 if one of its faces is a boundary face */
+
+  /* derived: unique edges (a < b), sorted by (a, b) */
+  uint32_t nedges;
+  uint32_t *edge;  /* 2 nedges */
+  double *edge_sm; /* nedges: spring multiplier s_m */
+  uint8_t *edge_surface; /* nedges: 1 if the edge is a side of a boundary face */
+
+  /* derived: boundary faces (faces in exactly one tet), counter-clockwise
+   * seen from outside, sorted by their smallest-index rotation */
+  uint32_t nfaces;
+  uint32_t *face;  /* 3 nfaces */
+
+  /* derived: CSR incidence for the gathers, ascending element index */
+  uint32_t *cell_edge_off; /* ncells + 1 */
+  uint32_t *cell_edge;     /* 2 nedges: edges incident to cell c at [off[c], off[c+1]) */
+  uint32_t *cell_tet_off;  /* ncells + 1 */
+  uint32_t *cell_tet;      /* 4 ntets */
+} sessile_sds;
+
+void sessile_sds_free(sessile_sds *o);
+/* Allocates ncells cells and ntets tets (x, v, r, m, phi, state zeroed,
+ * attract -1, tet_sm 0), the derived arrays empty.  o is freed first. */
+sessile_status sessile_sds_alloc(sessile_sds *o, uint32_t ncells, uint32_t ntets, uint32_t nmorph,
+                                 uint32_t nstate);
+/* Makes room for ncells cells and ntets tets (keeps contents; new cells are
+ * zeroed with attract -1).  Does not change ncells/ntets. */
+sessile_status sessile_sds_reserve(sessile_sds *o, uint32_t ncells, uint32_t ntets);
+/* Deep copy (dst is freed first). */
+sessile_status sessile_sds_copy(const sessile_sds *src, sessile_sds *dst);
+
+/* How rebuild treats a tet or edge that has no spring multiplier yet (a tet
+ * with tet_sm <= 0, an edge not in the previous edge list). */
+typedef enum sessile_sds_new_sm {
+  SESSILE_SDS_NEW_UNIT = 0,   /* s_m = 1: rest size from the radii (§3.1.1, after division) */
+  SESSILE_SDS_NEW_RELAXED = 1 /* s_m = V / R: born without stress (§3.2.1, import) */
+} sessile_sds_new_sm;
+
+/* Recomputes the derived data from (x, tet) after a topology change: orients
+ * every tet positively (swapping two vertices of a negative one; a zero-volume
+ * tet is an error), the unique sorted edges, boundary faces (closed check:
+ * every interior face in exactly two tets), surface flags, CSR incidence.
+ * Edges present in the previous edge list (matched by their cell indices:
+ * keep cell indices stable across a topology change) keep their s_m; new
+ * edges and tets with tet_sm <= 0 get s_m by `new_sm`.  Radii and masses are
+ * not touched. */
+sessile_status sessile_sds_rebuild(sessile_sds *o, sessile_sds_new_sm new_sm);
+
+/* Builds an organism from cells x (3 n) and tets (4 nt, either orientation):
+ * radii by §3.2.1, mass = density 4/3 pi r^3, s_m = V/R for every edge and
+ * tet (zero energy at import), velocities zero. */
+sessile_status sessile_sds_from_tets(const double *x, uint32_t n, const uint32_t *tet, uint32_t nt,
+                                     uint32_t nmorph, uint32_t nstate, double density,
+                                     sessile_sds *out);
+
+/* TetGen switches used when none are given: p (the surface is a PLC), q1.4
+ * (radius-edge ratio bound 1.4: no slivers, few Steiner points), Y (keep the
+ * surface triangles as they are: every surface vertex is a cell), Q (quiet).
+ * Append a<vol> for a volume bound (sessile_sds_from_surface's max_volume). */
+#define SESSILE_SDS_TETGEN_SWITCHES "pq1.4YQ"
+
+/* Tetrahedralises the closed, outward-oriented surface s with TetGen
+ * (switches NULL: SESSILE_SDS_TETGEN_SWITCHES, plus a<max_volume> when
+ * max_volume > 0) and imports it with sessile_sds_from_tets.  A surface that
+ * TetGen rejects is SESSILE_ERR_USAGE with TetGen's reason. */
+sessile_status sessile_sds_from_surface(const sessile_surface *s, const char *switches,
+                                        double max_volume, uint32_t nmorph, uint32_t nstate,
+                                        double density, sessile_sds *out);
+/* An icosphere (sessile_surface_icosphere: level, radius, center) through
+ * sessile_sds_from_surface. */
+sessile_status sessile_sds_from_icosphere(int level, double radius, const double center[3],
+                                          double max_volume, uint32_t nmorph, uint32_t nstate,
+                                          double density, sessile_sds *out);
+
+/* §3.2.1: r_c = mean over neighbours c' of |x_c - x_c'| / 2 (over the edge
+ * list); m = density 4/3 pi r^3.  A cell without edges keeps its radius. */
+void sessile_sds_radii_from_edges(sessile_sds *o, double density);
+/* Signed volume of tet t, eq 1: (x1-x0).((x2-x0)x(x3-x0)) / 6. */
+double sessile_sds_tet_volume(const sessile_sds *o, uint32_t t);
+/* Appendix A: rest volume of a tet whose edge lengths are the sums of its
+ * cells' radii (Heron's formula for tetrahedra). */
+double sessile_sds_tet_rest(double ra, double rb, double rc, double rd);
+/* Rest sizes without the multiplier: R(e) = r_a + r_b, R(t) by Appendix A. */
+double sessile_sds_edge_rest_of(const sessile_sds *o, uint32_t e);
+double sessile_sds_tet_rest_of(const sessile_sds *o, uint32_t t);
+/* Sets s_m = V/R for every edge and tet (§3.2.1). */
+void sessile_sds_relax_multipliers(sessile_sds *o);
+
+/* --- physics (§3.2) ------------------------------------------------------- */
+/* A static obstacle: a closed triangle mesh (outward, counter-clockwise),
+ * not owned.  Cells inside it are pushed out through the nearest face. */
+typedef struct sessile_sds_obstacle {
+  uint32_t nv, nf;
+  const double *pos;   /* 3 nv */
+  const uint32_t *tri; /* 3 nf */
+} sessile_sds_obstacle;
+
+typedef struct sessile_sds_params {
+  double k_edge;       /* edge stiffness (prototype: 1) */
+  double k_vol;        /* volume stiffness (prototype: 2) */
+  double surface_mult; /* stiffness multiplier of surface edges and tets (prototype: 1) */
+  double damp_visc;    /* viscous damping c: force -c m v, 1/s (prototype "damping": 0.001) */
+  double damp_vol;     /* volume-spring damping on dV/dt (the prototype's damping, 0.001) */
+  double gravity;      /* u/s^2 along -z (prototype: 10) */
+  int box;             /* 1: confine the cells to [box_lo, box_hi] */
+  double box_lo[3], box_hi[3];
+  double k_wall;       /* box and obstacle penalty: acceleration per unit depth, 1/s^2 */
+  sessile_sds_obstacle obstacle; /* nf 0: none */
+  uint32_t nattract;
+  const double *attract_pos; /* 3 nattract, not owned */
+  double k_attract;    /* attraction: acceleration toward the point, u/s^2 */
+  /* step control of sessile_sds_advance (docs/sds.md, "Integrator") */
+  double dt;           /* first step, s */
+  double dt_min, dt_max;
+  double max_move;     /* largest step move of a cell, as a fraction of its radius */
+} sessile_sds_params;
+
+/* The prototype's values above; no box, no obstacle, no attraction; dt 1e-3,
+ * dt_min 1e-7, dt_max 0.05, max_move 0.05. */
+void sessile_sds_params_default(sessile_sds_params *p);
+
+/* Energies (host): elastic (edge + volume springs), potential (gravity, box
+ * and obstacle penalties, attraction), kinetic. */
+typedef struct sessile_sds_energy {
+  double edge, vol, potential, kinetic;
+} sessile_sds_energy;
+void sessile_sds_energy_of(const sessile_sds *o, const sessile_sds_params *p, sessile_sds_energy *e);
+double sessile_sds_energy_total(const sessile_sds_energy *e);
+
+/* The host reference of the GPU force kernels: f (3 ncells) = -dE/dx plus the
+ * damping forces at velocities v, gathered per cell over its incident edges
+ * and tets in CSR order (the GPU's order).  with_damping 0 leaves damping out
+ * (f is then exactly -grad E). */
+void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, int with_damping,
+                            double *f);
+/* One step of the integrator on the host (semi-implicit Euler = leapfrog
+ * Verlet): v += dt f/m, x += dt v.  Returns max over cells of |dt v| / r. */
+double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
+/* Tets with signed volume <= 0, ascending (malloc'd into *list, n into *n). */
+sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, uint32_t *n);
+
+/* --- the GPU side (shaders/sds) ------------------------------------------- */
+typedef struct sessile_sds_gpu sessile_sds_gpu;
+
+/* Buffers and kernels for organism o (its sizes; upload copies the state). */
+sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, const sessile_sds_params *p,
+                                      sessile_sds_gpu **out);
+void sessile_sds_gpu_destroy(sessile_sds_gpu *s);
+/* Uploads everything of o (after a topology change: grows the buffers). */
+sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
+/* Downloads x, v, r, m, phi, state into o (same sizes as uploaded). */
+sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);
+/* Changes the parameters (obstacle and attraction points re-uploaded). */
+sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p);
+/* Forces at the uploaded state into f (3 ncells), as sessile_sds_forces_ref. */
+sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f);
+/* One integrator step of fixed dt; *max_move (may be NULL) receives the
+ * largest |dt v| / r. */
+sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move);
+/* Advances by `steps` accepted steps with step control (docs/sds.md): a step
+ * whose largest move exceeds max_move is undone and retried at half dt; after
+ * 10 accepted steps dt grows by 1.25 up to dt_max.  *dt is the step to try
+ * first and receives the next one.  Fails with SESSILE_ERR_NUMERIC below
+ * dt_min or on a non-finite state. */
+sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt);
+/* Tets with signed volume <= 0 at the uploaded state, ascending. */
+sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
+
+/* Times force + integrate steps for complexes of about 1 k, 10 k and 100 k
+ * cells (icosphere imports), GPU against the C reference; prints per size the
+ * cells, tets, ms per step on each and the ratio. */
+sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
