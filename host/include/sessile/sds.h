@@ -194,7 +194,8 @@ sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, cons
 void sessile_sds_gpu_destroy(sessile_sds_gpu *s);
 /* Uploads everything of o (after a topology change: grows the buffers). */
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
-/* Downloads x, v, r, m, phi, state into o (same sizes as uploaded). */
+/* Downloads x, v, r, m into o (same sizes as uploaded; phi and state stay
+ * on the host until the morphogen kernels exist). */
 sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);
 /* Changes the parameters (obstacle and attraction points re-uploaded). */
 sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p);

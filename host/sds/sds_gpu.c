@@ -1,0 +1,264 @@
+/* The SDS physics on the GPU (shaders/sds): per-element forces, a per-cell
+ * gather (and integrator step), the inverted-tet flags; x and v ping-pong
+ * between two buffer pairs so that a rejected step is undone by switching
+ * back.  Buffer layouts: shaders/sds/kernels.def. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sds/sds_internal.h"
+#include "sds_kernels.h"
+
+enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
+       B_FLAG, B_COUNT };
+
+struct sessile_sds_gpu {
+  sessile_gpu *gpu;
+  uint32_t real_bytes;
+  sessile_kernel *k[SDS_COUNT];
+  sessile_cmd *cmd;
+  sessile_buffer *b[B_COUNT];
+  size_t cap[B_COUNT];
+  uint32_t ncells, nedges, ntets, nobs, nattract;
+  int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
+  sessile_sds_params p;
+  double *scratch; /* 3 ncells (host side of downloads) */
+};
+
+/* (Re)creates buffer i with room for `bytes` (contents lost when it grows). */
+static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
+  if (bytes < 16) bytes = 16;
+  if (s->b[i] && s->cap[i] >= bytes) return SESSILE_OK;
+  sessile_buffer_destroy(s->b[i]);
+  s->b[i] = NULL, s->cap[i] = 0;
+  sessile_buffer_kind kind = (i == B_MOVE || i == B_FLAG || i == B_SP) ? SESSILE_BUFFER_MAPPED : SESSILE_BUFFER_DEVICE;
+  SESSILE_CALL(sessile_buffer_create(s->gpu, bytes, kind, &s->b[i]));
+  s->cap[i] = bytes;
+  return SESSILE_OK;
+}
+
+static uint32_t groups(const sessile_sds_gpu *s, int k, uint32_t items) {
+  uint32_t l = sessile_kernel_local_size(s->k[k]);
+  return (items + l - 1) / l;
+}
+
+static sds_push push_of(const sessile_sds_gpu *s, double dt, int damping, int mode) {
+  sds_push p;
+  memset(&p, 0, sizeof p);
+  p.dt = sessile_push_real_of(dt, s->real_bytes);
+  p.ncells = s->ncells, p.nedges = s->nedges, p.ntets = s->ntets;
+  p.nobs = s->nobs, p.nattract = s->nattract;
+  p.box = s->p.box != 0, p.damping = damping != 0, p.mode = (uint32_t)mode;
+  return p;
+}
+
+sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p) {
+  SESSILE_CHECK(p->nattract == 0 || p->attract_pos, SESSILE_ERR_USAGE, "sds: %u attraction points without positions",
+                p->nattract);
+  SESSILE_CHECK(p->obstacle.nf == 0 || (p->obstacle.pos && p->obstacle.tri), SESSILE_ERR_USAGE,
+                "sds: an obstacle with %u triangles but no vertices", p->obstacle.nf);
+  s->p = *p;
+  double v[SP_COUNT] = {0};
+  v[SP_K_EDGE] = p->k_edge, v[SP_K_VOL] = p->k_vol, v[SP_SURF] = p->surface_mult;
+  v[SP_DAMP_VISC] = p->damp_visc, v[SP_DAMP_VOL] = p->damp_vol, v[SP_GRAVITY] = p->gravity;
+  for (int i = 0; i < 3; i++) v[SP_LO + i] = p->box_lo[i], v[SP_HI + i] = p->box_hi[i];
+  v[SP_K_WALL] = p->k_wall, v[SP_K_ATTRACT] = p->k_attract;
+  SESSILE_CALL(ensure(s, B_SP, SP_COUNT * 8));
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], 0, v, SP_COUNT));
+  size_t nw = 3 * ((size_t)p->nattract + p->obstacle.nv);
+  SESSILE_CALL(ensure(s, B_WORLD, nw * s->real_bytes));
+  SESSILE_CALL(ensure(s, B_OBSTRI, 3 * (size_t)p->obstacle.nf * 4));
+  if (p->nattract)
+    SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_WORLD], 0, p->attract_pos, 3 * (size_t)p->nattract));
+  if (p->obstacle.nv)
+    SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_WORLD], 3 * (size_t)p->nattract, p->obstacle.pos,
+                                             3 * (size_t)p->obstacle.nv));
+  if (p->obstacle.nf)
+    SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 0, p->obstacle.tri, 3 * (size_t)p->obstacle.nf * 4));
+  s->nobs = p->obstacle.nf, s->nattract = p->nattract;
+  s->p.attract_pos = NULL, s->p.obstacle.pos = NULL, s->p.obstacle.tri = NULL; /* not kept */
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
+  SESSILE_CHECK(o->edge && o->cell_tet_off, SESSILE_ERR_USAGE, "sds: the organism has no derived data (call sessile_sds_rebuild)");
+  size_t n = o->ncells, E = o->nedges, T = o->ntets, rb = s->real_bytes;
+  size_t ntopo = 4 * T + 2 * E + 2 * (n + 1) + 2 * E + 4 * T + T + E;
+  SESSILE_CHECK(ntopo < UINT32_MAX, SESSILE_ERR_TOO_LARGE, "sds: %zu cells and %zu tets are too many for 32-bit indices", n, T);
+  for (int i = 0; i < 2; i++) {
+    SESSILE_CALL(ensure(s, B_X0 + i, 3 * n * rb));
+    SESSILE_CALL(ensure(s, B_V0 + i, 3 * n * rb));
+  }
+  SESSILE_CALL(ensure(s, B_RM, 2 * n * rb));
+  SESSILE_CALL(ensure(s, B_ATTRACT, n * 4));
+  SESSILE_CALL(ensure(s, B_TOPO, ntopo * 4));
+  SESSILE_CALL(ensure(s, B_SM, (T + E) * rb));
+  SESSILE_CALL(ensure(s, B_ELF, (12 * T + 3 * E) * rb));
+  SESSILE_CALL(ensure(s, B_F, 3 * n * rb));
+  SESSILE_CALL(ensure(s, B_MOVE, n * rb));
+  SESSILE_CALL(ensure(s, B_FLAG, T * 4));
+  size_t nh = 2 * n > T + E ? 2 * n : T + E;
+  double *h = malloc((nh ? nh : 1) * sizeof *h);
+  uint32_t *topo = malloc(ntopo * 4);
+  if (!h || !topo) {
+    free(h), free(topo);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory staging %zu cells", n);
+  }
+  for (size_t c = 0; c < n; c++) h[2 * c] = o->r[c], h[2 * c + 1] = o->m[c];
+  sessile_status st = sessile_buffer_upload_reals(s->b[B_RM], 0, h, 2 * n);
+  memcpy(h, o->tet_sm, T * sizeof *h), memcpy(h + T, o->edge_sm, E * sizeof *h);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(s->b[B_SM], 0, h, T + E);
+  uint32_t *q = topo;
+  memcpy(q, o->tet, 4 * T * 4), q += 4 * T;
+  memcpy(q, o->edge, 2 * E * 4), q += 2 * E;
+  memcpy(q, o->cell_edge_off, (n + 1) * 4), q += n + 1;
+  memcpy(q, o->cell_tet_off, (n + 1) * 4), q += n + 1;
+  memcpy(q, o->cell_edge, 2 * E * 4), q += 2 * E;
+  memcpy(q, o->cell_tet, 4 * T * 4), q += 4 * T;
+  for (size_t t = 0; t < T; t++) *q++ = o->tet_surface[t];
+  for (size_t e = 0; e < E; e++) *q++ = o->edge_surface[e];
+  if (st == SESSILE_OK) st = sessile_buffer_upload(s->b[B_TOPO], 0, topo, ntopo * 4);
+  free(h), free(topo);
+  SESSILE_CALL(st);
+  s->cur = 0;
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_X0], 0, o->x, 3 * n));
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_V0], 0, o->v, 3 * n));
+  SESSILE_CALL(sessile_buffer_upload(s->b[B_ATTRACT], 0, o->attract, n * 4));
+  double *sc = realloc(s->scratch, (n ? 3 * n : 1) * sizeof *sc);
+  SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
+  s->scratch = sc;
+  s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, const sessile_sds_params *p,
+                                      sessile_sds_gpu **out) {
+  *out = NULL;
+  sessile_sds_gpu *s = calloc(1, sizeof *s);
+  SESSILE_CHECK(s, SESSILE_ERR_NO_MEMORY, "sds: out of memory");
+  s->gpu = g;
+  s->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_status st = SESSILE_OK;
+  for (int i = 0; i < SDS_COUNT && st == SESSILE_OK; i++)
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[i], s->real_bytes, 0, &s->k[i]);
+  if (st == SESSILE_OK) st = sessile_cmd_create(g, &s->cmd);
+  if (st == SESSILE_OK) st = sessile_sds_gpu_set_params(s, p);
+  if (st == SESSILE_OK) st = sessile_sds_gpu_upload(s, o);
+  if (st != SESSILE_OK) {
+    sessile_sds_gpu_destroy(s);
+    return st;
+  }
+  *out = s;
+  return SESSILE_OK;
+}
+
+void sessile_sds_gpu_destroy(sessile_sds_gpu *s) {
+  if (!s) return;
+  for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(s->b[i]);
+  for (int i = 0; i < SDS_COUNT; i++) sessile_kernel_destroy(s->k[i]);
+  sessile_cmd_destroy(s->cmd);
+  free(s->scratch);
+  free(s);
+}
+
+sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o) {
+  SESSILE_CHECK(o->ncells == s->ncells && o->ntets == s->ntets, SESSILE_ERR_USAGE,
+                "sds: downloading into an organism of %u cells, %u tets (uploaded: %u, %u)", o->ncells,
+                o->ntets, s->ncells, s->ntets);
+  size_t n = s->ncells;
+  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_X0 + s->cur], 0, o->x, 3 * n));
+  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_V0 + s->cur], 0, o->v, 3 * n));
+  for (size_t c0 = 0; c0 < n; c0 += n / 2 + 1) { /* rm through the 3n scratch, in halves */
+    size_t cnt = n - c0 < n / 2 + 1 ? n - c0 : n / 2 + 1;
+    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_RM], 2 * c0, s->scratch, 2 * cnt));
+    for (size_t c = 0; c < cnt; c++) o->r[c0 + c] = s->scratch[2 * c], o->m[c0 + c] = s->scratch[2 * c + 1];
+  }
+  return SESSILE_OK;
+}
+
+/* Records edge, tet and gather dispatches (mode 0 or 1) and runs them. */
+static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
+  sds_push p = push_of(s, dt, damping, mode);
+  int c = s->cur, nx = 1 - s->cur;
+  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  if (s->nedges) {
+    sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_EDGE], groups(s, SDS_EDGE, s->nedges), b, &p));
+  }
+  if (s->ntets) {
+    sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
+                           s->b[B_ELF]};
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_TET], groups(s, SDS_TET, s->ntets), b, &p));
+  }
+  sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
+                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_X0 + nx],
+                         s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p));
+  SESSILE_CALL(sessile_cmd_end(s->cmd));
+  return sessile_cmd_submit_wait(s->cmd);
+}
+
+sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f) {
+  SESSILE_CALL(run_forces(s, 0.0, with_damping, 0));
+  return sessile_buffer_download_reals(s->b[B_F], 0, f, 3 * (size_t)s->ncells);
+}
+
+sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move) {
+  SESSILE_CALL(run_forces(s, dt, 1, 1));
+  s->cur = 1 - s->cur;
+  if (max_move) {
+    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], 0, s->scratch, s->ncells));
+    double mv = 0;
+    for (uint32_t c = 0; c < s->ncells; c++)
+      if (!(s->scratch[c] <= mv)) mv = s->scratch[c]; /* NaN propagates */
+    *max_move = mv;
+  }
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt) {
+  const sessile_sds_params *p = &s->p;
+  double h = *dt > p->dt_max ? p->dt_max : *dt;
+  uint32_t done = 0, good = 0;
+  while (done < steps) {
+    double mv;
+    SESSILE_CALL(sessile_sds_gpu_step(s, h, &mv));
+    if (!isfinite(mv))
+      return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", h);
+    if (mv > p->max_move) { /* undo: the previous x, v are still in the other pair */
+      s->cur = 1 - s->cur;
+      h *= 0.5, good = 0;
+      SESSILE_CHECK(h >= p->dt_min, SESSILE_ERR_NUMERIC,
+                    "sds: the step fell below dt_min = %g s (a cell moves %g radii per step)", p->dt_min, mv);
+      continue;
+    }
+    done++;
+    if (++good >= 10) {
+      h = h * 1.25 > p->dt_max ? p->dt_max : h * 1.25;
+      good = 0;
+    }
+  }
+  *dt = h;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n) {
+  *list = NULL, *n = 0;
+  if (s->ntets) {
+    sds_push p = push_of(s, 0.0, 0, 0);
+    sessile_buffer *b[] = {s->b[B_X0 + s->cur], s->b[B_TOPO], s->b[B_FLAG]};
+    SESSILE_CALL(sessile_cmd_begin(s->cmd));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_INVERTED], groups(s, SDS_INVERTED, s->ntets), b, &p));
+    SESSILE_CALL(sessile_cmd_end(s->cmd));
+    SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  }
+  const uint32_t *flag = sessile_buffer_host_ptr(s->b[B_FLAG]);
+  SESSILE_CHECK(flag, SESSILE_ERR_INTERNAL, "sds: the inverted-flag buffer is not mapped");
+  uint32_t cnt = 0;
+  for (uint32_t t = 0; t < s->ntets; t++) cnt += flag[t] != 0;
+  *list = malloc((cnt ? cnt : 1) * sizeof **list);
+  SESSILE_CHECK(*list, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %u inverted tets", cnt);
+  for (uint32_t t = 0, k = 0; t < s->ntets; t++)
+    if (flag[t]) (*list)[k++] = t;
+  *n = cnt;
+  return SESSILE_OK;
+}
