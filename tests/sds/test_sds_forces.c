@@ -1,0 +1,159 @@
+/* SDS forces: the host reference is -grad E (central finite differences)
+ * with every term on (springs, gravity, box, obstacle, attraction); the GPU
+ * gather equals the host (damping on); an imported complex has zero force on
+ * the GPU too; the inverted-tet kernel finds a constructed inversion; the
+ * same input gives the same bytes after N steps, and follows the host's
+ * integrator. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/rng.h"
+#include "sessile/sds.h"
+#include "testutil.h"
+
+static double potential(const sessile_sds *o, const sessile_sds_params *p) {
+  sessile_sds_energy e;
+  sessile_sds_energy_of(o, p, &e);
+  return e.edge + e.vol + e.potential;
+}
+
+static double maxabs(const double *a, size_t n) {
+  double m = 0;
+  for (size_t i = 0; i < n; i++) m = fmax(m, fabs(a[i]));
+  return m;
+}
+
+int main(void) {
+  sessile_gpu *g = t_gpu(0);
+  int fp64 = sessile_gpu_info_of(g)->precision == 64;
+  const double ctr[3] = {0, 0, 0}, octr[3] = {0.9, 0, 0};
+  sessile_sds o = {0};
+  t_must("icosphere level 2 through TetGen", sessile_sds_from_icosphere(2, 1.0, ctr, 0, 0, 0, 1.0, &o));
+  size_t n = o.ncells, n3 = 3 * n;
+  printf("organism: %u cells, %u tets, %u edges\n", o.ncells, o.ntets, o.nedges);
+
+  /* zero force at import, on the GPU */
+  sessile_sds_params p;
+  sessile_sds_params_default(&p);
+  p.gravity = 0;
+  sessile_sds_gpu *sg = NULL;
+  t_must("gpu create", sessile_sds_gpu_create(g, &o, &p, &sg));
+  double *f = t_dalloc(n3), *fg = t_dalloc(n3), *ffd = t_dalloc(n3);
+  t_must("gpu forces", sessile_sds_gpu_forces(sg, 1, fg));
+  double unit = 0;
+  for (size_t c = 0; c < n; c++) unit = fmax(unit, o.m[c]);
+  t_check("GPU: imported complex, largest force / force of a unit strain", maxabs(fg, n3) / unit,
+          fp64 ? 1e-13 : 1e-5);
+  uint32_t *inv = NULL, ninv = 0;
+  t_must("gpu inverted", sessile_sds_gpu_inverted(sg, &inv, &ninv));
+  t_true("GPU: no inverted tet at import", ninv == 0);
+  free(inv);
+
+  /* a perturbed state with every force term on */
+  uint64_t rng = sessile_rng_stream(13, 1);
+  for (size_t c = 0; c < n; c++)
+    for (int i = 0; i < 3; i++) {
+      o.x[3 * c + i] += 0.08 * o.r[c] * sessile_rng_normal(&rng);
+      o.v[3 * c + i] = 0.3 * sessile_rng_normal(&rng);
+    }
+  for (size_t c = 0; c < 20 && c < n; c++) o.attract[c] = (int32_t)(c % 2);
+  const double apos[6] = {3, 0, 0, 0, -2, 1};
+  sessile_surface rock = {0};
+  t_must("rock", sessile_surface_icosphere(2, 0.5, octr, &rock));
+  p.gravity = 10;
+  p.k_edge = 3, p.k_vol = 5, p.surface_mult = 1.7, p.damp_visc = 0.2, p.damp_vol = 0.3;
+  p.box = 1;
+  for (int i = 0; i < 3; i++) p.box_lo[i] = -0.85, p.box_hi[i] = 2;
+  p.k_wall = 100;
+  p.obstacle.nv = rock.nv, p.obstacle.nf = rock.nf, p.obstacle.pos = rock.pos, p.obstacle.tri = rock.tri;
+  p.nattract = 2, p.attract_pos = apos, p.k_attract = 2;
+  int nbox = 0, nrock = 0;
+  for (size_t c = 0; c < n; c++) {
+    for (int i = 0; i < 3; i++) nbox += o.x[3 * c + i] < -0.85;
+    double d = hypot(hypot(o.x[3 * c] - 0.9, o.x[3 * c + 1]), o.x[3 * c + 2]);
+    nrock += d < 0.45;
+  }
+  printf("cells against the box: %d, inside the rock: %d, attracted: 20\n", nbox, nrock);
+  t_true("the box and the rock act on some cells", nbox > 0 && nrock > 0);
+
+  /* host: f = -grad E by central differences */
+  sessile_sds_forces_ref(&o, &p, 0, f);
+  double h = 1e-6;
+  for (size_t k = 0; k < n3; k++) {
+    double x0 = o.x[k];
+    o.x[k] = x0 + h;
+    double ep = potential(&o, &p);
+    o.x[k] = x0 - h;
+    double em = potential(&o, &p);
+    o.x[k] = x0;
+    ffd[k] = -(ep - em) / (2 * h);
+  }
+  t_check("host forces = -grad E (central differences, h 1e-6, rel to max)", t_relerr(f, ffd, n3), 1e-6);
+
+  /* GPU = host, damping on */
+  t_must("gpu set params", sessile_sds_gpu_set_params(sg, &p));
+  t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+  sessile_sds_forces_ref(&o, &p, 1, f);
+  t_must("gpu forces", sessile_sds_gpu_forces(sg, 1, fg));
+  t_check("GPU forces = host forces, damping on (rel to max)", t_relerr(fg, f, n3), fp64 ? 1e-12 : 1e-5);
+  sessile_sds_forces_ref(&o, &p, 0, f);
+  t_must("gpu forces", sessile_sds_gpu_forces(sg, 0, fg));
+  t_check("GPU forces = -grad E by differences (rel to max)", t_relerr(fg, ffd, n3), 1e-6);
+
+  /* inversion: reflect a vertex of tet 0 through its opposite face */
+  sessile_sds w = {0};
+  t_must("copy", sessile_sds_copy(&o, &w));
+  const uint32_t *q = w.tet;
+  double *x0 = w.x + 3 * (size_t)q[0], *x1 = w.x + 3 * (size_t)q[1], *x2 = w.x + 3 * (size_t)q[2],
+         *x3 = w.x + 3 * (size_t)q[3];
+  double a[3], b[3], nn[3], d[3];
+  for (int i = 0; i < 3; i++) a[i] = x2[i] - x1[i], b[i] = x3[i] - x1[i], d[i] = x0[i] - x1[i];
+  nn[0] = a[1] * b[2] - a[2] * b[1], nn[1] = a[2] * b[0] - a[0] * b[2], nn[2] = a[0] * b[1] - a[1] * b[0];
+  double s = (d[0] * nn[0] + d[1] * nn[1] + d[2] * nn[2]) / (nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+  for (int i = 0; i < 3; i++) x0[i] -= 2 * s * nn[i];
+  uint32_t *ih = NULL, nh = 0;
+  t_must("host inverted", sessile_sds_inverted_ref(&w, &ih, &nh));
+  t_must("gpu upload", sessile_sds_gpu_upload(sg, &w));
+  t_must("gpu inverted", sessile_sds_gpu_inverted(sg, &inv, &ninv));
+  printf("inverted tets: host %u, GPU %u (first %u)\n", nh, ninv, ninv ? inv[0] : 0);
+  t_true("GPU finds the constructed inverted tet 0", ninv > 0 && inv[0] == 0);
+  t_true("GPU inverted list = host list", ninv == nh && !memcmp(inv, ih, nh * sizeof *ih));
+  free(inv), free(ih);
+  sessile_sds_free(&w);
+
+  /* same input, same bytes; and the host integrator's trajectory */
+  p.box = 0, p.obstacle.nf = 0, p.nattract = 0;
+  sessile_sds r1 = {0}, r2 = {0}, rh = {0};
+  t_must("copies", sessile_sds_copy(&o, &r1));
+  t_must("copies", sessile_sds_copy(&o, &r2));
+  t_must("copies", sessile_sds_copy(&o, &rh));
+  sessile_sds_gpu *s2 = NULL;
+  t_must("gpu set params", sessile_sds_gpu_set_params(sg, &p));
+  t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+  t_must("second gpu", sessile_sds_gpu_create(g, &o, &p, &s2));
+  const int N = 40;
+  double dt = 2e-3;
+  for (int k = 0; k < N; k++) {
+    t_must("step", sessile_sds_gpu_step(sg, dt, NULL));
+    t_must("step", sessile_sds_gpu_step(s2, dt, NULL));
+    sessile_sds_step_ref(&rh, &p, dt);
+  }
+  t_must("download", sessile_sds_gpu_download(sg, &r1));
+  t_must("download", sessile_sds_gpu_download(s2, &r2));
+  t_true("two GPU runs of 40 steps: identical bytes (x, v)",
+         !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
+  t_check("GPU positions after 40 steps = host integrator's (rel to max)", t_relerr(r1.x, rh.x, n3),
+          fp64 ? 1e-10 : 1e-4);
+  double disp = 0;
+  for (size_t k = 0; k < n3; k++) disp = fmax(disp, fabs(r1.x[k] - o.x[k]));
+  printf("largest displacement over the 40 steps: %.3g u\n", disp);
+  t_true("the run moved the cells", disp > 1e-3);
+  sessile_sds_gpu_destroy(s2);
+  sessile_sds_free(&r1), sessile_sds_free(&r2), sessile_sds_free(&rh);
+
+  sessile_sds_gpu_destroy(sg);
+  sessile_surface_free(&rock);
+  free(f), free(fg), free(ffd);
+  sessile_sds_free(&o);
+  return t_finish(g);
+}
