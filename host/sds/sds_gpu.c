@@ -21,6 +21,7 @@ struct sessile_sds_gpu {
   uint32_t ncells, nedges, ntets, nobs, nattract;
   int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
   sessile_sds_params p;
+  double dt_stable; /* sessile_sds_stable_dt at the last upload */
   double *scratch; /* 3 ncells (host side of downloads) */
 };
 
@@ -127,6 +128,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->scratch = sc;
   s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
+  s->dt_stable = sessile_sds_stable_dt(o, &s->p);
   return SESSILE_OK;
 }
 
@@ -215,9 +217,11 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
   return SESSILE_OK;
 }
 
-sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt) {
+sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed) {
   const sessile_sds_params *p = &s->p;
-  double h = *dt > p->dt_max ? p->dt_max : *dt;
+  double hmax = p->dt_max;
+  if (p->stable_safety > 0 && p->stable_safety * s->dt_stable < hmax) hmax = p->stable_safety * s->dt_stable;
+  double h = *dt > hmax ? hmax : *dt;
   uint32_t done = 0, good = 0;
   while (done < steps) {
     double mv;
@@ -232,8 +236,9 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
       continue;
     }
     done++;
+    if (elapsed) *elapsed += h;
     if (++good >= 10) {
-      h = h * 1.25 > p->dt_max ? p->dt_max : h * 1.25;
+      h = h * 1.25 > hmax ? hmax : h * 1.25;
       good = 0;
     }
   }

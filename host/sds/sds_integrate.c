@@ -39,3 +39,44 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
   *n = cnt;
   return SESSILE_OK;
 }
+
+/* A bound on the stable step of semi-implicit Euler.  For one mode
+ * x'' = -omega^2 x - gamma x' the scheme is stable when
+ * (omega dt)^2 + 2 gamma dt < 4.  Per cell, Gershgorin's theorem on M^-1 H
+ * at rest bounds omega^2: its edges give 2 K_e (K_e = d2E/dL2 =
+ * k_e (m_a + m_b) / R'), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
+ * walls k_wall; gamma likewise from the volume damping (damp_vol in place of
+ * k_vol) plus the viscous c.  Returns the smallest root over the cells. */
+double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) {
+  double *lam = calloc(o->ncells ? 2 * (size_t)o->ncells : 1, sizeof *lam); /* omega^2, gamma */
+  if (!lam) return p->dt_min;
+  for (uint32_t e = 0; e < o->nedges; e++) {
+    const uint32_t *q = o->edge + 2 * (size_t)e;
+    double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);
+    double K = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0) * (o->m[q[0]] + o->m[q[1]]) / R;
+    lam[2 * q[0]] += 2 * K, lam[2 * q[1]] += 2 * K;
+  }
+  for (uint32_t t = 0; t < o->ntets; t++) {
+    const uint32_t *q = o->tet + 4 * (size_t)t;
+    const double *x0 = o->x + 3 * (size_t)q[0];
+    double a[3], b[3], c[3], g[4][3], gl[4], gs = 0;
+    sds_sub(x0, o->x + 3 * (size_t)q[1], a), sds_sub(x0, o->x + 3 * (size_t)q[2], b);
+    sds_sub(x0, o->x + 3 * (size_t)q[3], c);
+    sds_cross(b, c, g[1]), sds_cross(c, a, g[2]), sds_cross(a, b, g[3]);
+    for (int i = 0; i < 3; i++) g[0][i] = -(g[1][i] + g[2][i] + g[3][i]);
+    for (int k = 0; k < 4; k++) gl[k] = sqrt(sds_dot(g[k], g[k])) / 6.0, gs += gl[k];
+    double R = o->tet_sm[t] * sessile_sds_tet_rest_of(o, t);
+    double s = sds_tet_scale(o, t) / (R * R);
+    double ks = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * s, ds = p->damp_vol * s;
+    for (int k = 0; k < 4; k++) lam[2 * q[k]] += ks * gl[k] * gs, lam[2 * q[k] + 1] += ds * gl[k] * gs;
+  }
+  double wall = p->box || p->obstacle.nf ? p->k_wall : 0, dt = p->dt_max;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    double w2 = lam[2 * c] / o->m[c] + wall, gam = lam[2 * c + 1] / o->m[c] + p->damp_visc;
+    /* the positive root of w2 dt^2 + 2 gam dt - 4 = 0 */
+    double h = w2 > 0 ? 4.0 / (gam + sqrt(gam * gam + 4 * w2)) : (gam > 0 ? 2.0 / gam : p->dt_max);
+    if (h < dt) dt = h;
+  }
+  free(lam);
+  return dt;
+}

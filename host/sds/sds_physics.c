@@ -17,6 +17,7 @@ void sessile_sds_params_default(sessile_sds_params *p) {
   p->k_wall = 1000.0;    /* ours: a 1 % radius penetration at g = 10 for r = 1 */
   p->k_attract = 1.0;
   p->dt = 1e-3, p->dt_min = 1e-7, p->dt_max = 0.05, p->max_move = 0.05;
+  p->stable_safety = 0.5;
 }
 
 double sds_edge_scale(const sessile_sds *o, uint32_t e) {

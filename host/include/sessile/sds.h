@@ -159,10 +159,11 @@ typedef struct sessile_sds_params {
   double dt;           /* first step, s */
   double dt_min, dt_max;
   double max_move;     /* largest step move of a cell, as a fraction of its radius */
+  double stable_safety; /* steps stay below this fraction of sessile_sds_stable_dt (0.5) */
 } sessile_sds_params;
 
 /* The prototype's values above; no box, no obstacle, no attraction; dt 1e-3,
- * dt_min 1e-7, dt_max 0.05, max_move 0.05. */
+ * dt_min 1e-7, dt_max 0.05, max_move 0.05, stable_safety 0.5. */
 void sessile_sds_params_default(sessile_sds_params *p);
 
 /* Energies (host): elastic (edge + volume springs), potential (gravity, box
@@ -182,6 +183,10 @@ void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, i
 /* One step of the integrator on the host (semi-implicit Euler = leapfrog
  * Verlet): v += dt f/m, x += dt v.  Returns max over cells of |dt v| / r. */
 double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
+/* The stable step bound of the integrator at the current state (omega dt < 2
+ * for the fastest mode, by Gershgorin at rest; docs/sds.md, "Integrator").
+ * sessile_sds_gpu_advance never steps above stable_safety times it. */
+double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p);
 /* Tets with signed volume <= 0, ascending (malloc'd into *list, n into *n). */
 sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, uint32_t *n);
 
@@ -197,19 +202,22 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
 /* Downloads x, v, r, m into o (same sizes as uploaded; phi and state stay
  * on the host until the morphogen kernels exist). */
 sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);
-/* Changes the parameters (obstacle and attraction points re-uploaded). */
+/* Changes the parameters (obstacle and attraction points re-uploaded; the
+ * stable step bound is refreshed by the next upload). */
 sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p);
 /* Forces at the uploaded state into f (3 ncells), as sessile_sds_forces_ref. */
 sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f);
 /* One integrator step of fixed dt; *max_move (may be NULL) receives the
  * largest |dt v| / r. */
 sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move);
-/* Advances by `steps` accepted steps with step control (docs/sds.md): a step
+/* Advances by `steps` accepted steps with step control (docs/sds.md): steps
+ * stay below stable_safety x sessile_sds_stable_dt (computed at upload); a step
  * whose largest move exceeds max_move is undone and retried at half dt; after
  * 10 accepted steps dt grows by 1.25 up to dt_max.  *dt is the step to try
- * first and receives the next one.  Fails with SESSILE_ERR_NUMERIC below
- * dt_min or on a non-finite state. */
-sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt);
+ * first and receives the next one; *elapsed (may be NULL) is increased by the
+ * simulated time.  Fails with SESSILE_ERR_NUMERIC below dt_min or on a
+ * non-finite state. */
+sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed);
 /* Tets with signed volume <= 0 at the uploaded state, ascending. */
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
 
