@@ -81,12 +81,14 @@ sessile_status sessile_sds_copy(const sessile_sds *s, sessile_sds *d) {
   sessile_sds_free(d);
   SESSILE_CALL(sessile_sds_alloc(d, s->ncells, s->ntets, s->nmorph, s->nstate));
   size_t n = s->ncells, t = s->ntets, E = s->nedges, F = s->nfaces;
-  memcpy(d->x, s->x, 3 * n * sizeof(double)), memcpy(d->v, s->v, 3 * n * sizeof(double));
-  memcpy(d->r, s->r, n * sizeof(double)), memcpy(d->m, s->m, n * sizeof(double));
-  if (s->nmorph) memcpy(d->phi, s->phi, n * s->nmorph * sizeof(double));
-  if (s->nstate) memcpy(d->state, s->state, n * s->nstate * sizeof(double));
-  memcpy(d->attract, s->attract, n * sizeof(int32_t));
-  memcpy(d->tet, s->tet, 4 * t * sizeof(uint32_t)), memcpy(d->tet_sm, s->tet_sm, t * sizeof(double));
+  if (n) {
+    memcpy(d->x, s->x, 3 * n * sizeof(double)), memcpy(d->v, s->v, 3 * n * sizeof(double));
+    memcpy(d->r, s->r, n * sizeof(double)), memcpy(d->m, s->m, n * sizeof(double));
+    if (s->nmorph) memcpy(d->phi, s->phi, n * s->nmorph * sizeof(double));
+    if (s->nstate) memcpy(d->state, s->state, n * s->nstate * sizeof(double));
+    memcpy(d->attract, s->attract, n * sizeof(int32_t));
+  }
+  if (t) memcpy(d->tet, s->tet, 4 * t * sizeof(uint32_t)), memcpy(d->tet_sm, s->tet_sm, t * sizeof(double));
   int ok = 1;
   d->surface = dup(s->surface, n, &ok);
   d->tet_surface = dup(s->tet_surface, t, &ok);

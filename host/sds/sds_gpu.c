@@ -106,15 +106,20 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   }
   for (size_t c = 0; c < n; c++) h[2 * c] = o->r[c], h[2 * c + 1] = o->m[c];
   sessile_status st = sessile_buffer_upload_reals(s->b[B_RM], 0, h, 2 * n);
-  memcpy(h, o->tet_sm, T * sizeof *h), memcpy(h + T, o->edge_sm, E * sizeof *h);
-  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(s->b[B_SM], 0, h, T + E);
+  if (T) memcpy(h, o->tet_sm, T * sizeof *h);
+  if (E) memcpy(h + T, o->edge_sm, E * sizeof *h);
+  if (st == SESSILE_OK && T + E) st = sessile_buffer_upload_reals(s->b[B_SM], 0, h, T + E);
   uint32_t *q = topo;
-  memcpy(q, o->tet, 4 * T * 4), q += 4 * T;
-  memcpy(q, o->edge, 2 * E * 4), q += 2 * E;
+  if (T) memcpy(q, o->tet, 4 * T * 4);
+  q += 4 * T;
+  if (E) memcpy(q, o->edge, 2 * E * 4);
+  q += 2 * E;
   memcpy(q, o->cell_edge_off, (n + 1) * 4), q += n + 1;
   memcpy(q, o->cell_tet_off, (n + 1) * 4), q += n + 1;
-  memcpy(q, o->cell_edge, 2 * E * 4), q += 2 * E;
-  memcpy(q, o->cell_tet, 4 * T * 4), q += 4 * T;
+  if (E) memcpy(q, o->cell_edge, 2 * E * 4);
+  q += 2 * E;
+  if (T) memcpy(q, o->cell_tet, 4 * T * 4);
+  q += 4 * T;
   for (size_t t = 0; t < T; t++) *q++ = o->tet_surface[t];
   for (size_t e = 0; e < E; e++) *q++ = o->edge_surface[e];
   if (st == SESSILE_OK) st = sessile_buffer_upload(s->b[B_TOPO], 0, topo, ntopo * 4);
