@@ -182,11 +182,11 @@ sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o) {
   return SESSILE_OK;
 }
 
-/* Records edge, tet and gather dispatches (mode 0 or 1) and runs them. */
-static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
+/* Records edge, tet and gather dispatches (mode 0 or 1) reading pair c and
+ * writing pair 1 - c. */
+static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode) {
   sds_push p = push_of(s, dt, damping, mode);
-  int c = s->cur, nx = 1 - s->cur;
-  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  int nx = 1 - c;
   if (s->nedges) {
     sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_EDGE], groups(s, SDS_EDGE, s->nedges), b, &p));
@@ -199,9 +199,24 @@ static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_X0 + nx],
                          s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
-  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p));
+  return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
+}
+
+static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
+  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  SESSILE_CALL(record_forces(s, s->cur, dt, damping, mode));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   return sessile_cmd_submit_wait(s->cmd);
+}
+
+sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double dt) {
+  SESSILE_CHECK(steps >= 1 && steps <= 1024, SESSILE_ERR_USAGE, "sds: steps per batch must be 1..1024 (got %u)", steps);
+  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  for (uint32_t k = 0; k < steps; k++) SESSILE_CALL(record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1));
+  SESSILE_CALL(sessile_cmd_end(s->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  s->cur = (s->cur + (int)steps) & 1;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f) {

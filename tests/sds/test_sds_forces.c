@@ -142,6 +142,12 @@ int main(void) {
   t_must("download", sessile_sds_gpu_download(s2, &r2));
   t_true("two GPU runs of 40 steps: identical bytes (x, v)",
          !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
+  t_must("upload", sessile_sds_gpu_upload(s2, &o));
+  t_must("batched steps", sessile_sds_gpu_steps(s2, N - 1, dt)); /* odd: ends in the other buffer pair */
+  t_must("one more", sessile_sds_gpu_steps(s2, 1, dt));
+  t_must("download", sessile_sds_gpu_download(s2, &r2));
+  t_true("40 steps in two submissions (39 + 1): the same bytes as one at a time",
+         !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
   t_check("GPU positions after 40 steps = host integrator's (rel to max)", t_relerr(r1.x, rh.x, n3),
           fp64 ? 1e-10 : 1e-4);
   double disp = 0;

@@ -210,6 +210,9 @@ sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, doub
 /* One integrator step of fixed dt; *max_move (may be NULL) receives the
  * largest |dt v| / r. */
 sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move);
+/* `steps` (1..1024) steps of fixed dt in one submission, without the move
+ * check: for runs that check every K steps (the bench, inversion checks). */
+sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double dt);
 /* Advances by `steps` accepted steps with step control (docs/sds.md): steps
  * stay below stable_safety x sessile_sds_stable_dt (computed at upload); a step
  * whose largest move exceeds max_move is undone and retried at half dt; after
