@@ -1,0 +1,144 @@
+/* sessile — SDS topology on the host (Porter & McCormack §3.1): the validity
+ * check of a tetrahedral complex, cell division (§3.1.1), the inversion time
+ * of a tetrahedron under linear motion and the two movement transformations
+ * (§3.1.2, Figures 3-5).  Plain arrays, no organism struct: the caller keeps
+ * its per-cell and per-tet data and remaps them with the maps returned here.
+ *
+ * Conventions: positions x (3 per vertex), tets (4 per tet) positively
+ * oriented, det[x1-x0, x2-x0, x3-x0] > 0.  Every editing operation rebuilds
+ * the tet array as: the kept tets in their old order, then the new ones; and
+ * returns tet_from[i] = the old index of tet i, or SESSILE_SDS_NEW_TET for a
+ * tet the operation created (its rest size must be computed afresh; the kept
+ * tets keep their spring multipliers).  Adjacency is found by a scan of the
+ * tets (O(nt) per operation: divisions and inversions are rare events).
+ * docs/sds_topology.md has the algorithms and the decisions. */
+#ifndef SESSILE_SDS_TOPO_H
+#define SESSILE_SDS_TOPO_H
+
+#include <stdint.h>
+#include "sessile/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SESSILE_SDS_NEW_TET UINT32_MAX
+
+/* A growable complex: the operations may realloc x and tet (they own nothing
+ * else).  A zeroed struct is valid and empty; sessile_sds_complex_free
+ * releases the arrays. */
+typedef struct sessile_sds_complex {
+  uint32_t nv, nt;
+  double *x;     /* 3 nv */
+  uint32_t *tet; /* 4 nt */
+} sessile_sds_complex;
+void sessile_sds_complex_free(sessile_sds_complex *c);
+
+/* Signed volume (1/6 det[x1-x0, x2-x0, x3-x0]) of four points. */
+double sessile_sds_tet_volume(const double *x0, const double *x1, const double *x2, const double *x3);
+
+/* --- 1. validity ----------------------------------------------------------- */
+typedef struct sessile_sds_topo_report {
+  double volume;         /* sum of the tets' signed volumes */
+  double min_volume;     /* smallest tet volume */
+  uint32_t min_tet;      /* its index */
+  uint32_t n_interior_faces, n_boundary_faces;
+  int boundary_euler;    /* V - E + F of the boundary surface */
+} sessile_sds_topo_report;
+
+/* Checks: indices in range; every tet volume > min_volume; every face in one
+ * or two tets, and in two with opposite orientations (the tets lie on both
+ * sides); the boundary (faces in one tet, oriented outward) a closed,
+ * consistently oriented 2-manifold, edge- and vertex-manifold (the boundary
+ * faces around each boundary vertex form one fan); no duplicate tets; every
+ * vertex in some tet.  report may be NULL.  Returns SESSILE_OK or
+ * SESSILE_ERR_INTERNAL with a message naming the first violation. */
+sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet,
+                                      double min_volume, sessile_sds_topo_report *report);
+
+/* --- 2. division (§3.1.1) -------------------------------------------------- */
+typedef struct sessile_sds_division {
+  uint32_t a, b;     /* daughters: a = the mother's index, b = the appended vertex */
+  int surface;       /* the mother was on the boundary */
+  double eps;        /* the offset used (a = c + eps d, b = c - eps d inside) */
+  uint32_t n_removed, n_added;
+  uint32_t *tet_from; /* nt (new) entries, malloc'd: old index or SESSILE_SDS_NEW_TET */
+} sessile_sds_division;
+
+/* Divides cell c in direction d (need not be unit; must be non-zero).
+ * Interior cell: the star T_c is removed and its closed hull F kept;
+ * a = c + eps d, b = c - eps d with eps = min(eps_max, frac * the distance
+ * from c to F along +d and -d) (frac = 0.5: strictly inside a star-shaped
+ * hull); F ∪ {a, b} is tetrahedralised by TetGen keeping F's faces (-pY).
+ * Surface cell: the hull of T_c is closed by c's own boundary faces, which
+ * are kept; daughter a stays at c on the boundary and b goes inside along
+ * whichever of ±d enters the body (the inward normal when d is tangent), at
+ * frac of the distance to the hull.  eps_max <= 0 means no cap.  The total
+ * volume and the boundary are unchanged.  Fails (the complex untouched) with
+ * SESSILE_ERR_NUMERIC when TetGen cannot mesh the hull without a Steiner
+ * point.  On success div->tet_from must be freed by the caller. */
+sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const double d[3], double eps_max,
+                                  sessile_sds_division *div);
+
+/* --- 3. inversion time ----------------------------------------------------- */
+/* Smallest s in [0, 1] with p(s) = c[0] + c[1] s + c[2] s^2 + c[3] s^3 = 0
+ * where p changes sign or vanishes (any of the coefficients may be zero):
+ * the interval is split at the real critical points and each monotone piece
+ * with a sign change is bisected to the last bit.  Returns 1 and *s, or 0. */
+int sessile_sds_cubic_first_root(const double c[4], double *s);
+
+typedef enum sessile_sds_inversion_case {
+  SESSILE_SDS_INV_NONE = 0,
+  SESSILE_SDS_INV_VERTEX_FACE = 1, /* case 1: a vertex through the opposite face */
+  SESSILE_SDS_INV_EDGE_EDGE = 2    /* case 2: two opposite edges cross */
+} sessile_sds_inversion_case;
+
+typedef struct sessile_sds_inversion {
+  sessile_sds_inversion_case kind;
+  double u;     /* the inversion time in [u1, u2] */
+  double s;     /* the same in the normalised parameter (u - u1) / (u2 - u1) */
+  int vertex;   /* case 1: local index 0..3 of the vertex v (the face is the other three) */
+  int edge[2][2]; /* case 2: local indices of e_u = edge[0] and e_l = edge[1] */
+} sessile_sds_inversion;
+
+/* The first time in [u1, u2] at which the tet p (4 points at u1, 12 doubles)
+ * moving linearly to q (at u2) has zero volume, and its case (Figure 3) from
+ * the flat configuration at that time: case 1 when one vertex lies in the
+ * triangle of the other three, else case 2 with the crossing pair of
+ * opposite edges.  Returns 1 with *inv filled, or 0 when the volume keeps its
+ * sign on [u1, u2]. */
+int sessile_sds_inversion_time(const double p[12], const double q[12], double u1, double u2,
+                               sessile_sds_inversion *inv);
+
+/* --- 4., 5. movement transformations (§3.1.2) ------------------------------ */
+typedef struct sessile_sds_transform {
+  uint32_t n_removed, n_added;
+  uint32_t *tet_from; /* as in sessile_sds_division */
+} sessile_sds_transform;
+
+/* Case 1 (Figure 4) at the inversion time: vertex v of tet t passes through
+ * the opposite face f.  With t' the tet across f (apex v'), t and t' are
+ * replaced by the three tets (v, v', each edge of f) (the 2-3 flip).  When f
+ * is a boundary face (no t'), t is removed and nothing added: the boundary
+ * passes under v (f leaves it, t's three faces around v join it).  Refused
+ * with SESSILE_ERR_UNSUPPORTED when v and f are both on the boundary (the
+ * paper's "infinitely thin section"), or when the result would not be valid
+ * (a new tet with volume <= 0, or a non-manifold boundary); the complex is
+ * untouched then. */
+sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v, sessile_sds_transform *tr);
+
+/* Case 2 (Figure 5) at the inversion time: the edges e_u = (eu0, eu1) and
+ * e_l = (el0, el1) cross.  U ∪ L (the tets around either edge) is removed and
+ * the hull re-tetrahedralised by TetGen keeping its faces (-pY, no Steiner
+ * point).  An edge on the boundary is first covered by the tet spanned by it
+ * and the two boundary faces through it (the boundary flips that edge; the
+ * volume grows by that tet's): refused with SESSILE_ERR_UNSUPPORTED when the
+ * boundary is not convex there.  SESSILE_ERR_NUMERIC when TetGen needs a
+ * Steiner point; the complex is untouched on every failure. */
+sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
+                                 uint32_t el1, sessile_sds_transform *tr);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
