@@ -121,7 +121,7 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
   } else {
     /* a stays at c on the boundary; b goes inside along ±d, else along the
      * inward normal of c's boundary faces. */
-    double cand[3][3], n[3] = {0, 0, 0};
+    double cand[4][3], n[3] = {0, 0, 0};
     for (uint32_t f = 0; f < nf; f++) {
       const uint32_t *v = hull + 3 * (size_t)f;
       if (v[0] != c && v[1] != c && v[2] != c) continue;
@@ -132,13 +132,29 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
     }
     double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; k++) cand[0][k] = dir[k], cand[1][k] = -dir[k], cand[2][k] = nl > 0 ? n[k] / nl : 0;
+    /* Last resort, always inside: toward the centroid of the star tet most
+     * aligned with ±d (the segment from a corner to the centroid lies in the
+     * tet); capped below at that distance. */
+    double gbest = 0, gdist = 0;
+    for (uint32_t i = 0; i < ns; i++) {
+      const uint32_t *t = cx->tet + 4 * (size_t)star[i];
+      double g[3] = {0, 0, 0}, gl = 0;
+      for (int q = 0; q < 4; q++)
+        for (int k = 0; k < 3; k++) g[k] += 0.25 * cx->x[3 * (size_t)t[q] + k];
+      for (int k = 0; k < 3; k++) g[k] -= c0[k], gl += g[k] * g[k];
+      gl = sqrt(gl);
+      double cosang = fabs(g[0] * dir[0] + g[1] * dir[1] + g[2] * dir[2]) / gl;
+      if (gl > 0 && cosang >= gbest)
+        for (int k = 0; k < 3; k++) gbest = cosang, gdist = gl, cand[3][k] = g[k] / gl;
+    }
     int ok = 0;
-    for (int ci = 0; ci < 3 && !ok; ci++) {
+    for (int ci = 0; ci < 4 && !ok; ci++) {
       double reach = hull_distance(cx->x, c, cand[ci], hull, nf);
       if (!isfinite(reach)) continue;
       for (double frac = DIVIDE_FRAC; frac > 0.05 && !ok; frac *= 0.8) {
         eps = frac * reach;
         if (eps_max > 0 && eps > eps_max) eps = eps_max;
+        if (ci == 3 && eps > gdist) eps = frac * gdist;
         double pb[3];
         for (int k = 0; k < 3; k++) pb[k] = c0[k] + eps * cand[ci][k];
         ok = inside_star(cx->x, cx->tet, star, ns, pb);

@@ -1,0 +1,114 @@
+/* Division (§3.1.1) on a TetGen ball: an interior and a surface cell, then
+ * a sequence of random divisions.  Each leaves a valid complex with the same
+ * volume and boundary, daughters where promised, the other tets unchanged. */
+#include "sessile/rng.h"
+#include "test_topo_fixture.h"
+
+/* One division with every check; returns the seconds it took. */
+static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d[3], int expect_surface, int verbose) {
+  sessile_sds_complex old;
+  fx_copy(cx, &old);
+  uint32_t nb0, *b0 = fx_boundary(cx, &nb0);
+  double v0 = fx_volume(cx);
+  sessile_sds_division div;
+  double t0 = fx_now();
+  sessile_status st = sessile_sds_divide(cx, c, d, 0.0, &div);
+  double dt = fx_now() - t0;
+  t_ok("divide", st);
+  if (st != SESSILE_OK) exit(t_finish(NULL));
+  sessile_sds_topo_report rep;
+  t_ok("the complex after division passes the check", sessile_sds_topo_check(cx->nv, cx->x, cx->nt, cx->tet, 0.0, &rep));
+  double rel = fabs(rep.volume - v0) / v0;
+  if (verbose || rel > 1e-12) printf("  cell %u (%s): %u tets out, %u in, eps %.3g, volume change %.2e rel, %.2f ms\n", c,
+                                     div.surface ? "surface" : "interior", div.n_removed, div.n_added, div.eps, rel, 1e3 * dt);
+  t_check("volume unchanged (rel)", rel, 1e-12);
+  t_true("surface flag as expected", div.surface == expect_surface);
+  t_true("daughters: a = c, b appended", div.a == c && div.b == old.nv && cx->nv == old.nv + 1);
+  double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), err = 0;
+  for (int k = 0; k < 3; k++) {
+    double u = d[k] / len, xc = old.x[3 * c + k];
+    if (!expect_surface) {
+      err = fmax(err, fabs(cx->x[3 * c + k] - (xc + div.eps * u)));
+      err = fmax(err, fabs(cx->x[3 * div.b + k] - (xc - div.eps * u)));
+    } else {
+      err = fmax(err, fabs(cx->x[3 * c + k] - xc)); /* a stays on the surface */
+    }
+  }
+  t_check("daughter positions (a = c + eps d, b = c - eps d; surface: a = c)", err, 1e-15);
+  t_true("eps > 0", div.eps > 0);
+  /* b strictly inside: not on the boundary */
+  t_true("daughter b is not on the boundary", !fx_on_boundary(cx, div.b));
+  if (!expect_surface) t_true("daughter a is not on the boundary", !fx_on_boundary(cx, div.a));
+  uint32_t nb1, *b1 = fx_boundary(cx, &nb1);
+  t_true("boundary faces unchanged", nb0 == nb1 && !memcmp(b0, b1, 3 * (size_t)nb0 * sizeof *b0));
+  /* kept tets identical and in order; removed = exactly the tets around c */
+  int same = 1;
+  uint8_t *kept = calloc(old.nt, 1);
+  uint32_t nnew = 0, prev = 0;
+  for (uint32_t t = 0; t < cx->nt; t++) {
+    uint32_t f = div.tet_from[t];
+    if (f == SESSILE_SDS_NEW_TET) {
+      nnew++;
+      continue;
+    }
+    same &= f < old.nt && !memcmp(cx->tet + 4 * t, old.tet + 4 * f, 4 * sizeof *cx->tet) && (t == 0 || f >= prev);
+    kept[f] = 1, prev = f;
+  }
+  for (uint32_t t = 0; t < old.nt; t++) {
+    const uint32_t *v = old.tet + 4 * t;
+    int has = v[0] == c || v[1] == c || v[2] == c || v[3] == c;
+    same &= kept[t] == !has;
+  }
+  t_true("other tets unchanged, removed = the star of c", same);
+  t_true("new tets counted", nnew == div.n_added && cx->nt == old.nt - div.n_removed + div.n_added);
+  /* the new tets all contain a daughter? not required; they fill the hull */
+  free(kept), free(b0), free(b1), free(div.tet_from);
+  sessile_sds_complex_free(&old);
+  return dt;
+}
+
+int main(void) {
+  sessile_sds_complex cx = {0};
+  fx_ball(3, 0.005, &cx);
+  printf("ball: %u vertices, %u tets\n", cx.nv, cx.nt);
+  /* interior cell nearest the centre, surface cell = vertex 0 (icosphere) */
+  uint32_t ci = 0;
+  double best = INFINITY;
+  for (uint32_t v = 0; v < cx.nv; v++) {
+    double r = sqrt(cx.x[3 * v] * cx.x[3 * v] + cx.x[3 * v + 1] * cx.x[3 * v + 1] + cx.x[3 * v + 2] * cx.x[3 * v + 2]);
+    if (r < best) best = r, ci = v;
+  }
+  t_true("the central vertex is interior", !fx_on_boundary(&cx, ci));
+  t_true("vertex 0 is on the surface", fx_on_boundary(&cx, 0));
+  double d1[3] = {1, 0.3, -0.2};
+  divide_checked(&cx, ci, d1, 0, 1);
+  /* surface cell: tangential, outward and inward directions */
+  double *p0 = cx.x;
+  double tang[3] = {-p0[1], p0[0], 0}, outw[3] = {p0[0], p0[1], p0[2]};
+  if (fabs(tang[0]) + fabs(tang[1]) < 1e-9) tang[0] = 1, tang[1] = tang[2] = 0;
+  double inw[3] = {-outw[0], -outw[1], -outw[2]};
+  divide_checked(&cx, 0, tang, 1, 1);
+  divide_checked(&cx, 1, outw, 1, 1); /* vertex 1 is an icosphere vertex too */
+  divide_checked(&cx, 2, inw, 1, 1);
+  /* random divisions (interior and surface), the seed fixed */
+  uint64_t rng = sessile_rng_stream(13, 1);
+  double tsum_i = 0, tsum_s = 0;
+  int ni = 0, ns = 0;
+  for (int k = 0; k < 60; k++) {
+    uint32_t c = (uint32_t)(sessile_rng_uniform(&rng) * cx.nv) % cx.nv;
+    double d[3] = {sessile_rng_normal(&rng), sessile_rng_normal(&rng), sessile_rng_normal(&rng)};
+    int surf = fx_on_boundary(&cx, c);
+    double dt = divide_checked(&cx, c, d, surf, 0);
+    if (surf) tsum_s += dt, ns++;
+    else tsum_i += dt, ni++;
+  }
+  printf("random divisions: %d interior, mean %.2f ms; %d surface, mean %.2f ms; now %u vertices, %u tets\n", ni,
+         1e3 * tsum_i / (ni ? ni : 1), ns, 1e3 * tsum_s / (ns ? ns : 1), cx.nv, cx.nt);
+  /* bad input */
+  sessile_sds_division div;
+  double z[3] = {0, 0, 0};
+  t_true("zero direction refused", sessile_sds_divide(&cx, 3, z, 0, &div) == SESSILE_ERR_USAGE);
+  t_true("cell out of range refused", sessile_sds_divide(&cx, cx.nv, d1, 0, &div) == SESSILE_ERR_USAGE);
+  sessile_sds_complex_free(&cx);
+  return t_finish(NULL);
+}
