@@ -242,7 +242,7 @@ sessile_status topo_replace(sessile_sds_complex *cx, const uint8_t *remove, cons
   uint32_t k = 0;
   for (uint32_t t = 0; t < cx->nt; t++)
     if (!remove[t]) memcpy(tet + 4 * (size_t)k, cx->tet + 4 * (size_t)t, 4 * sizeof *tet), from[k++] = t;
-  memcpy(tet + 4 * (size_t)k, add, 4 * (size_t)nadd * sizeof *tet);
+  if (nadd) memcpy(tet + 4 * (size_t)k, add, 4 * (size_t)nadd * sizeof *tet);
   for (uint32_t i = 0; i < nadd; i++) from[k + i] = SESSILE_SDS_NEW_TET;
   *n_removed = cx->nt - keep;
   free(cx->tet);

@@ -140,6 +140,23 @@ sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t
     st = sessile_error_set(SESSILE_ERR_USAGE, "case 2: edge (%u %u) is in no tet", nu[0] ? el0 : eu0, nu[0] ? el1 : eu1);
     goto done;
   }
+  /* A boundary edge in one tet only (the flat tet, two of its faces on the
+   * boundary): removing that tet flips the boundary edge e_u -> e_l, as
+   * case 1 on the boundary; nothing is added. */
+  for (int i = 0; i < 2; i++) {
+    if (nu[i] != 1) continue;
+    uint32_t t1 = UINT32_MAX;
+    for (uint32_t k = 0; k < n; k++) {
+      const uint32_t *w = cx->tet + 4 * (size_t)list[k];
+      if (tet_has(w, e[i][0]) && tet_has(w, e[i][1])) t1 = list[k];
+    }
+    const uint32_t *w = cx->tet + 4 * (size_t)t1;
+    if (!tet_has(w, e[1 - i][0]) || !tet_has(w, e[1 - i][1])) continue;
+    memset(rm, 0, (size_t)cx->nt);
+    rm[t1] = 1;
+    st = topo_replace(cx, rm, NULL, 0, &tr->tet_from, &tr->n_removed);
+    goto done;
+  }
   st = topo_cavity_hull(cx->tet, list, n, &hull, &nf);
   if (st != SESSILE_OK) goto done;
   /* An edge whose faces in the hull are boundary faces: cover it. */

@@ -130,7 +130,9 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
 /* Case 2 (Figure 5) at the inversion time: the edges e_u = (eu0, eu1) and
  * e_l = (el0, el1) cross.  U ∪ L (the tets around either edge) is removed and
  * the hull re-tetrahedralised by TetGen keeping its faces (-pY, no Steiner
- * point).  An edge on the boundary is first covered by the tet spanned by it
+ * point).  A boundary edge that lies in the flat tet only (two of its faces
+ * on the boundary) is flipped by removing that tet, nothing added (as case 1
+ * on the boundary).  Another edge on the boundary is first covered by the tet spanned by it
  * and the two boundary faces through it (the boundary flips that edge; the
  * volume grows by that tet's): refused with SESSILE_ERR_UNSUPPORTED when the
  * boundary is not convex there.  SESSILE_ERR_NUMERIC when TetGen needs a
