@@ -76,9 +76,11 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
   return st;
 }
 
-/* The edge (e0, e1) is on the boundary: appends the covering tet
- * (e0, e1, p, q) spanned with the two boundary faces through it, or refuses
- * when the boundary is not convex there. */
+/* The edge (e0, e1) is on the boundary: the covering tet (e0, e1, p, q)
+ * spanned with the two boundary faces through it, outside the body.  It
+ * exists where the boundary is concave at the edge (a valley: what a
+ * boundary edge moving into the body makes); at a ridge that tet would
+ * overlap the body, refused. */
 static sessile_status cover_edge(const sessile_sds_complex *cx, const uint32_t *hull, uint32_t nf, uint32_t e0,
                                  uint32_t e1, uint32_t *cover) {
   /* boundary faces of the whole complex through the edge, oriented outward */
@@ -107,7 +109,8 @@ static sessile_status cover_edge(const sessile_sds_complex *cx, const uint32_t *
   cover[0] = a[0], cover[1] = a[1], cover[2] = p, cover[3] = qv;
   double vol = topo_vol4(cx->x, cover);
   SESSILE_CHECK(vol > 0, SESSILE_ERR_UNSUPPORTED,
-                "case 2 refused: the surface is not convex at boundary edge (%u %u) (covering tet volume %g)", e0, e1, vol);
+                "case 2 refused: the surface is convex at boundary edge (%u %u), so no tet covers it from "
+                "outside (covering tet volume %g)", e0, e1, vol);
   return SESSILE_OK;
 }
 

@@ -67,8 +67,8 @@ static int run_kind(int kind, int want, const char *label) {
       fx_copy(&ball, &cx);
       sc.x0 = ball.x;
       /* precondition: no other tet of a moving vertex inverts on [0, 1];
-       * with a boundary edge, also convex there at the event (else the
-       * refusal, tested apart); the split of the motion between the two
+       * with a boundary edge, also a valley there at the event (at a ridge
+       * the refusal, tested apart); the split of the motion between the two
        * edges tried from even to e_l only */
       int clean = 0;
       double p[12], q[12];
@@ -86,9 +86,8 @@ static int run_kind(int kind, int want, const char *label) {
         }
         if (clean && kind == 1) {
           place(&cx, &sc, 1 / K);
-          double *X = cx.x, o[3] = {0, 0, 0};
-          /* convex at ab: p and q... the covering tet with the boundary
-           * face's orientation positive */
+          double *X = cx.x;
+          /* a valley at ab: q on the outer side of the boundary face a b p */
           uint32_t f0[3] = {a, b, tu[0]};
           for (uint32_t i = 0; i < nb; i++) {
             const uint32_t *f = bnd + 3 * i;
@@ -96,7 +95,6 @@ static int run_kind(int kind, int want, const char *label) {
             for (int z = 0; z < 3; z++) m += f[z] == a || f[z] == b || f[z] == tu[0];
             if (m == 3) memcpy(f0, f, sizeof f0);
           }
-          (void)o;
           clean = sessile_sds_tet_volume(X + 3 * f0[0], X + 3 * f0[1], X + 3 * f0[2], X + 3 * tu[1]) > 0;
         }
       }
@@ -153,7 +151,7 @@ static int run_kind(int kind, int want, const char *label) {
 
 int main(void) {
   t_true("interior edges: events found", run_kind(0, 10, "interior edges") > 0);
-  t_true("boundary edge covered: events found", run_kind(1, 5, "boundary edge, covered") > 0);
+  t_true("boundary edge covered: events found", run_kind(1, 5, "boundary edge in a valley, covered") > 0);
   int n2 = run_kind(2, 5, "boundary edge in the flat tet only");
   if (!n2) printf("  (the ball has no clean event of this kind)\n");
   {
@@ -188,6 +186,33 @@ int main(void) {
     hm.x[2] = hm.x[5] = 1 - K;
     t_ok("hand-made: valid after moving on", sessile_sds_topo_check(5, hm.x, hm.nt, hm.tet, 0.0, &rep));
     free(tr.tet_from);
+    sessile_sds_complex_free(&hm);
+  }
+  {
+    /* refusal: a boundary edge ab on a ridge (the faces a b p and a b q fall
+     * away from it): the tet (a b p q) would overlap the body.  Vertices
+     * a b p q e f; tets (a b p e), (a b e q) and (p e a f), so that neither
+     * edge lies in one tet only.  (Valleys are covered: the ball above.) */
+    double x0[18] = {0.5, -0.5, 0, 0.5, 0.5, 0, -1, 0, -0.5, 2, 0, -0.5, 0.5, 0, -1, 0.2, -1.5, -0.3};
+    uint32_t tt[12] = {0, 1, 2, 4, 0, 1, 4, 3, 2, 4, 0, 5};
+    for (int i = 0; i < 3; i++)
+      if (sessile_sds_tet_volume(x0 + 3 * tt[4 * i], x0 + 3 * tt[4 * i + 1], x0 + 3 * tt[4 * i + 2], x0 + 3 * tt[4 * i + 3]) < 0) {
+        uint32_t z = tt[4 * i + 1];
+        tt[4 * i + 1] = tt[4 * i + 2], tt[4 * i + 2] = z;
+      }
+    uint32_t keep[12];
+    memcpy(keep, tt, sizeof tt);
+    sessile_sds_complex hm = {6, 3, t_xalloc(sizeof x0), t_xalloc(sizeof tt)};
+    memcpy(hm.x, x0, sizeof x0), memcpy(hm.tet, tt, sizeof tt);
+    t_ok("ridge: valid", sessile_sds_topo_check(6, hm.x, 3, hm.tet, 0.0, NULL));
+    sessile_sds_transform tr;
+    sessile_status st = sessile_sds_case2(&hm, 0, 1, 2, 4, &tr);
+    printf("ridge refusal: %s\n", sessile_error_message());
+    t_true("ridge: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
+    t_true("ridge: the message names edge (0 1) and says why",
+           strstr(sessile_error_message(), "edge (0 1)") && strstr(sessile_error_message(), "no tet covers it"));
+    t_true("ridge: untouched", hm.nt == 3 && !memcmp(hm.tet, keep, sizeof keep));
+    if (st == SESSILE_OK) free(tr.tet_from);
     sessile_sds_complex_free(&hm);
   }
   /* bad input */

@@ -132,11 +132,13 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
  * the hull re-tetrahedralised by TetGen keeping its faces (-pY, no Steiner
  * point).  A boundary edge that lies in the flat tet only (two of its faces
  * on the boundary) is flipped by removing that tet, nothing added (as case 1
- * on the boundary).  Another edge on the boundary is first covered by the tet spanned by it
- * and the two boundary faces through it (the boundary flips that edge; the
- * volume grows by that tet's): refused with SESSILE_ERR_UNSUPPORTED when the
- * boundary is not convex there.  SESSILE_ERR_NUMERIC when TetGen needs a
- * Steiner point; the complex is untouched on every failure. */
+ * on the boundary).  Another boundary edge is first covered by the tet
+ * spanned by it and the two boundary faces through it, outside the body (the
+ * boundary flips that edge; the volume grows by that tet's): possible where
+ * the boundary is concave at the edge (a valley, what a boundary edge moving
+ * into the body makes), refused with SESSILE_ERR_UNSUPPORTED at a ridge,
+ * where that tet would overlap the body.  SESSILE_ERR_NUMERIC when TetGen
+ * needs a Steiner point; the complex is untouched on every failure. */
 sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
                                  uint32_t el1, sessile_sds_transform *tr);
 
