@@ -1,6 +1,7 @@
 /* Cell division (§3.1.1): the star of the cell removed, its hull kept, two
  * daughters inside, the hull re-tetrahedralised by TetGen (docs/sds_topology.md). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "topo_internal.h"
@@ -53,6 +54,50 @@ static int inside_star(const double *x, const uint32_t *tet, const uint32_t *lis
     if (ok) return 1;
   }
   return 0;
+}
+
+/* The fallback when TetGen needs a Steiner point: the hull coned from the
+ * apex (the tets (apex, f) over the hull faces f without it: valid when the
+ * apex sees every face, i.e. lies in the hull's kernel), then the cone tet
+ * holding b strictly inside split into four.  A poorer vertex degree than
+ * TetGen's Delaunay mesh (the paper's reason for re-meshing), but always
+ * possible for a star-shaped hull with the daughters near c. */
+static sessile_status cone_split(const double *x, const uint32_t *hull, uint32_t nf, uint32_t apex, uint32_t b,
+                                 uint32_t **out, uint32_t *nout) {
+  uint32_t *t = malloc((4 * (size_t)nf + 16) * sizeof *t), n = 0, hold = UINT32_MAX;
+  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory dividing a cell");
+  for (uint32_t f = 0; f < nf; f++) {
+    const uint32_t *h = hull + 3 * (size_t)f;
+    if (h[0] == apex || h[1] == apex || h[2] == apex) continue;
+    /* h is outward, so (h0, h2, h1) faces the apex: (h0, h2, h1, apex) positive */
+    uint32_t *q = t + 4 * (size_t)n++;
+    q[0] = h[0], q[1] = h[2], q[2] = h[1], q[3] = apex;
+    double V = topo_vol4(x, q);
+    if (!(V > 0)) {
+      free(t);
+      return sessile_error_set(SESSILE_ERR_NUMERIC, "the daughter does not see hull face (%u %u %u)", h[0], h[1], h[2]);
+    }
+    int in = 1;
+    for (int k = 0; k < 4 && in; k++) {
+      uint32_t r[4] = {q[0], q[1], q[2], q[3]};
+      r[k] = b;
+      in = topo_vol4(x, r) > 1e-9 * V;
+    }
+    if (in) hold = n - 1;
+  }
+  if (hold == UINT32_MAX) {
+    free(t);
+    return sessile_error_set(SESSILE_ERR_NUMERIC, "the second daughter lies on no cone tet's interior");
+  }
+  uint32_t q[4];
+  memcpy(q, t + 4 * (size_t)hold, sizeof q);
+  for (int k = 0; k < 4; k++) {
+    uint32_t *r = k == 0 ? t + 4 * (size_t)hold : t + 4 * (size_t)n++;
+    memcpy(r, q, sizeof q);
+    r[k] = b;
+  }
+  *out = t, *nout = n;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const double d[3], double eps_max,
@@ -168,6 +213,25 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
     pts[0] = b, npts = 1;
   }
   st = topo_fill_hull(cx->x, hull, nf, pts, npts, &add, &nadd);
+  if (st == SESSILE_ERR_NUMERIC) {
+    /* TetGen needed a Steiner point (or refused): cone from a, split at b;
+     * an interior pair pulled toward c until a sees the whole hull. */
+    char why[256];
+    snprintf(why, sizeof why, "%s", sessile_error_message());
+    for (int tries = 0; tries < 12 && st != SESSILE_OK; tries++) {
+      if (!surface && tries > 0) {
+        eps *= 0.5;
+        for (int k = 0; k < 3; k++) xc[k] = c0[k] + eps * dir[k], xb[k] = c0[k] - eps * dir[k];
+      }
+      st = cone_split(cx->x, hull, nf, c, b, &add, &nadd);
+      if (surface) break;
+    }
+    if (st != SESSILE_OK)
+      st = sessile_error_set(SESSILE_ERR_NUMERIC, "division of cell %u: %s; the cone fallback failed too: %s", c, why,
+                             sessile_error_message());
+    else
+      div->fallback = 1;
+  }
   if (st != SESSILE_OK) {
     memcpy(xc, c0, sizeof c0);
     goto done;

@@ -19,8 +19,11 @@ static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d
   sessile_sds_topo_report rep;
   t_ok("the complex after division passes the check", sessile_sds_topo_check(cx->nv, cx->x, cx->nt, cx->tet, 0.0, &rep));
   double rel = fabs(rep.volume - v0) / v0;
-  if (verbose || rel > 1e-12) printf("  cell %u (%s): %u tets out, %u in, eps %.3g, volume change %.2e rel, %.2f ms\n", c,
-                                     div.surface ? "surface" : "interior", div.n_removed, div.n_added, div.eps, rel, 1e3 * dt);
+  if (verbose || rel > 1e-12)
+    printf("  cell %u (%s%s): %u tets out, %u in, eps %.3g, volume change %.2e rel, %.2f ms\n", c,
+           div.surface ? "surface" : "interior", div.fallback ? ", cone fallback" : "", div.n_removed, div.n_added,
+           div.eps, rel, 1e3 * dt);
+  t_true("TetGen used unless a fault was injected", div.fallback == (tg_fault_inject != 0));
   t_check("volume unchanged (rel)", rel, 1e-12);
   t_true("surface flag as expected", div.surface == expect_surface);
   t_true("daughters: a = c, b appended", div.a == c && div.b == old.nv && cx->nv == old.nv + 1);
@@ -90,6 +93,18 @@ int main(void) {
   divide_checked(&cx, 0, tang, 1, 1);
   divide_checked(&cx, 1, outw, 1, 1); /* vertex 1 is an icosphere vertex too */
   divide_checked(&cx, 2, inw, 1, 1);
+  /* the cone fallback, as when TetGen needs a Steiner point (injected) */
+  tg_fault_inject = 4;
+  double d2[3] = {0.2, -1, 0.5};
+  uint32_t ci2 = cx.tet[4 * 7 + 0];
+  for (uint32_t v = 0; v < cx.nv; v++)
+    if (!fx_on_boundary(&cx, v)) {
+      ci2 = v;
+      break;
+    }
+  divide_checked(&cx, ci2, d2, 0, 1);
+  divide_checked(&cx, 3, d2, 1, 1);
+  tg_fault_inject = 0;
   /* random divisions (interior and surface), the seed fixed */
   uint64_t rng = sessile_rng_stream(13, 1);
   double tsum_i = 0, tsum_s = 0;

@@ -62,6 +62,7 @@ typedef struct sessile_sds_division {
   int surface;       /* the mother was on the boundary */
   double eps;        /* the offset used (a = c + eps d, b = c - eps d inside) */
   uint32_t n_removed, n_added;
+  int fallback;      /* TetGen needed a Steiner point: the hull coned from a, b split in */
   uint32_t *tet_from; /* nt (new) entries, malloc'd: old index or SESSILE_SDS_NEW_TET */
 } sessile_sds_division;
 
@@ -74,9 +75,11 @@ typedef struct sessile_sds_division {
  * are kept; daughter a stays at c on the boundary and b goes inside along
  * whichever of ±d enters the body (the inward normal when d is tangent), at
  * frac of the distance to the hull.  eps_max <= 0 means no cap.  The total
- * volume and the boundary are unchanged.  Fails (the complex untouched) with
- * SESSILE_ERR_NUMERIC when TetGen cannot mesh the hull without a Steiner
- * point.  On success div->tet_from must be freed by the caller. */
+ * volume and the boundary are unchanged.  When TetGen cannot mesh the hull
+ * without a Steiner point, the hull is coned from a (an interior pair pulled
+ * toward c until a sees every hull face) and the cone tet holding b split in
+ * four (div->fallback = 1); SESSILE_ERR_NUMERIC (the complex untouched) only
+ * if that fails too.  On success div->tet_from must be freed by the caller. */
 sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const double d[3], double eps_max,
                                   sessile_sds_division *div);
 
