@@ -53,6 +53,13 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
     const uint32_t *w = cx->tet + 4 * (size_t)t2;
     uint32_t vp = w[0] + w[1] + w[2] + w[3] - f[0] - f[1] - f[2];
     rm[t2] = 1;
+    /* the new edge (v, v') must not exist already: it would be a second
+     * edge between the same cells, the complex folded over itself */
+    st = SESSILE_OK;
+    for (uint32_t u = 0; u < cx->nt && st == SESSILE_OK; u++)
+      if (tet_has(cx->tet + 4 * (size_t)u, v) && tet_has(cx->tet + 4 * (size_t)u, vp))
+        st = sessile_error_set(SESSILE_ERR_UNSUPPORTED,
+                               "case 1 refused: the new edge (%u %u) exists already (in tet %u)", v, vp, u);
     /* (f0, f1, f2, v') is positive (f faces away from t, toward v'); the
      * three new tets put v in place of one corner of f. */
     for (int i = 0; i < 3; i++) {
@@ -60,7 +67,6 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
       n[0] = f[0], n[1] = f[1], n[2] = f[2], n[3] = vp;
       n[i] = v;
     }
-    st = SESSILE_OK;
     for (uint32_t i = 0; i < nadd && st == SESSILE_OK; i++) {
       double vol = topo_vol4(cx->x, add + 4 * i);
       if (!(vol > 0))
@@ -203,4 +209,20 @@ sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t
 done:
   free(rm), free(tmp), free(list), free(hull), free(add), free(inner);
   return st;
+}
+
+sessile_status sessile_sds_apply_inversion(sessile_sds_complex *cx, uint32_t t, const sessile_sds_inversion *inv,
+                                           sessile_sds_transform *tr) {
+  memset(tr, 0, sizeof *tr);
+  SESSILE_CHECK(t < cx->nt, SESSILE_ERR_USAGE, "inversion: tet %u out of range (%u tets)", t, cx->nt);
+  const uint32_t *v = cx->tet + 4 * (size_t)t;
+  if (inv->kind == SESSILE_SDS_INV_VERTEX_FACE) {
+    SESSILE_CHECK(inv->vertex >= 0 && inv->vertex < 4, SESSILE_ERR_USAGE, "inversion: bad local vertex %d", inv->vertex);
+    return sessile_sds_case1(cx, t, v[inv->vertex], tr);
+  }
+  SESSILE_CHECK(inv->kind == SESSILE_SDS_INV_EDGE_EDGE, SESSILE_ERR_USAGE, "inversion: no case to apply");
+  for (int i = 0; i < 2; i++)
+    for (int k = 0; k < 2; k++)
+      SESSILE_CHECK(inv->edge[i][k] >= 0 && inv->edge[i][k] < 4, SESSILE_ERR_USAGE, "inversion: bad local edge");
+  return sessile_sds_case2(cx, v[inv->edge[0][0]], v[inv->edge[0][1]], v[inv->edge[1][0]], v[inv->edge[1][1]], tr);
 }

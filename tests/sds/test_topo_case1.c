@@ -84,7 +84,7 @@ static void run_case(int f_boundary, int v_boundary, const char *label) {
       uint32_t nt0 = cx.nt;
       sessile_sds_transform tr;
       double t0 = fx_now();
-      sessile_status st = sessile_sds_case1(&cx, t, v, &tr);
+      sessile_status st = sessile_sds_apply_inversion(&cx, t, &inv, &tr); /* = case1(t, v) */
       double dt = fx_now() - t0;
       t_ok("case 1 transformation", st);
       if (st != SESSILE_OK) goto out;
@@ -108,7 +108,47 @@ out:
   sessile_sds_complex_free(&cx);
 }
 
+/* The 2-3 flip refused where the edge (v, v') exists already. */
+static void existing_edge(void) {
+  sessile_sds_complex cx = {0};
+  fx_ball(3, 0.005, &cx);
+  static const int fo[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  for (uint32_t t = 0; t < cx.nt; t++)
+    for (int qv = 0; qv < 4; qv++) {
+      uint32_t v = cx.tet[4 * t + qv], f[3], vp = UINT32_MAX;
+      for (int i = 0; i < 3; i++) f[i] = cx.tet[4 * t + fo[qv][i]];
+      for (uint32_t u = 0; u < cx.nt; u++) {
+        const uint32_t *w = cx.tet + 4 * u;
+        int m = 0;
+        for (int i = 0; i < 4; i++) m += w[i] == f[0] || w[i] == f[1] || w[i] == f[2];
+        if (u != t && m == 3) vp = w[0] + w[1] + w[2] + w[3] - f[0] - f[1] - f[2];
+      }
+      if (vp == UINT32_MAX) continue;
+      int adj = 0;
+      for (uint32_t u = 0; u < cx.nt && !adj; u++) {
+        const uint32_t *w = cx.tet + 4 * u;
+        int hv = w[0] == v || w[1] == v || w[2] == v || w[3] == v, hp = w[0] == vp || w[1] == vp || w[2] == vp || w[3] == vp;
+        adj = hv && hp;
+      }
+      if (!adj) continue;
+      sessile_sds_complex keep;
+      fx_copy(&cx, &keep);
+      sessile_sds_transform tr;
+      sessile_status st = sessile_sds_case1(&cx, t, v, &tr);
+      printf("existing edge: %s\n", sessile_error_message());
+      t_true("edge (v, v') already there: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
+      t_true("the message says so", strstr(sessile_error_message(), "exists already") != NULL);
+      t_true("untouched", cx.nt == keep.nt && !memcmp(cx.tet, keep.tet, 4 * cx.nt * sizeof *cx.tet));
+      sessile_sds_complex_free(&keep);
+      sessile_sds_complex_free(&cx);
+      return;
+    }
+  printf("existing edge: no such configuration in the ball\n");
+  sessile_sds_complex_free(&cx);
+}
+
 int main(void) {
+  existing_edge();
   run_case(0, 0, "interior vertex through an interior face");
   run_case(0, 1, "surface vertex through an interior face");
   run_case(1, 0, "interior vertex out through a surface face");

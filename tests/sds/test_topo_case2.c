@@ -118,7 +118,7 @@ static int run_kind(int kind, int want, const char *label) {
       }
       sessile_sds_transform tr;
       double t0 = fx_now();
-      sessile_status st = sessile_sds_case2(&cx, a, b, c, d, &tr);
+      sessile_status st = sessile_sds_apply_inversion(&cx, t, &inv, &tr); /* = case2 on (a b), (c d) */
       double dt = fx_now() - t0;
       tsum += dt;
       t_ok("case 2 transformation", st);

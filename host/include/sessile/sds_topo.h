@@ -125,9 +125,9 @@ typedef struct sessile_sds_transform {
  * is a boundary face (no t'), t is removed and nothing added: the boundary
  * passes under v (f leaves it, t's three faces around v join it).  Refused
  * with SESSILE_ERR_UNSUPPORTED when v and f are both on the boundary (the
- * paper's "infinitely thin section"), or when the result would not be valid
- * (a new tet with volume <= 0, or a non-manifold boundary); the complex is
- * untouched then. */
+ * paper's "infinitely thin section"), or when the flip would not be valid
+ * (a new tet with volume <= 0, or the edge (v, v') already in another tet);
+ * the complex is untouched then. */
 sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v, sessile_sds_transform *tr);
 
 /* Case 2 (Figure 5) at the inversion time: the edges e_u = (eu0, eu1) and
@@ -144,6 +144,11 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
  * needs a Steiner point; the complex is untouched on every failure. */
 sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
                                  uint32_t el1, sessile_sds_transform *tr);
+
+/* The transformation of inv's case (from sessile_sds_inversion_time on tet
+ * t, its local indices) applied to tet t: case 1 or case 2 above. */
+sessile_status sessile_sds_apply_inversion(sessile_sds_complex *cx, uint32_t t, const sessile_sds_inversion *inv,
+                                           sessile_sds_transform *tr);
 
 #ifdef __cplusplus
 }
