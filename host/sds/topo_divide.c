@@ -140,7 +140,7 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
   memcpy(c0, xc, sizeof c0);
   uint32_t b = cx->nv, pts[2];
   uint32_t npts;
-  double eps = 0;
+  double eps = 0, bdir[3] = {0, 0, 0};
   if (!surface) {
     double mdir[3] = {-dir[0], -dir[1], -dir[2]};
     double tp = hull_distance(cx->x, c, dir, hull, nf), tm = hull_distance(cx->x, c, mdir, hull, nf);
@@ -163,6 +163,7 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
       goto done;
     }
     pts[0] = c, pts[1] = b, npts = 2;
+    for (int k = 0; k < 3; k++) bdir[k] = -dir[k];
   } else {
     /* a stays at c on the boundary; b goes inside along ±d, else along the
      * inward normal of c's boundary faces. */
@@ -203,7 +204,7 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
         double pb[3];
         for (int k = 0; k < 3; k++) pb[k] = c0[k] + eps * cand[ci][k];
         ok = inside_star(cx->x, cx->tet, star, ns, pb);
-        if (ok) memcpy(xb, pb, sizeof pb);
+        if (ok) memcpy(xb, pb, sizeof pb), memcpy(bdir, cand[ci], sizeof bdir);
       }
     }
     if (!ok) {
@@ -212,16 +213,40 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
     }
     pts[0] = b, npts = 1;
   }
-  st = topo_fill_hull(cx->x, hull, nf, pts, npts, &add, &nadd);
+  /* TetGen's mesh must make the daughters neighbours (§3.1.1: "the new cells
+   * are neighbours"); when it does not (about 1 division in 200), the pair is
+   * pulled together along the same line (eps halved: both stay inside, the
+   * segment from c to a point inside a star tet lies in it) and meshed again. */
+  int adjacent = 0;
+  for (int tries = 0; tries < 4 && !adjacent; tries++) {
+    if (tries > 0) {
+      eps *= 0.5;
+      for (int k = 0; k < 3; k++) {
+        if (!surface) xc[k] = c0[k] + eps * dir[k];
+        xb[k] = c0[k] + eps * bdir[k];
+      }
+    }
+    free(add), add = NULL;
+    st = topo_fill_hull(cx->x, hull, nf, pts, npts, &add, &nadd);
+    if (st != SESSILE_OK) break;
+    for (uint32_t i = 0; i < nadd && !adjacent; i++) {
+      const uint32_t *v = add + 4 * (size_t)i;
+      adjacent = (v[0] == c || v[1] == c || v[2] == c || v[3] == c) && (v[0] == b || v[1] == b || v[2] == b || v[3] == b);
+    }
+  }
+  if (st == SESSILE_OK && !adjacent)
+    st = sessile_error_set(SESSILE_ERR_NUMERIC, "TetGen's meshes never joined the daughters by an edge");
   if (st == SESSILE_ERR_NUMERIC) {
-    /* TetGen needed a Steiner point (or refused): cone from a, split at b;
-     * an interior pair pulled toward c until a sees the whole hull. */
+    /* TetGen needed a Steiner point (or refused, or kept the daughters
+     * apart): cone from a, split at b (they are neighbours then); an
+     * interior pair pulled toward c until a sees the whole hull. */
     char why[256];
     snprintf(why, sizeof why, "%s", sessile_error_message());
+    free(add), add = NULL;
     for (int tries = 0; tries < 12 && st != SESSILE_OK; tries++) {
       if (!surface && tries > 0) {
         eps *= 0.5;
-        for (int k = 0; k < 3; k++) xc[k] = c0[k] + eps * dir[k], xb[k] = c0[k] - eps * dir[k];
+        for (int k = 0; k < 3; k++) xc[k] = c0[k] + eps * dir[k], xb[k] = c0[k] + eps * bdir[k];
       }
       st = cone_split(cx->x, hull, nf, c, b, &add, &nadd);
       if (surface) break;

@@ -42,6 +42,14 @@ static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d
   /* b strictly inside: not on the boundary */
   t_true("daughter b is not on the boundary", !fx_on_boundary(cx, div.b));
   if (!expect_surface) t_true("daughter a is not on the boundary", !fx_on_boundary(cx, div.a));
+  int adjacent = 0; /* "the new cells are neighbours" (§3.1.1) */
+  for (uint32_t t = 0; t < cx->nt && !adjacent; t++) {
+    const uint32_t *v = cx->tet + 4 * t;
+    int ha = v[0] == div.a || v[1] == div.a || v[2] == div.a || v[3] == div.a;
+    int hb = v[0] == div.b || v[1] == div.b || v[2] == div.b || v[3] == div.b;
+    adjacent = ha && hb;
+  }
+  t_true("the daughters are neighbours (share an edge)", adjacent);
   uint32_t nb1, *b1 = fx_boundary(cx, &nb1);
   t_true("boundary faces unchanged", nb0 == nb1 && !memcmp(b0, b1, 3 * (size_t)nb0 * sizeof *b0));
   /* kept tets identical and in order; removed = exactly the tets around c */

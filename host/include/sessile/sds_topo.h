@@ -75,7 +75,9 @@ typedef struct sessile_sds_division {
  * are kept; daughter a stays at c on the boundary and b goes inside along
  * whichever of ±d enters the body (the inward normal when d is tangent), at
  * frac of the distance to the hull.  eps_max <= 0 means no cap.  The total
- * volume and the boundary are unchanged.  When TetGen cannot mesh the hull
+ * volume and the boundary are unchanged.  The daughters are neighbours
+ * (share an edge): when TetGen's mesh keeps them apart, eps is halved and the
+ * hull meshed again (up to 3 times).  When TetGen cannot mesh the hull
  * without a Steiner point, the hull is coned from a (an interior pair pulled
  * toward c until a sees every hull face) and the cone tet holding b split in
  * four (div->fallback = 1); SESSILE_ERR_NUMERIC (the complex untouched) only
