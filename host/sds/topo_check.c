@@ -49,8 +49,8 @@ done:
   return st;
 }
 
-sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet,
-                                      double min_volume, sessile_sds_topo_report *report) {
+sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet, double min_volume,
+                                      sessile_sds_topo_report *report) {
   sessile_sds_topo_report rep;
   memset(&rep, 0, sizeof rep);
   rep.min_volume = INFINITY;
@@ -76,8 +76,8 @@ sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt,
     if (vol < rep.min_volume) rep.min_volume = vol, rep.min_tet = t;
     if (!(vol > min_volume)) {
       free(used);
-      return sessile_error_set(SESSILE_ERR_INTERNAL, "tet %u (%u %u %u %u) has volume %.17g <= %g", t, v[0], v[1],
-                               v[2], v[3], vol, min_volume);
+      return sessile_error_set(SESSILE_ERR_INTERNAL, "tet %u (%u %u %u %u) has volume %.17g <= %g", t, v[0], v[1], v[2],
+                               v[3], vol, min_volume);
     }
   }
   for (uint32_t i = 0; i < nv; i++)

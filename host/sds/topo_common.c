@@ -8,24 +8,37 @@
 
 const int topo_face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-void sessile_sds_complex_free(sessile_sds_complex *c) {
+void sessile_sds_topo_complex_free(sessile_sds_topo_complex *c) {
   free(c->x), free(c->tet);
   memset(c, 0, sizeof *c);
 }
 
-double sessile_sds_tet_volume(const double *x0, const double *x1, const double *x2, const double *x3) {
+double sessile_sds_topo_volume(const double *x0, const double *x1, const double *x2, const double *x3) {
   double a[3], b[3], c[3];
   for (int k = 0; k < 3; k++) a[k] = x1[k] - x0[k], b[k] = x2[k] - x0[k], c[k] = x3[k] - x0[k];
   return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-          a[2] * (b[0] * c[1] - b[1] * c[0])) / 6.0;
+          a[2] * (b[0] * c[1] - b[1] * c[0])) /
+         6.0;
 }
 
 void topo_face_make(topo_face *f, uint32_t a, uint32_t b, uint32_t c, uint32_t t) {
   f->v[0] = a, f->v[1] = b, f->v[2] = c, f->t = t;
   uint32_t o[3] = {a, b, c};
-  if (o[0] > o[1]) { uint32_t s = o[0]; o[0] = o[1]; o[1] = s; }
-  if (o[1] > o[2]) { uint32_t s = o[1]; o[1] = o[2]; o[2] = s; }
-  if (o[0] > o[1]) { uint32_t s = o[0]; o[0] = o[1]; o[1] = s; }
+  if (o[0] > o[1]) {
+    uint32_t s = o[0];
+    o[0] = o[1];
+    o[1] = s;
+  }
+  if (o[1] > o[2]) {
+    uint32_t s = o[1];
+    o[1] = o[2];
+    o[2] = s;
+  }
+  if (o[0] > o[1]) {
+    uint32_t s = o[0];
+    o[0] = o[1];
+    o[1] = s;
+  }
   memcpy(f->o, o, sizeof o);
 }
 
@@ -52,8 +65,7 @@ topo_face *topo_all_faces(uint32_t nt, const uint32_t *tet) {
   return f;
 }
 
-sessile_status topo_cavity_hull(const uint32_t *tet, const uint32_t *list, uint32_t n, uint32_t **faces,
-                                uint32_t *nf) {
+sessile_status topo_cavity_hull(const uint32_t *tet, const uint32_t *list, uint32_t n, uint32_t **faces, uint32_t *nf) {
   topo_face *f = malloc((4 * (size_t)n + 1) * sizeof *f);
   uint32_t *out = malloc((12 * (size_t)n + 1) * sizeof *out);
   if (!f || !out) {
@@ -95,8 +107,10 @@ static int local_of(const uint32_t *sorted, int n, uint32_t g) {
   while (lo <= hi) {
     int m = (lo + hi) / 2;
     if (sorted[m] == g) return m;
-    if (sorted[m] < g) lo = m + 1;
-    else hi = m - 1;
+    if (sorted[m] < g)
+      lo = m + 1;
+    else
+      hi = m - 1;
   }
   return -1;
 }
@@ -105,8 +119,8 @@ static int u32_cmp(const void *a, const void *b) {
   return (p > q) - (p < q);
 }
 
-sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t nf, const uint32_t *pts,
-                              uint32_t npts, uint32_t **out, uint32_t *nout) {
+sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t nf, const uint32_t *pts, uint32_t npts,
+                              uint32_t **out, uint32_t *nout) {
   sessile_status st = SESSILE_OK;
   uint32_t *hv = malloc((3 * (size_t)nf + 1) * sizeof *hv);
   int *facet_poly = malloc(((size_t)nf + 1) * sizeof(int)), *poly_vert = malloc(((size_t)nf + 1) * sizeof(int));
@@ -204,8 +218,7 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
   qsort(hf, nf, sizeof *hf, topo_face_cmp);
   qsort(rf, nrf, sizeof *rf, topo_face_cmp);
   int same = nrf == nf;
-  for (uint32_t f = 0; f < nf && same; f++)
-    same = topo_face_same(hf + f, rf + f);
+  for (uint32_t f = 0; f < nf && same; f++) same = topo_face_same(hf + f, rf + f);
   /* orientation: the same cyclic order (both outward) */
   for (uint32_t f = 0; f < nf && same; f++) {
     const uint32_t *a = hf[f].v, *b = rf[f].v;
@@ -229,7 +242,7 @@ done:
   return st;
 }
 
-sessile_status topo_replace(sessile_sds_complex *cx, const uint8_t *remove, const uint32_t *add, uint32_t nadd,
+sessile_status topo_replace(sessile_sds_topo_complex *cx, const uint8_t *remove, const uint32_t *add, uint32_t nadd,
                             uint32_t **tet_from, uint32_t *n_removed) {
   uint32_t keep = 0;
   for (uint32_t t = 0; t < cx->nt; t++) keep += !remove[t];
@@ -243,7 +256,7 @@ sessile_status topo_replace(sessile_sds_complex *cx, const uint8_t *remove, cons
   for (uint32_t t = 0; t < cx->nt; t++)
     if (!remove[t]) memcpy(tet + 4 * (size_t)k, cx->tet + 4 * (size_t)t, 4 * sizeof *tet), from[k++] = t;
   if (nadd) memcpy(tet + 4 * (size_t)k, add, 4 * (size_t)nadd * sizeof *tet);
-  for (uint32_t i = 0; i < nadd; i++) from[k + i] = SESSILE_SDS_NEW_TET;
+  for (uint32_t i = 0; i < nadd; i++) from[k + i] = SESSILE_SDS_TOPO_NEW_TET;
   *n_removed = cx->nt - keep;
   free(cx->tet);
   cx->tet = tet, cx->nt = nt;

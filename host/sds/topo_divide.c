@@ -14,7 +14,8 @@
 static double ray_tri(const double *o, const double *dir, const double *a, const double *b, const double *c) {
   double e1[3], e2[3], p[3], s[3], q[3];
   for (int k = 0; k < 3; k++) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], s[k] = o[k] - a[k];
-  p[0] = dir[1] * e2[2] - dir[2] * e2[1], p[1] = dir[2] * e2[0] - dir[0] * e2[2], p[2] = dir[0] * e2[1] - dir[1] * e2[0];
+  p[0] = dir[1] * e2[2] - dir[2] * e2[1], p[1] = dir[2] * e2[0] - dir[0] * e2[2],
+  p[2] = dir[0] * e2[1] - dir[1] * e2[0];
   double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
   if (fabs(det) < 1e-300) return INFINITY;
   double inv = 1.0 / det, u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) * inv;
@@ -32,7 +33,8 @@ static double hull_distance(const double *x, uint32_t c, const double *dir, cons
   for (uint32_t f = 0; f < nf; f++) {
     const uint32_t *v = hull + 3 * (size_t)f;
     if (v[0] == c || v[1] == c || v[2] == c) continue;
-    tmin = fmin(tmin, ray_tri(x + 3 * (size_t)c, dir, x + 3 * (size_t)v[0], x + 3 * (size_t)v[1], x + 3 * (size_t)v[2]));
+    tmin =
+        fmin(tmin, ray_tri(x + 3 * (size_t)c, dir, x + 3 * (size_t)v[0], x + 3 * (size_t)v[1], x + 3 * (size_t)v[2]));
   }
   return tmin;
 }
@@ -49,7 +51,7 @@ static int inside_star(const double *x, const uint32_t *tet, const uint32_t *lis
       const double *y[4];
       for (int r = 0; r < 4; r++) y[r] = x + 3 * (size_t)t[r];
       y[q] = p;
-      ok = sessile_sds_tet_volume(y[0], y[1], y[2], y[3]) > 1e-9 * V;
+      ok = sessile_sds_topo_volume(y[0], y[1], y[2], y[3]) > 1e-9 * V;
     }
     if (ok) return 1;
   }
@@ -100,12 +102,13 @@ static sessile_status cone_split(const double *x, const uint32_t *hull, uint32_t
   return SESSILE_OK;
 }
 
-sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const double d[3], double eps_max,
-                                  sessile_sds_division *div) {
+sessile_status sessile_sds_topo_divide(sessile_sds_topo_complex *cx, uint32_t c, const double d[3], double eps_max,
+                                       sessile_sds_topo_division *div) {
   memset(div, 0, sizeof *div);
   SESSILE_CHECK(c < cx->nv, SESSILE_ERR_USAGE, "division of cell %u: only %u cells", c, cx->nv);
   double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  SESSILE_CHECK(len > 0 && isfinite(len), SESSILE_ERR_USAGE, "division of cell %u: the direction is zero or not finite", c);
+  SESSILE_CHECK(len > 0 && isfinite(len), SESSILE_ERR_USAGE, "division of cell %u: the direction is zero or not finite",
+                c);
   SESSILE_CHECK(cx->nv < UINT32_MAX - 1, SESSILE_ERR_TOO_LARGE, "division: too many cells");
   double dir[3] = {d[0] / len, d[1] / len, d[2] / len};
   /* T_c: the tets around c. */
@@ -146,7 +149,8 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
     double tp = hull_distance(cx->x, c, dir, hull, nf), tm = hull_distance(cx->x, c, mdir, hull, nf);
     double reach = fmin(tp, tm);
     if (!isfinite(reach)) {
-      st = sessile_error_set(SESSILE_ERR_NUMERIC, "division of cell %u: the ray along the direction misses the hull", c);
+      st =
+          sessile_error_set(SESSILE_ERR_NUMERIC, "division of cell %u: the ray along the direction misses the hull", c);
       goto done;
     }
     int ok = 0;
@@ -159,7 +163,8 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
       if (ok) memcpy(xc, pa, sizeof pa), memcpy(xb, pb, sizeof pb);
     }
     if (!ok) {
-      st = sessile_error_set(SESSILE_ERR_NUMERIC, "division of cell %u: found no daughter positions inside the hull", c);
+      st =
+          sessile_error_set(SESSILE_ERR_NUMERIC, "division of cell %u: found no daughter positions inside the hull", c);
       goto done;
     }
     pts[0] = c, pts[1] = b, npts = 2;
@@ -174,7 +179,8 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
       const double *p0 = cx->x + 3 * (size_t)v[0], *p1 = cx->x + 3 * (size_t)v[1], *p2 = cx->x + 3 * (size_t)v[2];
       double e1[3], e2[3];
       for (int k = 0; k < 3; k++) e1[k] = p1[k] - p0[k], e2[k] = p2[k] - p0[k];
-      n[0] -= e1[1] * e2[2] - e1[2] * e2[1], n[1] -= e1[2] * e2[0] - e1[0] * e2[2], n[2] -= e1[0] * e2[1] - e1[1] * e2[0];
+      n[0] -= e1[1] * e2[2] - e1[2] * e2[1], n[1] -= e1[2] * e2[0] - e1[0] * e2[2],
+          n[2] -= e1[0] * e2[1] - e1[1] * e2[0];
     }
     double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; k++) cand[0][k] = dir[k], cand[1][k] = -dir[k], cand[2][k] = nl > 0 ? n[k] / nl : 0;
@@ -208,7 +214,8 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
       }
     }
     if (!ok) {
-      st = sessile_error_set(SESSILE_ERR_NUMERIC, "division of surface cell %u: found no inside position for the daughter", c);
+      st = sessile_error_set(SESSILE_ERR_NUMERIC,
+                             "division of surface cell %u: found no inside position for the daughter", c);
       goto done;
     }
     pts[0] = b, npts = 1;
@@ -231,7 +238,8 @@ sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const dou
     if (st != SESSILE_OK) break;
     for (uint32_t i = 0; i < nadd && !adjacent; i++) {
       const uint32_t *v = add + 4 * (size_t)i;
-      adjacent = (v[0] == c || v[1] == c || v[2] == c || v[3] == c) && (v[0] == b || v[1] == b || v[2] == b || v[3] == b);
+      adjacent =
+          (v[0] == c || v[1] == c || v[2] == c || v[3] == c) && (v[0] == b || v[1] == b || v[2] == b || v[3] == b);
     }
   }
   if (st == SESSILE_OK && !adjacent)

@@ -8,7 +8,7 @@
 static int tet_has(const uint32_t *v, uint32_t a) { return v[0] == a || v[1] == a || v[2] == a || v[3] == a; }
 
 /* Is vertex a on the boundary (in a face of exactly one tet)? */
-static sessile_status vertex_on_boundary(const sessile_sds_complex *cx, uint32_t a, int *on) {
+static sessile_status vertex_on_boundary(const sessile_sds_topo_complex *cx, uint32_t a, int *on) {
   uint32_t *list = malloc(((size_t)cx->nt + 1) * sizeof *list), n = 0, *hull = NULL, nf = 0;
   SESSILE_CHECK(list, SESSILE_ERR_NO_MEMORY, "out of host memory");
   for (uint32_t t = 0; t < cx->nt; t++)
@@ -22,7 +22,8 @@ static sessile_status vertex_on_boundary(const sessile_sds_complex *cx, uint32_t
   return SESSILE_OK;
 }
 
-sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v, sessile_sds_transform *tr) {
+sessile_status sessile_sds_topo_case1(sessile_sds_topo_complex *cx, uint32_t t, uint32_t v,
+                                      sessile_sds_topo_transform *tr) {
   memset(tr, 0, sizeof *tr);
   SESSILE_CHECK(t < cx->nt, SESSILE_ERR_USAGE, "case 1: tet %u out of range (%u tets)", t, cx->nt);
   const uint32_t *tv = cx->tet + 4 * (size_t)t;
@@ -48,7 +49,8 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
     if (st == SESSILE_OK && von)
       st = sessile_error_set(SESSILE_ERR_UNSUPPORTED,
                              "case 1 refused: vertex %u and its opposite face (%u %u %u) in tet %u are both on the "
-                             "surface (the transformation would leave an infinitely thin section)", v, f[0], f[1], f[2], t);
+                             "surface (the transformation would leave an infinitely thin section)",
+                             v, f[0], f[1], f[2], t);
   } else {
     const uint32_t *w = cx->tet + 4 * (size_t)t2;
     uint32_t vp = w[0] + w[1] + w[2] + w[3] - f[0] - f[1] - f[2];
@@ -70,10 +72,11 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
     for (uint32_t i = 0; i < nadd && st == SESSILE_OK; i++) {
       double vol = topo_vol4(cx->x, add + 4 * i);
       if (!(vol > 0))
-        st = sessile_error_set(SESSILE_ERR_UNSUPPORTED,
-                               "case 1 refused: new tet (%u %u %u %u) would have volume %g (vertex %u is not over "
-                               "face (%u %u %u) seen from %u)", add[4 * i], add[4 * i + 1], add[4 * i + 2],
-                               add[4 * i + 3], vol, v, f[0], f[1], f[2], vp);
+        st =
+            sessile_error_set(SESSILE_ERR_UNSUPPORTED,
+                              "case 1 refused: new tet (%u %u %u %u) would have volume %g (vertex %u is not over "
+                              "face (%u %u %u) seen from %u)",
+                              add[4 * i], add[4 * i + 1], add[4 * i + 2], add[4 * i + 3], vol, v, f[0], f[1], f[2], vp);
     }
   }
   if (st == SESSILE_OK) st = topo_replace(cx, rm, add, nadd, &tr->tet_from, &tr->n_removed);
@@ -87,7 +90,7 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
  * exists where the boundary is concave at the edge (a valley: what a
  * boundary edge moving into the body makes); at a ridge that tet would
  * overlap the body, refused. */
-static sessile_status cover_edge(const sessile_sds_complex *cx, const uint32_t *hull, uint32_t nf, uint32_t e0,
+static sessile_status cover_edge(const sessile_sds_topo_complex *cx, const uint32_t *hull, uint32_t nf, uint32_t e0,
                                  uint32_t e1, uint32_t *cover) {
   /* boundary faces of the whole complex through the edge, oriented outward */
   uint32_t bf[2][3], nb = 0;
@@ -106,7 +109,8 @@ static sessile_status cover_edge(const sessile_sds_complex *cx, const uint32_t *
     a[0] = a[1], a[1] = a[2], a[2] = s;
   }
   uint32_t p = a[2], qv = bf[1][0] + bf[1][1] + bf[1][2] - e0 - e1;
-  SESSILE_CHECK(p != qv, SESSILE_ERR_UNSUPPORTED, "case 2 refused: the boundary folds onto itself at edge (%u %u)", e0, e1);
+  SESSILE_CHECK(p != qv, SESSILE_ERR_UNSUPPORTED, "case 2 refused: the boundary folds onto itself at edge (%u %u)", e0,
+                e1);
   for (uint32_t t = 0; t < cx->nt; t++) {
     const uint32_t *w = cx->tet + 4 * (size_t)t;
     SESSILE_CHECK(!(tet_has(w, p) && tet_has(w, qv)), SESSILE_ERR_UNSUPPORTED,
@@ -116,12 +120,13 @@ static sessile_status cover_edge(const sessile_sds_complex *cx, const uint32_t *
   double vol = topo_vol4(cx->x, cover);
   SESSILE_CHECK(vol > 0, SESSILE_ERR_UNSUPPORTED,
                 "case 2 refused: the surface is convex at boundary edge (%u %u), so no tet covers it from "
-                "outside (covering tet volume %g)", e0, e1, vol);
+                "outside (covering tet volume %g)",
+                e0, e1, vol);
   return SESSILE_OK;
 }
 
-sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0, uint32_t el1,
-                                 sessile_sds_transform *tr) {
+sessile_status sessile_sds_topo_case2(sessile_sds_topo_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
+                                      uint32_t el1, sessile_sds_topo_transform *tr) {
   memset(tr, 0, sizeof *tr);
   uint32_t e[2][2] = {{eu0, eu1}, {el0, el1}};
   for (int i = 0; i < 2; i++)
@@ -146,7 +151,8 @@ sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t
       }
   }
   if (!nu[0] || !nu[1]) {
-    st = sessile_error_set(SESSILE_ERR_USAGE, "case 2: edge (%u %u) is in no tet", nu[0] ? el0 : eu0, nu[0] ? el1 : eu1);
+    st =
+        sessile_error_set(SESSILE_ERR_USAGE, "case 2: edge (%u %u) is in no tet", nu[0] ? el0 : eu0, nu[0] ? el1 : eu1);
     goto done;
   }
   /* A boundary edge in one tet only (the flat tet, two of its faces on the
@@ -211,18 +217,19 @@ done:
   return st;
 }
 
-sessile_status sessile_sds_apply_inversion(sessile_sds_complex *cx, uint32_t t, const sessile_sds_inversion *inv,
-                                           sessile_sds_transform *tr) {
+sessile_status sessile_sds_topo_apply_inversion(sessile_sds_topo_complex *cx, uint32_t t,
+                                                const sessile_sds_topo_inversion *inv, sessile_sds_topo_transform *tr) {
   memset(tr, 0, sizeof *tr);
   SESSILE_CHECK(t < cx->nt, SESSILE_ERR_USAGE, "inversion: tet %u out of range (%u tets)", t, cx->nt);
   const uint32_t *v = cx->tet + 4 * (size_t)t;
-  if (inv->kind == SESSILE_SDS_INV_VERTEX_FACE) {
-    SESSILE_CHECK(inv->vertex >= 0 && inv->vertex < 4, SESSILE_ERR_USAGE, "inversion: bad local vertex %d", inv->vertex);
-    return sessile_sds_case1(cx, t, v[inv->vertex], tr);
+  if (inv->kind == SESSILE_SDS_TOPO_VERTEX_FACE) {
+    SESSILE_CHECK(inv->vertex >= 0 && inv->vertex < 4, SESSILE_ERR_USAGE, "inversion: bad local vertex %d",
+                  inv->vertex);
+    return sessile_sds_topo_case1(cx, t, v[inv->vertex], tr);
   }
-  SESSILE_CHECK(inv->kind == SESSILE_SDS_INV_EDGE_EDGE, SESSILE_ERR_USAGE, "inversion: no case to apply");
+  SESSILE_CHECK(inv->kind == SESSILE_SDS_TOPO_EDGE_EDGE, SESSILE_ERR_USAGE, "inversion: no case to apply");
   for (int i = 0; i < 2; i++)
     for (int k = 0; k < 2; k++)
       SESSILE_CHECK(inv->edge[i][k] >= 0 && inv->edge[i][k] < 4, SESSILE_ERR_USAGE, "inversion: bad local edge");
-  return sessile_sds_case2(cx, v[inv->edge[0][0]], v[inv->edge[0][1]], v[inv->edge[1][0]], v[inv->edge[1][1]], tr);
+  return sessile_sds_topo_case2(cx, v[inv->edge[0][0]], v[inv->edge[0][1]], v[inv->edge[1][0]], v[inv->edge[1][1]], tr);
 }

@@ -24,8 +24,7 @@ topo_face *topo_all_faces(uint32_t nt, const uint32_t *tet);
 
 /* The faces of the tets list[0..n) that occur once among them, oriented
  * outward of the set, as 3 nf indices (malloc'd into *faces). */
-sessile_status topo_cavity_hull(const uint32_t *tet, const uint32_t *list, uint32_t n, uint32_t **faces,
-                                uint32_t *nf);
+sessile_status topo_cavity_hull(const uint32_t *tet, const uint32_t *list, uint32_t n, uint32_t **faces, uint32_t *nf);
 
 /* Is face (a, b, c) (any order) a face of exactly one tet of the complex? */
 int topo_face_on_boundary(uint32_t nt, const uint32_t *tet, uint32_t a, uint32_t b, uint32_t c);
@@ -35,15 +34,15 @@ int topo_face_on_boundary(uint32_t nt, const uint32_t *tet, uint32_t a, uint32_t
  * with TetGen -pY: no Steiner point anywhere (refused with
  * SESSILE_ERR_NUMERIC), the hull's faces kept exactly (checked).  *out gets 4
  * nout global indices, positively oriented. */
-sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t nf, const uint32_t *pts,
-                              uint32_t npts, uint32_t **out, uint32_t *nout);
+sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t nf, const uint32_t *pts, uint32_t npts,
+                              uint32_t **out, uint32_t *nout);
 
 /* Replaces the tets flagged in remove (nt flags) by add (4 nadd): kept tets in
- * order, then the new ones; *tet_from as in sessile_sds_division. */
-sessile_status topo_replace(sessile_sds_complex *cx, const uint8_t *remove, const uint32_t *add, uint32_t nadd,
+ * order, then the new ones; *tet_from as in sessile_sds_topo_division. */
+sessile_status topo_replace(sessile_sds_topo_complex *cx, const uint8_t *remove, const uint32_t *add, uint32_t nadd,
                             uint32_t **tet_from, uint32_t *n_removed);
 
 static inline double topo_vol4(const double *x, const uint32_t *t) {
-  return sessile_sds_tet_volume(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]);
+  return sessile_sds_topo_volume(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]);
 }
 #endif

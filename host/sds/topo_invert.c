@@ -16,13 +16,15 @@ static double bisect(const double c[4], double a, double b) {
     if (m <= a || m >= b) break;
     int sm = sgn(poly(c, m));
     if (sm == 0) return m;
-    if (sm == sa) a = m;
-    else b = m;
+    if (sm == sa)
+      a = m;
+    else
+      b = m;
   }
   return 0.5 * (a + b);
 }
 
-int sessile_sds_cubic_first_root(const double c[4], double *s) {
+int sessile_sds_topo_cubic_root(const double c[4], double *s) {
   /* Breakpoints: 0, the real roots of p' = c1 + 2 c2 s + 3 c3 s^2 in (0, 1), 1. */
   double br[4];
   int nb = 0;
@@ -39,8 +41,10 @@ int sessile_sds_cubic_first_root(const double c[4], double *s) {
       if (disc >= 0) {
         /* the stable pair of quadratic roots */
         double q = -0.5 * (B + copysign(sqrt(disc), B));
-        if (q != 0) r[nr++] = q / A, r[nr++] = C / q;
-        else r[nr++] = 0.0;
+        if (q != 0)
+          r[nr++] = q / A, r[nr++] = C / q;
+        else
+          r[nr++] = 0.0;
       }
     }
   }
@@ -82,8 +86,8 @@ static double area_n(const double *a, const double *b, const double *c, const do
   return dot(w, n);
 }
 
-int sessile_sds_inversion_time(const double p[12], const double q[12], double u1, double u2,
-                               sessile_sds_inversion *inv) {
+int sessile_sds_topo_inversion_time(const double p[12], const double q[12], double u1, double u2,
+                                    sessile_sds_topo_inversion *inv) {
   /* vol(s) ∝ det(A + s dA, B + s dB, C + s dC) with A = p1 - p0 etc. */
   double A[3][3], D[3][3];
   for (int i = 0; i < 3; i++)
@@ -97,7 +101,7 @@ int sessile_sds_inversion_time(const double p[12], const double q[12], double u1
   c[2] = det3(D[0], D[1], A[2]) + det3(D[0], A[1], D[2]) + det3(A[0], D[1], D[2]);
   c[3] = det3(D[0], D[1], D[2]);
   double s;
-  if (!sessile_sds_cubic_first_root(c, &s)) return 0;
+  if (!sessile_sds_topo_cubic_root(c, &s)) return 0;
   memset(inv, 0, sizeof *inv);
   inv->s = s;
   inv->u = u1 + s * (u2 - u1);
@@ -128,7 +132,7 @@ int sessile_sds_inversion_time(const double p[12], const double q[12], double u1
     if (m > score) score = m, vbest = i;
   }
   if (vbest >= 0 && score >= 0) {
-    inv->kind = SESSILE_SDS_INV_VERTEX_FACE;
+    inv->kind = SESSILE_SDS_TOPO_VERTEX_FACE;
     inv->vertex = vbest;
     return 1;
   }
@@ -143,7 +147,7 @@ int sessile_sds_inversion_time(const double p[12], const double q[12], double u1
     double m = fmin(-s1, -s2);
     if (m > sc2) sc2 = m, pb = k;
   }
-  inv->kind = SESSILE_SDS_INV_EDGE_EDGE;
+  inv->kind = SESSILE_SDS_TOPO_EDGE_EDGE;
   inv->edge[0][0] = pairs[pb][0], inv->edge[0][1] = pairs[pb][1];
   inv->edge[1][0] = pairs[pb][2], inv->edge[1][1] = pairs[pb][3];
   return 1;

@@ -7,26 +7,26 @@
 #define K 1.05 /* v goes to g + 0.05 (g - p): through the face at s = 1/K */
 
 /* Positions at s of all vertices: v moves from p to p + K (g - p). */
-static void place(sessile_sds_complex *cx, const double *x0, uint32_t v, const double *g, double s) {
+static void place(sessile_sds_topo_complex *cx, const double *x0, uint32_t v, const double *g, double s) {
   memcpy(cx->x, x0, 3 * (size_t)cx->nv * sizeof *cx->x);
   for (int k = 0; k < 3; k++) cx->x[3 * v + k] = x0[3 * v + k] + s * K * (g[k] - x0[3 * v + k]);
 }
 
-static void tet_pts(const sessile_sds_complex *cx, uint32_t t, double *p) {
+static void tet_pts(const sessile_sds_topo_complex *cx, uint32_t t, double *p) {
   for (int q = 0; q < 4; q++) memcpy(p + 3 * q, cx->x + 3 * cx->tet[4 * t + q], 3 * sizeof *p);
 }
 
 /* Does any tet other than t invert on [0, 1] when v moves?  (The
  * precondition of a clean single event.) */
-static int others_invert(sessile_sds_complex *cx, const double *x0, uint32_t t, uint32_t v, const double *g) {
+static int others_invert(sessile_sds_topo_complex *cx, const double *x0, uint32_t t, uint32_t v, const double *g) {
   double p[12], q[12];
-  sessile_sds_inversion inv;
+  sessile_sds_topo_inversion inv;
   for (uint32_t u = 0; u < cx->nt; u++) {
     const uint32_t *w = cx->tet + 4 * u;
     if (u == t || (w[0] != v && w[1] != v && w[2] != v && w[3] != v)) continue;
     place(cx, x0, v, g, 0), tet_pts(cx, u, p);
     place(cx, x0, v, g, 1), tet_pts(cx, u, q);
-    if (sessile_sds_inversion_time(p, q, 0, 1, &inv)) return 1;
+    if (sessile_sds_topo_inversion_time(p, q, 0, 1, &inv)) return 1;
   }
   return 0;
 }
@@ -34,7 +34,7 @@ static int others_invert(sessile_sds_complex *cx, const double *x0, uint32_t t, 
 /* Finds tet t and its vertex v with (f_boundary, v_boundary) as asked and a
  * clean single event; runs the event and the transformation with all checks. */
 static void run_case(int f_boundary, int v_boundary, const char *label) {
-  sessile_sds_complex cx = {0};
+  sessile_sds_topo_complex cx = {0};
   fx_ball(3, 0.005, &cx);
   uint32_t nb, *bnd = fx_boundary(&cx, &nb);
   uint8_t *onb = calloc(cx.nv, 1);
@@ -59,15 +59,15 @@ static void run_case(int f_boundary, int v_boundary, const char *label) {
       for (int k = 0; k < 3; k++) g[k] = (x0[3 * f[0] + k] + x0[3 * f[1] + k] + x0[3 * f[2] + k]) / 3;
       if (f_boundary && v_boundary) {
         /* the refusal: no motion needed */
-        sessile_sds_complex keep;
+        sessile_sds_topo_complex keep;
         fx_copy(&cx, &keep);
-        sessile_sds_transform tr;
-        sessile_status st = sessile_sds_case1(&cx, t, v, &tr);
+        sessile_sds_topo_transform tr;
+        sessile_status st = sessile_sds_topo_case1(&cx, t, v, &tr);
         printf("  refusal: %s\n", sessile_error_message());
         t_true("vertex and face both on the surface: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
         t_true("refusal message says why", strstr(sessile_error_message(), "both on the surface") != NULL);
         t_true("refused: complex untouched", cx.nt == keep.nt && !memcmp(cx.tet, keep.tet, 4 * cx.nt * sizeof *cx.tet));
-        sessile_sds_complex_free(&keep);
+        sessile_sds_topo_complex_free(&keep);
         goto out;
       }
       if (others_invert(&cx, x0, t, v, g)) continue;
@@ -75,16 +75,16 @@ static void run_case(int f_boundary, int v_boundary, const char *label) {
       double p[12], q[12];
       place(&cx, x0, v, g, 0), tet_pts(&cx, t, p);
       place(&cx, x0, v, g, 1), tet_pts(&cx, t, q);
-      sessile_sds_inversion inv;
-      t_true("inversion found", sessile_sds_inversion_time(p, q, 0, 1, &inv));
+      sessile_sds_topo_inversion inv;
+      t_true("inversion found", sessile_sds_topo_inversion_time(p, q, 0, 1, &inv));
       t_check("inversion time = 1/K", fabs(inv.s - 1 / K), 1e-12);
-      t_true("case 1 with the moving vertex", inv.kind == SESSILE_SDS_INV_VERTEX_FACE && inv.vertex == qv);
+      t_true("case 1 with the moving vertex", inv.kind == SESSILE_SDS_TOPO_VERTEX_FACE && inv.vertex == qv);
       place(&cx, x0, v, g, inv.s);
       double v0 = fx_volume(&cx);
       uint32_t nt0 = cx.nt;
-      sessile_sds_transform tr;
+      sessile_sds_topo_transform tr;
       double t0 = fx_now();
-      sessile_status st = sessile_sds_apply_inversion(&cx, t, &inv, &tr); /* = case1(t, v) */
+      sessile_status st = sessile_sds_topo_apply_inversion(&cx, t, &inv, &tr); /* = case1(t, v) */
       double dt = fx_now() - t0;
       t_ok("case 1 transformation", st);
       if (st != SESSILE_OK) goto out;
@@ -101,16 +101,18 @@ static void run_case(int f_boundary, int v_boundary, const char *label) {
       free(tr.tet_from);
       goto out;
     }
-  if (f_boundary && v_boundary) printf("  the ball has no tet with a surface face and the opposite vertex on the surface\n");
-  else t_true("found a tet for this case", 0);
+  if (f_boundary && v_boundary)
+    printf("  the ball has no tet with a surface face and the opposite vertex on the surface\n");
+  else
+    t_true("found a tet for this case", 0);
 out:
   free(bnd), free(onb), free(x0);
-  sessile_sds_complex_free(&cx);
+  sessile_sds_topo_complex_free(&cx);
 }
 
 /* The 2-3 flip refused where the edge (v, v') exists already. */
 static void existing_edge(void) {
-  sessile_sds_complex cx = {0};
+  sessile_sds_topo_complex cx = {0};
   fx_ball(3, 0.005, &cx);
   static const int fo[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (uint32_t t = 0; t < cx.nt; t++)
@@ -127,24 +129,25 @@ static void existing_edge(void) {
       int adj = 0;
       for (uint32_t u = 0; u < cx.nt && !adj; u++) {
         const uint32_t *w = cx.tet + 4 * u;
-        int hv = w[0] == v || w[1] == v || w[2] == v || w[3] == v, hp = w[0] == vp || w[1] == vp || w[2] == vp || w[3] == vp;
+        int hv = w[0] == v || w[1] == v || w[2] == v || w[3] == v,
+            hp = w[0] == vp || w[1] == vp || w[2] == vp || w[3] == vp;
         adj = hv && hp;
       }
       if (!adj) continue;
-      sessile_sds_complex keep;
+      sessile_sds_topo_complex keep;
       fx_copy(&cx, &keep);
-      sessile_sds_transform tr;
-      sessile_status st = sessile_sds_case1(&cx, t, v, &tr);
+      sessile_sds_topo_transform tr;
+      sessile_status st = sessile_sds_topo_case1(&cx, t, v, &tr);
       printf("existing edge: %s\n", sessile_error_message());
       t_true("edge (v, v') already there: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
       t_true("the message says so", strstr(sessile_error_message(), "exists already") != NULL);
       t_true("untouched", cx.nt == keep.nt && !memcmp(cx.tet, keep.tet, 4 * cx.nt * sizeof *cx.tet));
-      sessile_sds_complex_free(&keep);
-      sessile_sds_complex_free(&cx);
+      sessile_sds_topo_complex_free(&keep);
+      sessile_sds_topo_complex_free(&cx);
       return;
     }
   printf("existing edge: no such configuration in the ball\n");
-  sessile_sds_complex_free(&cx);
+  sessile_sds_topo_complex_free(&cx);
 }
 
 int main(void) {
@@ -157,15 +160,15 @@ int main(void) {
     /* a single tet: every vertex and face on the surface */
     double x[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2, 0.2, 1};
     uint32_t tt[4] = {0, 1, 2, 3};
-    sessile_sds_complex one = {4, 1, t_xalloc(sizeof x), t_xalloc(sizeof tt)};
+    sessile_sds_topo_complex one = {4, 1, t_xalloc(sizeof x), t_xalloc(sizeof tt)};
     memcpy(one.x, x, sizeof x), memcpy(one.tet, tt, sizeof tt);
-    sessile_sds_transform tr;
-    sessile_status st = sessile_sds_case1(&one, 0, 3, &tr);
+    sessile_sds_topo_transform tr;
+    sessile_status st = sessile_sds_topo_case1(&one, 0, 3, &tr);
     printf("single tet refusal: %s\n", sessile_error_message());
     t_true("single tet: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
     t_true("single tet: untouched", one.nt == 1 && !memcmp(one.tet, tt, sizeof tt));
-    t_true("vertex not in the tet: SESSILE_ERR_USAGE", sessile_sds_case1(&one, 0, 7, &tr) == SESSILE_ERR_USAGE);
-    sessile_sds_complex_free(&one);
+    t_true("vertex not in the tet: SESSILE_ERR_USAGE", sessile_sds_topo_case1(&one, 0, 7, &tr) == SESSILE_ERR_USAGE);
+    sessile_sds_topo_complex_free(&one);
   }
   return t_finish(NULL);
 }

@@ -9,16 +9,16 @@
 
 typedef struct scene {
   double *x0, w[3];
-  uint32_t mv[4]; /* moving vertices */
+  uint32_t mv[4];  /* moving vertices */
   double share[4]; /* fraction of w each moves by */
 } scene;
 
-static void place(sessile_sds_complex *cx, const scene *sc, double s) {
+static void place(sessile_sds_topo_complex *cx, const scene *sc, double s) {
   memcpy(cx->x, sc->x0, 3 * (size_t)cx->nv * sizeof *cx->x);
   for (int i = 0; i < 4; i++)
     for (int k = 0; k < 3; k++) cx->x[3 * sc->mv[i] + k] += s * K * sc->share[i] * sc->w[k];
 }
-static void tet_pts(const sessile_sds_complex *cx, uint32_t t, double *p) {
+static void tet_pts(const sessile_sds_topo_complex *cx, uint32_t t, double *p) {
   for (int q = 0; q < 4; q++) memcpy(p + 3 * q, cx->x + 3 * cx->tet[4 * t + q], 3 * sizeof *p);
 }
 static int has(const uint32_t *w, uint32_t a) { return w[0] == a || w[1] == a || w[2] == a || w[3] == a; }
@@ -41,7 +41,7 @@ static int edge_faces(const uint32_t *bnd, uint32_t nb, uint32_t a, uint32_t b, 
  * (covered); 2: e_u on the boundary in the flat tet only.  Runs up to
  * `want` events on fresh copies of the ball; returns how many ran. */
 static int run_kind(int kind, int want, const char *label) {
-  sessile_sds_complex ball = {0};
+  sessile_sds_topo_complex ball = {0};
   fx_ball(3, 0.005, &ball);
   uint32_t nb, *bnd = fx_boundary(&ball, &nb);
   int done = 0;
@@ -63,7 +63,7 @@ static int run_kind(int kind, int want, const char *label) {
       for (int k = 0; k < 3; k++)
         sc.w[k] = 0.5 * (ball.x[3 * a + k] + ball.x[3 * b + k]) - 0.5 * (ball.x[3 * c + k] + ball.x[3 * d + k]);
       /* interior: the edges meet halfway; boundary edge e_u fixed, e_l comes */
-      sessile_sds_complex cx;
+      sessile_sds_topo_complex cx;
       fx_copy(&ball, &cx);
       sc.x0 = ball.x;
       /* precondition: no other tet of a moving vertex inverts on [0, 1];
@@ -72,7 +72,7 @@ static int run_kind(int kind, int want, const char *label) {
        * edges tried from even to e_l only */
       int clean = 0;
       double p[12], q[12];
-      sessile_sds_inversion inv;
+      sessile_sds_topo_inversion inv;
       for (double lam = 0.5; lam <= 1.0 + 1e-9 && !clean; lam += 0.1) {
         sc.share[0] = sc.share[1] = -(1 - lam), sc.share[2] = sc.share[3] = lam;
         if (kind == 0 && lam > 0.5) break;
@@ -82,7 +82,7 @@ static int run_kind(int kind, int want, const char *label) {
           if (u == t || !(has(w, a) || has(w, b) || has(w, c) || has(w, d))) continue;
           place(&cx, &sc, 0), tet_pts(&cx, u, p);
           place(&cx, &sc, 1), tet_pts(&cx, u, q);
-          clean = !sessile_sds_inversion_time(p, q, 0, 1, &inv);
+          clean = !sessile_sds_topo_inversion_time(p, q, 0, 1, &inv);
         }
         if (clean && kind == 1) {
           place(&cx, &sc, 1 / K);
@@ -95,30 +95,31 @@ static int run_kind(int kind, int want, const char *label) {
             for (int z = 0; z < 3; z++) m += f[z] == a || f[z] == b || f[z] == tu[0];
             if (m == 3) memcpy(f0, f, sizeof f0);
           }
-          clean = sessile_sds_tet_volume(X + 3 * f0[0], X + 3 * f0[1], X + 3 * f0[2], X + 3 * tu[1]) > 0;
+          clean = sessile_sds_topo_volume(X + 3 * f0[0], X + 3 * f0[1], X + 3 * f0[2], X + 3 * tu[1]) > 0;
         }
       }
       if (!clean) {
-        sessile_sds_complex_free(&cx);
+        sessile_sds_topo_complex_free(&cx);
         continue;
       }
       place(&cx, &sc, 0), tet_pts(&cx, t, p);
       place(&cx, &sc, 1), tet_pts(&cx, t, q);
-      t_true("inversion found", sessile_sds_inversion_time(p, q, 0, 1, &inv));
+      t_true("inversion found", sessile_sds_topo_inversion_time(p, q, 0, 1, &inv));
       t_check("inversion time = 1/K", fabs(inv.s - 1 / K), 1e-12);
       int lu0 = pairs[pi][0], lu1 = pairs[pi][1];
-      int match = (inv.edge[0][0] == lu0 && inv.edge[0][1] == lu1) || (inv.edge[0][0] == lu1 && inv.edge[0][1] == lu0) ||
+      int match = (inv.edge[0][0] == lu0 && inv.edge[0][1] == lu1) ||
+                  (inv.edge[0][0] == lu1 && inv.edge[0][1] == lu0) ||
                   (inv.edge[1][0] == lu0 && inv.edge[1][1] == lu1) || (inv.edge[1][0] == lu1 && inv.edge[1][1] == lu0);
-      t_true("case 2 with the moved edges", inv.kind == SESSILE_SDS_INV_EDGE_EDGE && match);
+      t_true("case 2 with the moved edges", inv.kind == SESSILE_SDS_TOPO_EDGE_EDGE && match);
       place(&cx, &sc, inv.s);
       double v0 = fx_volume(&cx), cover = 0;
       if (kind == 1) {
         double *X = cx.x;
-        cover = fabs(sessile_sds_tet_volume(X + 3 * a, X + 3 * b, X + 3 * tu[0], X + 3 * tu[1]));
+        cover = fabs(sessile_sds_topo_volume(X + 3 * a, X + 3 * b, X + 3 * tu[0], X + 3 * tu[1]));
       }
-      sessile_sds_transform tr;
+      sessile_sds_topo_transform tr;
       double t0 = fx_now();
-      sessile_status st = sessile_sds_apply_inversion(&cx, t, &inv, &tr); /* = case2 on (a b), (c d) */
+      sessile_status st = sessile_sds_topo_apply_inversion(&cx, t, &inv, &tr); /* = case2 on (a b), (c d) */
       double dt = fx_now() - t0;
       tsum += dt;
       t_ok("case 2 transformation", st);
@@ -131,8 +132,8 @@ static int run_kind(int kind, int want, const char *label) {
                 fabs(rep.volume - v0 - cover) / v0, 1e-12);
         if (kind == 2) t_true("flat tet dropped, nothing added", tr.n_removed == 1 && tr.n_added == 0);
         int both = 0; /* no tet holds both crossing edges any more */
-        for (uint32_t u = 0; u < cx.nt; u++) both |= has(cx.tet + 4 * u, a) && has(cx.tet + 4 * u, b) &&
-                                                     has(cx.tet + 4 * u, c) && has(cx.tet + 4 * u, d);
+        for (uint32_t u = 0; u < cx.nt; u++)
+          both |= has(cx.tet + 4 * u, a) && has(cx.tet + 4 * u, b) && has(cx.tet + 4 * u, c) && has(cx.tet + 4 * u, d);
         t_true("no tet spans both edges", !both);
         place(&cx, &sc, 1);
         t_ok("valid after moving on (no inverted tet)", sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0.0, &rep));
@@ -140,12 +141,12 @@ static int run_kind(int kind, int want, const char *label) {
       } else {
         printf("  %s\n", sessile_error_message());
       }
-      sessile_sds_complex_free(&cx);
+      sessile_sds_topo_complex_free(&cx);
       done++;
     }
   if (done) printf("  %d events, mean %.3f ms per transformation\n", done, 1e3 * tsum / done);
   free(bnd);
-  sessile_sds_complex_free(&ball);
+  sessile_sds_topo_complex_free(&ball);
   return done;
 }
 
@@ -160,11 +161,12 @@ int main(void) {
     double x0[15] = {0.5, -0.5, 1, 0.5, 0.5, 1, 0, 0, 0, 1, 0, 0, 0.5, 0, -1}, xs[15];
     uint32_t tt[12] = {0, 1, 2, 3, 2, 3, 0, 4, 2, 3, 1, 4};
     for (int i = 0; i < 3; i++)
-      if (sessile_sds_tet_volume(x0 + 3 * tt[4 * i], x0 + 3 * tt[4 * i + 1], x0 + 3 * tt[4 * i + 2], x0 + 3 * tt[4 * i + 3]) < 0) {
+      if (sessile_sds_topo_volume(x0 + 3 * tt[4 * i], x0 + 3 * tt[4 * i + 1], x0 + 3 * tt[4 * i + 2],
+                                  x0 + 3 * tt[4 * i + 3]) < 0) {
         uint32_t z = tt[4 * i + 1];
         tt[4 * i + 1] = tt[4 * i + 2], tt[4 * i + 2] = z;
       }
-    sessile_sds_complex hm = {5, 3, t_xalloc(sizeof x0), t_xalloc(sizeof tt)};
+    sessile_sds_topo_complex hm = {5, 3, t_xalloc(sizeof x0), t_xalloc(sizeof tt)};
     memcpy(hm.x, x0, sizeof x0), memcpy(hm.tet, tt, sizeof tt);
     sessile_sds_topo_report rep;
     t_ok("hand-made: valid at the start", sessile_sds_topo_check(5, hm.x, 3, hm.tet, 0.0, &rep));
@@ -172,21 +174,21 @@ int main(void) {
     for (int v = 0; v < 4; v++) memcpy(p + 3 * v, x0 + 3 * tt[v], 3 * sizeof(double));
     memcpy(xs, x0, sizeof xs), xs[2] = xs[5] = 1 - K; /* z of a, b at s = 1 */
     for (int v = 0; v < 4; v++) memcpy(q + 3 * v, xs + 3 * tt[v], 3 * sizeof(double));
-    sessile_sds_inversion inv;
-    t_true("hand-made: inversion found", sessile_sds_inversion_time(p, q, 0, 1, &inv));
+    sessile_sds_topo_inversion inv;
+    t_true("hand-made: inversion found", sessile_sds_topo_inversion_time(p, q, 0, 1, &inv));
     t_check("hand-made: inversion time 1/K", fabs(inv.s - 1 / K), 1e-12);
-    t_true("hand-made: case 2", inv.kind == SESSILE_SDS_INV_EDGE_EDGE);
+    t_true("hand-made: case 2", inv.kind == SESSILE_SDS_TOPO_EDGE_EDGE);
     hm.x[2] = hm.x[5] = 1 - K * inv.s;
     double v0 = fx_volume(&hm);
-    sessile_sds_transform tr;
-    t_ok("hand-made: case 2 transformation", sessile_sds_case2(&hm, 0, 1, 2, 3, &tr));
+    sessile_sds_topo_transform tr;
+    t_ok("hand-made: case 2 transformation", sessile_sds_topo_case2(&hm, 0, 1, 2, 3, &tr));
     t_true("hand-made: the flat tet dropped, nothing added", tr.n_removed == 1 && tr.n_added == 0 && hm.nt == 2);
     t_ok("hand-made: valid at the event", sessile_sds_topo_check(5, hm.x, hm.nt, hm.tet, 0.0, &rep));
     t_check("hand-made: volume unchanged (rel)", fabs(rep.volume - v0) / v0, 1e-12);
     hm.x[2] = hm.x[5] = 1 - K;
     t_ok("hand-made: valid after moving on", sessile_sds_topo_check(5, hm.x, hm.nt, hm.tet, 0.0, &rep));
     free(tr.tet_from);
-    sessile_sds_complex_free(&hm);
+    sessile_sds_topo_complex_free(&hm);
   }
   {
     /* refusal: a boundary edge ab on a ridge (the faces a b p and a b q fall
@@ -196,30 +198,31 @@ int main(void) {
     double x0[18] = {0.5, -0.5, 0, 0.5, 0.5, 0, -1, 0, -0.5, 2, 0, -0.5, 0.5, 0, -1, 0.2, -1.5, -0.3};
     uint32_t tt[12] = {0, 1, 2, 4, 0, 1, 4, 3, 2, 4, 0, 5};
     for (int i = 0; i < 3; i++)
-      if (sessile_sds_tet_volume(x0 + 3 * tt[4 * i], x0 + 3 * tt[4 * i + 1], x0 + 3 * tt[4 * i + 2], x0 + 3 * tt[4 * i + 3]) < 0) {
+      if (sessile_sds_topo_volume(x0 + 3 * tt[4 * i], x0 + 3 * tt[4 * i + 1], x0 + 3 * tt[4 * i + 2],
+                                  x0 + 3 * tt[4 * i + 3]) < 0) {
         uint32_t z = tt[4 * i + 1];
         tt[4 * i + 1] = tt[4 * i + 2], tt[4 * i + 2] = z;
       }
     uint32_t keep[12];
     memcpy(keep, tt, sizeof tt);
-    sessile_sds_complex hm = {6, 3, t_xalloc(sizeof x0), t_xalloc(sizeof tt)};
+    sessile_sds_topo_complex hm = {6, 3, t_xalloc(sizeof x0), t_xalloc(sizeof tt)};
     memcpy(hm.x, x0, sizeof x0), memcpy(hm.tet, tt, sizeof tt);
     t_ok("ridge: valid", sessile_sds_topo_check(6, hm.x, 3, hm.tet, 0.0, NULL));
-    sessile_sds_transform tr;
-    sessile_status st = sessile_sds_case2(&hm, 0, 1, 2, 4, &tr);
+    sessile_sds_topo_transform tr;
+    sessile_status st = sessile_sds_topo_case2(&hm, 0, 1, 2, 4, &tr);
     printf("ridge refusal: %s\n", sessile_error_message());
     t_true("ridge: SESSILE_ERR_UNSUPPORTED", st == SESSILE_ERR_UNSUPPORTED);
     t_true("ridge: the message names edge (0 1) and says why",
            strstr(sessile_error_message(), "edge (0 1)") && strstr(sessile_error_message(), "no tet covers it"));
     t_true("ridge: untouched", hm.nt == 3 && !memcmp(hm.tet, keep, sizeof keep));
     if (st == SESSILE_OK) free(tr.tet_from);
-    sessile_sds_complex_free(&hm);
+    sessile_sds_topo_complex_free(&hm);
   }
   /* bad input */
-  sessile_sds_complex ball = {0};
+  sessile_sds_topo_complex ball = {0};
   fx_ball(2, 0.02, &ball);
-  sessile_sds_transform tr;
-  t_true("edge in no tet: SESSILE_ERR_USAGE", sessile_sds_case2(&ball, 0, 0, 1, 2, &tr) == SESSILE_ERR_USAGE);
-  sessile_sds_complex_free(&ball);
+  sessile_sds_topo_transform tr;
+  t_true("edge in no tet: SESSILE_ERR_USAGE", sessile_sds_topo_case2(&ball, 0, 0, 1, 2, &tr) == SESSILE_ERR_USAGE);
+  sessile_sds_topo_complex_free(&ball);
   return t_finish(NULL);
 }

@@ -5,19 +5,21 @@
 #include "test_topo_fixture.h"
 
 /* One division with every check; returns the seconds it took. */
-static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d[3], int expect_surface, int verbose) {
-  sessile_sds_complex old;
+static double divide_checked(sessile_sds_topo_complex *cx, uint32_t c, const double d[3], int expect_surface,
+                             int verbose) {
+  sessile_sds_topo_complex old;
   fx_copy(cx, &old);
   uint32_t nb0, *b0 = fx_boundary(cx, &nb0);
   double v0 = fx_volume(cx);
-  sessile_sds_division div;
+  sessile_sds_topo_division div;
   double t0 = fx_now();
-  sessile_status st = sessile_sds_divide(cx, c, d, 0.0, &div);
+  sessile_status st = sessile_sds_topo_divide(cx, c, d, 0.0, &div);
   double dt = fx_now() - t0;
   t_ok("divide", st);
   if (st != SESSILE_OK) exit(t_finish(NULL));
   sessile_sds_topo_report rep;
-  t_ok("the complex after division passes the check", sessile_sds_topo_check(cx->nv, cx->x, cx->nt, cx->tet, 0.0, &rep));
+  t_ok("the complex after division passes the check",
+       sessile_sds_topo_check(cx->nv, cx->x, cx->nt, cx->tet, 0.0, &rep));
   double rel = fabs(rep.volume - v0) / v0;
   if (verbose || rel > 1e-12)
     printf("  cell %u (%s%s): %u tets out, %u in, eps %.3g, volume change %.2e rel, %.2f ms\n", c,
@@ -58,7 +60,7 @@ static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d
   uint32_t nnew = 0, prev = 0;
   for (uint32_t t = 0; t < cx->nt; t++) {
     uint32_t f = div.tet_from[t];
-    if (f == SESSILE_SDS_NEW_TET) {
+    if (f == SESSILE_SDS_TOPO_NEW_TET) {
       nnew++;
       continue;
     }
@@ -74,12 +76,12 @@ static double divide_checked(sessile_sds_complex *cx, uint32_t c, const double d
   t_true("new tets counted", nnew == div.n_added && cx->nt == old.nt - div.n_removed + div.n_added);
   /* the new tets all contain a daughter? not required; they fill the hull */
   free(kept), free(b0), free(b1), free(div.tet_from);
-  sessile_sds_complex_free(&old);
+  sessile_sds_topo_complex_free(&old);
   return dt;
 }
 
 int main(void) {
-  sessile_sds_complex cx = {0};
+  sessile_sds_topo_complex cx = {0};
   fx_ball(3, 0.005, &cx);
   printf("ball: %u vertices, %u tets\n", cx.nv, cx.nt);
   /* interior cell nearest the centre, surface cell = vertex 0 (icosphere) */
@@ -122,16 +124,18 @@ int main(void) {
     double d[3] = {sessile_rng_normal(&rng), sessile_rng_normal(&rng), sessile_rng_normal(&rng)};
     int surf = fx_on_boundary(&cx, c);
     double dt = divide_checked(&cx, c, d, surf, 0);
-    if (surf) tsum_s += dt, ns++;
-    else tsum_i += dt, ni++;
+    if (surf)
+      tsum_s += dt, ns++;
+    else
+      tsum_i += dt, ni++;
   }
   printf("random divisions: %d interior, mean %.2f ms; %d surface, mean %.2f ms; now %u vertices, %u tets\n", ni,
          1e3 * tsum_i / (ni ? ni : 1), ns, 1e3 * tsum_s / (ns ? ns : 1), cx.nv, cx.nt);
   /* bad input */
-  sessile_sds_division div;
+  sessile_sds_topo_division div;
   double z[3] = {0, 0, 0};
-  t_true("zero direction refused", sessile_sds_divide(&cx, 3, z, 0, &div) == SESSILE_ERR_USAGE);
-  t_true("cell out of range refused", sessile_sds_divide(&cx, cx.nv, d1, 0, &div) == SESSILE_ERR_USAGE);
-  sessile_sds_complex_free(&cx);
+  t_true("zero direction refused", sessile_sds_topo_divide(&cx, 3, z, 0, &div) == SESSILE_ERR_USAGE);
+  t_true("cell out of range refused", sessile_sds_topo_divide(&cx, cx.nv, d1, 0, &div) == SESSILE_ERR_USAGE);
+  sessile_sds_topo_complex_free(&cx);
   return t_finish(NULL);
 }

@@ -19,7 +19,7 @@ static inline double fx_now(void) {
 
 /* A unit ball: the icosphere of the given level meshed by TetGen with a
  * quality bound and a volume cap (interior vertices), positively oriented. */
-static inline void fx_ball(int level, double max_vol, sessile_sds_complex *cx) {
+static inline void fx_ball(int level, double max_vol, sessile_sds_topo_complex *cx) {
   sessile_surface s;
   memset(&s, 0, sizeof s);
   double c0[3] = {0, 0, 0};
@@ -45,7 +45,7 @@ static inline void fx_ball(int level, double max_vol, sessile_sds_complex *cx) {
   for (size_t i = 0; i < 4 * (size_t)cx->nt; i++) cx->tet[i] = (uint32_t)r.tet[i];
   for (uint32_t t = 0; t < cx->nt; t++) {
     uint32_t *v = cx->tet + 4 * t;
-    if (sessile_sds_tet_volume(cx->x + 3 * v[0], cx->x + 3 * v[1], cx->x + 3 * v[2], cx->x + 3 * v[3]) < 0) {
+    if (sessile_sds_topo_volume(cx->x + 3 * v[0], cx->x + 3 * v[1], cx->x + 3 * v[2], cx->x + 3 * v[3]) < 0) {
       uint32_t x = v[1];
       v[1] = v[2], v[2] = x;
     }
@@ -55,11 +55,11 @@ static inline void fx_ball(int level, double max_vol, sessile_sds_complex *cx) {
   sessile_surface_free(&s);
 }
 
-static inline double fx_volume(const sessile_sds_complex *cx) {
+static inline double fx_volume(const sessile_sds_topo_complex *cx) {
   double v = 0;
   for (uint32_t t = 0; t < cx->nt; t++) {
     const uint32_t *q = cx->tet + 4 * t;
-    v += sessile_sds_tet_volume(cx->x + 3 * q[0], cx->x + 3 * q[1], cx->x + 3 * q[2], cx->x + 3 * q[3]);
+    v += sessile_sds_topo_volume(cx->x + 3 * q[0], cx->x + 3 * q[1], cx->x + 3 * q[2], cx->x + 3 * q[3]);
   }
   return v;
 }
@@ -67,8 +67,9 @@ static inline double fx_volume(const sessile_sds_complex *cx) {
 /* Boundary faces as sorted (rotated so the smallest index leads) triples,
  * sorted: two complexes with the same boundary give equal arrays. */
 static inline int fx_u3cmp(const void *a, const void *b) { return memcmp(a, b, 3 * sizeof(uint32_t)); }
-static inline uint32_t *fx_boundary(const sessile_sds_complex *cx, uint32_t *nb) {
-  uint32_t n4 = 4 * cx->nt, *all = t_xalloc((size_t)n4 * 4 * sizeof *all), *out = t_xalloc((size_t)n4 * 3 * sizeof *out);
+static inline uint32_t *fx_boundary(const sessile_sds_topo_complex *cx, uint32_t *nb) {
+  uint32_t n4 = 4 * cx->nt, *all = t_xalloc((size_t)n4 * 4 * sizeof *all),
+           *out = t_xalloc((size_t)n4 * 3 * sizeof *out);
   static const int fo[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
   for (uint32_t t = 0; t < cx->nt; t++)
     for (int q = 0; q < 4; q++) {
@@ -103,7 +104,7 @@ static inline uint32_t *fx_boundary(const sessile_sds_complex *cx, uint32_t *nb)
 }
 
 /* Is vertex v on the boundary of cx? */
-static inline int fx_on_boundary(const sessile_sds_complex *cx, uint32_t v) {
+static inline int fx_on_boundary(const sessile_sds_topo_complex *cx, uint32_t v) {
   uint32_t nb, *b = fx_boundary(cx, &nb);
   int on = 0;
   for (uint32_t i = 0; i < 3 * nb; i++) on |= b[i] == v;
@@ -111,7 +112,7 @@ static inline int fx_on_boundary(const sessile_sds_complex *cx, uint32_t v) {
   return on;
 }
 
-static inline void fx_copy(const sessile_sds_complex *a, sessile_sds_complex *b) {
+static inline void fx_copy(const sessile_sds_topo_complex *a, sessile_sds_topo_complex *b) {
   b->nv = a->nv, b->nt = a->nt;
   b->x = t_xalloc(3 * (size_t)a->nv * sizeof *b->x);
   b->tet = t_xalloc(4 * (size_t)a->nt * sizeof *b->tet);

@@ -8,7 +8,7 @@
 int main(int argc, char **argv) {
   int level = argc > 1 ? atoi(argv[1]) : 2, ndiv = argc > 2 ? atoi(argv[2]) : 1000;
   double cap = argc > 3 ? atof(argv[3]) : 0.02;
-  sessile_sds_complex cx = {0};
+  sessile_sds_topo_complex cx = {0};
   fx_ball(level, cap, &cx);
   double v0 = fx_volume(&cx);
   printf("ball level %d, volume cap %g: %u vertices, %u tets\n", level, cap, cx.nv, cx.nt);
@@ -18,9 +18,9 @@ int main(int argc, char **argv) {
   for (int k = 0; k < ndiv && !invalid; k++) {
     uint32_t c = (uint32_t)(sessile_rng_uniform(&rng) * cx.nv) % cx.nv;
     double d[3] = {sessile_rng_normal(&rng), sessile_rng_normal(&rng), sessile_rng_normal(&rng)};
-    sessile_sds_division div;
+    sessile_sds_topo_division div;
     double t0 = fx_now();
-    sessile_status st = sessile_sds_divide(&cx, c, d, 0, &div);
+    sessile_status st = sessile_sds_topo_divide(&cx, c, d, 0, &div);
     tdiv += fx_now() - t0;
     if (st != SESSILE_OK) {
       refused++;
@@ -43,12 +43,14 @@ int main(int argc, char **argv) {
     if (st != SESSILE_OK) printf("  invalid after division %d: %s\n", k, sessile_error_message()), invalid = 1;
     worst = fmax(worst, fabs(rep.volume - v0) / v0);
   }
-  printf("%d divisions: %d daughters apart, %d refused, %d by the cone fallback; %.3f ms per division, %.3f ms per check; now %u vertices, %u tets\n", ndiv, apart, refused,
-         fallback, 1e3 * tdiv / ndiv, 1e3 * tchk / ndiv, cx.nv, cx.nt);
+  printf(
+      "%d divisions: %d daughters apart, %d refused, %d by the cone fallback; %.3f ms per division, %.3f ms per check; "
+      "now %u vertices, %u tets\n",
+      ndiv, apart, refused, fallback, 1e3 * tdiv / ndiv, 1e3 * tchk / ndiv, cx.nv, cx.nt);
   t_true("every division valid", !invalid);
   t_true("no division refused", refused == 0);
   t_true("the daughters are neighbours after every division", apart == 0);
   t_check("volume after every division (rel)", worst, 1e-12);
-  sessile_sds_complex_free(&cx);
+  sessile_sds_topo_complex_free(&cx);
   return t_finish(NULL);
 }

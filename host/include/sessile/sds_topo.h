@@ -7,7 +7,7 @@
  * Conventions: positions x (3 per vertex), tets (4 per tet) positively
  * oriented, det[x1-x0, x2-x0, x3-x0] > 0.  Every editing operation rebuilds
  * the tet array as: the kept tets in their old order, then the new ones; and
- * returns tet_from[i] = the old index of tet i, or SESSILE_SDS_NEW_TET for a
+ * returns tet_from[i] = the old index of tet i, or SESSILE_SDS_TOPO_NEW_TET for a
  * tet the operation created (its rest size must be computed afresh; the kept
  * tets keep their spring multipliers).  Adjacency is found by a scan of the
  * tets (O(nt) per operation: divisions and inversions are rare events).
@@ -22,28 +22,28 @@
 extern "C" {
 #endif
 
-#define SESSILE_SDS_NEW_TET UINT32_MAX
+#define SESSILE_SDS_TOPO_NEW_TET UINT32_MAX
 
 /* A growable complex: the operations may realloc x and tet (they own nothing
- * else).  A zeroed struct is valid and empty; sessile_sds_complex_free
+ * else).  A zeroed struct is valid and empty; sessile_sds_topo_complex_free
  * releases the arrays. */
-typedef struct sessile_sds_complex {
+typedef struct sessile_sds_topo_complex {
   uint32_t nv, nt;
   double *x;     /* 3 nv */
   uint32_t *tet; /* 4 nt */
-} sessile_sds_complex;
-void sessile_sds_complex_free(sessile_sds_complex *c);
+} sessile_sds_topo_complex;
+void sessile_sds_topo_complex_free(sessile_sds_topo_complex *c);
 
 /* Signed volume (1/6 det[x1-x0, x2-x0, x3-x0]) of four points. */
-double sessile_sds_tet_volume(const double *x0, const double *x1, const double *x2, const double *x3);
+double sessile_sds_topo_volume(const double *x0, const double *x1, const double *x2, const double *x3);
 
 /* --- 1. validity ----------------------------------------------------------- */
 typedef struct sessile_sds_topo_report {
-  double volume;         /* sum of the tets' signed volumes */
-  double min_volume;     /* smallest tet volume */
-  uint32_t min_tet;      /* its index */
+  double volume;     /* sum of the tets' signed volumes */
+  double min_volume; /* smallest tet volume */
+  uint32_t min_tet;  /* its index */
   uint32_t n_interior_faces, n_boundary_faces;
-  int boundary_euler;    /* V - E + F of the boundary surface */
+  int boundary_euler; /* V - E + F of the boundary surface */
 } sessile_sds_topo_report;
 
 /* Checks: indices in range; every tet volume > min_volume; every face in one
@@ -53,18 +53,18 @@ typedef struct sessile_sds_topo_report {
  * faces around each boundary vertex form one fan); no duplicate tets; every
  * vertex in some tet.  report may be NULL.  Returns SESSILE_OK or
  * SESSILE_ERR_INTERNAL with a message naming the first violation. */
-sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet,
-                                      double min_volume, sessile_sds_topo_report *report);
+sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet, double min_volume,
+                                      sessile_sds_topo_report *report);
 
 /* --- 2. division (§3.1.1) -------------------------------------------------- */
-typedef struct sessile_sds_division {
-  uint32_t a, b;     /* daughters: a = the mother's index, b = the appended vertex */
-  int surface;       /* the mother was on the boundary */
-  double eps;        /* the offset used (a = c + eps d, b = c - eps d inside) */
+typedef struct sessile_sds_topo_division {
+  uint32_t a, b; /* daughters: a = the mother's index, b = the appended vertex */
+  int surface;   /* the mother was on the boundary */
+  double eps;    /* the offset used (a = c + eps d, b = c - eps d inside) */
   uint32_t n_removed, n_added;
-  int fallback;      /* TetGen needed a Steiner point: the hull coned from a, b split in */
-  uint32_t *tet_from; /* nt (new) entries, malloc'd: old index or SESSILE_SDS_NEW_TET */
-} sessile_sds_division;
+  int fallback;       /* TetGen needed a Steiner point: the hull coned from a, b split in */
+  uint32_t *tet_from; /* nt (new) entries, malloc'd: old index or SESSILE_SDS_TOPO_NEW_TET */
+} sessile_sds_topo_division;
 
 /* Divides cell c in direction d (need not be unit; must be non-zero).
  * Interior cell: the star T_c is removed and its closed hull F kept;
@@ -82,29 +82,29 @@ typedef struct sessile_sds_division {
  * toward c until a sees every hull face) and the cone tet holding b split in
  * four (div->fallback = 1); SESSILE_ERR_NUMERIC (the complex untouched) only
  * if that fails too.  On success div->tet_from must be freed by the caller. */
-sessile_status sessile_sds_divide(sessile_sds_complex *cx, uint32_t c, const double d[3], double eps_max,
-                                  sessile_sds_division *div);
+sessile_status sessile_sds_topo_divide(sessile_sds_topo_complex *cx, uint32_t c, const double d[3], double eps_max,
+                                       sessile_sds_topo_division *div);
 
 /* --- 3. inversion time ----------------------------------------------------- */
 /* Smallest s in [0, 1] with p(s) = c[0] + c[1] s + c[2] s^2 + c[3] s^3 = 0
  * where p changes sign or vanishes (any of the coefficients may be zero):
  * the interval is split at the real critical points and each monotone piece
  * with a sign change is bisected to the last bit.  Returns 1 and *s, or 0. */
-int sessile_sds_cubic_first_root(const double c[4], double *s);
+int sessile_sds_topo_cubic_root(const double c[4], double *s);
 
-typedef enum sessile_sds_inversion_case {
-  SESSILE_SDS_INV_NONE = 0,
-  SESSILE_SDS_INV_VERTEX_FACE = 1, /* case 1: a vertex through the opposite face */
-  SESSILE_SDS_INV_EDGE_EDGE = 2    /* case 2: two opposite edges cross */
-} sessile_sds_inversion_case;
+typedef enum sessile_sds_topo_case {
+  SESSILE_SDS_TOPO_NONE = 0,
+  SESSILE_SDS_TOPO_VERTEX_FACE = 1, /* case 1: a vertex through the opposite face */
+  SESSILE_SDS_TOPO_EDGE_EDGE = 2    /* case 2: two opposite edges cross */
+} sessile_sds_topo_case;
 
-typedef struct sessile_sds_inversion {
-  sessile_sds_inversion_case kind;
-  double u;     /* the inversion time in [u1, u2] */
-  double s;     /* the same in the normalised parameter (u - u1) / (u2 - u1) */
-  int vertex;   /* case 1: local index 0..3 of the vertex v (the face is the other three) */
+typedef struct sessile_sds_topo_inversion {
+  sessile_sds_topo_case kind;
+  double u;       /* the inversion time in [u1, u2] */
+  double s;       /* the same in the normalised parameter (u - u1) / (u2 - u1) */
+  int vertex;     /* case 1: local index 0..3 of the vertex v (the face is the other three) */
   int edge[2][2]; /* case 2: local indices of e_u = edge[0] and e_l = edge[1] */
-} sessile_sds_inversion;
+} sessile_sds_topo_inversion;
 
 /* The first time in [u1, u2] at which the tet p (4 points at u1, 12 doubles)
  * moving linearly to q (at u2) has zero volume, and its case (Figure 3) from
@@ -112,14 +112,14 @@ typedef struct sessile_sds_inversion {
  * triangle of the other three, else case 2 with the crossing pair of
  * opposite edges.  Returns 1 with *inv filled, or 0 when the volume keeps its
  * sign on [u1, u2]. */
-int sessile_sds_inversion_time(const double p[12], const double q[12], double u1, double u2,
-                               sessile_sds_inversion *inv);
+int sessile_sds_topo_inversion_time(const double p[12], const double q[12], double u1, double u2,
+                                    sessile_sds_topo_inversion *inv);
 
 /* --- 4., 5. movement transformations (§3.1.2) ------------------------------ */
-typedef struct sessile_sds_transform {
+typedef struct sessile_sds_topo_transform {
   uint32_t n_removed, n_added;
-  uint32_t *tet_from; /* as in sessile_sds_division */
-} sessile_sds_transform;
+  uint32_t *tet_from; /* as in sessile_sds_topo_division */
+} sessile_sds_topo_transform;
 
 /* Case 1 (Figure 4) at the inversion time: vertex v of tet t passes through
  * the opposite face f.  With t' the tet across f (apex v'), t and t' are
@@ -130,7 +130,8 @@ typedef struct sessile_sds_transform {
  * paper's "infinitely thin section"), or when the flip would not be valid
  * (a new tet with volume <= 0, or the edge (v, v') already in another tet);
  * the complex is untouched then. */
-sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v, sessile_sds_transform *tr);
+sessile_status sessile_sds_topo_case1(sessile_sds_topo_complex *cx, uint32_t t, uint32_t v,
+                                      sessile_sds_topo_transform *tr);
 
 /* Case 2 (Figure 5) at the inversion time: the edges e_u = (eu0, eu1) and
  * e_l = (el0, el1) cross.  U ∪ L (the tets around either edge) is removed and
@@ -144,13 +145,13 @@ sessile_status sessile_sds_case1(sessile_sds_complex *cx, uint32_t t, uint32_t v
  * into the body makes), refused with SESSILE_ERR_UNSUPPORTED at a ridge,
  * where that tet would overlap the body.  SESSILE_ERR_NUMERIC when TetGen
  * needs a Steiner point; the complex is untouched on every failure. */
-sessile_status sessile_sds_case2(sessile_sds_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
-                                 uint32_t el1, sessile_sds_transform *tr);
+sessile_status sessile_sds_topo_case2(sessile_sds_topo_complex *cx, uint32_t eu0, uint32_t eu1, uint32_t el0,
+                                      uint32_t el1, sessile_sds_topo_transform *tr);
 
-/* The transformation of inv's case (from sessile_sds_inversion_time on tet
+/* The transformation of inv's case (from sessile_sds_topo_inversion_time on tet
  * t, its local indices) applied to tet t: case 1 or case 2 above. */
-sessile_status sessile_sds_apply_inversion(sessile_sds_complex *cx, uint32_t t, const sessile_sds_inversion *inv,
-                                           sessile_sds_transform *tr);
+sessile_status sessile_sds_topo_apply_inversion(sessile_sds_topo_complex *cx, uint32_t t,
+                                                const sessile_sds_topo_inversion *inv, sessile_sds_topo_transform *tr);
 
 #ifdef __cplusplus
 }
