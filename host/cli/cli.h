@@ -68,6 +68,9 @@ int cmd_coral_lsystem(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_coral_venation(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile sponge particles`: Coralize's particle-fed sponge. */
 int cmd_sponge(int argc, char **argv, const cli_gpu_opts *global);
+/* `sessile sds run MODEL`, `sessile sds models` (cmd_sds.c). */
+int cmd_sds(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile bench coral`: one section per generator (cmd_bench_coral_*.c). */
 int cmd_bench_coral(int argc, char **argv, const cli_gpu_opts *global);
 typedef struct bench_coral_opts {

@@ -16,8 +16,9 @@ static const cli_command commands[] = {
     {"sphere", "the smallest generator: a seeded noisy icosphere through the run framework", cmd_sphere},
     {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
     {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
+    {"sds", "SDS, a tetrahedral developmental system: 'sds run MODEL', 'sds models'", cmd_sds},
     {"devices", "list the Vulkan devices and the one sessile uses", cmd_devices},
-    {"bench", "benchmarks: 'bench la|grow|fluid|coral' (figures, never pass/fail)", cmd_bench},
+    {"bench", "benchmarks: 'bench la|grow|fluid|coral|sds' (figures, never pass/fail)", cmd_bench},
     {"help", "this text; 'sessile COMMAND --help' explains a command", cmd_help},
     {"version", "print the version", cmd_version},
 };

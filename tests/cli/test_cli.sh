@@ -10,7 +10,8 @@ one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" &&
 no_validation() { ! grep -qi "validation \(error\|warning\)" "$T/err"; }
 
 for args in "--help" "help" "devices --help" "bench --help" "bench la --help" "bench coral --help" \
-            "coral --help" "coral lsystem --help" "coral venation --help" "sponge --help" "sponge particles --help"; do
+            "coral --help" "coral lsystem --help" "coral venation --help" "sponge --help" "sponge particles --help" \
+            "sds --help" "sds run --help" "bench sds --help"; do
   run $args
   check "'sessile $args' exits 0 with usage text" eval 'rc_is 0 && grep -q "usage: sessile" "$T/out"'
 done
@@ -20,7 +21,7 @@ check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessil
 for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4" \
-            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope"; do
+            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "sds" "sds grow" "sds run" "bench sds --x"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
 done

@@ -1,0 +1,203 @@
+/* `sessile sds run MODEL`: the Simplicial Developmental System (Porter &
+ * McCormack) on the run framework (sessile/sds_run.h, docs/sds.md). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli_run.h"
+#include "sds/sds_builtin.h"
+#include "sessile/io.h"
+#include "sessile/sds_run.h"
+
+#define CMD "sds run"
+
+static const char *help =
+    "usage: sessile sds run MODEL [--t-end T] [--frames N] [--max-cells N] [--max-steps N] [--seed N]\n"
+    "                           [--out DIR] [--force] [--quiet] [--device D]\n"
+    "       sessile sds models         list the shipped models\n"
+    "\n"
+    "Grows a form with SDS (Porter & McCormack): a tetrahedral complex whose\n"
+    "vertices are cells, with mass-spring physics and morphogen diffusion on the\n"
+    "device, rules per cell (grow, divide toward a morphogen's gradient), cell\n"
+    "division and inversions re-tetrahedralised with TetGen.  MODEL is a shipped\n"
+    "model (limb, six_limbs_box, rock, attractor, budded) or a model file\n"
+    "(a name ending in .sds; the language: docs/sds_rules.md).\n"
+    "Writes sds/frame_NNNN.ply (the surface with per-cell radius, morphogens and\n"
+    "state), sds/frame_NNNN.vtu and sds/series.pvd (the complex, for ParaView),\n"
+    "sds/final.ply, sds/model.sds (the model run), manifest.json and\n"
+    "records.jsonl (per frame: time, cells, tets, ms per step, divisions,\n"
+    "inversions: the paper's Figure 12).\n"
+    "\n"
+    "  --t-end T       simulated time to reach (default: the model's t_end)\n"
+    "  --frames N      frames over t_end (default: the model's frames)\n"
+    "  --max-cells N   stop with an error past N cells (default 200000)\n"
+    "  --max-steps N   refuse a run whose estimate at the starting organism's stable step\n"
+    "                  exceeds N steps (default 10000000)\n"
+    "  --seed N        seed of the division directions where a gradient vanishes (default 1)\n"
+    "  --out DIR       run directory (default runs/sds-MODEL); must be new or empty\n"
+    "  --force         replace the earlier run in DIR\n"
+    "On a failure mid-run (a blow-up, a division TetGen cannot mesh) the frames\n"
+    "written so far stay and the message names the time and the cause.\n"
+    "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
+
+static int is_file_name(const char *g) {
+  size_t n = strlen(g);
+  return strchr(g, '/') || (n > 4 && !strcmp(g + n - 4, ".sds"));
+}
+
+static int list_models(void) {
+  for (const sds_builtin *b = sds_builtins; b->name; b++) {
+    /* the first comment line says what it is */
+    const char *t = b->text, *e = strchr(t, '\n');
+    int n = e ? (int)(e - t) : (int)strlen(t);
+    printf("%-14s %.*s\n", b->name, n > 2 ? n - 2 : 0, t + (n > 2 ? 2 : 0));
+  }
+  return EXIT_OK;
+}
+
+static int parse_double(const char *v, double lo, double hi, double *out) {
+  char *end = NULL;
+  double x = v ? strtod(v, &end) : 0;
+  if (!v || !*v || *end || !(x >= lo && x <= hi)) return -1;
+  *out = x;
+  return 0;
+}
+
+static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_args *a) {
+  cli_gpu_opts go = *global;
+  const char *model = NULL;
+  double t_end = -1;
+  unsigned frames = 0, max_cells = 200000, max_steps = 10000000;
+  int have_frames = 0;
+  for (int i = 1; i < argc; i++) {
+    const char *o = argv[i];
+    if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
+      fputs(help, stdout);
+      return EXIT_OK;
+    }
+    if (!strcmp(o, "--t-end")) {
+      const char *v = cli_value(CMD, argc, argv, &i);
+      if (!v) return EXIT_USAGE;
+      if (parse_double(v, 0, 1e9, &t_end)) return cli_usage_error(CMD, "--t-end needs a time in [0, 1e9] (got '%.40s')", v);
+      continue;
+    }
+    if (!strcmp(o, "--frames")) {
+      if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 1, 100000, &frames)) return EXIT_USAGE;
+      have_frames = 1;
+      continue;
+    }
+    if (!strcmp(o, "--max-steps")) {
+      if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 1, 4000000000u, &max_steps)) return EXIT_USAGE;
+      continue;
+    }
+    if (!strcmp(o, "--max-cells")) {
+      if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 4, 50000000, &max_cells)) return EXIT_USAGE;
+      continue;
+    }
+    int r = cli_gpu_option(CMD, argc, argv, &i, &go);
+    if (r == 0) r = cli_run_option(CMD, argc, argv, &i, a);
+    if (r < 0) return EXIT_USAGE;
+    if (r > 0) continue;
+    if (o[0] == '-' || model) return cli_usage_error(CMD, "unknown option or second model '%.60s'", o);
+    model = o;
+  }
+  if (a->resume) return cli_usage_error(CMD, "--resume is not supported yet: rerun with --force (docs/sds.md)");
+  if (a->have_iterations || a->every != 1 || a->nsets || a->nconfigs || a->print_config)
+    return cli_usage_error(CMD, "--iterations, --every, --set, --config and --print-config do not apply: "
+                                "the model file holds every parameter (docs/sds_rules.md)");
+  if (!model) return cli_usage_error(CMD, "name a model: a shipped one (sessile sds models) or FILE.sds");
+  char *text = NULL;
+  size_t len = 0;
+  const char *name = model;
+  sessile_status s = SESSILE_OK;
+  if (is_file_name(model)) {
+    s = sessile_read_small_file(model, (size_t)1 << 20, "model file", &text, &len);
+    if (s != SESSILE_OK) return cli_fail(s);
+  } else {
+    const sds_builtin *b = sds_builtins;
+    while (b->name && strcmp(b->name, model)) b++;
+    if (!b->name) return cli_usage_error(CMD, "no shipped model '%.60s' (sessile sds models lists them)", model);
+    text = malloc(b->len + 1);
+    if (!text) return cli_usage_error(CMD, "out of host memory");
+    memcpy(text, b->text, b->len + 1);
+    len = b->len;
+  }
+  (void)len;
+  s = sessile_sds_model_check(text, name, t_end, max_steps);
+  if (s != SESSILE_OK) {
+    free(text);
+    return cli_fail(s);
+  }
+  char dir_buf[256];
+  const char *base = strrchr(name, '/') ? strrchr(name, '/') + 1 : name;
+  snprintf(dir_buf, sizeof dir_buf, "runs/sds-%.*s", (int)(strcspn(base, ".") ? strcspn(base, ".") : 1), base);
+  const char *dir = a->out ? a->out : dir_buf;
+  sessile_gpu *g = NULL;
+  s = cli_gpu_create(&go, &g);
+  if (s != SESSILE_OK) {
+    free(text);
+    return cli_fail(s);
+  }
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
+  sessile_run *run = NULL;
+  s = cli_run_open("sds", argc, argv, a, dir, stop, &run);
+  if (s == SESSILE_OK) {
+    char path[4096];
+    s = sessile_run_file(run, "sds/model.sds", path, sizeof path);
+    if (s == SESSILE_OK) s = sessile_write_file_atomic(path, text, strlen(text));
+  }
+  sessile_sds_run_stats st;
+  memset(&st, 0, sizeof st);
+  if (s == SESSILE_OK) {
+    sessile_sds_run_options o = {.run = run, .gpu = g, .seed = a->seed, .model_text = text, .model_name = name,
+                                 .t_end = t_end, .frames = have_frames ? (int)frames : -1, .max_cells = max_cells};
+    s = sessile_sds_run(&o, &st);
+    cJSON *m = sessile_run_manifest(run);
+    cJSON *js = cJSON_CreateObject();
+    if (js) {
+      cJSON_AddStringToObject(js, "model", name);
+      cJSON_AddNumberToObject(js, "time", st.time);
+      cJSON_AddNumberToObject(js, "steps", (double)st.steps);
+      cJSON_AddNumberToObject(js, "cells", st.cells);
+      cJSON_AddNumberToObject(js, "tets", st.tets);
+      cJSON_AddNumberToObject(js, "divisions", (double)st.divisions);
+      cJSON_AddNumberToObject(js, "inversions", (double)st.inversions);
+      cJSON_AddNumberToObject(js, "inversions_resisted", (double)st.resisted);
+      cJSON_AddNumberToObject(js, "sliver_steps", (double)st.slivers);
+      cJSON_AddNumberToObject(js, "divisions_deferred", (double)st.deferred);
+      cJSON_AddNumberToObject(js, "frames", st.frames);
+      cJSON_AddNumberToObject(js, "wall_s", st.wall_s);
+      cJSON_DeleteItemFromObjectCaseSensitive(m, "sds");
+      cJSON_AddItemToObject(m, "sds", js);
+    }
+  }
+  s = sessile_run_close(run, s);
+  sessile_gpu_destroy(g);
+  free(text);
+  if (s == SESSILE_OK && !a->quiet)
+    printf("sds %s: t = %g, %u cells, %u tets, %llu steps, %llu divisions, %llu inversions, %d frames in %.1f s; run in %s\n",
+           name, st.time, st.cells, st.tets, (unsigned long long)st.steps, (unsigned long long)st.divisions,
+           (unsigned long long)st.inversions, st.frames, st.wall_s, dir);
+  return cli_run_exit(CMD, s, dir, stop, st.frames);
+}
+
+int cmd_sds(int argc, char **argv, const cli_gpu_opts *global) {
+  if (argc < 2) return cli_usage_error("sds", "name a subcommand: run or models");
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(help, stdout);
+    return EXIT_OK;
+  }
+  if (!strcmp(argv[1], "models")) {
+    if (argc > 2) return cli_usage_error("sds models", "takes no arguments");
+    return list_models();
+  }
+  if (strcmp(argv[1], "run")) return cli_usage_error("sds", "unknown subcommand '%.60s' (run, models)", argv[1]);
+  cli_run_args a;
+  if (cli_run_args_init(&a, argc, 1, 0, 1) != 0) {
+    cli_run_args_free(&a);
+    fprintf(stderr, "sessile sds run: error: out of host memory\n");
+    return EXIT_RUNTIME;
+  }
+  int rc = run_main(argc - 1, argv + 1, global, &a);
+  cli_run_args_free(&a);
+  return rc;
+}

@@ -1,0 +1,55 @@
+/* sessile — `sessile sds run MODEL.sds`: the SDS loop on the run framework
+ * (docs/sds.md, "The loop"): per step the physics (GPU), inversions found
+ * and handled (topology, host + TetGen), morphogens (GPU), rules (host),
+ * growth and divisions; frames of the surface (PLY) and the complex (VTU,
+ * PVD series); one record per frame interval with the paper's Figure 12
+ * figures (cells, tets, ms per step, divisions, inversions). */
+#ifndef SESSILE_SDS_RUN_H
+#define SESSILE_SDS_RUN_H
+#include <stdint.h>
+#include "sessile/gpu.h"
+#include "sessile/run.h"
+#include "sessile/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sessile_sds_run_options {
+  sessile_run *run;        /* required */
+  sessile_gpu *gpu;        /* required */
+  uint64_t seed;           /* division directions where the gradient vanishes */
+  const char *model_text;  /* the model (docs/sds_rules.md) */
+  const char *model_name;  /* names it in messages */
+  double t_end;            /* < 0: the model's t_end */
+  int frames;              /* < 0: the model's frames */
+  uint32_t max_cells;      /* a run that would pass this many cells stops with an error */
+} sessile_sds_run_options;
+
+typedef struct sessile_sds_run_stats {
+  double time;             /* simulated time reached */
+  uint64_t steps, divisions, inversions; /* inversions: transformed (case 1 or 2) */
+  uint64_t resisted;       /* inversions without a transformation, resisted physically */
+  uint64_t slivers;        /* tet-steps that began inverted (left to their volume springs) */
+  uint64_t deferred;       /* divisions put off because the complex was not valid then */
+  uint32_t cells, tets;
+  int frames;              /* frames written */
+  double wall_s;           /* wall time of the loop */
+} sessile_sds_run_stats;
+
+/* Checks a model without a device (its text, physics keys, sphere, run
+ * length): SESSILE_ERR_USAGE with file:line:column where it can, and when
+ * reaching t_end (< 0: the model's) would take more than max_steps steps at
+ * the starting organism's stable step (the estimate in the message). */
+sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps);
+
+/* Runs the model to t_end, writing sds/frame_NNNN.ply, sds/frame_NNNN.vtu,
+ * sds/series.pvd, sds/final.ply and records.  On a failure mid-run (a
+ * blow-up, a topology change that cannot be made) the frames written so far
+ * stay and the error names the time and the cause. */
+sessile_status sessile_sds_run(const sessile_sds_run_options *o, sessile_sds_run_stats *st);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

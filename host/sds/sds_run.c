@@ -1,0 +1,653 @@
+/* The SDS loop (sessile/sds_run.h, docs/sds.md "The loop").  One step:
+ *   1. physics: one integrator step on the GPU (step control inside);
+ *   2. inversions: tets with volume <= 0 after the step are found on the GPU;
+ *      the first inversion time among them (linear motion over the step,
+ *      §3.1.2) rewinds every cell to that time, the tet's case-1 or case-2
+ *      transformation is applied (host, TetGen) and the step goes on;
+ *   3. morphogens: explicit Euler on the GPU, sub-stepped below its bound;
+ *   4. rules: evaluated on the host in cell order, then sets, growth (r, m)
+ *      and divisions (host, TetGen) in cell order.
+ * Same model, seed and device: the same bytes. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/io.h"
+#include "sessile/rng.h"
+#include "sessile/sds.h"
+#include "sessile/sds_process.h"
+#include "sessile/sds_run.h"
+#include "sessile/sds_topo.h"
+
+typedef struct sim {
+  const char *text;           /* the model */
+  sessile_sds_model *model;
+  sessile_sds o;
+  sessile_sds_params p;
+  sessile_sds_gpu *pg;
+  sessile_morph_gpu *mg;
+  sessile_surface rock;       /* the obstacle, when the model has one */
+  double attractor[3];
+  double density;
+  uint32_t *nbr_off, *nbr;    /* cell neighbours (from the edges) */
+  double *xprev;              /* positions before the step (rewind) */
+  double time, dt;
+  int calm;                   /* accepted steps since dt last changed */
+  int stalled;                /* steps in a row that were rewound to their start */
+  uint64_t rng;
+  int tip_state;              /* state index of `tip`, -1 none */
+  int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
+  sessile_sds_run_stats *st;
+  uint64_t div_interval, inv_interval; /* counts since the last record */
+} sim;
+
+static const double PI = 3.14159265358979323846;
+
+/* --- model parameters -------------------------------------------------------- */
+static double param1(const sessile_sds_model *m, const char *name, double def) {
+  const sessile_sds_param *q = sessile_sds_model_param_find(m, name);
+  return q && q->nvalues >= 1 ? q->values[0] : def;
+}
+
+static sessile_status read_physics(sim *s, const char *where) {
+  const sessile_sds_model *m = s->model;
+  sessile_sds_params_default(&s->p);
+  s->p.k_edge = param1(m, "edge_stiffness", s->p.k_edge);
+  s->p.k_vol = param1(m, "volume_stiffness", s->p.k_vol);
+  s->p.surface_mult = param1(m, "surface_multiplier", s->p.surface_mult);
+  double damping = param1(m, "damping", s->p.damp_visc);
+  s->p.damp_visc = damping, s->p.damp_vol = damping;
+  s->p.gravity = param1(m, "gravity", 0);
+  s->p.dt = param1(m, "dt", s->p.dt);
+  s->density = param1(m, "density", 1);
+  SESSILE_CHECK(s->p.k_edge >= 0 && s->p.k_vol >= 0 && s->p.surface_mult >= 0 && damping >= 0 && s->density > 0 &&
+                    isfinite(s->p.gravity) && s->p.dt > 0,
+                SESSILE_ERR_USAGE, "%s: stiffnesses and damping must be >= 0, density and dt > 0", where);
+  const sessile_sds_param *box = sessile_sds_model_param_find(m, "box");
+  if (box) {
+    SESSILE_CHECK(box->nvalues == 6, SESSILE_ERR_USAGE, "%s:%d: box needs 6 values: xmin ymin zmin xmax ymax zmax",
+                  where, box->line);
+    s->p.box = 1;
+    for (int k = 0; k < 3; k++) {
+      s->p.box_lo[k] = box->values[k], s->p.box_hi[k] = box->values[3 + k];
+      SESSILE_CHECK(s->p.box_lo[k] < s->p.box_hi[k], SESSILE_ERR_USAGE, "%s:%d: the box is empty along axis %d", where,
+                    box->line, k);
+    }
+  }
+  const sessile_sds_param *rock = sessile_sds_model_param_find(m, "rock");
+  if (rock) {
+    SESSILE_CHECK(rock->nvalues == 4 && rock->values[3] > 0, SESSILE_ERR_USAGE,
+                  "%s:%d: rock needs 4 values: centre x y z and a radius > 0", where, rock->line);
+    SESSILE_CALL(sessile_surface_icosphere(4, rock->values[3], rock->values, &s->rock));
+    s->p.obstacle.nv = s->rock.nv, s->p.obstacle.nf = s->rock.nf;
+    s->p.obstacle.pos = s->rock.pos, s->p.obstacle.tri = s->rock.tri;
+  }
+  const sessile_sds_param *att = sessile_sds_model_param_find(m, "attractor");
+  if (att) {
+    SESSILE_CHECK(att->nvalues == 4, SESSILE_ERR_USAGE, "%s:%d: attractor needs 4 values: x y z strength", where,
+                  att->line);
+    memcpy(s->attractor, att->values, sizeof s->attractor);
+    s->p.nattract = 1, s->p.attract_pos = s->attractor, s->p.k_attract = att->values[3];
+  }
+  return SESSILE_OK;
+}
+
+/* --- neighbours and morphogens -------------------------------------------- */
+static sessile_status neighbours(sim *s) {
+  const sessile_sds *o = &s->o;
+  free(s->nbr_off), free(s->nbr);
+  s->nbr_off = malloc(((size_t)o->ncells + 1) * sizeof *s->nbr_off);
+  s->nbr = malloc(((size_t)o->nedges * 2 + 1) * sizeof *s->nbr);
+  SESSILE_CHECK(s->nbr_off && s->nbr, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u cells", o->ncells);
+  for (uint32_t c = 0; c <= o->ncells; c++) s->nbr_off[c] = o->cell_edge_off[c];
+  for (uint32_t c = 0; c < o->ncells; c++)
+    for (uint32_t k = o->cell_edge_off[c]; k < o->cell_edge_off[c + 1]; k++) {
+      uint32_t e = o->cell_edge[k];
+      s->nbr[k] = o->edge[2 * e] == c ? o->edge[2 * e + 1] : o->edge[2 * e];
+    }
+  return SESSILE_OK;
+}
+
+static sessile_morph_cells cells_of(const sim *s) {
+  sessile_morph_cells c = {(int)s->o.ncells, s->o.x, s->o.r, s->nbr_off, s->nbr};
+  return c;
+}
+
+/* After any topology change or growth: derived data, neighbours, the GPU. */
+static sessile_status refresh(sim *s) {
+  SESSILE_CALL(neighbours(s));
+  return sessile_sds_gpu_upload(s->pg, &s->o);
+}
+
+static sessile_status morphogens(sim *s, const double *src, double dt) {
+  if (s->o.nmorph == 0) return SESSILE_OK;
+  sessile_morph_cells cells = cells_of(s);
+  sessile_morph_coef coef = sessile_sds_model_coef(s->model);
+  double bound = sessile_morph_dt_max(&cells, &coef);
+  SESSILE_CHECK(bound > 0, SESSILE_ERR_NUMERIC, "sds: two adjacent cells coincide at t = %g (a blow-up?)", s->time);
+  int n = isfinite(bound) && dt > bound ? (int)ceil(dt / bound * (1 + 1e-9)) : 1;
+  SESSILE_CHECK(n <= 10000, SESSILE_ERR_NUMERIC,
+                "sds: the morphogen step needs %d sub-steps at t = %g (cells too close: a blow-up?)", n, s->time);
+  SESSILE_CALL(sessile_morph_gpu_set_cells(s->mg, &cells, &coef));
+  SESSILE_CALL(sessile_morph_gpu_set_phi(s->mg, s->o.phi, src));
+  SESSILE_CALL(sessile_morph_gpu_step(s->mg, dt / n, n));
+  return sessile_morph_gpu_get_phi(s->mg, s->o.phi);
+}
+
+/* --- topology through the complex ------------------------------------------ */
+/* The organism's x and tet as a growable complex (copies). */
+static sessile_status complex_of(const sessile_sds *o, sessile_sds_topo_complex *cx) {
+  memset(cx, 0, sizeof *cx);
+  cx->x = malloc((size_t)o->ncells * 3 * sizeof *cx->x);
+  cx->tet = malloc((size_t)o->ntets * 4 * sizeof *cx->tet);
+  if (!cx->x || !cx->tet) {
+    sessile_sds_topo_complex_free(cx);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u tets", o->ntets);
+  }
+  memcpy(cx->x, o->x, (size_t)o->ncells * 3 * sizeof *cx->x);
+  memcpy(cx->tet, o->tet, (size_t)o->ntets * 4 * sizeof *cx->tet);
+  cx->nv = o->ncells, cx->nt = o->ntets;
+  return SESSILE_OK;
+}
+
+/* Takes the complex back: x and tets, s_m of kept tets by tet_from (new: 0,
+ * so that rebuild gives them rest sizes from the radii). */
+static sessile_status take_complex(sim *s, const sessile_sds_topo_complex *cx, const uint32_t *tet_from) {
+  sessile_sds *o = &s->o;
+  uint32_t old_cells = o->ncells;
+  SESSILE_CALL(sessile_sds_reserve(o, cx->nv, cx->nt));
+  double *sm = malloc(((size_t)cx->nt + 1) * sizeof *sm);
+  SESSILE_CHECK(sm, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u tets", cx->nt);
+  for (uint32_t t = 0; t < cx->nt; t++) sm[t] = tet_from[t] == SESSILE_SDS_TOPO_NEW_TET ? 0 : o->tet_sm[tet_from[t]];
+  memcpy(o->tet_sm, sm, (size_t)cx->nt * sizeof *sm);
+  free(sm);
+  memcpy(o->x, cx->x, (size_t)cx->nv * 3 * sizeof *o->x);
+  memcpy(o->tet, cx->tet, (size_t)cx->nt * 4 * sizeof *o->tet);
+  o->ncells = cx->nv, o->ntets = cx->nt;
+  (void)old_cells;
+  return sessile_sds_rebuild(o, SESSILE_SDS_NEW_UNIT);
+}
+
+static void set_mass(sim *s, uint32_t c) { s->o.m[c] = s->density * 4.0 / 3.0 * PI * pow(s->o.r[c], 3); }
+
+/* Divides cell c toward dir: mass halved between the daughters, radii from
+ * the masses (§3.1.1), morphogens halved, state, velocity copied. */
+static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
+  sessile_sds_topo_complex cx;
+  SESSILE_CALL(complex_of(&s->o, &cx));
+  sessile_sds_topo_division dv;
+  memset(&dv, 0, sizeof dv);
+  double eps_max = 0.5 * s->o.r[c];
+  sessile_status st = sessile_sds_topo_divide(&cx, c, dir, eps_max, &dv);
+  int valid = st == SESSILE_OK && sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL) == SESSILE_OK;
+  if (st == SESSILE_ERR_UNSUPPORTED || st == SESSILE_ERR_NUMERIC || (st == SESSILE_OK && !valid)) {
+    /* TetGen cannot mesh c's hull without a new point (and the cone
+     * fallback failed), or the complex around c is not valid now (a sliver
+     * left inverted): the division waits for a later step, when the cells
+     * have moved */
+    free(dv.tet_from);
+    sessile_sds_topo_complex_free(&cx);
+    s->st->deferred++;
+    return SESSILE_OK;
+  }
+  if (st == SESSILE_OK) st = take_complex(s, &cx, dv.tet_from);
+  free(dv.tet_from);
+  sessile_sds_topo_complex_free(&cx);
+  SESSILE_CALL(st);
+  sessile_sds *o = &s->o;
+  uint32_t a = dv.a, b = dv.b;
+  double m = 0.5 * o->m[a];
+  o->m[a] = o->m[b] = m;
+  o->r[a] = o->r[b] = cbrt(3 * m / (4 * PI * s->density));
+  for (int k = 0; k < 3; k++) o->v[3 * b + k] = o->v[3 * a + k];
+  for (uint32_t k = 0; k < o->nmorph; k++) o->phi[(size_t)a * o->nmorph + k] *= 0.5,
+                                        o->phi[(size_t)b * o->nmorph + k] = o->phi[(size_t)a * o->nmorph + k];
+  for (uint32_t k = 0; k < o->nstate; k++) o->state[(size_t)b * o->nstate + k] = o->state[(size_t)a * o->nstate + k];
+  o->attract[b] = -1;
+  if (s->birth_state >= 0)
+    o->state[(size_t)a * o->nstate + (uint32_t)s->birth_state] = o->state[(size_t)b * o->nstate + (uint32_t)s->birth_state] = o->r[a];
+  /* the daughters' edges and tets are new: rest sizes from the new radii */
+  s->st->divisions++, s->div_interval++;
+  return SESSILE_OK;
+}
+
+/* --- inversions (§3.1.2) ---------------------------------------------------- */
+/* The tets inverted by the last step: rewind every cell to the first
+ * inversion time among them and transform that tet; the others are not
+ * inverted at that time and are found again by the next step's check. */
+static sessile_status inversions(sim *s, int *handled, double *frac) {
+  *handled = 0;
+  *frac = 1;
+  uint32_t *list = NULL, n = 0;
+  SESSILE_CALL(sessile_sds_gpu_inverted(s->pg, &list, &n));
+  if (n == 0) {
+    free(list);
+    return SESSILE_OK;
+  }
+  sessile_sds *o = &s->o;
+  double best = INFINITY;
+  uint32_t bt = UINT32_MAX;
+  sessile_sds_topo_inversion binv;
+  memset(&binv, 0, sizeof binv);
+  for (uint32_t i = 0; i < n; i++) {
+    const uint32_t *t = o->tet + 4 * (size_t)list[i];
+    double p[12], q[12];
+    for (int k = 0; k < 4; k++)
+      for (int a = 0; a < 3; a++) p[3 * k + a] = s->xprev[3 * (size_t)t[k] + a], q[3 * k + a] = o->x[3 * (size_t)t[k] + a];
+    sessile_sds_topo_inversion inv;
+    if (sessile_sds_topo_inversion_time(p, q, 0, 1, &inv) && inv.s < best) best = inv.s, bt = list[i], binv = inv;
+  }
+  free(list);
+  if (bt == UINT32_MAX) {
+    /* inverted, but with no sign change over the step: they began the step
+     * inverted, slivers a re-tetrahedralisation made flat to rounding or
+     * ones an earlier step left.  Their volume springs push them back open
+     * (E grows with (V - R')^2 for V < 0 too); the step stands and they
+     * are counted (docs/sds.md, "The loop"). */
+    s->st->slivers += n;
+    return SESSILE_OK;
+  }
+  /* the transformation is made just before the flat moment, so that the
+   * flat tet's four cells are not coplanar for TetGen (relative 1e-6 of the
+   * step; the paper makes it at the moment itself) */
+  best *= 1 - 1e-6;
+  /* rewind to the inversion time (linear motion over the step) */
+  size_t n3 = 3 * (size_t)o->ncells;
+  double *xnew = malloc(n3 * sizeof *xnew);
+  SESSILE_CHECK(xnew, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  memcpy(xnew, o->x, n3 * sizeof *xnew);
+  for (size_t i = 0; i < n3; i++) o->x[i] = s->xprev[i] + best * (xnew[i] - s->xprev[i]);
+  sessile_sds_topo_complex cx;
+  sessile_status st = complex_of(o, &cx);
+  sessile_sds_topo_transform tr;
+  memset(&tr, 0, sizeof tr);
+  sessile_status tst = SESSILE_OK; /* the transformation's own answer */
+  if (st == SESSILE_OK) tst = sessile_sds_topo_apply_inversion(&cx, bt, &binv, &tr);
+  /* the result must be a valid complex before the organism takes it (an
+   * inverted sliver elsewhere, or a covering tet that overlaps the body,
+   * would otherwise spread): a refusal like the transformation's own */
+  if (st == SESSILE_OK && tst == SESSILE_OK && sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL) != SESSILE_OK)
+    tst = SESSILE_ERR_UNSUPPORTED;
+  if (st == SESSILE_OK && tst == SESSILE_OK) st = take_complex(s, &cx, tr.tet_from);
+  free(tr.tet_from);
+  sessile_sds_topo_complex_free(&cx);
+  if (st == SESSILE_OK && tst != SESSILE_OK && tst != SESSILE_ERR_UNSUPPORTED && tst != SESSILE_ERR_NUMERIC) st = tst;
+  if (st == SESSILE_OK && tst != SESSILE_OK) {
+    /* No transformation for this one (both v and f on the surface, a ridge,
+     * a hull TetGen cannot mesh without a new point): the paper leaves such
+     * cases open.  The step stands as it was and the tet's volume spring
+     * (E grows with (V - R')^2 for V < 0 too) pushes it back open; counted
+     * as resisted (docs/sds.md, "The loop"). */
+    memcpy(o->x, xnew, n3 * sizeof *xnew);
+    s->st->resisted++;
+    free(xnew);
+    return SESSILE_OK;
+  }
+  free(xnew);
+  if (st != SESSILE_OK)
+    return sessile_error_set(st, "sds: the inversion of tet %u at t = %g could not be handled: %s", bt, s->time,
+                             sessile_error_message());
+  s->st->inversions++, s->inv_interval++;
+  *handled = 1;
+  *frac = best;
+  return SESSILE_OK;
+}
+
+/* --- rules ----------------------------------------------------------------- */
+static sessile_status rules(sim *s, double dt) {
+  sessile_sds *o = &s->o;
+  sessile_morph_cells cells = cells_of(s);
+  sessile_sds_actions a;
+  memset(&a, 0, sizeof a);
+  sessile_status st = sessile_sds_rules_eval(s->model, &cells, o->phi, o->state, s->time, &a);
+  if (st == SESSILE_OK) st = morphogens(s, a.produce, dt);
+  if (st == SESSILE_OK) {
+    sessile_sds_actions_apply(s->model, &a, dt, o->r, o->phi, o->state);
+    for (uint32_t c = 0; c < o->ncells; c++) set_mass(s, c);
+  }
+  /* divisions in cell order; a division appends its daughter b, so the
+   * requests' cell indices stay valid */
+  for (size_t i = 0; st == SESSILE_OK && i < a.ndivides; i++) {
+    double d[3] = {a.divides[i].dir[0], a.divides[i].dir[1], a.divides[i].dir[2]};
+    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
+      /* the gradient vanished: a seeded random direction */
+      double z = sessile_rng_range(&s->rng, -1, 1), phi = sessile_rng_range(&s->rng, 0, 2 * PI), q = sqrt(1 - z * z);
+      d[0] = q * cos(phi), d[1] = q * sin(phi), d[2] = z;
+    }
+    st = divide(s, (uint32_t)a.divides[i].cell, d);
+    if (st != SESSILE_OK)
+      st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", a.divides[i].cell, s->time,
+                             sessile_error_message());
+  }
+  int changed = a.ndivides > 0;
+  sessile_sds_actions_free(&a);
+  SESSILE_CALL(st);
+  (void)changed;
+  return refresh(s);
+}
+
+/* --- frames ------------------------------------------------------------------ */
+static sessile_status write_frame(sim *s, sessile_run *run, int frame, const char *ply_rel) {
+  sessile_sds *o = &s->o;
+  char rel[64], path[4096];
+  /* the surface: boundary faces over all cells (unused cells are dropped by
+   * remapping to the boundary's own vertices) */
+  uint32_t *map = malloc(((size_t)o->ncells + 1) * sizeof *map);
+  SESSILE_CHECK(map, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  uint32_t nv = 0;
+  for (uint32_t c = 0; c < o->ncells; c++) map[c] = o->surface[c] ? nv++ : UINT32_MAX;
+  int nf = 2 + (int)o->nmorph + (int)o->nstate;
+  double *pos = malloc(((size_t)nv * 3 + 1) * sizeof *pos), *fields = malloc(((size_t)nv * nf + 1) * sizeof *fields);
+  uint32_t *tri = malloc(((size_t)o->nfaces * 3 + 1) * sizeof *tri);
+  const char **names = calloc((size_t)nf, sizeof *names);
+  const double **fp = calloc((size_t)nf, sizeof *fp);
+  sessile_status st = pos && fields && tri && names && fp ? SESSILE_OK
+                                                       : sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  if (st == SESSILE_OK) {
+    for (uint32_t c = 0; c < o->ncells; c++) {
+      if (map[c] == UINT32_MAX) continue;
+      uint32_t v = map[c];
+      memcpy(pos + 3 * (size_t)v, o->x + 3 * (size_t)c, 3 * sizeof *pos);
+      fields[0 * (size_t)nv + v] = o->r[c];
+      fields[1 * (size_t)nv + v] = c;
+      for (uint32_t k = 0; k < o->nmorph; k++) fields[(2 + k) * (size_t)nv + v] = o->phi[(size_t)c * o->nmorph + k];
+      for (uint32_t k = 0; k < o->nstate; k++)
+        fields[(2 + o->nmorph + k) * (size_t)nv + v] = o->state[(size_t)c * o->nstate + k];
+    }
+    for (uint32_t f = 0; f < 3 * o->nfaces; f++) tri[f] = map[o->face[f]];
+    names[0] = "radius", names[1] = "cell";
+    for (uint32_t k = 0; k < o->nmorph; k++) names[2 + k] = sessile_sds_model_morph_name(s->model, (int)k);
+    for (uint32_t k = 0; k < o->nstate; k++) names[2 + o->nmorph + k] = sessile_sds_model_state_name(s->model, (int)k);
+    for (int k = 0; k < nf; k++) fp[k] = fields + (size_t)k * nv;
+    sessile_mesh_part part = {"surface", pos, nv, tri, o->nfaces, NULL, fp};
+    st = sessile_run_file(run, ply_rel, path, sizeof path);
+    if (st == SESSILE_OK) st = sessile_write_ply_parts(path, 1, &part, nf, names);
+  }
+  if (st == SESSILE_OK && frame >= 0) {
+    /* the complex: every cell with its fields, tets with their volumes */
+    sessile_vtu_field pf[3 + SESSILE_SDS_MAX_VALUES * 2];
+    int npf = 0;
+    memset(pf, 0, sizeof pf);
+    pf[npf].name = "radius", pf[npf].f64 = o->r, pf[npf++].components = 1;
+    pf[npf].name = "velocity", pf[npf].f64 = o->v, pf[npf++].components = 3;
+    pf[npf].name = "surface", pf[npf].u8 = o->surface, pf[npf++].components = 1;
+    double *cf = malloc(((size_t)o->ncells * (o->nmorph + o->nstate) + (size_t)o->ntets + 1) * sizeof *cf);
+    if (!cf) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    for (uint32_t k = 0; st == SESSILE_OK && k < o->nmorph + o->nstate && npf < (int)(sizeof pf / sizeof pf[0]); k++) {
+      double *col = cf + (size_t)k * o->ncells;
+      for (uint32_t c = 0; c < o->ncells; c++)
+        col[c] = k < o->nmorph ? o->phi[(size_t)c * o->nmorph + k] : o->state[(size_t)c * o->nstate + (k - o->nmorph)];
+      pf[npf].name = k < o->nmorph ? sessile_sds_model_morph_name(s->model, (int)k)
+                                   : sessile_sds_model_state_name(s->model, (int)(k - o->nmorph));
+      pf[npf].f64 = col, pf[npf++].components = 1;
+    }
+    if (st == SESSILE_OK) {
+      double *vol = cf + (size_t)o->ncells * (o->nmorph + o->nstate);
+      for (uint32_t t = 0; t < o->ntets; t++) vol[t] = sessile_sds_tet_volume(o, t);
+      sessile_vtu_field tf = {.name = "volume", .f64 = vol, .components = 1};
+      snprintf(rel, sizeof rel, "sds/frame_%04d.vtu", frame);
+      st = sessile_run_file(run, rel, path, sizeof path);
+      if (st == SESSILE_OK) st = sessile_write_vtu_tets(path, o->x, o->ncells, o->tet, o->ntets, npf, pf, 1, &tf);
+    }
+    free(cf);
+  }
+  free(map), free(pos), free(fields), free(tri), free(names), free(fp);
+  return st;
+}
+
+static sessile_status write_pvd(sessile_run *run, int nframes) {
+  char path[4096];
+  int *steps = malloc(((size_t)nframes + 1) * sizeof *steps);
+  char **files = calloc((size_t)nframes + 1, sizeof *files);
+  sessile_status st = steps && files ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  for (int i = 0; st == SESSILE_OK && i < nframes; i++) {
+    steps[i] = i;
+    files[i] = malloc(32);
+    if (!files[i]) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    else snprintf(files[i], 32, "frame_%04d.vtu", i);
+  }
+  if (st == SESSILE_OK) st = sessile_run_file(run, "sds/series.pvd", path, sizeof path);
+  if (st == SESSILE_OK) st = sessile_write_pvd(path, nframes, steps, (const char *const *)files);
+  for (int i = 0; files && i < nframes; i++) free(files[i]);
+  free(files), free(steps);
+  return st;
+}
+
+/* --- set-up ------------------------------------------------------------------ */
+/* Tips: the surface cell farthest along each tip direction from the
+ * centroid (ties to the lower index) gets tip = 1, and the attraction point
+ * pulls the tips. */
+static sessile_status mark_tips(sim *s, const char *where) {
+  sessile_sds *o = &s->o;
+  int nt = sessile_sds_model_ntips(s->model);
+  if (nt == 0) return SESSILE_OK;
+  SESSILE_CHECK(s->tip_state >= 0, SESSILE_ERR_USAGE, "%s: the model names tips but has no 'state tip'", where);
+  double cen[3] = {0, 0, 0};
+  for (uint32_t c = 0; c < o->ncells; c++)
+    for (int k = 0; k < 3; k++) cen[k] += o->x[3 * (size_t)c + k] / o->ncells;
+  for (int i = 0; i < nt; i++) {
+    const double *d = sessile_sds_model_tip(s->model, i);
+    double best = -INFINITY;
+    uint32_t bc = UINT32_MAX;
+    for (uint32_t c = 0; c < o->ncells; c++) {
+      if (!o->surface[c]) continue;
+      double q[3], l = 0, dot = 0;
+      for (int k = 0; k < 3; k++) q[k] = o->x[3 * (size_t)c + k] - cen[k], l += q[k] * q[k];
+      l = sqrt(l);
+      for (int k = 0; k < 3; k++) dot += q[k] * d[k];
+      if (l > 0 && dot / l > best) best = dot / l, bc = c;
+    }
+    SESSILE_CHECK(bc != UINT32_MAX, SESSILE_ERR_USAGE, "%s: no surface cell for tip %d", where, i + 1);
+    o->state[(size_t)bc * o->nstate + (uint32_t)s->tip_state] = 1;
+    if (s->p.nattract) o->attract[bc] = 0;
+  }
+  return SESSILE_OK;
+}
+
+/* §3.6 automated: a tip with no interior cell below it gets one by dividing
+ * the cell the check names, inward. */
+static sessile_status cells_below_tips(sim *s) {
+  sessile_sds *o = &s->o;
+  sessile_morph_cells cells = cells_of(s);
+  sessile_sds_tip_check *chk = NULL;
+  int n = 0;
+  SESSILE_CALL(sessile_sds_tips_below(&cells, o->surface, NULL, o->state, (int)o->nstate, s->tip_state, 0.7, &chk, &n));
+  sessile_status st = SESSILE_OK;
+  for (int i = 0; i < n && st == SESSILE_OK; i++) {
+    if (chk[i].below >= 0) continue;
+    st = divide(s, (uint32_t)chk[i].split, chk[i].inward);
+    if (st == SESSILE_OK) {
+      /* the daughter that went inside is not a tip */
+      uint32_t b = s->o.ncells - 1;
+      s->o.state[(size_t)b * s->o.nstate + (uint32_t)s->tip_state] = 0;
+      s->o.attract[b] = -1;
+      st = neighbours(s);
+    }
+  }
+  free(chk);
+  s->st->divisions = 0, s->div_interval = 0; /* set-up, not growth */
+  return st;
+}
+
+/* Everything about the model that needs no device: the text, the physics
+ * keys, the starting sphere, the run's length. */
+static sessile_status check_model(sim *s, const char *where, int *level, double *radius) {
+  SESSILE_CALL(sessile_sds_model_parse(s->text, where, &s->model));
+  SESSILE_CALL(read_physics(s, where));
+  *level = (int)param1(s->model, "sphere_subdivisions", 2) + 1;
+  *radius = param1(s->model, "sphere_radius", 1);
+  SESSILE_CHECK(*level >= 1 && *level <= 6 && *radius > 0 && isfinite(*radius), SESSILE_ERR_USAGE,
+                "%s: sphere_subdivisions must be 0..5 and sphere_radius > 0", where);
+  double t_end = param1(s->model, "t_end", 100), frames = param1(s->model, "frames", 20);
+  SESSILE_CHECK(t_end >= 0 && t_end <= 1e9 && frames >= 1 && frames <= 100000 && frames == floor(frames),
+                SESSILE_ERR_USAGE, "%s: t_end must be in [0, 1e9] and frames an integer in 1..100000", where);
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps) {
+  sim s;
+  memset(&s, 0, sizeof s);
+  s.text = text;
+  int level;
+  double radius;
+  const char *where = name ? name : "model";
+  sessile_status st = check_model(&s, where, &level, &radius);
+  if (st == SESSILE_OK) {
+    /* the work it would take: steps at the integrator's stable step of the
+     * starting organism (growth and division only make steps smaller) */
+    const double c0[3] = {0, 0, 0};
+    st = sessile_sds_from_icosphere(level, radius, c0, 0, (uint32_t)sessile_sds_model_nmorph(s.model),
+                                    (uint32_t)sessile_sds_model_nstate(s.model), s.density, &s.o);
+    if (st == SESSILE_OK) {
+      if (t_end < 0) t_end = param1(s.model, "t_end", 100);
+      double dt = fmin(s.p.stable_safety * sessile_sds_stable_dt(&s.o, &s.p), s.p.dt_max);
+      double steps = dt > 0 ? t_end / dt : INFINITY;
+      if (!(steps <= (double)max_steps))
+        st = sessile_error_set(SESSILE_ERR_USAGE,
+                               "%s: reaching t = %g needs at least %.3g steps (stable step %.3g at the start), more "
+                               "than --max-steps %llu: soften the springs or shorten the run",
+                               where, t_end, steps, dt, (unsigned long long)max_steps);
+    }
+  }
+  sessile_sds_model_destroy(s.model);
+  sessile_surface_free(&s.rock);
+  sessile_sds_free(&s.o);
+  return st;
+}
+
+static sessile_status setup(sim *s, const sessile_sds_run_options *opt) {
+  const char *where = opt->model_name ? opt->model_name : "model";
+  int level;
+  double radius;
+  s->text = opt->model_text;
+  SESSILE_CALL(check_model(s, where, &level, &radius));
+  int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
+  const double c0[3] = {0, 0, 0};
+  SESSILE_CALL(sessile_sds_from_icosphere(level, radius, c0, 0, (uint32_t)nm, (uint32_t)ns, s->density, &s->o));
+  for (uint32_t c = 0; c < s->o.ncells; c++) {
+    for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
+    for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
+  }
+  s->tip_state = sessile_sds_model_state_index(s->model, "tip");
+  s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
+  if (s->birth_state >= 0)
+    for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
+  SESSILE_CALL(mark_tips(s, where));
+  SESSILE_CALL(neighbours(s));
+  if (param1(s->model, "tips_below", 0) != 0 && s->tip_state >= 0) SESSILE_CALL(cells_below_tips(s));
+  SESSILE_CALL(sessile_sds_gpu_create(opt->gpu, &s->o, &s->p, &s->pg));
+  SESSILE_CALL(sessile_morph_gpu_create(opt->gpu, &s->mg));
+  s->dt = s->p.dt;
+  return SESSILE_OK;
+}
+
+static void teardown(sim *s) {
+  sessile_sds_model_destroy(s->model);
+  sessile_sds_gpu_destroy(s->pg);
+  sessile_morph_gpu_destroy(s->mg);
+  sessile_sds_free(&s->o);
+  sessile_surface_free(&s->rock);
+  free(s->nbr_off), free(s->nbr), free(s->xprev);
+}
+
+static sessile_status record(sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps) {
+  cJSON *r = cJSON_CreateObject();
+  SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  cJSON_AddNumberToObject(r, "frame", frame);
+  cJSON_AddNumberToObject(r, "time", s->time);
+  cJSON_AddNumberToObject(r, "cells", s->o.ncells);
+  cJSON_AddNumberToObject(r, "tets", s->o.ntets);
+  cJSON_AddNumberToObject(r, "steps", (double)steps);
+  cJSON_AddNumberToObject(r, "ms_per_step", ms_per_step);
+  cJSON_AddNumberToObject(r, "dt", s->dt);
+  cJSON_AddNumberToObject(r, "divisions", (double)s->div_interval);
+  cJSON_AddNumberToObject(r, "inversions", (double)s->inv_interval);
+  s->div_interval = s->inv_interval = 0;
+  sessile_status st = sessile_run_record(run, r);
+  cJSON_Delete(r);
+  return st;
+}
+
+/* --- the loop --------------------------------------------------------------- */
+static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
+  double t_end = opt->t_end >= 0 ? opt->t_end : param1(s->model, "t_end", 100);
+  int frames = opt->frames >= 0 ? opt->frames : (int)param1(s->model, "frames", 20);
+  SESSILE_CHECK(t_end >= 0 && isfinite(t_end) && frames >= 1 && frames <= 100000, SESSILE_ERR_USAGE,
+                "sds: t_end must be >= 0 and frames in 1..100000");
+  double frame_dt = t_end / frames;
+  int frame = 0;
+  SESSILE_CALL(write_frame(s, opt->run, frame, "sds/frame_0000.ply"));
+  SESSILE_CALL(record(s, opt->run, frame, 0, 0));
+  s->st->frames = ++frame;
+  double t0 = sessile_wall_seconds(), tf = t0;
+  uint64_t steps_frame = 0;
+  while (s->time < t_end * (1 - 1e-12)) {
+    SESSILE_CHECK(s->o.ncells <= opt->max_cells, SESSILE_ERR_NO_MEMORY,
+                  "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, opt->max_cells);
+    free(s->xprev);
+    s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
+    SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
+    double dt = s->dt, elapsed = 0;
+    double next_frame = frame * frame_dt;
+    int clamped = s->time + dt > next_frame;
+    if (clamped) dt = fmax(next_frame - s->time, 1e-12);
+    double try_dt = dt;
+    SESSILE_CALL(sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed));
+    /* step control across calls (one step per call, so that an inversion is
+     * rewound over one step): a step that had to be halved sets dt; after 10
+     * steps at full size dt grows by 1.25 (the integrator caps it at its
+     * stable bound and at dt_max) */
+    if (elapsed < dt * (1 - 1e-12)) s->dt = elapsed, s->calm = 0;
+    else if (!clamped && ++s->calm >= 10) s->dt = fmin(s->dt * 1.25, s->p.dt_max), s->calm = 0;
+    SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
+    int handled = 0;
+    double frac = 1;
+    SESSILE_CALL(inversions(s, &handled, &frac));
+    if (handled) {
+      /* rewound to the inversion: the elapsed time shrinks with it */
+      elapsed *= frac;
+      SESSILE_CALL(refresh(s));
+    }
+    s->time += elapsed;
+    for (int k = 0; k < 3 * (int)s->o.ncells; k++)
+      SESSILE_CHECK(isfinite(s->o.x[k]), SESSILE_ERR_NUMERIC, "sds: a cell position is not finite at t = %g (a blow-up)",
+                    s->time);
+    if (elapsed > 0) {
+      SESSILE_CALL(rules(s, elapsed));
+      s->stalled = 0;
+    } else
+      SESSILE_CHECK(++s->stalled < 1000, SESSILE_ERR_NUMERIC,
+                    "sds: time stands still at t = %g: tets keep inverting at the start of the step (a blow-up)", s->time);
+    s->st->steps++, steps_frame++;
+    if (s->time >= next_frame * (1 - 1e-12)) {
+      double now = sessile_wall_seconds();
+      char rel[64];
+      snprintf(rel, sizeof rel, "sds/frame_%04d.ply", frame);
+      SESSILE_CALL(write_frame(s, opt->run, frame, rel));
+      SESSILE_CALL(record(s, opt->run, frame, 1e3 * (now - tf) / (double)(steps_frame ? steps_frame : 1), steps_frame));
+      s->st->frames = ++frame;
+      tf = now, steps_frame = 0;
+      SESSILE_CALL(write_pvd(opt->run, frame));
+      int stop = sessile_run_stop_requested(opt->run);
+      if (stop) return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
+    }
+  }
+  s->st->wall_s = sessile_wall_seconds() - t0;
+  SESSILE_CALL(write_pvd(opt->run, frame));
+  return write_frame(s, opt->run, -1, "sds/final.ply");
+}
+
+sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_run_stats *st) {
+  memset(st, 0, sizeof *st);
+  SESSILE_CHECK(opt->run && opt->gpu && opt->model_text, SESSILE_ERR_USAGE, "sessile sds run needs a run, a device and a model");
+  sim s;
+  memset(&s, 0, sizeof s);
+  s.st = st;
+  s.rng = sessile_rng_stream(opt->seed, 1);
+  sessile_status r = setup(&s, opt);
+  if (r == SESSILE_OK) r = loop(&s, opt);
+  st->time = s.time, st->cells = s.o.ncells, st->tets = s.o.ntets;
+  teardown(&s);
+  return r;
+}

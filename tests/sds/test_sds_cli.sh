@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# `sessile sds` from the command line: help and the shipped models; a short
+# limb-bud run (t = 30: cells grow, divide and invert) writes its frames, PVD
+# series, final surface and records; the last complex read back from its VTU
+# is valid (every tet of positive volume, every face in one or two tets, the
+# faces in one tet a closed, consistently oriented surface) and holds more
+# cells than it started with; the same seed gives the same bytes; bad models
+# (an unknown morphogen in a rule, an unknown shipped name, a FIFO, physics
+# out of range, springs too stiff to finish) exit 2 with one line and write
+# nothing.
+set -u
+S="$1"
+. "$(dirname "$0")/../common/harness.sh"
+PY=/usr/bin/python3
+one_line() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" && [ ! -s "$T/out" ]; }
+
+run sds --help
+check "sds --help explains run and models" eval 'rc_is 0 && grep -q "usage: sessile sds run MODEL" "$T/out"'
+run sds models
+check "sds models lists the five shipped models" eval \
+  'rc_is 0 && [ "$(wc -l <"$T/out")" -eq 5 ] && grep -q "^limb " "$T/out" && grep -q "^rock " "$T/out"'
+
+run sds run limb --t-end 30 --frames 3 --out "$T/a" --quiet
+check "a limb-bud run to t = 30 completes" rc_is 0
+check "frames 0..3 (PLY and VTU), series.pvd, final.ply, model.sds" eval \
+  'for i in 0000 0001 0002 0003; do test -s "$T/a/sds/frame_$i.ply" && test -s "$T/a/sds/frame_$i.vtu" || exit 1; done; test -s "$T/a/sds/series.pvd" && test -s "$T/a/sds/final.ply" && cmp -s "$T/a/sds/model.sds" "$(dirname "$0")/../../host/sds/models/limb.sds"'
+check "records: 4 frames with cells, tets, ms per step; cells divided and tets inverted; manifest completed" \
+  "$PY" - "$T/a" <<'PYEOF'
+import json, sys
+d = sys.argv[1]; m = json.load(open(d + "/manifest.json"))
+recs = [json.loads(l) for l in open(d + "/records.jsonl")]
+ok = m["state"] == "completed" and [r["frame"] for r in recs] == [0, 1, 2, 3]
+ok = ok and all(r["cells"] > 0 and r["tets"] > 0 and r["ms_per_step"] >= 0 for r in recs)
+div = sum(r["divisions"] for r in recs); inv = sum(r["inversions"] for r in recs)
+ok = ok and div > 0 and inv > 0 and m["sds"]["divisions"] == div and recs[-1]["cells"] > recs[0]["cells"]
+print("divisions", div, "inversions", inv, "cells", recs[0]["cells"], "->", recs[-1]["cells"])
+sys.exit(0 if ok else 1)
+PYEOF
+check "the final complex (frame 3's VTU) is valid: positive tets, faces in 1 or 2 tets, a closed oriented boundary" \
+  "$PY" - "$T/a/sds/frame_0003.vtu" <<'PYEOF'
+import sys, collections
+import numpy as np, vtk
+from vtk.util.numpy_support import vtk_to_numpy
+r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update(); g = r.GetOutput()
+X = vtk_to_numpy(g.GetPoints().GetData()).astype(float)
+T = vtk_to_numpy(g.GetCells().GetData()).reshape(-1, 5)[:, 1:]
+a, b, c, d = (X[T[:, k]] for k in range(4))
+vol = np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6
+faces = collections.Counter()
+directed = collections.Counter()
+for t in T:
+    for f in ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1])):
+        faces[tuple(sorted(f))] += 1
+        directed[f] += 1
+bad_faces = [f for f, n in faces.items() if n > 2]
+# boundary faces, outward: each directed edge once, its reverse once
+edges = collections.Counter()
+for t in T:
+    for f in ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1])):
+        if faces[tuple(sorted(f))] == 1:
+            for i in range(3):
+                edges[(f[i], f[(i + 1) % 3])] += 1
+closed = all(n == 1 and edges.get((e[1], e[0]), 0) == 1 for e, n in edges.items())
+print("tets", len(T), "min volume", vol.min(), "faces in >2 tets", len(bad_faces), "boundary closed", closed)
+sys.exit(0 if vol.min() > 0 and not bad_faces and closed else 1)
+PYEOF
+
+run sds run limb --t-end 30 --frames 3 --out "$T/b" --quiet
+check "the same seed gives the same bytes (every frame)" eval \
+  'for f in frame_0003.ply frame_0003.vtu final.ply; do cmp -s "$T/a/sds/$f" "$T/b/sds/$f" || exit 1; done'
+
+printf 'model bad\nmorphogen phi diffusion=0.1 decay=0\nstate tip = 0\nrule r1: tip == 1 -> set psi = volume\n' >"$T/bad.sds"
+run sds run "$T/bad.sds" --out "$T/c"
+check "an unknown morphogen in a rule: exit 2, file:line:column, nothing written" eval \
+  'rc_is 2 && one_line && grep -q "bad.sds:4:26:" "$T/err" && [ ! -e "$T/c" ]'
+printf 'model bad\ndamping = -1\n' >"$T/neg.sds"
+run sds run "$T/neg.sds" --out "$T/c"
+check "physics out of range: exit 2, one line, nothing written" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+run sds run nosuchmodel --out "$T/c"
+check "an unknown shipped model: exit 2, one line" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+mkfifo "$T/fifo.sds"
+run sds run "$T/fifo.sds" --out "$T/c"
+check "a FIFO as the model: exit 2 at once, nothing written" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+sed 's/^volume_stiffness = .*/volume_stiffness = 1e16/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/stiff.sds"
+run sds run "$T/stiff.sds" --out "$T/c"
+check "work it cannot finish (stiff springs: 1e11 steps) refused before it starts, the estimate in the message" eval \
+  'rc_is 2 && one_line && grep -q "needs at least .* steps" "$T/err" && [ ! -e "$T/c" ]'
+run sds run limb --frames 0 --out "$T/c"
+check "--frames 0: exit 2" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+
+finish
