@@ -59,8 +59,8 @@ int main(void) {
     snprintf(what, sizeof what, "%s: coefficient table matches the morphogen count", names[i]);
     t_true(what, co.nmorph == sessile_sds_model_nmorph(m) && co.diffusion && co.decay && co.capped);
     if (i == 0) {
-      t_true("limb: exactly one morphogen, one state, three rules",
-             sessile_sds_model_nmorph(m) == 1 && sessile_sds_model_nstate(m) == 1 && sessile_sds_model_nrules(m) == 3);
+      t_true("limb: exactly one morphogen, two states (tip, birth_radius), three rules",
+             sessile_sds_model_nmorph(m) == 1 && sessile_sds_model_nstate(m) == 2 && sessile_sds_model_nrules(m) == 3);
       t_true("limb: phi diffusion 0.05, decay 0.01, capped", co.diffusion[0] == 0.05 && co.decay[0] == 0.01 &&
                                                                  co.capped[0] == 1);
     }
