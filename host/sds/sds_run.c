@@ -34,6 +34,8 @@ typedef struct sim {
   double time, dt;
   int calm;                   /* accepted steps since dt last changed */
   int stalled;                /* steps in a row that were rewound to their start */
+  double *retry_at;           /* per cell: a deferred division is not tried again before this time */
+  uint32_t retry_cap;
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
   int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
@@ -188,6 +190,8 @@ static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
     free(dv.tet_from);
     sessile_sds_topo_complex_free(&cx);
     s->st->deferred++;
+    /* TetGen and the check cost milliseconds: not again for 100 steps */
+    if (c < s->retry_cap) s->retry_at[c] = s->time + 100 * s->dt;
     return SESSILE_OK;
   }
   if (st == SESSILE_OK) st = take_complex(s, &cx, dv.tet_from);
@@ -307,7 +311,17 @@ static sessile_status rules(sim *s, double dt) {
   }
   /* divisions in cell order; a division appends its daughter b, so the
    * requests' cell indices stay valid */
+  if (st == SESSILE_OK && s->retry_cap < o->ncells + a.ndivides) {
+    uint32_t cap = (uint32_t)(2 * (o->ncells + a.ndivides));
+    double *r = realloc(s->retry_at, (size_t)cap * sizeof *r);
+    if (!r) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    else {
+      for (uint32_t c = s->retry_cap; c < cap; c++) r[c] = -INFINITY;
+      s->retry_at = r, s->retry_cap = cap;
+    }
+  }
   for (size_t i = 0; st == SESSILE_OK && i < a.ndivides; i++) {
+    if (s->time < s->retry_at[a.divides[i].cell]) continue;
     double d[3] = {a.divides[i].dir[0], a.divides[i].dir[1], a.divides[i].dir[2]};
     if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
       /* the gradient vanished: a seeded random direction */
@@ -547,7 +561,7 @@ static void teardown(sim *s) {
   sessile_morph_gpu_destroy(s->mg);
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
-  free(s->nbr_off), free(s->nbr), free(s->xprev);
+  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at);
 }
 
 static sessile_status record(sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps) {
