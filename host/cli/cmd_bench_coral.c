@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "sessile/bench.h"
 
 static const char *help =
     "usage: sessile bench coral [lsystem|weld|venation|particles]... [--quick] [--device D]\n"
@@ -40,12 +41,8 @@ int cmd_bench_coral(int argc, char **argv, const cli_gpu_opts *global) {
     want[k] = any = 1;
   }
   if (!any) want[0] = want[1] = want[2] = want[3] = 1;
-  double load[3] = {0, 0, 0};
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (f) {
-    if (fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = load[1] = load[2] = -1;
-    fclose(f);
-  }
+  double load[3];
+  sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);
   sessile_gpu *g = NULL;
   sessile_status s = cli_gpu_create(&go, &g);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "sessile/bench.h"
 #include "sessile/grow.h"
 
 static const char *help =
@@ -72,12 +73,8 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   static const char *const solver_name[2] = {"multigrid", "jacobi-pcg"};
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
-    double load[3] = {0};
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (f) {
-      if (fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = load[1] = load[2] = 0;
-      fclose(f);
-    }
+    double load[3];
+    sessile_load_average(load);
     printf("sessile bench grow: device %s (%s), driver %s, fp%d; load average %.2f %.2f %.2f\n",
            gi->name, gi->type, gi->driver, gi->precision, load[0], load[1], load[2]);
     printf("preset %s, %d iterations, seed %llu\n", preset, o.iterations, (unsigned long long)o.seed);

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "cli.h"
+#include "sessile/bench.h"
 #include "sessile/sds.h"
 
 static const char *help =
@@ -27,12 +28,8 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error("bench sds", "unknown option '%.60s'", argv[i]);
   }
-  double load[3] = {-1, -1, -1};
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (f) {
-    if (fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = load[1] = load[2] = -1;
-    fclose(f);
-  }
+  double load[3];
+  sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);
   sessile_gpu *g = NULL;
   sessile_status s = cli_gpu_create(&go, &g);

@@ -305,13 +305,9 @@ static sessile_status bench_ilu(bench *b, const char *name, const sessile_csr *a
 /* The machine's load averages (1, 5, 15 min) from /proc/loadavg, for the
  * record: the timings here are only comparable at similar load. */
 static void print_load(FILE *out, const char *when) {
-  char line[128] = "";
-  FILE *f = fopen("/proc/loadavg", "r");
-  if (!f || !fgets(line, sizeof line, f)) snprintf(line, sizeof line, "unavailable");
-  if (f) fclose(f);
-  double l1, l5, l15;
-  if (sscanf(line, "%lf %lf %lf", &l1, &l5, &l15) == 3)
-    fprintf(out, "load average %s: %.2f %.2f %.2f (1, 5, 15 min)\n", when, l1, l5, l15);
+  double l[3];
+  if (sessile_load_average(l))
+    fprintf(out, "load average %s: %.2f %.2f %.2f (1, 5, 15 min)\n", when, l[0], l[1], l[2]);
   else fprintf(out, "load average %s: unavailable\n", when);
 }
 

@@ -13,5 +13,9 @@ typedef struct sessile_bench_la_options {
                         problem at the first mg_sizes of 33x33x25, 65x65x49, 129x129x97 (0: none) */
 } sessile_bench_la_options;
 
+/* The 1, 5 and 15 minute load averages (/proc/loadavg); 0 and -1s when
+ * unavailable. */
+int sessile_load_average(double load[3]);
+
 sessile_status sessile_bench_la(sessile_gpu *g, const sessile_bench_la_options *o, FILE *out);
 #endif
