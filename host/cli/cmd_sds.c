@@ -45,7 +45,7 @@ static int is_file_name(const char *g) {
 }
 
 static int list_models(void) {
-  for (const sds_builtin *b = sds_builtins; b->name; b++) {
+  for (const embedded_text *b = sds_builtins; b->name; b++) {
     /* the first comment line says what it is */
     const char *t = b->text, *e = strchr(t, '\n');
     int n = e ? (int)(e - t) : (int)strlen(t);
@@ -113,9 +113,8 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     s = sessile_read_small_file(model, (size_t)1 << 20, "model file", &text, &len);
     if (s != SESSILE_OK) return cli_fail(s);
   } else {
-    const sds_builtin *b = sds_builtins;
-    while (b->name && strcmp(b->name, model)) b++;
-    if (!b->name) return cli_usage_error(CMD, "no shipped model '%.60s' (sessile sds models lists them)", model);
+    const embedded_text *b = embedded_text_find(sds_builtins, model);
+    if (!b) return cli_usage_error(CMD, "no shipped model '%.60s' (sessile sds models lists them)", model);
     text = malloc(b->len + 1);
     if (!text) return cli_usage_error(CMD, "out of host memory");
     memcpy(text, b->text, b->len + 1);

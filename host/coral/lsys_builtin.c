@@ -18,7 +18,7 @@ const char *sessile_lsys_builtin_text(int i, size_t *len) {
   return lsys_builtins[i].text;
 }
 const char *sessile_lsys_builtin_find(const char *name, size_t *len) {
-  for (int i = 0; lsys_builtins[i].name; i++)
-    if (!strcmp(lsys_builtins[i].name, name)) return sessile_lsys_builtin_text(i, len);
-  return NULL;
+  const embedded_text *e = embedded_text_find(lsys_builtins, name);
+  if (e && len) *len = e->len;
+  return e ? e->text : NULL;
 }
