@@ -16,6 +16,9 @@ function(sessile_embed_texts out_var dir ext header type table_name outfile)
   set(i 0)
   foreach(g ${files})
     get_filename_component(name ${g} NAME_WE)
+    # the glob only notices added or removed files: an edited one must
+    # re-run the configure step too
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${g})
     file(READ ${g} hex HEX)
     file(SIZE ${g} size)
     string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
