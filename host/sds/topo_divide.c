@@ -102,6 +102,24 @@ static sessile_status cone_split(const double *x, const uint32_t *hull, uint32_t
   return SESSILE_OK;
 }
 
+/* Is dir within 45° of the tangent plane at surface cell c (normal: the
+ * area-weighted normal of c's boundary faces in the hull)? */
+static int tangential_enough(const double *x, uint32_t c, const double *dir, const uint32_t *hull, uint32_t nf) {
+  double n[3] = {0, 0, 0};
+  for (uint32_t f = 0; f < nf; f++) {
+    const uint32_t *v = hull + 3 * (size_t)f;
+    if (v[0] != c && v[1] != c && v[2] != c) continue;
+    const double *p0 = x + 3 * (size_t)v[0], *p1 = x + 3 * (size_t)v[1], *p2 = x + 3 * (size_t)v[2];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) e1[k] = p1[k] - p0[k], e2[k] = p2[k] - p0[k];
+    n[0] += e1[1] * e2[2] - e1[2] * e2[1], n[1] += e1[2] * e2[0] - e1[0] * e2[2], n[2] += e1[0] * e2[1] - e1[1] * e2[0];
+  }
+  double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(nl > 0)) return 0;
+  double cn = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) / nl;
+  return fabs(cn) < sqrt(0.5);
+}
+
 sessile_status sessile_sds_topo_divide(sessile_sds_topo_complex *cx, uint32_t c, const double d[3], double eps_max,
                                        sessile_sds_topo_division *div) {
   memset(div, 0, sizeof *div);
@@ -170,6 +188,13 @@ sessile_status sessile_sds_topo_divide(sessile_sds_topo_complex *cx, uint32_t c,
     pts[0] = c, pts[1] = b, npts = 2;
     for (int k = 0; k < 3; k++) bdir[k] = -dir[k];
   } else {
+    /* along the surface when d is within 45° of the tangent plane: both
+     * daughters on the boundary (topo_divide_surface.c) */
+    if (tangential_enough(cx->x, c, dir, hull, nf)) {
+      st = topo_divide_tangential(cx, c, dir, eps_max, hull, nf, rm, div);
+      if (st == SESSILE_OK || st == SESSILE_ERR_NO_MEMORY) goto done;
+      st = SESSILE_OK; /* the inward split below */
+    }
     /* a stays at c on the boundary; b goes inside along ±d, else along the
      * inward normal of c's boundary faces. */
     double cand[4][3], n[3] = {0, 0, 0};

@@ -42,6 +42,15 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
 sessile_status topo_replace(sessile_sds_topo_complex *cx, const uint8_t *remove, const uint32_t *add, uint32_t nadd,
                             uint32_t **tet_from, uint32_t *n_removed);
 
+/* The tangential division of surface cell c along dir (unit), its star's
+ * hull and removal flags given (sessile_sds_topo_divide's first steps, x
+ * already with room for b): both daughters on the boundary, the enclosed
+ * volume kept.  SESSILE_ERR_UNSUPPORTED or _NUMERIC, with x[c] restored and
+ * the complex untouched, when the fan cannot be split cleanly. */
+sessile_status topo_divide_tangential(sessile_sds_topo_complex *cx, uint32_t c, const double *dir, double eps_max,
+                                      const uint32_t *hull, uint32_t nf, const uint8_t *rm,
+                                      sessile_sds_topo_division *div);
+
 static inline double topo_vol4(const double *x, const uint32_t *t) {
   return sessile_sds_topo_volume(x + 3 * t[0], x + 3 * t[1], x + 3 * t[2], x + 3 * t[3]);
 }

@@ -60,6 +60,7 @@ sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt,
 typedef struct sessile_sds_topo_division {
   uint32_t a, b; /* daughters: a = the mother's index, b = the appended vertex */
   int surface;   /* the mother was on the boundary */
+  int tangential; /* surface and split along the boundary: both daughters on it */
   double eps;    /* the offset used (a = c + eps d, b = c - eps d inside) */
   uint32_t n_removed, n_added;
   int fallback;       /* TetGen needed a Steiner point: the hull coned from a, b split in */
@@ -71,11 +72,20 @@ typedef struct sessile_sds_topo_division {
  * a = c + eps d, b = c - eps d with eps = min(eps_max, frac * the distance
  * from c to F along +d and -d) (frac = 0.5: strictly inside a star-shaped
  * hull); F ∪ {a, b} is tetrahedralised by TetGen keeping F's faces (-pY).
- * Surface cell: the hull of T_c is closed by c's own boundary faces, which
+ * Surface cell, d within 45° of the tangent plane: a tangential split
+ * (div->tangential): a = c + eps t + h n, b = c - eps t + h n with t the
+ * unit projection of d on the tangent plane, n c's boundary normal, eps =
+ * min(eps_max, 0.25 × the mean distance from c to its boundary ring) and h
+ * such that the enclosed volume is unchanged; c's boundary fan is split
+ * into two fans joined by the edge (a, b) (a vertex split, the wings chosen
+ * for the best-shaped outward faces) and the open hull closed by it meshed by
+ * TetGen; both daughters are on the boundary, which gains one vertex and two
+ * faces.  When that fails (no outward fan, TetGen refuses), and for d nearer
+ * the normal: the hull of T_c is closed by c's own boundary faces, which
  * are kept; daughter a stays at c on the boundary and b goes inside along
  * whichever of ±d enters the body (the inward normal when d is tangent), at
- * frac of the distance to the hull.  eps_max <= 0 means no cap.  The total
- * volume and the boundary are unchanged.  The daughters are neighbours
+ * frac of the distance to the hull; the boundary is unchanged.  eps_max <= 0
+ * means no cap.  The total volume is unchanged.  The daughters are neighbours
  * (share an edge): when TetGen's mesh keeps them apart, eps is halved and the
  * hull meshed again (up to 3 times).  When TetGen cannot mesh the hull
  * without a Steiner point, the hull is coned from a (an interior pair pulled
@@ -152,6 +162,19 @@ sessile_status sessile_sds_topo_case2(sessile_sds_topo_complex *cx, uint32_t eu0
  * t, its local indices) applied to tet t: case 1 or case 2 above. */
 sessile_status sessile_sds_topo_apply_inversion(sessile_sds_topo_complex *cx, uint32_t t,
                                                 const sessile_sds_topo_inversion *inv, sessile_sds_topo_transform *tr);
+
+/* --- 6. repair ------------------------------------------------------------- */
+/* Re-tetrahedralises around the tets bad[0..nbad) (inverted ones no
+ * transformation removed): every tet through one of their cells is removed
+ * and the cavity's hull meshed by TetGen with the cells inside it as points
+ * (-pY, no Steiner point, the hull's faces kept); when TetGen cannot mesh it
+ * the cavity grows by a ring of cells (up to 3 rings).  The boundary and the
+ * cells are unchanged; only the tets in the cavity change.  The caller checks
+ * the result (sessile_sds_topo_check): a cavity whose hull is itself tangled
+ * can mesh and still overlap.  SESSILE_ERR_NUMERIC, the complex untouched,
+ * when no cavity meshes. */
+sessile_status sessile_sds_topo_repair(sessile_sds_topo_complex *cx, const uint32_t *bad, uint32_t nbad,
+                                       sessile_sds_topo_transform *tr);
 
 #ifdef __cplusplus
 }
