@@ -162,6 +162,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       cJSON_AddNumberToObject(js, "inversions", (double)st.inversions);
       cJSON_AddNumberToObject(js, "inversions_resisted", (double)st.resisted);
       cJSON_AddNumberToObject(js, "sliver_steps", (double)st.slivers);
+      cJSON_AddNumberToObject(js, "repairs", (double)st.repairs);
       cJSON_AddNumberToObject(js, "divisions_deferred", (double)st.deferred);
       cJSON_AddNumberToObject(js, "frames", st.frames);
       cJSON_AddNumberToObject(js, "wall_s", st.wall_s);

@@ -215,6 +215,43 @@ static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
   return SESSILE_OK;
 }
 
+/* --- repair ----------------------------------------------------------------- */
+/* Inverted tets that no transformation removed (they began the step inverted,
+ * or their transformation was refused): the cavity around them is
+ * re-tetrahedralised (sessile_sds_topo_repair) and the organism takes it if
+ * the whole complex is then valid; else the volume springs go on resisting
+ * (docs/sds.md, "The loop").  Without it one lasting sliver stopped every
+ * division for the rest of a run (they wait for a valid complex). */
+static sessile_status repair(sim *s) {
+  sessile_sds *o = &s->o;
+  uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0;
+  SESSILE_CHECK(bad, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  for (uint32_t t = 0; t < o->ntets; t++) {
+    const uint32_t *v = o->tet + 4 * (size_t)t;
+    if (!(sessile_sds_topo_volume(o->x + 3 * (size_t)v[0], o->x + 3 * (size_t)v[1], o->x + 3 * (size_t)v[2],
+                                  o->x + 3 * (size_t)v[3]) > 0))
+      bad[nbad++] = t;
+  }
+  sessile_status st = SESSILE_OK;
+  if (nbad) {
+    sessile_sds_topo_complex cx;
+    sessile_sds_topo_transform tr;
+    memset(&tr, 0, sizeof tr);
+    st = complex_of(o, &cx);
+    sessile_status rst = st == SESSILE_OK ? sessile_sds_topo_repair(&cx, bad, nbad, &tr) : st;
+    if (st == SESSILE_OK && rst == SESSILE_OK &&
+        sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL) == SESSILE_OK) {
+      st = take_complex(s, &cx, tr.tet_from);
+      if (st == SESSILE_OK) s->st->repairs++;
+    } else if (st == SESSILE_OK && rst == SESSILE_ERR_NO_MEMORY)
+      st = rst;
+    free(tr.tet_from);
+    sessile_sds_topo_complex_free(&cx);
+  }
+  free(bad);
+  return st;
+}
+
 /* --- inversions (§3.1.2) ---------------------------------------------------- */
 /* The tets inverted by the last step: rewind every cell to the first
  * inversion time among them and transform that tet; the others are not
@@ -249,7 +286,7 @@ static sessile_status inversions(sim *s, int *handled, double *frac) {
      * (E grows with (V - R')^2 for V < 0 too); the step stands and they
      * are counted (docs/sds.md, "The loop"). */
     s->st->slivers += n;
-    return SESSILE_OK;
+    return repair(s);
   }
   /* the transformation is made just before the flat moment, so that the
    * flat tet's four cells are not coplanar for TetGen (relative 1e-6 of the
@@ -285,7 +322,7 @@ static sessile_status inversions(sim *s, int *handled, double *frac) {
     memcpy(o->x, xnew, n3 * sizeof *xnew);
     s->st->resisted++;
     free(xnew);
-    return SESSILE_OK;
+    return repair(s);
   }
   free(xnew);
   if (st != SESSILE_OK)

@@ -1,9 +1,11 @@
 /* Shared pieces of the SDS topology: faces, cavity hulls, TetGen filling of
  * a hull (through host/mesh/tetgen_shim.cpp) and the rebuild of the tets. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "../mesh/tetgen_plc.h"
+#include "sessile/intersect.h"
 #include "topo_internal.h"
 
 const int topo_face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -151,6 +153,28 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
     for (int k = 0; k < 3; k++) verts[3 * f + k] = local_of(hv, nh, faces[3 * f + k]);
   }
   facet_poly[nf] = (int)nf, poly_vert[nf] = 3 * (int)nf;
+  /* TetGen 1.5.0 asserts (aborts the process) on some self-intersecting
+   * PLCs: a tangled hull (a repair cavity around inverted tets, a split fan
+   * folded over its star) is refused here instead.  O(nf^2) with box
+   * rejection: hulls have tens to a few hundred faces. */
+  for (uint32_t f = 0; f < nf; f++) {
+    double a[9], lo[3], hi[3];
+    for (int q = 0; q < 9; q++) a[q] = x[3 * (size_t)faces[3 * f + q / 3] + q % 3];
+    for (int k = 0; k < 3; k++)
+      lo[k] = fmin(a[k], fmin(a[3 + k], a[6 + k])), hi[k] = fmax(a[k], fmax(a[3 + k], a[6 + k]));
+    for (uint32_t g = f + 1; g < nf; g++) {
+      double b[9];
+      int apart = 0;
+      for (int q = 0; q < 9; q++) b[q] = x[3 * (size_t)faces[3 * g + q / 3] + q % 3];
+      for (int k = 0; k < 3 && !apart; k++)
+        apart = fmax(b[k], fmax(b[3 + k], b[6 + k])) < lo[k] || fmin(b[k], fmin(b[3 + k], b[6 + k])) > hi[k];
+      if (!apart && sessile_triangles_intersect(a, faces + 3 * f, b, faces + 3 * g)) {
+        st = sessile_error_set(SESSILE_ERR_NUMERIC, "re-tetrahedralising a hull of %u faces: faces %u and %u cross",
+                               nf, f, g);
+        goto done;
+      }
+    }
+  }
   tg_plc plc = {np, xyz, NULL, (int)nf, facet_poly, poly_vert, verts, facet_hole, NULL, marker, 0, NULL};
   char msg[256];
   /* p: a PLC; Y: no Steiner point on its facets; z: zero-based; Q: quiet.

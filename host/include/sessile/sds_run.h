@@ -32,6 +32,7 @@ typedef struct sessile_sds_run_stats {
   uint64_t resisted;       /* inversions without a transformation, resisted physically */
   uint64_t slivers;        /* tet-steps that began inverted (left to their volume springs) */
   uint64_t deferred;       /* divisions put off because the complex was not valid then */
+  uint64_t repairs;        /* cavities around lasting inverted tets re-tetrahedralised */
   uint32_t cells, tets;
   int frames;              /* frames written */
   double wall_s;           /* wall time of the loop */
