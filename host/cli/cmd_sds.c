@@ -13,6 +13,7 @@
 static const char *help =
     "usage: sessile sds run MODEL [--t-end T] [--frames N] [--max-cells N] [--max-steps N] [--seed N]\n"
     "                           [--out DIR] [--force] [--quiet] [--device D]\n"
+    "       sessile sds run [MODEL] --resume DIR [--quiet] [--device D]\n"
     "       sessile sds models         list the shipped models\n"
     "\n"
     "Grows a form with SDS (Porter & McCormack): a tetrahedral complex whose\n"
@@ -35,9 +36,20 @@ static const char *help =
     "  --seed N        seed of the division directions where a gradient vanishes (default 1)\n"
     "  --out DIR       run directory (default runs/sds-MODEL); must be new or empty\n"
     "  --force         replace the earlier run in DIR\n"
+    "  --resume DIR    continue the run in DIR from its checkpoint (written at every frame\n"
+    "                  and when SIGINT/SIGTERM stops it) with its own model and options; the\n"
+    "                  outputs are the same bytes as a run that never stopped (same device).\n"
+    "                  A MODEL given with it must be the run's own.\n"
     "On a failure mid-run (a blow-up, a division TetGen cannot mesh) the frames\n"
-    "written so far stay and the message names the time and the cause.\n"
-    "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
+    "written so far stay and the message names the time and the cause.  A blow-up\n"
+    "(a non-finite position, velocity, radius or morphogen, a cell 1e6 starting sizes\n"
+    "away, the step below dt_min, time standing still) ends with exit code 3, the\n"
+    "manifest's sds.status \"blow-up\" and the last good frame kept (docs/sds.md).\n"
+    "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 3 blow-up,\n"
+    "130/143 interrupted.\n";
+
+/* A blow-up ends the run with its own exit code (docs/sds.md, "Blow-ups"). */
+enum { EXIT_BLOWUP = 3 };
 
 static int is_file_name(const char *g) {
   size_t n = strlen(g);
@@ -62,12 +74,100 @@ static int parse_double(const char *v, double lo, double hi, double *out) {
   return 0;
 }
 
+/* The run's configuration in its manifest: what --resume restarts from. */
+static cJSON *config_make(const char *name, const char *text, unsigned long long seed, double t_end, int frames,
+                          unsigned max_cells) {
+  cJSON *c = cJSON_CreateObject();
+  char sd[32];
+  snprintf(sd, sizeof sd, "%llu", seed);
+  if (!c || !cJSON_AddStringToObject(c, "seed", sd) || !cJSON_AddStringToObject(c, "model", name) ||
+      !cJSON_AddStringToObject(c, "model_text", text) || !cJSON_AddNumberToObject(c, "t_end", t_end) ||
+      !cJSON_AddNumberToObject(c, "frames", frames) || !cJSON_AddNumberToObject(c, "max_cells", max_cells)) {
+    cJSON_Delete(c);
+    return NULL;
+  }
+  return c;
+}
+
+typedef struct stored {
+  char *name, *text;
+  unsigned long long seed;
+  double t_end;
+  int frames;
+  unsigned max_cells;
+} stored;
+
+static sessile_status config_take(const cJSON *c, const char *dir, stored *o) {
+  const cJSON *sd = cJSON_GetObjectItemCaseSensitive(c, "seed"), *nm = cJSON_GetObjectItemCaseSensitive(c, "model");
+  const cJSON *tx = cJSON_GetObjectItemCaseSensitive(c, "model_text"), *te = cJSON_GetObjectItemCaseSensitive(c, "t_end");
+  const cJSON *fr = cJSON_GetObjectItemCaseSensitive(c, "frames"), *mc = cJSON_GetObjectItemCaseSensitive(c, "max_cells");
+  char *end = NULL;
+  int ok = cJSON_IsString(sd) && cJSON_IsString(nm) && cJSON_IsString(tx) && cJSON_IsNumber(te) && cJSON_IsNumber(fr) &&
+           cJSON_IsNumber(mc);
+  if (ok) o->seed = strtoull(sd->valuestring, &end, 10);
+  ok = ok && end && !*end && te->valuedouble <= 1e9 && fr->valuedouble >= -1 && fr->valuedouble <= 100000 &&
+       fr->valuedouble == (int)fr->valuedouble && mc->valuedouble >= 4 && mc->valuedouble <= 50000000;
+  SESSILE_CHECK(ok, SESSILE_ERR_USAGE, "'%s/manifest.json' holds no SDS configuration to resume from (damaged?)", dir);
+  o->name = strdup(nm->valuestring), o->text = strdup(tx->valuestring);
+  SESSILE_CHECK(o->name && o->text, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  o->t_end = te->valuedouble, o->frames = (int)fr->valuedouble, o->max_cells = (unsigned)mc->valuedouble;
+  return SESSILE_OK;
+}
+
+static int read_model(const char *model, char **text) {
+  size_t len = 0;
+  if (is_file_name(model)) {
+    sessile_status s = sessile_read_small_file(model, (size_t)1 << 20, "model file", text, &len);
+    return s == SESSILE_OK ? -1 : cli_fail(s);
+  }
+  const embedded_text *b = embedded_text_find(sds_builtins, model);
+  if (!b) return cli_usage_error(CMD, "no shipped model '%.60s' (sessile sds models lists them)", model);
+  *text = malloc(b->len + 1);
+  if (!*text) return cli_usage_error(CMD, "out of host memory");
+  memcpy(*text, b->text, b->len + 1);
+  return -1;
+}
+
+/* The manifest's sds member: totals, and how the run ended. */
+static void manifest_sds(sessile_run *run, const char *name, const sessile_sds_run_stats *st, sessile_status s) {
+  cJSON *m = sessile_run_manifest(run);
+  cJSON *js = cJSON_CreateObject();
+  if (!js) return;
+  cJSON_AddStringToObject(js, "model", name);
+  cJSON_AddStringToObject(js, "status", s == SESSILE_OK ? "completed"
+                                        : s == SESSILE_ERR_INTERRUPTED ? "interrupted"
+                                        : st->blowup ? "blow-up" : "failed");
+  if (st->blowup) {
+    cJSON *b = cJSON_AddObjectToObject(js, "blowup");
+    if (b) {
+      cJSON_AddNumberToObject(b, "time", st->blowup_time);
+      cJSON_AddNumberToObject(b, "step", (double)st->blowup_step);
+      cJSON_AddStringToObject(b, "cause", st->blowup_cause);
+      cJSON_AddNumberToObject(b, "last_good_frame", st->frames - 1);
+    }
+  }
+  cJSON_AddNumberToObject(js, "time", st->time);
+  cJSON_AddNumberToObject(js, "steps", (double)st->steps);
+  cJSON_AddNumberToObject(js, "cells", st->cells);
+  cJSON_AddNumberToObject(js, "tets", st->tets);
+  cJSON_AddNumberToObject(js, "divisions", (double)st->divisions);
+  cJSON_AddNumberToObject(js, "inversions", (double)st->inversions);
+  cJSON_AddNumberToObject(js, "inversions_resisted", (double)st->resisted);
+  cJSON_AddNumberToObject(js, "sliver_steps", (double)st->slivers);
+  cJSON_AddNumberToObject(js, "repairs", (double)st->repairs);
+  cJSON_AddNumberToObject(js, "divisions_deferred", (double)st->deferred);
+  cJSON_AddNumberToObject(js, "frames", st->frames);
+  cJSON_AddNumberToObject(js, "wall_s", st->wall_s);
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "sds");
+  cJSON_AddItemToObject(m, "sds", js);
+}
+
 static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_args *a) {
   cli_gpu_opts go = *global;
   const char *model = NULL;
   double t_end = -1;
   unsigned frames = 0, max_cells = 200000, max_steps = 10000000;
-  int have_frames = 0;
+  int have_frames = 0, have_shape = 0; /* have_shape: an option a resume must not change */
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
@@ -78,19 +178,22 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       const char *v = cli_value(CMD, argc, argv, &i);
       if (!v) return EXIT_USAGE;
       if (parse_double(v, 0, 1e9, &t_end)) return cli_usage_error(CMD, "--t-end needs a time in [0, 1e9] (got '%.40s')", v);
+      have_shape = 1;
       continue;
     }
     if (!strcmp(o, "--frames")) {
       if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 1, 100000, &frames)) return EXIT_USAGE;
-      have_frames = 1;
+      have_frames = have_shape = 1;
       continue;
     }
     if (!strcmp(o, "--max-steps")) {
       if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 1, 4000000000u, &max_steps)) return EXIT_USAGE;
+      have_shape = 1;
       continue;
     }
     if (!strcmp(o, "--max-cells")) {
       if (cli_parse_uint(CMD, o, i + 1 < argc ? argv[++i] : NULL, 4, 50000000, &max_cells)) return EXIT_USAGE;
+      have_shape = 1;
       continue;
     }
     int r = cli_gpu_option(CMD, argc, argv, &i, &go);
@@ -100,36 +203,31 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     if (o[0] == '-' || model) return cli_usage_error(CMD, "unknown option or second model '%.60s'", o);
     model = o;
   }
-  if (a->resume) return cli_usage_error(CMD, "--resume is not supported yet: rerun with --force (docs/sds.md)");
   if (a->have_iterations || a->every != 1 || a->nsets || a->nconfigs || a->print_config)
     return cli_usage_error(CMD, "--iterations, --every, --set, --config and --print-config do not apply: "
                                 "the model file holds every parameter (docs/sds_rules.md)");
-  if (!model) return cli_usage_error(CMD, "name a model: a shipped one (sessile sds models) or FILE.sds");
+  if (a->resume && (a->have_run_option || have_shape))
+    return cli_usage_error(CMD, "--resume continues a run with its own model and options: only a MODEL (its own), "
+                                "--quiet and device options go with it");
+  if (!model && !a->resume) return cli_usage_error(CMD, "name a model: a shipped one (sessile sds models) or FILE.sds");
   char *text = NULL;
-  size_t len = 0;
-  const char *name = model;
-  sessile_status s = SESSILE_OK;
-  if (is_file_name(model)) {
-    s = sessile_read_small_file(model, (size_t)1 << 20, "model file", &text, &len);
-    if (s != SESSILE_OK) return cli_fail(s);
-  } else {
-    const embedded_text *b = embedded_text_find(sds_builtins, model);
-    if (!b) return cli_usage_error(CMD, "no shipped model '%.60s' (sessile sds models lists them)", model);
-    text = malloc(b->len + 1);
-    if (!text) return cli_usage_error(CMD, "out of host memory");
-    memcpy(text, b->text, b->len + 1);
-    len = b->len;
+  if (model) {
+    int rc = read_model(model, &text);
+    if (rc >= 0) return rc;
   }
-  (void)len;
-  s = sessile_sds_model_check(text, name, t_end, max_steps);
-  if (s != SESSILE_OK) {
-    free(text);
-    return cli_fail(s);
+  sessile_status s = SESSILE_OK;
+  if (!a->resume) {
+    /* everything about the model that needs no device, before the run directory */
+    s = sessile_sds_model_check(text, model, t_end, max_steps);
+    if (s != SESSILE_OK) {
+      free(text);
+      return cli_fail(s);
+    }
   }
   char dir_buf[256];
-  const char *base = strrchr(name, '/') ? strrchr(name, '/') + 1 : name;
+  const char *base = model ? (strrchr(model, '/') ? strrchr(model, '/') + 1 : model) : "";
   snprintf(dir_buf, sizeof dir_buf, "runs/sds-%.*s", (int)(strcspn(base, ".") ? strcspn(base, ".") : 1), base);
-  const char *dir = a->out ? a->out : dir_buf;
+  const char *dir = a->resume ? a->resume : a->out ? a->out : dir_buf;
   sessile_gpu *g = NULL;
   s = cli_gpu_create(&go, &g);
   if (s != SESSILE_OK) {
@@ -138,45 +236,44 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   }
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_run *run = NULL;
+  stored cfg = {NULL, NULL, a->seed, t_end, have_frames ? (int)frames : -1, max_cells};
   s = cli_run_open("sds", argc, argv, a, dir, stop, &run);
-  if (s == SESSILE_OK) {
+  if (s == SESSILE_OK && a->resume) {
+    s = config_take(sessile_run_config(run), dir, &cfg);
+    if (s == SESSILE_OK && text && strcmp(text, cfg.text))
+      s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds a run of another model ('%.60s'), not '%.60s'", dir, cfg.name,
+                            model);
+  } else if (s == SESSILE_OK) {
+    cfg.name = strdup(model), cfg.text = strdup(text);
+    if (!cfg.name || !cfg.text) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     char path[4096];
-    s = sessile_run_file(run, "sds/model.sds", path, sizeof path);
+    if (s == SESSILE_OK) s = sessile_run_file(run, "sds/model.sds", path, sizeof path);
     if (s == SESSILE_OK) s = sessile_write_file_atomic(path, text, strlen(text));
+  }
+  if (s == SESSILE_OK) {
+    cJSON *c = config_make(cfg.name, cfg.text, cfg.seed, cfg.t_end, cfg.frames, cfg.max_cells);
+    s = c ? sessile_run_set_config(run, c) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   sessile_sds_run_stats st;
   memset(&st, 0, sizeof st);
+  const char *name = cfg.name ? cfg.name : model ? model : "?";
   if (s == SESSILE_OK) {
-    sessile_sds_run_options o = {.run = run, .gpu = g, .seed = a->seed, .model_text = text, .model_name = name,
-                                 .t_end = t_end, .frames = have_frames ? (int)frames : -1, .max_cells = max_cells};
+    sessile_sds_run_options o = {.run = run, .gpu = g, .seed = cfg.seed, .model_text = cfg.text, .model_name = cfg.name,
+                                 .t_end = cfg.t_end, .frames = cfg.frames, .max_cells = cfg.max_cells};
     s = sessile_sds_run(&o, &st);
-    cJSON *m = sessile_run_manifest(run);
-    cJSON *js = cJSON_CreateObject();
-    if (js) {
-      cJSON_AddStringToObject(js, "model", name);
-      cJSON_AddNumberToObject(js, "time", st.time);
-      cJSON_AddNumberToObject(js, "steps", (double)st.steps);
-      cJSON_AddNumberToObject(js, "cells", st.cells);
-      cJSON_AddNumberToObject(js, "tets", st.tets);
-      cJSON_AddNumberToObject(js, "divisions", (double)st.divisions);
-      cJSON_AddNumberToObject(js, "inversions", (double)st.inversions);
-      cJSON_AddNumberToObject(js, "inversions_resisted", (double)st.resisted);
-      cJSON_AddNumberToObject(js, "sliver_steps", (double)st.slivers);
-      cJSON_AddNumberToObject(js, "repairs", (double)st.repairs);
-      cJSON_AddNumberToObject(js, "divisions_deferred", (double)st.deferred);
-      cJSON_AddNumberToObject(js, "frames", st.frames);
-      cJSON_AddNumberToObject(js, "wall_s", st.wall_s);
-      cJSON_DeleteItemFromObjectCaseSensitive(m, "sds");
-      cJSON_AddItemToObject(m, "sds", js);
-    }
+    manifest_sds(run, name, &st, s);
   }
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(g);
-  free(text);
   if (s == SESSILE_OK && !a->quiet)
     printf("sds %s: t = %g, %u cells, %u tets, %llu steps, %llu divisions, %llu inversions, %d frames in %.1f s; run in %s\n",
            name, st.time, st.cells, st.tets, (unsigned long long)st.steps, (unsigned long long)st.divisions,
            (unsigned long long)st.inversions, st.frames, st.wall_s, dir);
+  free(text), free(cfg.name), free(cfg.text);
+  if (s == SESSILE_ERR_NUMERIC && st.blowup) {
+    cli_fail(s);
+    return EXIT_BLOWUP;
+  }
   return cli_run_exit(CMD, s, dir, stop, st.frames);
 }
 

@@ -9,6 +9,7 @@
  *      and divisions (host, TetGen) in cell order.
  * Same model, seed and device: the same bytes. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,8 @@
 #include "sessile/sds_process.h"
 #include "sessile/sds_run.h"
 #include "sessile/sds_topo.h"
+#include "sds/sds_checkpoint.h"
+#include "sds/sds_surface_file.h"
 
 typedef struct sim {
   const char *text;           /* the model */
@@ -41,6 +44,14 @@ typedef struct sim {
   int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
   sessile_sds_run_stats *st;
   uint64_t div_interval, inv_interval; /* counts since the last record */
+  uint64_t key;               /* sds_ckpt_key of the model and options */
+  double c0[3], size0;        /* the starting organism's centroid and size */
+  int frame;                  /* the next frame to write */
+  uint64_t steps_frame;       /* steps since the last frame */
+  int resumed;                /* restored from a checkpoint */
+  double step_t0;             /* the time at the start of the step being made */
+  double t_end;               /* resolved: the option or the model's */
+  int frames;
 } sim;
 
 static const double PI = 3.14159265358979323846;
@@ -94,6 +105,8 @@ static sessile_status read_physics(sim *s, const char *where) {
   return SESSILE_OK;
 }
 
+static sessile_status blowup(sim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* --- neighbours and morphogens -------------------------------------------- */
 static sessile_status neighbours(sim *s) {
   const sessile_sds *o = &s->o;
@@ -126,13 +139,12 @@ static sessile_status morphogens(sim *s, const double *src, double dt) {
   sessile_morph_cells cells = cells_of(s);
   sessile_morph_coef coef = sessile_sds_model_coef(s->model);
   double bound = sessile_morph_dt_max(&cells, &coef);
-  SESSILE_CHECK(bound > 0, SESSILE_ERR_NUMERIC, "sds: two adjacent cells coincide at t = %g (a blow-up?)", s->time);
-  int n = isfinite(bound) && dt > bound ? (int)ceil(dt / bound * (1 + 1e-9)) : 1;
-  SESSILE_CHECK(n <= 10000, SESSILE_ERR_NUMERIC,
-                "sds: the morphogen step needs %d sub-steps at t = %g (cells too close: a blow-up?)", n, s->time);
+  if (!(bound > 0)) return blowup(s, "two adjacent cells coincide (the morphogens' step bound is 0)");
+  double n = isfinite(bound) && dt > bound ? ceil(dt / bound * (1 + 1e-9)) : 1;
+  if (n > 10000) return blowup(s, "the morphogen step needs %.3g sub-steps (cells too close)", n);
   SESSILE_CALL(sessile_morph_gpu_set_cells(s->mg, &cells, &coef));
   SESSILE_CALL(sessile_morph_gpu_set_phi(s->mg, s->o.phi, src));
-  SESSILE_CALL(sessile_morph_gpu_step(s->mg, dt / n, n));
+  SESSILE_CALL(sessile_morph_gpu_step(s->mg, dt / n, (int)n));
   return sessile_morph_gpu_get_phi(s->mg, s->o.phi);
 }
 
@@ -535,6 +547,40 @@ static sessile_status check_model(sim *s, const char *where, int *level, double 
   return SESSILE_OK;
 }
 
+/* The starting organism: the model's `surface = "FILE.ply"` (relative to
+ * the model file's folder), or the icosphere (sphere_radius,
+ * sphere_subdivisions), through TetGen.  A surface that is not closed and
+ * consistently oriented, or that TetGen rejects, is a usage error. */
+static sessile_status import_organism(sim *s, const char *where, int level, double radius) {
+  uint32_t nm = (uint32_t)sessile_sds_model_nmorph(s->model), ns = (uint32_t)sessile_sds_model_nstate(s->model);
+  const sessile_sds_param *sf = sessile_sds_model_param_find(s->model, "surface");
+  if (!sf) {
+    const double c0[3] = {0, 0, 0};
+    return sessile_sds_from_icosphere(level, radius, c0, 0, nm, ns, s->density, &s->o);
+  }
+  SESSILE_CHECK(sf->nvalues == 0 && sf->text[0], SESSILE_ERR_USAGE, "%s:%d: surface names a PLY file: surface = \"FILE.ply\"",
+                where, sf->line);
+  char path[4096];
+  const char *slash = strrchr(where, '/');
+  if (sf->text[0] == '/' || !slash) snprintf(path, sizeof path, "%s", sf->text);
+  else snprintf(path, sizeof path, "%.*s/%s", (int)(slash - where), where, sf->text);
+  sessile_surface srf;
+  SESSILE_CALL(sds_read_surface_ply(path, &srf));
+  /* closed and consistently oriented (any genus: the check's Euler number is
+   * the surface's own, V - 3F/2 + F) */
+  sessile_status st = sessile_surface_check(&srf, (int)srf.nv - (int)(srf.nf / 2), 0);
+  if (st != SESSILE_OK)
+    st = sessile_error_set(SESSILE_ERR_USAGE, "%s:%d: surface '%s' is not a closed, consistently oriented surface: %s",
+                           where, sf->line, path, sessile_error_message());
+  if (st == SESSILE_OK) {
+    st = sessile_sds_from_surface(&srf, NULL, 0, nm, ns, s->density, &s->o);
+    if (st == SESSILE_ERR_USAGE)
+      st = sessile_error_set(st, "%s:%d: surface '%s': %s", where, sf->line, path, sessile_error_message());
+  }
+  sessile_surface_free(&srf);
+  return st;
+}
+
 sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps) {
   sim s;
   memset(&s, 0, sizeof s);
@@ -546,9 +592,7 @@ sessile_status sessile_sds_model_check(const char *text, const char *name, doubl
   if (st == SESSILE_OK) {
     /* the work it would take: steps at the integrator's stable step of the
      * starting organism (growth and division only make steps smaller) */
-    const double c0[3] = {0, 0, 0};
-    st = sessile_sds_from_icosphere(level, radius, c0, 0, (uint32_t)sessile_sds_model_nmorph(s.model),
-                                    (uint32_t)sessile_sds_model_nstate(s.model), s.density, &s.o);
+    st = import_organism(&s, where, level, radius);
     if (st == SESSILE_OK) {
       if (t_end < 0) t_end = param1(s.model, "t_end", 100);
       double dt = fmin(s.p.stable_safety * sessile_sds_stable_dt(&s.o, &s.p), s.p.dt_max);
@@ -566,29 +610,87 @@ sessile_status sessile_sds_model_check(const char *text, const char *name, doubl
   return st;
 }
 
+/* The starting organism's centroid and size (its largest distance from the
+ * centroid): the blow-up test's yardstick. */
+static void measure_start(sim *s) {
+  const sessile_sds *o = &s->o;
+  for (int k = 0; k < 3; k++) s->c0[k] = 0;
+  for (uint32_t c = 0; c < o->ncells; c++)
+    for (int k = 0; k < 3; k++) s->c0[k] += o->x[3 * (size_t)c + k] / o->ncells;
+  s->size0 = 0;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) d2 += (o->x[3 * (size_t)c + k] - s->c0[k]) * (o->x[3 * (size_t)c + k] - s->c0[k]);
+    s->size0 = fmax(s->size0, sqrt(d2));
+  }
+}
+
+/* The loop's scalars to and from the checkpoint (sds_checkpoint.h). */
+static sessile_status save(sim *s, sessile_run *run) {
+  const sessile_sds_run_stats *t = s->st;
+  sds_ckpt_loop l = {.version = SDS_CKPT_VERSION, .key = s->key, .time = s->time, .dt = s->dt,
+                     .calm = s->calm, .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
+                     .steps_frame = s->steps_frame, .div_interval = s->div_interval,
+                     .inv_interval = s->inv_interval, .steps = t->steps, .divisions = t->divisions,
+                     .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
+                     .deferred = t->deferred, .repairs = t->repairs, .c0 = {s->c0[0], s->c0[1], s->c0[2]}, .size0 = s->size0,
+                     .retry_cap = s->retry_at ? s->retry_cap : 0};
+  return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at);
+}
+
+static sessile_status restore(sim *s, const sessile_ckpt *ck) {
+  sds_ckpt_loop l;
+  SESSILE_CALL(sds_ckpt_read(ck, s->key, (uint32_t)sessile_sds_model_nmorph(s->model),
+                             (uint32_t)sessile_sds_model_nstate(s->model), &s->o, &l, &s->retry_at));
+  sessile_sds_run_stats *t = s->st;
+  s->time = l.time, s->dt = l.dt, s->calm = (int)l.calm, s->stalled = (int)l.stalled, s->rng = l.rng;
+  s->frame = (int)l.frame, s->steps_frame = l.steps_frame;
+  s->div_interval = l.div_interval, s->inv_interval = l.inv_interval;
+  t->steps = l.steps, t->divisions = l.divisions, t->inversions = l.inversions, t->resisted = l.resisted;
+  t->slivers = l.slivers, t->deferred = l.deferred, t->repairs = l.repairs, t->frames = s->frame;
+  memcpy(s->c0, l.c0, sizeof s->c0);
+  s->size0 = l.size0, s->retry_cap = (uint32_t)l.retry_cap;
+  if (!s->retry_cap) free(s->retry_at), s->retry_at = NULL;
+  SESSILE_CHECK(s->frame >= 1 && s->frame <= s->frames + 1 && isfinite(s->time) && s->dt > 0 && s->size0 > 0,
+                SESSILE_ERR_IO, "the checkpoint's loop section does not fit this run (damaged?)");
+  s->resumed = 1;
+  return SESSILE_OK;
+}
+
 static sessile_status setup(sim *s, const sessile_sds_run_options *opt) {
   const char *where = opt->model_name ? opt->model_name : "model";
   int level;
   double radius;
   s->text = opt->model_text;
   SESSILE_CALL(check_model(s, where, &level, &radius));
+  s->t_end = opt->t_end >= 0 ? opt->t_end : param1(s->model, "t_end", 100);
+  s->frames = opt->frames >= 0 ? opt->frames : (int)param1(s->model, "frames", 20);
+  SESSILE_CHECK(s->t_end >= 0 && isfinite(s->t_end) && s->frames >= 1 && s->frames <= 100000, SESSILE_ERR_USAGE,
+                "sds: t_end must be >= 0 and frames in 1..100000");
+  s->key = sds_ckpt_key(s->text, opt->seed, s->t_end, s->frames, opt->max_cells);
   int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
-  const double c0[3] = {0, 0, 0};
-  SESSILE_CALL(sessile_sds_from_icosphere(level, radius, c0, 0, (uint32_t)nm, (uint32_t)ns, s->density, &s->o));
-  for (uint32_t c = 0; c < s->o.ncells; c++) {
-    for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
-    for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
-  }
   s->tip_state = sessile_sds_model_state_index(s->model, "tip");
   s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
-  if (s->birth_state >= 0)
-    for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
-  SESSILE_CALL(mark_tips(s, where));
-  SESSILE_CALL(neighbours(s));
-  if (param1(s->model, "tips_below", 0) != 0 && s->tip_state >= 0) SESSILE_CALL(cells_below_tips(s));
+  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(opt->run);
+  if (ck) {
+    SESSILE_CALL(restore(s, ck));
+    SESSILE_CALL(neighbours(s));
+  } else {
+    SESSILE_CALL(import_organism(s, where, level, radius));
+    for (uint32_t c = 0; c < s->o.ncells; c++) {
+      for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
+      for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
+    }
+    if (s->birth_state >= 0)
+      for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
+    SESSILE_CALL(mark_tips(s, where));
+    SESSILE_CALL(neighbours(s));
+    if (param1(s->model, "tips_below", 0) != 0 && s->tip_state >= 0) SESSILE_CALL(cells_below_tips(s));
+    measure_start(s);
+    s->dt = s->p.dt;
+  }
   SESSILE_CALL(sessile_sds_gpu_create(opt->gpu, &s->o, &s->p, &s->pg));
   SESSILE_CALL(sessile_morph_gpu_create(opt->gpu, &s->mg));
-  s->dt = s->p.dt;
   return SESSILE_OK;
 }
 
@@ -620,72 +722,144 @@ static sessile_status record(sim *s, sessile_run *run, int frame, double ms_per_
 }
 
 /* --- the loop --------------------------------------------------------------- */
+/* A blow-up (docs/sds.md, "Blow-ups"): the step from t = s->time (step
+ * steps + 1) left no usable state.  Nothing of the step is written; the
+ * message says what happened, when, and what to try. */
+static sessile_status blowup(sim *s, const char *fmt, ...) {
+  sessile_sds_run_stats *t = s->st;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(t->blowup_cause, sizeof t->blowup_cause, fmt, ap);
+  va_end(ap);
+  t->blowup = 1, t->blowup_time = s->step_t0, t->blowup_step = t->steps + 1;
+  return sessile_error_set(SESSILE_ERR_NUMERIC,
+                           "sds: blow-up in step %llu from t = %.9g: %s; the last good frame is frame_%04d; try "
+                           "weaker forces (gravity, attractor), more damping, stiffer volume springs "
+                           "(volume_stiffness) or slower growth",
+                           (unsigned long long)t->blowup_step, s->step_t0, t->blowup_cause, s->frame - 1);
+}
+
+/* The state after the physics: every position and velocity finite, every
+ * cell within 1e6 starting sizes of the starting centroid. */
+static sessile_status check_motion(sim *s) {
+  const sessile_sds *o = &s->o;
+  double far2 = 1e12 * s->size0 * s->size0;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    const double *x = o->x + 3 * (size_t)c, *v = o->v + 3 * (size_t)c;
+    if (!isfinite(x[0] + x[1] + x[2]) || !isfinite(v[0] + v[1] + v[2]))
+      return blowup(s, "cell %u's position or velocity is not finite", c);
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) d2 += (x[k] - s->c0[k]) * (x[k] - s->c0[k]);
+    if (d2 > far2)
+      return blowup(s, "cell %u is %.3g u from the start's centre, more than 1e6 times the starting size %.3g u", c,
+                    sqrt(d2), s->size0);
+  }
+  return SESSILE_OK;
+}
+
+/* The state after the rules: radii positive and finite, morphogens and
+ * state variables finite (a runaway growth or production). */
+static sessile_status check_cells(sim *s) {
+  const sessile_sds *o = &s->o;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    if (!(o->r[c] > 0 && isfinite(o->r[c]) && isfinite(o->m[c])))
+      return blowup(s, "cell %u's radius %g or mass %g is not positive and finite (a runaway growth rule?)", c,
+                    o->r[c], o->m[c]);
+    for (uint32_t k = 0; k < o->nmorph; k++)
+      if (!isfinite(o->phi[(size_t)c * o->nmorph + k]))
+        return blowup(s, "cell %u's morphogen %s is not finite", c, sessile_sds_model_morph_name(s->model, (int)k));
+    for (uint32_t k = 0; k < o->nstate; k++)
+      if (!isfinite(o->state[(size_t)c * o->nstate + k]))
+        return blowup(s, "cell %u's state %s is not finite", c, sessile_sds_model_state_name(s->model, (int)k));
+  }
+  return SESSILE_OK;
+}
+
+/* One step (docs/sds.md, "The loop"). */
+static sessile_status step(sim *s, double next_frame) {
+  free(s->xprev);
+  s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  double dt = s->dt, elapsed = 0;
+  s->step_t0 = s->time;
+  int clamped = s->time + dt > next_frame;
+  if (clamped) dt = fmax(next_frame - s->time, 1e-12);
+  double try_dt = dt;
+  sessile_status st = sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed);
+  if (st == SESSILE_ERR_NUMERIC) {
+    /* a non-finite state or a step below dt_min: the integrator's verdict */
+    char why[512];
+    const char *m = sessile_error_message();
+    snprintf(why, sizeof why, "%s", strncmp(m, "sds: ", 5) ? m : m + 5);
+    return blowup(s, "%s", why);
+  }
+  SESSILE_CALL(st);
+  /* step control across calls (one step per call, so that an inversion is
+   * rewound over one step): a step that had to be halved sets dt; after 10
+   * steps at full size dt grows by 1.25 (the integrator caps it at its
+   * stable bound and at dt_max) */
+  if (elapsed < dt * (1 - 1e-12)) s->dt = elapsed, s->calm = 0;
+  else if (!clamped && ++s->calm >= 10) s->dt = fmin(s->dt * 1.25, s->p.dt_max), s->calm = 0;
+  SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
+  SESSILE_CALL(check_motion(s));
+  int handled = 0;
+  double frac = 1;
+  SESSILE_CALL(inversions(s, &handled, &frac));
+  if (handled) {
+    /* rewound to the inversion: the elapsed time shrinks with it */
+    elapsed *= frac;
+    SESSILE_CALL(refresh(s));
+  }
+  if (elapsed > 0) {
+    s->time += elapsed;
+    SESSILE_CALL(rules(s, elapsed));
+    SESSILE_CALL(check_cells(s));
+    s->stalled = 0;
+  } else if (++s->stalled >= 1000)
+    return blowup(s, "time stands still: tets keep inverting at the start of the step for 1000 steps");
+  s->st->steps++, s->steps_frame++;
+  return SESSILE_OK;
+}
+
 static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
-  double t_end = opt->t_end >= 0 ? opt->t_end : param1(s->model, "t_end", 100);
-  int frames = opt->frames >= 0 ? opt->frames : (int)param1(s->model, "frames", 20);
-  SESSILE_CHECK(t_end >= 0 && isfinite(t_end) && frames >= 1 && frames <= 100000, SESSILE_ERR_USAGE,
-                "sds: t_end must be >= 0 and frames in 1..100000");
-  double frame_dt = t_end / frames;
-  int frame = 0;
-  SESSILE_CALL(write_frame(s, opt->run, frame, "sds/frame_0000.ply"));
-  SESSILE_CALL(record(s, opt->run, frame, 0, 0));
-  s->st->frames = ++frame;
-  double t0 = sessile_wall_seconds(), tf = t0;
-  uint64_t steps_frame = 0;
-  while (s->time < t_end * (1 - 1e-12)) {
+  double frame_dt = s->t_end / s->frames;
+  if (!s->resumed) {
+    SESSILE_CALL(write_frame(s, opt->run, 0, "sds/frame_0000.ply"));
+    SESSILE_CALL(record(s, opt->run, 0, 0, 0));
+    s->st->frames = s->frame = 1;
+    SESSILE_CALL(write_pvd(opt->run, 1));
+    SESSILE_CALL(save(s, opt->run));
+  }
+  double tf = sessile_wall_seconds();
+  while (s->time < s->t_end * (1 - 1e-12)) {
     SESSILE_CHECK(s->o.ncells <= opt->max_cells, SESSILE_ERR_NO_MEMORY,
                   "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, opt->max_cells);
-    free(s->xprev);
-    s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
-    SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
-    memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
-    double dt = s->dt, elapsed = 0;
-    double next_frame = frame * frame_dt;
-    int clamped = s->time + dt > next_frame;
-    if (clamped) dt = fmax(next_frame - s->time, 1e-12);
-    double try_dt = dt;
-    SESSILE_CALL(sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed));
-    /* step control across calls (one step per call, so that an inversion is
-     * rewound over one step): a step that had to be halved sets dt; after 10
-     * steps at full size dt grows by 1.25 (the integrator caps it at its
-     * stable bound and at dt_max) */
-    if (elapsed < dt * (1 - 1e-12)) s->dt = elapsed, s->calm = 0;
-    else if (!clamped && ++s->calm >= 10) s->dt = fmin(s->dt * 1.25, s->p.dt_max), s->calm = 0;
-    SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
-    int handled = 0;
-    double frac = 1;
-    SESSILE_CALL(inversions(s, &handled, &frac));
-    if (handled) {
-      /* rewound to the inversion: the elapsed time shrinks with it */
-      elapsed *= frac;
-      SESSILE_CALL(refresh(s));
-    }
-    s->time += elapsed;
-    for (int k = 0; k < 3 * (int)s->o.ncells; k++)
-      SESSILE_CHECK(isfinite(s->o.x[k]), SESSILE_ERR_NUMERIC, "sds: a cell position is not finite at t = %g (a blow-up)",
-                    s->time);
-    if (elapsed > 0) {
-      SESSILE_CALL(rules(s, elapsed));
-      s->stalled = 0;
-    } else
-      SESSILE_CHECK(++s->stalled < 1000, SESSILE_ERR_NUMERIC,
-                    "sds: time stands still at t = %g: tets keep inverting at the start of the step (a blow-up)", s->time);
-    s->st->steps++, steps_frame++;
+    double next_frame = s->frame * frame_dt;
+    SESSILE_CALL(step(s, next_frame));
+    int saved = 0;
     if (s->time >= next_frame * (1 - 1e-12)) {
       double now = sessile_wall_seconds();
       char rel[64];
-      snprintf(rel, sizeof rel, "sds/frame_%04d.ply", frame);
-      SESSILE_CALL(write_frame(s, opt->run, frame, rel));
-      SESSILE_CALL(record(s, opt->run, frame, 1e3 * (now - tf) / (double)(steps_frame ? steps_frame : 1), steps_frame));
-      s->st->frames = ++frame;
-      tf = now, steps_frame = 0;
-      SESSILE_CALL(write_pvd(opt->run, frame));
-      int stop = sessile_run_stop_requested(opt->run);
-      if (stop) return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
+      snprintf(rel, sizeof rel, "sds/frame_%04d.ply", s->frame);
+      SESSILE_CALL(write_frame(s, opt->run, s->frame, rel));
+      uint64_t n = s->steps_frame;
+      SESSILE_CALL(record(s, opt->run, s->frame, 1e3 * (now - tf) / (double)(n ? n : 1), n));
+      s->st->frames = ++s->frame;
+      tf = now, s->steps_frame = 0;
+      SESSILE_CALL(write_pvd(opt->run, s->frame));
+      SESSILE_CALL(save(s, opt->run));
+      saved = 1;
+    }
+    int stop = sessile_run_stop_requested(opt->run);
+    if (stop) {
+      /* the state after any step resumes exactly (the device holds nothing
+       * the host has not: every step ends with an upload) */
+      if (!saved) SESSILE_CALL(save(s, opt->run));
+      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
     }
   }
-  s->st->wall_s = sessile_wall_seconds() - t0;
-  SESSILE_CALL(write_pvd(opt->run, frame));
+  SESSILE_CALL(write_pvd(opt->run, s->frame));
   return write_frame(s, opt->run, -1, "sds/final.ply");
 }
 
@@ -696,9 +870,12 @@ sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_r
   memset(&s, 0, sizeof s);
   s.st = st;
   s.rng = sessile_rng_stream(opt->seed, 1);
+  double t0 = sessile_wall_seconds();
   sessile_status r = setup(&s, opt);
   if (r == SESSILE_OK) r = loop(&s, opt);
+  st->wall_s = sessile_wall_seconds() - t0;
   st->time = s.time, st->cells = s.o.ncells, st->tets = s.o.ntets;
+  st->resumed = s.resumed;
   teardown(&s);
   return r;
 }

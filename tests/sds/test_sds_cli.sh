@@ -6,8 +6,9 @@
 # faces in one tet a closed, consistently oriented surface) and holds more
 # cells than it started with; the same seed gives the same bytes; bad models
 # (an unknown morphogen in a rule, an unknown shipped name, a FIFO, physics
-# out of range, springs too stiff to finish) exit 2 with one line and write
-# nothing.
+# out of range, springs too stiff to finish, a surface that is open, that
+# TetGen rejects or that is missing) exit 2 with one line and write nothing;
+# a model's own surface (ASCII and binary PLY) is imported.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -87,5 +88,52 @@ check "work it cannot finish (stiff springs: 1e11 steps) refused before it start
   'rc_is 2 && one_line && grep -q "needs at least .* steps" "$T/err" && [ ! -e "$T/c" ]'
 run sds run limb --frames 0 --out "$T/c"
 check "--frames 0: exit 2" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+
+
+# a model's own surface (surface = "FILE.ply", relative to the model file):
+# an ASCII cube and the binary PLY of frame 0 above are imported and run; an
+# open surface, one that intersects itself (TetGen rejects it: two
+# overlapping cubes) and a missing file exit 2 with one line on stderr and
+# write nothing
+"$PY" - "$T" <<'PYEOF'
+import sys
+V = [(0,0,0),(1,0,0),(1,1,0),(0,1,0),(0,0,1),(1,0,1),(1,1,1),(0,1,1)]
+F = [(0,2,1),(0,3,2),(4,5,6),(4,6,7),(0,1,5),(0,5,4),(3,7,6),(3,6,2),(0,4,7),(0,7,3),(1,2,6),(1,6,5)]
+def cube(off): return [tuple(2 * c - 1 + off for c in v) for v in V]
+def write(path, verts, faces):
+    with open(path, "w") as f:
+        f.write("ply\nformat ascii 1.0\ncomment a test surface\nelement vertex %d\n" % len(verts))
+        f.write("property float x\nproperty float y\nproperty float z\n")
+        f.write("element face %d\nproperty list uchar int vertex_indices\nend_header\n" % len(faces))
+        for v in verts: f.write("%g %g %g\n" % v)
+        for t in faces: f.write("3 %d %d %d\n" % t)
+d = sys.argv[1]
+write(d + "/cube.ply", cube(0), F)
+write(d + "/open.ply", cube(0), F[:-1])
+write(d + "/twocubes.ply", cube(0) + cube(0.5), F + [tuple(i + 8 for i in t) for t in F])
+PYEOF
+cp "$T/a/sds/frame_0000.ply" "$T/ball.ply"
+surf() { sed "s/^sphere_radius = .*/surface = \"$1\"/" "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/s_$2.sds"; }
+ply_vertices() { grep -a -m1 "^element vertex" "$1" | cut -d' ' -f3; }
+surf cube.ply cube
+run sds run "$T/s_cube.sds" --t-end 0.5 --frames 1 --out "$T/sc" --quiet
+check "surface = \"cube.ply\" (ASCII): runs, its surface is the cube's 8 corners" eval \
+  'rc_is 0 && [ "$(ply_vertices "$T/sc/sds/frame_0000.ply")" = 8 ]'
+surf ball.ply ball
+run sds run "$T/s_ball.sds" --t-end 0.5 --frames 1 --out "$T/sb" --quiet
+check "surface = a frame PLY of sessile's own (binary, extra properties): runs, the same 162 surface cells" eval \
+  'rc_is 0 && [ "$(ply_vertices "$T/sb/sds/frame_0000.ply")" = 162 ]'
+surf open.ply open
+run sds run "$T/s_open.sds" --out "$T/c"
+check "an open surface: exit 2, one line naming model:line and the hole, nothing written" eval \
+  'rc_is 2 && one_line && grep -q "s_open.sds:6: surface .* is not a closed" "$T/err" && [ ! -e "$T/c" ]'
+surf twocubes.ply two
+run sds run "$T/s_two.sds" --out "$T/c"
+# (TetGen itself prints the two crossing segments on stdout)
+check "a self-intersecting surface: exit 2, one line on stderr with TetGen's reason, nothing written" eval \
+  'rc_is 2 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "TetGen .* rejected the surface: .*self-intersection" "$T/err" && [ ! -e "$T/c" ]'
+surf missing.ply miss
+run sds run "$T/s_miss.sds" --out "$T/c"
+check "a missing surface file: exit 2, one line, nothing written" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
 
 finish

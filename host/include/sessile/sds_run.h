@@ -35,7 +35,14 @@ typedef struct sessile_sds_run_stats {
   uint64_t repairs;        /* cavities around lasting inverted tets re-tetrahedralised */
   uint32_t cells, tets;
   int frames;              /* frames written */
-  double wall_s;           /* wall time of the loop */
+  double wall_s;           /* wall time of the loop (this process's part) */
+  int resumed;             /* continued from the run's checkpoint */
+  /* a blow-up (docs/sds.md, "Blow-ups"): the run ended with
+   * SESSILE_ERR_NUMERIC and frames 0 .. frames - 1 are the good ones */
+  int blowup;
+  double blowup_time;      /* the start of the step that blew up */
+  uint64_t blowup_step;    /* its number (1-based) */
+  char blowup_cause[512];  /* what was found */
 } sessile_sds_run_stats;
 
 /* Checks a model without a device (its text, physics keys, sphere, run
@@ -45,9 +52,15 @@ typedef struct sessile_sds_run_stats {
 sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps);
 
 /* Runs the model to t_end, writing sds/frame_NNNN.ply, sds/frame_NNNN.vtu,
- * sds/series.pvd, sds/final.ply and records.  On a failure mid-run (a
- * blow-up, a topology change that cannot be made) the frames written so far
- * stay and the error names the time and the cause. */
+ * sds/series.pvd, sds/final.ply and records, and a checkpoint after every
+ * frame and when a stop is requested (then SESSILE_ERR_INTERRUPTED).  When
+ * the run holds a checkpoint (a resume), the organism and the loop continue
+ * from it, to the same bytes as a run that never stopped; a checkpoint of
+ * another model or options (seed, t_end, frames, max_cells) is
+ * SESSILE_ERR_USAGE.  On a failure mid-run (a blow-up: st->blowup set; a
+ * topology change that cannot be made) the frames written so far stay and
+ * the error names the time and the cause.  A model's `surface = "FILE.ply"`
+ * is read relative to the folder of model_name. */
 sessile_status sessile_sds_run(const sessile_sds_run_options *o, sessile_sds_run_stats *st);
 
 #ifdef __cplusplus

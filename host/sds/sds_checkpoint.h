@@ -1,0 +1,45 @@
+/* The SDS loop's checkpoint (docs/sds.md, "Checkpoint and resume"): the
+ * whole organism (every array of sessile_sds, the derived ones included, so
+ * that a restored complex is the same bytes without a rebuild, which would
+ * re-orient a tet left inverted) and the loop's scalars, as sections of the
+ * run framework's checkpoint.bin.  Host byte order, doubles as their bytes. */
+#ifndef SESSILE_SDS_CHECKPOINT_H
+#define SESSILE_SDS_CHECKPOINT_H
+#include <stdint.h>
+#include "sessile/run.h"
+#include "sessile/sds.h"
+
+/* Everything the loop carries from one step to the next besides the
+ * organism.  Only 8-byte members: no padding, the same layout everywhere. */
+typedef struct sds_ckpt_loop {
+  uint64_t version;              /* SDS_CKPT_VERSION */
+  uint64_t key;                  /* sds_ckpt_key of the model and options that made it */
+  double time, dt;               /* simulated time, next step */
+  int64_t calm, stalled;         /* step-control counters */
+  uint64_t rng;                  /* the division-direction stream */
+  int64_t frame;                 /* the next frame to write */
+  uint64_t steps_frame;          /* steps since the last frame */
+  uint64_t div_interval, inv_interval; /* counts since the last record */
+  uint64_t steps, divisions, inversions, resisted, slivers, deferred, repairs; /* run totals */
+  double c0[3], size0;           /* the starting organism's centroid and size (blow-up test) */
+  uint64_t retry_cap;            /* entries of retry_at */
+} sds_ckpt_loop;
+
+#define SDS_CKPT_VERSION 2u
+
+/* A 64-bit FNV-1a over the model text and the options that shape the
+ * outputs (seed, t_end, frames, cell limit). */
+uint64_t sds_ckpt_key(const char *model_text, uint64_t seed, double t_end, int frames, uint32_t max_cells);
+
+/* Writes the checkpoint (atomically, through the run) after `frames`
+ * frames were written. */
+sessile_status sds_ckpt_write(sessile_run *run, int frames, const sessile_sds *o, const sds_ckpt_loop *l,
+                              const double *retry_at);
+
+/* Reads it back: o (freed first) gets every array, l the scalars, *retry_at
+ * a new array of l->retry_cap entries (caller frees).  SESSILE_ERR_USAGE
+ * when the checkpoint belongs to another model or configuration (key !=
+ * want_key), SESSILE_ERR_IO when it is damaged (sizes that do not fit). */
+sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t nmorph, uint32_t nstate,
+                             sessile_sds *o, sds_ckpt_loop *l, double **retry_at);
+#endif

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# `sessile sds run --resume`: a limb bud that grows fast (Delta 0.01: cells
+# divide and tets invert from t = 4) run to t = 10 in 5 frames at once, and
+# again stopped by SIGINT after frame 1, resumed, killed by SIGKILL after
+# frame 4 (mid-interval, no checkpoint of its own), resumed again: every file
+# under sds/ is the same bytes, the records equal but for their timings, the
+# manifest's totals equal but for the wall time.  Refusals, one line and
+# exit 2: nothing to resume (an empty or missing folder), a folder of another
+# generator, another model named with --resume, an option a resume must not
+# change, and a checkpoint written by another configuration (another seed and t_end).
+set -u
+S="$1"
+. "$(dirname "$0")/../common/harness.sh"
+PY=/usr/bin/python3
+one_line() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err"; }
+sums() { (cd "$1" && find sds -type f | LC_ALL=C sort | xargs sha256sum); }
+# waits (up to 60 s) for a file, then sends a signal to a process
+signal_after() { # file signal pid
+  for _ in $(seq 1 3000); do [ -e "$1" ] && break; sleep 0.02; done
+  kill "-$2" "$3" 2>/dev/null
+}
+sed 's/^const Delta = .*/const Delta = 0.01/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/fast.sds"
+ARGS=(sds run "$T/fast.sds" --t-end 10 --frames 5 --quiet)
+
+run "${ARGS[@]}" --out "$T/a"
+check "the uninterrupted run completes" rc_is 0
+
+"$S" "${ARGS[@]}" --out "$T/b" >"$T/out" 2>"$T/err" &
+pid=$!
+signal_after "$T/b/sds/frame_0001.ply" INT $pid
+{ wait $pid; } 2>/dev/null
+echo $? >"$T/rc"
+check "SIGINT after frame 1: exit 130, one line naming --resume, state interrupted, a checkpoint, no final.ply" eval \
+  'rc_is 130 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q -- "--resume" "$T/err" && test -s "$T/b/checkpoint.bin" && test ! -e "$T/b/sds/final.ply" && grep -q "\"state\":[[:space:]]*\"interrupted\"" "$T/b/manifest.json"'
+
+"$S" sds run --resume "$T/b" --quiet >"$T/out" 2>"$T/err" &
+pid=$!
+signal_after "$T/b/sds/frame_0004.ply" KILL $pid
+{ wait $pid; } 2>/dev/null
+echo $? >"$T/rc"
+check "the first resume, killed (SIGKILL) after frame 4, before its end" eval 'rc_is 137 && test ! -e "$T/b/sds/final.ply"'
+run sds run --resume "$T/b" --quiet
+check "the second resume completes" eval 'rc_is 0 && [ ! -s "$T/err" ]'
+check "every file under sds/ is the same bytes as the uninterrupted run's" eval \
+  'sums "$T/a" >"$T/a.sum"; sums "$T/b" >"$T/b.sum"; [ "$(wc -l <"$T/a.sum")" -eq 15 ] && cmp -s "$T/a.sum" "$T/b.sum"'
+check "records equal but ms_per_step; manifest: completed, 3 starts, sds totals equal but wall_s; divisions and inversions happened" \
+  "$PY" - "$T/a" "$T/b" <<'PYEOF'
+import json, sys
+def recs(d): return [{k: v for k, v in json.loads(l).items() if k != "ms_per_step"} for l in open(d + "/records.jsonl")]
+def man(d): return json.load(open(d + "/manifest.json"))
+a, b = sys.argv[1], sys.argv[2]
+ma, mb = man(a), man(b)
+sa = {k: v for k, v in ma["sds"].items() if k != "wall_s"}
+sb = {k: v for k, v in mb["sds"].items() if k != "wall_s"}
+ok = recs(a) == recs(b) and [r["frame"] for r in recs(b)] == list(range(6))
+ok = ok and mb["state"] == "completed" and mb["starts"] == 3 and sa == sb and sa["status"] == "completed"
+ok = ok and sa["divisions"] > 0 and sa["inversions"] > 0 and mb["config"]["model_text"] == open(a + "/sds/model.sds").read()
+print("divisions", sa["divisions"], "inversions", sa["inversions"], "resumed from frame", mb["resumed_from_iteration"])
+sys.exit(0 if ok else 1)
+PYEOF
+
+mkdir "$T/empty"
+run sds run --resume "$T/empty"
+check "--resume on an empty folder: exit 2, one line, nothing written" eval 'rc_is 2 && one_line && [ -z "$(ls -A "$T/empty")" ]'
+run sds run --resume "$T/nowhere"
+check "--resume on a missing folder: exit 2, one line, not created" eval 'rc_is 2 && one_line && [ ! -e "$T/nowhere" ]'
+run sphere --iterations 2 --out "$T/sph" --quiet
+run sds run --resume "$T/sph"
+check "--resume on a run of another generator: exit 2, one line" eval 'rc_is 2 && one_line && grep -q "another generator" "$T/err"'
+cp -r "$T/b" "$T/c"
+run sds run limb --resume "$T/c"
+check "--resume with another model named: exit 2, one line" eval 'rc_is 2 && one_line && grep -q "another model" "$T/err"'
+run sds run --resume "$T/c" --seed 2
+check "--resume with --seed: exit 2, one line" eval 'rc_is 2 && one_line'
+run sds run --resume "$T/c" --t-end 20
+check "--resume with --t-end: exit 2, one line" eval 'rc_is 2 && one_line'
+run sds run "$T/fast.sds" --t-end 0.5 --frames 1 --seed 2 --out "$T/d" --quiet
+cp "$T/d/checkpoint.bin" "$T/c/checkpoint.bin"
+run sds run --resume "$T/c"
+check "a checkpoint of another configuration (seed 2, t_end 0.5): exit 2, one line" eval \
+  'rc_is 2 && one_line && grep -q "another model or configuration" "$T/err"'
+finish
