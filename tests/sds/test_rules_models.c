@@ -45,9 +45,10 @@ int main(void) {
     t_true(what, has_rule_core(m));
     snprintf(what, sizeof what, "%s: %d growing tips", names[i], tips[i]);
     t_true(what, sessile_sds_model_ntips(m) == tips[i]);
-    snprintf(what, sizeof what, "%s: edge 1, volume 2, damping 0.001, surface 1 (the prototype's)", names[i]);
+    snprintf(what, sizeof what, "%s: edge 1, volume 2, damping 0.001 (the prototype's), surface 0.3 (tuned: docs/sds_rules.md)",
+             names[i]);
     t_true(what, param(m, "edge_stiffness", 0) == 1 && param(m, "volume_stiffness", 0) == 2 &&
-                     param(m, "damping", 0) == 0.001 && param(m, "surface_multiplier", 0) == 1);
+                     param(m, "damping", 0) == 0.001 && param(m, "surface_multiplier", 0) == 0.3);
     double tl = 0;
     for (int t = 0; t < sessile_sds_model_ntips(m); t++) {
       const double *d = sessile_sds_model_tip(m, t);
@@ -61,7 +62,7 @@ int main(void) {
     if (i == 0) {
       t_true("limb: exactly one morphogen, two states (tip, birth_radius), three rules",
              sessile_sds_model_nmorph(m) == 1 && sessile_sds_model_nstate(m) == 2 && sessile_sds_model_nrules(m) == 3);
-      t_true("limb: phi diffusion 0.05, decay 0.01, capped", co.diffusion[0] == 0.05 && co.decay[0] == 0.01 &&
+      t_true("limb: phi diffusion 0.05, decay 0.3, capped", co.diffusion[0] == 0.05 && co.decay[0] == 0.3 &&
                                                                  co.capped[0] == 1);
     }
     if (i == 1) t_true("six limbs: a box of 6 numbers", sessile_sds_model_param_find(m, "box")->nvalues == 6);
