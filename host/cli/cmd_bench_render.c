@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #include "cli.h"
 #include "sessile/bench.h"
@@ -81,10 +82,22 @@ static int write_knot(const char *path, uint32_t nu, uint32_t nv) {
 
 typedef struct stage_times {
   double read, setup, upload, draw, readback, png, total;
+  double cpu, draw_cpu; /* CPU seconds of the process (all threads: lavapipe's too) */
 } stage_times;
+
+/* User + system CPU seconds of the whole process so far.  On a loaded
+ * machine wall time says how long others kept us waiting; CPU time says
+ * what the render costs (docs/render.md, "bench"). */
+static double cpu_seconds(void) {
+  struct rusage u;
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  return (double)u.ru_utime.tv_sec + 1e-6 * (double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_sec +
+         1e-6 * (double)u.ru_stime.tv_usec;
+}
 
 static sessile_status one_run(sessile_gpu *g, const char *ply, const char *png,
                               const sessile_render_options *o, stage_times *t, size_t *png_bytes) {
+  double c0 = cpu_seconds();
   double t0 = sessile_wall_seconds();
   sessile_render_mesh *m = NULL;
   SESSILE_CALL(sessile_render_mesh_read(ply, &m));
@@ -95,12 +108,15 @@ static sessile_status one_run(sessile_gpu *g, const char *ply, const char *png,
   unsigned char *px = malloc((size_t)o->width * o->height * 4u);
   if (s == SESSILE_OK && !px) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   sessile_render_result res;
+  double c2 = cpu_seconds();
   if (s == SESSILE_OK) s = sessile_mesh_renderer_draw(r, 0, px, &res);
   double t3 = sessile_wall_seconds();
+  double c3 = cpu_seconds();
   char err[1200];
   if (s == SESSILE_OK && sessile_png_write_rgba8(png, (int)o->width, (int)o->height, px, err, sizeof err))
     s = sessile_error_set(SESSILE_ERR_IO, "%s", err);
   double t4 = sessile_wall_seconds();
+  double c4 = cpu_seconds();
   free(px);
   sessile_mesh_renderer_destroy(r);
   sessile_render_mesh_destroy(m);
@@ -111,6 +127,8 @@ static sessile_status one_run(sessile_gpu *g, const char *ply, const char *png,
   t->readback = res.t_readback;
   t->png = t4 - t3;
   t->total = t4 - t0;
+  t->cpu = c4 - c0;
+  t->draw_cpu = c3 - c2;
   FILE *f = fopen(png, "rb");
   if (f) {
     fseek(f, 0, SEEK_END);
@@ -177,21 +195,22 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
     printf("device: %s\n", sessile_gpu_info_of(g)->name);
     printf("mesh: torus knot, %u vertices, %u triangles; %ux%u, %u samples, oblique, grid\n", nu * nvr,
            2 * nu * nvr, o.width, o.height, o.samples);
-    printf("%4s %8s %8s %8s %8s %8s %8s %8s  (seconds)\n", "run", "read", "setup", "upload", "draw",
-           "readback", "png", "total");
+    printf("%4s %8s %8s %8s %8s %8s %8s %8s %8s %8s  (seconds; cpu: all threads)\n", "run", "read",
+           "setup", "upload", "draw", "readback", "png", "total", "cpu", "draw cpu");
     for (unsigned k = 0; k < runs && s == SESSILE_OK; k++) {
       s = one_run(g, ply, png, &o, &t[k], &png_bytes);
       if (s == SESSILE_OK)
-        printf("%4u %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n", k + 1, t[k].read, t[k].setup,
-               t[k].upload, t[k].draw, t[k].readback, t[k].png, t[k].total);
+        printf("%4u %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n", k + 1, t[k].read,
+               t[k].setup, t[k].upload, t[k].draw, t[k].readback, t[k].png, t[k].total, t[k].cpu,
+               t[k].draw_cpu);
     }
   }
   if (rc == EXIT_OK && s == SESSILE_OK) {
     qsort(t, runs, sizeof t[0], cmp_total);
     const stage_times *md = &t[runs / 2];
     printf("median: %.3f s (read %.3f, setup %.3f, upload %.3f, draw %.3f, readback %.3f, png %.3f); "
-           "PNG %zu bytes\n", md->total, md->read, md->setup, md->upload, md->draw, md->readback, md->png,
-           png_bytes);
+           "PNG %zu bytes; cpu %.3f s over %ld cores\n", md->total, md->read, md->setup, md->upload,
+           md->draw, md->readback, md->png, png_bytes, md->cpu, sysconf(_SC_NPROCESSORS_ONLN));
     printf("ratio to the 2 s target: %.2f (%s)\n", md->total / 2.0,
            quick ? "quick run: not the benchmark's size" : md->total <= 2.0 ? "within" : "over");
   } else if (rc == EXIT_OK) {

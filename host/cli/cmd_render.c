@@ -144,7 +144,7 @@ static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_c
              c->o.ortho ? "orthographic " : "", c->o.view);
       if (c->turntable) printf(" turned %.1f deg", az);
       if (res.grid_spacing_cm > 0) printf(", grid %g cm", res.grid_spacing_cm);
-      if (res.colormap)
+      if (res.colormap[0])
         printf(", %s by %s over [%g, %g]", res.colormap, c->o.color_by, res.prop_min, res.prop_max);
       printf("\n");
     }

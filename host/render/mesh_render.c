@@ -295,7 +295,7 @@ sessile_status sessile_mesh_renderer_draw(sessile_mesh_renderer *r, double azimu
     memcpy(res->clip_from_world, cam.clip_from_world, sizeof res->clip_from_world);
     res->prop_min = r->prop_min;
     res->prop_max = r->prop_max;
-    res->colormap = r->colormap[0] ? r->colormap : NULL;
+    snprintf(res->colormap, sizeof res->colormap, "%s", r->colormap);
     res->t_draw = td;
     res->t_readback = tr;
   }

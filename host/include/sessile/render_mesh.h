@@ -96,7 +96,7 @@ typedef struct sessile_render_result {
   double clip_from_world[16]; /* column-major: clip = M (x, y, z, 1) with world in cm;
                                pixel x = (ndc.x + 1) w / 2, y = (ndc.y + 1) h / 2 (row 0 top) */
   double prop_min, prop_max; /* the colour range (when colouring) */
-  const char *colormap;     /* the map used (when colouring) */
+  char colormap[16];        /* the map used when colouring, else "" */
   double t_draw, t_readback; /* seconds of the last frame */
 } sessile_render_result;
 
