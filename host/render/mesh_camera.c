@@ -45,26 +45,18 @@ double render_grid_spacing_(double span) {
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+static double dot3f(const float *a, const double *b) {
+  return (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+}
+
 static void normalize3(double *a) {
   double l = sqrt(dot3(a, a));
   for (int k = 0; k < 3; k++) a[k] /= l;
 }
 
-/* Largest |(corner - c) . axis| over the 8 corners of lo..hi. */
-static double half_extent(const double lo[3], const double hi[3], const double c[3], const double *axis) {
-  double h = 0;
-  for (int i = 0; i < 8; i++) {
-    double p[3] = {i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]};
-    double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-    double x = fabs(dot3(d, axis));
-    if (x > h) h = x;
-  }
-  return h;
-}
-
 void render_camera_fit_(const char *view, double extra_azimuth, int ortho, uint32_t width,
-                        uint32_t height, const double lo[3], const double hi[3], const double glo[3],
-                        const double ghi[3], render_camera *cam) {
+                        uint32_t height, const float *pts, size_t npts, const double lo[3],
+                        const double hi[3], render_camera *cam) {
   double az = 0, el = 0;
   render_view_angles_(view, &az, &el);
   az = (az + extra_azimuth) * PI / 180.0;
@@ -86,19 +78,28 @@ void render_camera_fit_(const char *view, double extra_azimuth, int ortho, uint3
   u[1] = t[2] * r[0] - t[0] * r[2];
   u[2] = t[0] * r[1] - t[1] * r[0];
   normalize3(u);
-  double c[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-  double hx = half_extent(lo, hi, c, r), hy = half_extent(lo, hi, c, u), hz = half_extent(lo, hi, c, t);
+  /* The extent of the points along right, up and toward: the picture is
+   * centred on the middle of the projected points, not of their box, so a
+   * round mesh is not framed by its box's corners. */
+  double mn[3] = {INFINITY, INFINITY, INFINITY}, mx[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < npts; i++) {
+    const float *p = pts + 3 * i;
+    double d[3] = {dot3f(p, r), dot3f(p, u), dot3f(p, t)};
+    for (int k = 0; k < 3; k++) {
+      mn[k] = fmin(mn[k], d[k]);
+      mx[k] = fmax(mx[k], d[k]);
+    }
+  }
+  double c[3];
+  for (int k = 0; k < 3; k++)
+    c[k] = (mn[0] + mx[0]) / 2 * r[k] + (mn[1] + mx[1]) / 2 * u[k] + (mn[2] + mx[2]) / 2 * t[k];
+  double hx = (mx[0] - mn[0]) / 2, hy = (mx[1] - mn[1]) / 2, hz = (mx[2] - mn[2]) / 2;
   double aspect = (double)width / (double)height;
   const double margin = 1.1;
-  /* Everything drawn (mesh and grid) lies within radius R of c. */
-  double alo[3], ahi[3];
-  for (int k = 0; k < 3; k++) {
-    alo[k] = fmin(lo[k], glo[k]);
-    ahi[k] = fmax(hi[k], ghi[k]);
-  }
+  /* Everything drawn lies in lo..hi (mesh and grid), within R of c. */
   double R = 0;
   for (int i = 0; i < 8; i++) {
-    double p[3] = {i & 1 ? ahi[0] : alo[0], i & 2 ? ahi[1] : alo[1], i & 4 ? ahi[2] : alo[2]};
+    double p[3] = {i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]};
     double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
     R = fmax(R, sqrt(dot3(d, d)));
   }

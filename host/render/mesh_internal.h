@@ -33,12 +33,12 @@ typedef struct render_camera {
 } render_camera;
 /* 1 for a known view name.  Its azimuth and elevation in degrees. */
 int render_view_angles_(const char *view, double *azimuth, double *elevation);
-/* Fits a camera to the box lo..hi (cm), seen from the view turned by
- * extra_azimuth; near and far planes enclose lo..hi and the grid box
- * glo..ghi too. */
+/* Fits a camera to the points pts (3 npts floats, cm: the mesh's vertices
+ * and the grid's corners), seen from the view turned by extra_azimuth;
+ * near and far planes enclose the box lo..hi of everything drawn. */
 void render_camera_fit_(const char *view, double extra_azimuth, int ortho, uint32_t width,
-                        uint32_t height, const double lo[3], const double hi[3], const double glo[3],
-                        const double ghi[3], render_camera *c);
+                        uint32_t height, const float *pts, size_t npts, const double lo[3],
+                        const double hi[3], render_camera *c);
 /* Grid spacing for an extent of `span` cm: 1, 2 or 5 x 10^k, about 10 lines. */
 double render_grid_spacing_(double span);
 

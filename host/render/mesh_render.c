@@ -28,6 +28,8 @@ struct sessile_mesh_renderer {
   sessile_gfx_pipeline *tris, *lines;
   sessile_gfx_buffer *vbuf, *ibuf, *gbuf;
   uint32_t nindex, ngrid;
+  float *fit;    /* the vertices (cm) and then the grid's 4 corners: what the camera frames */
+  size_t nfit;
   sessile_render_options o;
   char view[16];
   double lo[3], hi[3];     /* mesh bounds, cm */
@@ -132,6 +134,12 @@ static sessile_status grid_build(sessile_mesh_renderer *r) {
     r->ghi[k] = ceil((r->hi[k] + 0.10 * span) / s) * s;
   }
   r->glo[2] = r->ghi[2] = r->lo[2] - 1e-4 * span;
+  float *corner = r->fit + 3 * (r->nfit - 4);
+  for (int i = 0; i < 4; i++) {
+    corner[3 * i] = (float)(i & 1 ? r->ghi[0] : r->glo[0]);
+    corner[3 * i + 1] = (float)(i & 2 ? r->ghi[1] : r->glo[1]);
+    corner[3 * i + 2] = (float)r->glo[2];
+  }
   if (!r->o.grid) return SESSILE_OK;
   uint32_t nx = (uint32_t)llround((r->ghi[0] - r->glo[0]) / s) + 1;
   uint32_t ny = (uint32_t)llround((r->ghi[1] - r->glo[1]) / s) + 1;
@@ -163,11 +171,18 @@ static sessile_status grid_build(sessile_mesh_renderer *r) {
 static sessile_status upload_mesh(sessile_mesh_renderer *r, const sessile_render_mesh *m) {
   vtx *v = malloc((size_t)m->nv * sizeof *v);
   SESSILE_CHECK(v, SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", m->nv);
+  r->nfit = (size_t)m->nv + 4;
+  r->fit = malloc(r->nfit * 3 * sizeof(float));
+  if (!r->fit) {
+    free(v);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", m->nv);
+  }
   double u = r->o.units_cm;
   for (uint32_t i = 0; i < m->nv; i++)
     for (int k = 0; k < 3; k++) {
       v[i].p[k] = (float)(m->pos[3 * i + k] * u);
       v[i].n[k] = m->normal[3 * i + k];
+      r->fit[3 * (size_t)i + k] = v[i].p[k];
     }
   color_vertices(r, m, v);
   sessile_status s = sessile_gfx_buffer_create(r->gpu, SESSILE_GFX_VERTEX, v, (size_t)m->nv * sizeof *v,
@@ -241,6 +256,7 @@ void sessile_mesh_renderer_destroy(sessile_mesh_renderer *r) {
   sessile_gfx_pipeline_destroy(r->lines);
   sessile_gfx_pipeline_destroy(r->tris);
   sessile_gfx_target_destroy(r->target);
+  free(r->fit);
   free(r);
 }
 
@@ -256,15 +272,15 @@ static void to_world(const render_camera *c, const double cam[3], float out[4], 
 sessile_status sessile_mesh_renderer_draw(sessile_mesh_renderer *r, double azimuth_deg,
                                           unsigned char *rgba, sessile_render_result *res) {
   render_camera cam;
-  /* With the grid, the camera frames the grid too: the picture shows the
-   * mesh standing on it, not a cut-off floor. */
+  /* With the grid, the camera frames the grid too (its corners are the
+   * last 4 fit points): the mesh stands on a whole floor. */
   double flo[3], fhi[3];
   for (int k = 0; k < 3; k++) {
-    flo[k] = r->o.grid ? fmin(r->lo[k], r->glo[k]) : r->lo[k];
-    fhi[k] = r->o.grid ? fmax(r->hi[k], r->ghi[k]) : r->hi[k];
+    flo[k] = fmin(r->lo[k], r->glo[k]);
+    fhi[k] = fmax(r->hi[k], r->ghi[k]);
   }
-  render_camera_fit_(r->view, azimuth_deg, r->o.ortho, r->o.width, r->o.height, flo, fhi, r->glo,
-                     r->ghi, &cam);
+  render_camera_fit_(r->view, azimuth_deg, r->o.ortho, r->o.width, r->o.height, r->fit,
+                     r->nfit - (r->o.grid ? 0 : 4), flo, fhi, &cam);
   mesh_push p;
   memset(&p, 0, sizeof p);
   for (int i = 0; i < 16; i++) p.mvp[i] = (float)cam.clip_from_world[i];
