@@ -3,10 +3,10 @@
  * Determinism: libpng writes a tIME chunk only when asked (we never do) and
  * no text chunks; zlib's level and the row filter are fixed below, so the
  * bytes depend on the pixels alone.  Speed: level 1 with the SUB filter
- * encodes a 1920x1080 render several times faster than libpng's default
- * (level 6, adaptive filters) for files about 1.3x larger (measured in
- * docs/render.md, "bench"); renders are mostly flat background, which any
- * level compresses well. */
+ * encoded a 1920x1080 render 2.6 times faster than libpng's default (level
+ * 6, adaptive filters: 0.059 s against 0.151 s) for a file 1.25 times
+ * larger (docs/render.md, "PNG"); renders are mostly flat background, which
+ * any level compresses well. */
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
