@@ -69,6 +69,26 @@ function(sessile_embed_shaders out_var shader_dir)
       endforeach()
     endforeach()
   endforeach()
+  # Graphics shaders (shaders/render/*.vert, *.frag: the renderer's, not
+  # kernels) are compiled once each and listed by file name ("render/mesh.vert").
+  file(GLOB gfx CONFIGURE_DEPENDS ${shader_dir}/render/*.vert ${shader_dir}/render/*.frag)
+  list(SORT gfx)
+  foreach(src ${gfx})
+    file(RELATIVE_PATH name ${shader_dir} ${src})
+    string(MAKE_C_IDENTIFIER "sessile_spv_${name}" ident)
+    set(hdr ${gen}/${ident}.h)
+    add_custom_command(
+      OUTPUT ${hdr}
+      COMMAND ${GLSLANG_VALIDATOR} -V --target-env vulkan1.1 -I${shader_dir}/render
+              --vn ${ident} --depfile ${hdr}.d -o ${hdr} ${src}
+      DEPENDS ${src}
+      DEPFILE ${hdr}.d
+      COMMENT "GLSL ${name}"
+      VERBATIM)
+    list(APPEND outputs ${hdr})
+    string(APPEND includes "#include \"${ident}.h\"\n")
+    string(APPEND entries "  {\"${name}\", ${ident}, sizeof ${ident}},\n")
+  endforeach()
   # A .comp without a declaration would silently not be built: refuse it.
   file(GLOB_RECURSE comps CONFIGURE_DEPENDS RELATIVE ${shader_dir} ${shader_dir}/*.comp)
   foreach(rel ${comps})

@@ -71,6 +71,9 @@ int cmd_sponge(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile sds run MODEL`, `sessile sds models` (cmd_sds.c). */
 int cmd_sds(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global);
+/* `sessile render FILE -o OUT.png` (cmd_render.c); `sessile bench render`. */
+int cmd_render(int argc, char **argv, const cli_gpu_opts *global);
+int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile bench coral`: one section per generator (cmd_bench_coral_*.c). */
 int cmd_bench_coral(int argc, char **argv, const cli_gpu_opts *global);
 typedef struct bench_coral_opts {

@@ -17,8 +17,9 @@ static const cli_command commands[] = {
     {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
     {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
     {"sds", "SDS, a tetrahedral developmental system: 'sds run MODEL', 'sds models'", cmd_sds},
+    {"render", "pictures (PNG) of meshes through Vulkan; 'sessile render --help'", cmd_render},
     {"devices", "list the Vulkan devices and the one sessile uses", cmd_devices},
-    {"bench", "benchmarks: 'bench la|grow|fluid|coral|sds' (figures, never pass/fail)", cmd_bench},
+    {"bench", "benchmarks: 'bench la|grow|fluid|coral|sds|render' (figures, never pass/fail)", cmd_bench},
     {"help", "this text; 'sessile COMMAND --help' explains a command", cmd_help},
     {"version", "print the version", cmd_version},
 };

@@ -36,6 +36,20 @@ static sessile_status resolve_precision(int asked, int float64, const char *name
   return SESSILE_OK;
 }
 
+/* The compute family when it has graphics, else the first graphics family, else -1. */
+static int graphics_queue_family(VkPhysicalDevice p, uint32_t compute_family) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(p, &n, NULL);
+  VkQueueFamilyProperties q[32];
+  if (n > 32) n = 32;
+  vkGetPhysicalDeviceQueueFamilyProperties(p, &n, q);
+  if (compute_family < n && (q[compute_family].queueFlags & VK_QUEUE_GRAPHICS_BIT))
+    return (int)compute_family;
+  for (uint32_t i = 0; i < n; i++)
+    if (q[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) return (int)i;
+  return -1;
+}
+
 static sessile_status create_device(sessile_gpu *g) {
   uint32_t ts_bits = 0;
   int fam = sessile_compute_queue_family_(g->phys, &ts_bits);
@@ -43,19 +57,32 @@ static sessile_status create_device(sessile_gpu *g) {
   g->queue_family = (uint32_t)fam;
   if (ts_bits == 0) g->info.timestamp_period_ns = 0; /* no timestamps on this queue */
   float prio = 1.0f;
-  VkDeviceQueueCreateInfo q = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
-                               .queueFamilyIndex = g->queue_family,
-                               .queueCount = 1,
-                               .pQueuePriorities = &prio};
+  VkDeviceQueueCreateInfo q[2] = {{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                   .queueFamilyIndex = g->queue_family,
+                                   .queueCount = 1,
+                                   .pQueuePriorities = &prio}};
+  /* The renderer needs graphics; a dedicated compute family has none, so a
+   * second queue of a graphics family is made beside it. */
+  int gfam = graphics_queue_family(g->phys, g->queue_family);
+  uint32_t nq = 1;
+  if (gfam >= 0 && (uint32_t)gfam != g->queue_family) {
+    q[1] = q[0];
+    q[1].queueFamilyIndex = (uint32_t)gfam;
+    nq = 2;
+  }
   VkPhysicalDeviceFeatures feat = {0};
   feat.shaderFloat64 = g->info.precision == 64 ? VK_TRUE : VK_FALSE;
   feat.shaderInt64 = VK_FALSE;
   VkDeviceCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-                           .queueCreateInfoCount = 1,
-                           .pQueueCreateInfos = &q,
+                           .queueCreateInfoCount = nq,
+                           .pQueueCreateInfos = q,
                            .pEnabledFeatures = &feat};
   SESSILE_VK(vkCreateDevice(g->phys, &ci, NULL, &g->device));
   vkGetDeviceQueue(g->device, g->queue_family, 0, &g->queue);
+  if (gfam >= 0) {
+    g->gfx_family = (uint32_t)gfam;
+    vkGetDeviceQueue(g->device, g->gfx_family, 0, &g->gfx_queue);
+  }
   VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                 .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                 .queueFamilyIndex = g->queue_family};

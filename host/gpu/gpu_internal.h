@@ -20,6 +20,11 @@ struct sessile_gpu {
   VkDevice device;
   VkQueue queue;
   uint32_t queue_family;
+  /* A queue with graphics for the renderer (graphics*.c): the compute queue
+   * when its family has graphics, else one of the first graphics family;
+   * gfx_queue is VK_NULL_HANDLE on a compute-only device. */
+  VkQueue gfx_queue;
+  uint32_t gfx_family;
   VkCommandPool pool; /* for internal one-shot transfers */
   VkPipelineCache pipeline_cache;
   char cache_path[1024]; /* "" when the on-disk cache is off */

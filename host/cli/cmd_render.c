@@ -1,0 +1,263 @@
+/* `sessile render`: pictures of sessile's outputs (docs/render.md).
+ * Meshes (.ply, .obj) are drawn here through Vulkan; EXR slices and run
+ * directories go to the 2-D renderer (sessile/render2d.h) once it is built
+ * in. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include "cli.h"
+#include "sessile/png.h"
+#include "sessile/render_mesh.h"
+
+#define CMD "render"
+
+static const char *help =
+    "usage: sessile render FILE.ply|FILE.obj -o OUT.png [options]\n"
+    "\n"
+    "Draws a mesh offscreen through Vulkan (any device; lavapipe on a CPU) and\n"
+    "writes a PNG: smooth shading from per-vertex normals (computed, area-weighted,\n"
+    "when the file has none) under a key and a fill light, a ground grid in cm\n"
+    "below the mesh, a camera fitted to the bounds.  Same input, same device:\n"
+    "the same PNG bytes.  docs/render.md explains the lights, views and camera.\n"
+    "\n"
+    "  -o, --out PATH        the PNG to write (required); with --turntable N the\n"
+    "                        frames are PATH without .png + _000.png, _001.png ...\n"
+    "  --view V              oblique (default), side, top, front\n"
+    "  --turntable N         N frames turning about the vertical axis (1..3600)\n"
+    "  --size WxH            pixels (default 1280x960; 1..16384 each)\n"
+    "  --samples N           multisampling: 1, 4 (default) or 8, as the device allows\n"
+    "  --background C        white (default), black, none (transparent), #rrggbb or #rrggbbaa\n"
+    "  --color-by PROP       colour by a per-vertex PLY property through a colour map\n"
+    "  --colormap NAME       viridis (default), magma, coolwarm (default for ranges across 0)\n"
+    "  --units U             cm per mesh unit (default 1: sessile writes cm)\n"
+    "  --ortho               orthographic camera (default perspective)\n"
+    "  --no-grid             no ground grid\n"
+    "  --quiet               print nothing on success\n"
+    "  --device D, --validation   the Vulkan device, the validation layer\n"
+    "\n"
+    "EXR slices and run directories: drawn by the 2-D renderer (issue 14, items 2-4).\n";
+
+static int parse_size(const char *v, uint32_t *w, uint32_t *h) {
+  char *end = NULL;
+  errno = 0;
+  unsigned long a = strtoul(v, &end, 10);
+  if (end == v || (*end != 'x' && *end != 'X') || v[0] == '-' || errno) return -1;
+  const char *b0 = end + 1;
+  unsigned long b = strtoul(b0, &end, 10);
+  if (end == b0 || *end || b0[0] == '-' || errno) return -1;
+  if (a < 1 || a > 16384 || b < 1 || b > 16384) return -1;
+  *w = (uint32_t)a;
+  *h = (uint32_t)b;
+  return 0;
+}
+
+static int hexbyte(const char *s) {
+  int v = 0;
+  for (int i = 0; i < 2; i++) {
+    char c = s[i];
+    int d = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10
+            : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+    if (d < 0) return -1;
+    v = v * 16 + d;
+  }
+  return v;
+}
+
+static int parse_color(const char *v, unsigned char rgba[4]) {
+  if (!strcmp(v, "white")) { memset(rgba, 255, 4); return 0; }
+  if (!strcmp(v, "black")) { rgba[0] = rgba[1] = rgba[2] = 0; rgba[3] = 255; return 0; }
+  if (!strcmp(v, "none")) { memset(rgba, 0, 4); return 0; }
+  size_t n = strlen(v);
+  if (v[0] != '#' || (n != 7 && n != 9)) return -1;
+  for (size_t i = 0; i < (n - 1) / 2; i++) {
+    int b = hexbyte(v + 1 + 2 * i);
+    if (b < 0) return -1;
+    rgba[i] = (unsigned char)b;
+  }
+  if (n == 7) rgba[3] = 255;
+  return 0;
+}
+
+static int ends_with(const char *s, const char *suf) {
+  size_t a = strlen(s), b = strlen(suf);
+  return a >= b && strcmp(s + a - b, suf) == 0;
+}
+
+/* PATH.png -> PATH_<k>.png, k zero-padded to `digits`. */
+static char *frame_name(const char *out, unsigned k, int digits) {
+  size_t n = strlen(out);
+  size_t stem = ends_with(out, ".png") ? n - 4 : n;
+  char *p = malloc(stem + 32);
+  if (p) snprintf(p, stem + 32, "%.*s_%0*u.png", (int)stem, out, digits & 7, k); /* digits <= 4 */
+  return p;
+}
+
+static int fail(sessile_status s) {
+  char msg[1100];
+  snprintf(msg, sizeof msg, "%s", sessile_error_message());
+  fprintf(stderr, "sessile " CMD ": error: %s\n", msg);
+  return s == SESSILE_ERR_USAGE ? EXIT_USAGE : EXIT_RUNTIME;
+}
+
+typedef struct render_cli {
+  const char *in, *out;
+  unsigned turntable;
+  int quiet;
+  sessile_render_options o;
+} render_cli;
+
+static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_cli *c) {
+  sessile_mesh_renderer *r = NULL;
+  double t0 = sessile_wall_seconds();
+  sessile_status s = sessile_mesh_renderer_create(g, m, &c->o, &r, NULL);
+  if (s != SESSILE_OK) return fail(s);
+  size_t bytes = (size_t)c->o.width * c->o.height * 4u;
+  unsigned char *px = malloc(bytes);
+  if (!px) {
+    sessile_mesh_renderer_destroy(r);
+    fprintf(stderr, "sessile " CMD ": error: out of host memory for a %ux%u image\n", c->o.width,
+            c->o.height);
+    return EXIT_RUNTIME;
+  }
+  unsigned frames = c->turntable ? c->turntable : 1;
+  int digits = 3;
+  for (unsigned k = frames - 1; k >= 1000; k /= 10) digits++;
+  int rc = EXIT_OK;
+  for (unsigned k = 0; k < frames && rc == EXIT_OK; k++) {
+    sessile_render_result res;
+    double az = c->turntable ? 360.0 * k / frames : 0.0;
+    s = sessile_mesh_renderer_draw(r, az, px, &res);
+    if (s != SESSILE_OK) {
+      rc = fail(s);
+      break;
+    }
+    char *name = c->turntable ? frame_name(c->out, k, digits) : NULL;
+    const char *path = c->turntable ? name : c->out;
+    char err[1200];
+    if (!path || sessile_png_write_rgba8(path, (int)c->o.width, (int)c->o.height, px, err, sizeof err)) {
+      fprintf(stderr, "sessile " CMD ": error: %s\n", path ? err : "out of host memory");
+      rc = EXIT_RUNTIME;
+    } else if (!c->quiet) {
+      printf("wrote %s: %ux%u, %u samples, %s%s view", path, c->o.width, c->o.height, c->o.samples,
+             c->o.ortho ? "orthographic " : "", c->o.view);
+      if (c->turntable) printf(" turned %.1f deg", az);
+      if (res.grid_spacing_cm > 0) printf(", grid %g cm", res.grid_spacing_cm);
+      if (res.colormap[0])
+        printf(", %s by %s over [%g, %g]", res.colormap, c->o.color_by, res.prop_min, res.prop_max);
+      printf("\n");
+    }
+    free(name);
+  }
+  if (rc == EXIT_OK && !c->quiet)
+    printf("%u vertices, %u triangles; %.2f s\n", m->nv, m->nf, sessile_wall_seconds() - t0);
+  free(px);
+  sessile_mesh_renderer_destroy(r);
+  return rc;
+}
+
+static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    const char *v = NULL;
+#define VALUE() do { if (!(v = cli_value(CMD, argc, argv, &i))) return EXIT_USAGE; } while (0)
+    if (!strcmp(a, "-o") || !strcmp(a, "--out")) { VALUE(); c->out = v; }
+    else if (!strcmp(a, "--view")) { VALUE(); c->o.view = v; }
+    else if (!strcmp(a, "--turntable")) {
+      VALUE();
+      if (cli_parse_uint(CMD, a, v, 1, 3600, &c->turntable)) return EXIT_USAGE;
+    } else if (!strcmp(a, "--size")) {
+      VALUE();
+      if (parse_size(v, &c->o.width, &c->o.height))
+        return cli_usage_error(CMD, "--size: '%.40s' is not WxH with 1..16384 pixels each", v);
+    } else if (!strcmp(a, "--samples")) {
+      VALUE();
+      if (cli_parse_uint(CMD, a, v, 1, 8, &c->o.samples)) return EXIT_USAGE;
+      if (c->o.samples != 1 && c->o.samples != 4 && c->o.samples != 8)
+        return cli_usage_error(CMD, "--samples: use 1, 4 or 8");
+    } else if (!strcmp(a, "--background")) {
+      VALUE();
+      if (parse_color(v, c->o.background))
+        return cli_usage_error(CMD, "--background: '%.40s' is not white, black, none, #rrggbb or #rrggbbaa", v);
+    } else if (!strcmp(a, "--color-by")) { VALUE(); c->o.color_by = v; }
+    else if (!strcmp(a, "--colormap")) { VALUE(); c->o.colormap = v; }
+    else if (!strcmp(a, "--units")) {
+      VALUE();
+      char *end = NULL;
+      c->o.units_cm = strtod(v, &end);
+      if (end == v || *end || !(c->o.units_cm > 0 && c->o.units_cm <= 1e6))
+        return cli_usage_error(CMD, "--units: '%.40s' is not a number in (0, 1e6]", v);
+    } else if (!strcmp(a, "--ortho")) c->o.ortho = 1;
+    else if (!strcmp(a, "--no-grid")) c->o.grid = 0;
+    else if (!strcmp(a, "--quiet")) c->quiet = 1;
+    else {
+      int r = cli_gpu_option(CMD, argc, argv, &i, go);
+      if (r < 0) return EXIT_USAGE;
+      if (r > 0) continue;
+      if (a[0] == '-' && a[1]) return cli_usage_error(CMD, "unknown option '%.60s'", a);
+      if (c->in) return cli_usage_error(CMD, "one input only ('%.200s' and '%.200s')", c->in, a);
+      c->in = a;
+    }
+#undef VALUE
+  }
+  return EXIT_OK;
+}
+
+/* The output's folder must exist and the output must not be a folder:
+ * checked before any work so that bad input writes nothing. */
+static int check_out(const char *out) {
+  struct stat st;
+  if (stat(out, &st) == 0 && S_ISDIR(st.st_mode))
+    return cli_usage_error(CMD, "-o '%.200s' is a folder: name the PNG file", out);
+  const char *slash = strrchr(out, '/');
+  if (slash && slash != out) {
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%.*s", (int)(slash - out), out);
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
+      return cli_usage_error(CMD, "the folder of -o '%.200s' does not exist", out);
+  }
+  return EXIT_OK;
+}
+
+int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      fputs(help, stdout);
+      return cli_finish_stdout(EXIT_OK);
+    }
+  render_cli c = {0};
+  sessile_render_options_default(&c.o);
+  cli_gpu_opts go = *global;
+  int rc = parse_args(argc, argv, &c, &go);
+  if (rc != EXIT_OK) return rc;
+  if (!c.in) return cli_usage_error(CMD, "name a mesh (.ply, .obj), an EXR slice or a run directory");
+  struct stat st;
+  if (stat(c.in, &st) != 0)
+    return cli_usage_error(CMD, "cannot read '%.200s': %s", c.in, strerror(errno));
+  if (S_ISDIR(st.st_mode) || ends_with(c.in, ".exr"))
+    return cli_usage_error(CMD, "'%.200s': rendering %s is not built yet (only meshes: .ply, .obj)",
+                           c.in, S_ISDIR(st.st_mode) ? "run directories" : "EXR slices");
+  if (!c.out) return cli_usage_error(CMD, "name the PNG to write with -o OUT.png");
+  if (!ends_with(c.out, ".png")) return cli_usage_error(CMD, "-o '%.200s': the output must end in .png", c.out);
+  if ((rc = check_out(c.out)) != EXIT_OK) return rc;
+  sessile_status s = sessile_render_options_check(&c.o, NULL);
+  if (s != SESSILE_OK) return fail(s);
+  sessile_render_mesh *m = NULL;
+  s = sessile_render_mesh_read(c.in, &m);
+  if (s == SESSILE_OK) s = sessile_render_options_check(&c.o, m);
+  if (s != SESSILE_OK) {
+    sessile_render_mesh_destroy(m);
+    return fail(s);
+  }
+  sessile_gpu *g = NULL;
+  s = cli_gpu_create(&go, &g);
+  if (s != SESSILE_OK) {
+    sessile_render_mesh_destroy(m);
+    return fail(s);
+  }
+  rc = draw_all(g, m, &c);
+  sessile_render_mesh_destroy(m);
+  sessile_gpu_destroy(g);
+  return cli_finish_stdout(rc);
+}
