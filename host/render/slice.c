@@ -233,7 +233,7 @@ sessile_status sessile_render_slice(const char *exr_path, const char *channel, c
   const char *unit = channel_unit(channel);
   if (unit) snprintf(buf, sizeof buf, "%s (%s)", channel, unit);
   else snprintf(buf, sizeof buf, "%s", channel);
-  d2_text(cr, fmin(L->bar_x + L->bar_w + 12 + bar_labels + 4, L->width - 20), L->bar_y + 0.5 * L->bar_h, 13, 0.5, 0, HALF_PI, buf);
+  d2_text(cr, fmin(L->bar_x + L->bar_w + 12 + bar_labels + 4, L->width - 20), L->bar_y + 0.5 * L->bar_h, 13, 0.5, 1, HALF_PI, buf);
   if (o && o->title && o->title[0]) snprintf(buf, sizeof buf, "%s", o->title);
   else if (im->iteration >= 0) snprintf(buf, sizeof buf, "%s on %s, iteration %d", channel, im->plane, im->iteration);
   else snprintf(buf, sizeof buf, "%s on %s", channel, im->plane);
