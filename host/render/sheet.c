@@ -25,11 +25,20 @@ sessile_status sessile_render_contact_sheet(const char *const *png_paths, const 
                              path ? strerror(errno) : "no path");
       break;
     }
+    /* Cairo reports a file that is not a PNG as "out of memory": look first */
+    static const unsigned char magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char head[8] = {0};
+    FILE *f = fopen(path, "rb");
+    size_t got = f ? fread(head, 1, 8, f) : 0;
+    if (f) fclose(f);
+    if (got != 8 || memcmp(head, magic, 8)) {
+      st = sessile_error_set(SESSILE_ERR_USAGE, "'%s' is not a PNG file", path);
+      break;
+    }
     tile[k] = cairo_image_surface_create_from_png(path);
     cairo_status_t cs = cairo_surface_status(tile[k]);
     if (cs != CAIRO_STATUS_SUCCESS) {
-      st = sessile_error_set(cs == CAIRO_STATUS_NO_MEMORY ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_USAGE,
-                             "cannot read '%s' as a PNG: %s", path, cairo_status_to_string(cs));
+      st = sessile_error_set(SESSILE_ERR_USAGE, "cannot read '%s' as a PNG: %s", path, cairo_status_to_string(cs));
       break;
     }
     int w = cairo_image_surface_get_width(tile[k]), h = cairo_image_surface_get_height(tile[k]);
