@@ -26,7 +26,7 @@ static const char *P(const char *name) {
  * 0.5 x 0.25 cm, so u in [0, 10] and v in [0, 2.5] cm. */
 static const sessile_plane plane = {{1, 2, -1}, {1, 0, 0}, {0, 0, 1}, {0.5, 0.25}, 21, 11};
 static double ramp(double u) { return 3 + 0.7 * u; }                 /* 3 .. 10 */
-static double signed_field(double u) { return 1.4 * u - 3 - 0 * u; } /* -3 .. 11 */
+static double signed_field(double u) { return 1.4 * u - 3; } /* -3 .. 11 */
 static const double disc_u = 6, disc_v = 1.25, disc_r = 1;
 
 /* Every pixel of the image area against the map of the analytic value at
