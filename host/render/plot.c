@@ -1,0 +1,167 @@
+/* sessile render — line plots of number series (render2d.h): axes with
+ * ticks by the 1-2-5 rule, the ranges extended to whole ticks, grid lines,
+ * labels (with units), markers joined by lines, a legend above the plot. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include "draw2d.h"
+
+#define MARGIN_L 84
+#define MARGIN_R 28
+#define MARGIN_T 62 /* title and legend */
+#define MARGIN_B 58
+#define MARKER_R 3.5
+#define MAX_MARKERS 200 /* more points than this: lines only */
+
+/* matplotlib's "tab10" first colours: distinct, and readable on white */
+static const double series_rgb[SESSILE_PLOT_MAX_SERIES][3] = {
+    {0x1f / 255.0, 0x77 / 255.0, 0xb4 / 255.0}, {0xff / 255.0, 0x7f / 255.0, 0x0e / 255.0},
+    {0x2c / 255.0, 0xa0 / 255.0, 0x2c / 255.0}, {0xd6 / 255.0, 0x27 / 255.0, 0x28 / 255.0},
+    {0x94 / 255.0, 0x67 / 255.0, 0xbd / 255.0}, {0x8c / 255.0, 0x56 / 255.0, 0x4b / 255.0},
+    {0xe3 / 255.0, 0x77 / 255.0, 0xc2 / 255.0}, {0x7f / 255.0, 0x7f / 255.0, 0x7f / 255.0}};
+
+/* lo..hi widened to whole ticks; a single value gets a range around it */
+static void nice_range(double lo, double hi, int maxticks, double *a, double *b, double *step) {
+  if (!(hi > lo)) {
+    double d = lo != 0 ? 0.5 * fabs(lo) : 1;
+    lo -= d, hi += d;
+  }
+  double s = d2_tick_step(lo, hi, maxticks);
+  *a = floor(lo / s + 1e-9) * s;
+  *b = ceil(hi / s - 1e-9) * s;
+  *step = s;
+}
+
+sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_render2d_opts *o,
+                                          sessile_plot_layout *L) {
+  sessile_render2d_opts def;
+  if (!o) sessile_render2d_opts_default(&def), o = &def;
+  SESSILE_CALL(d2_check_size("plot", o->width, o->height));
+  SESSILE_CHECK(o->width >= 240 && o->height >= 160, SESSILE_ERR_USAGE,
+                "a plot of %d x %d pixels leaves no room for its axes (at least 240 x 160)", o->width, o->height);
+  SESSILE_CHECK(p && p->nseries >= 1 && p->nseries <= SESSILE_PLOT_MAX_SERIES, SESSILE_ERR_USAGE,
+                "a plot needs 1..%d series (got %d)", SESSILE_PLOT_MAX_SERIES, p ? p->nseries : 0);
+  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  for (int s = 0; s < p->nseries; s++) {
+    const sessile_plot_series *ser = &p->series[s];
+    SESSILE_CHECK(ser->n == 0 || (ser->x && ser->y), SESSILE_ERR_USAGE, "plot series %d has no values", s);
+    for (size_t i = 0; i < ser->n; i++)
+      if (isfinite(ser->x[i]) && isfinite(ser->y[i])) {
+        xlo = fmin(xlo, ser->x[i]), xhi = fmax(xhi, ser->x[i]);
+        ylo = fmin(ylo, ser->y[i]), yhi = fmax(yhi, ser->y[i]);
+      }
+  }
+  SESSILE_CHECK(xlo <= xhi, SESSILE_ERR_USAGE, "nothing to plot: no series has a finite point");
+  memset(L, 0, sizeof *L);
+  L->width = o->width, L->height = o->height;
+  L->px0 = MARGIN_L, L->px1 = o->width - MARGIN_R;
+  L->py0 = o->height - MARGIN_B, L->py1 = MARGIN_T;
+  nice_range(xlo, xhi, (int)((L->px1 - L->px0) / 80) + 2, &L->x0, &L->x1, &L->xstep);
+  nice_range(ylo, yhi, (int)((L->py0 - L->py1) / 50) + 2, &L->y0, &L->y1, &L->ystep);
+  return SESSILE_OK;
+}
+
+static double map_x(const sessile_plot_layout *L, double x) { return L->px0 + (x - L->x0) / (L->x1 - L->x0) * (L->px1 - L->px0); }
+static double map_y(const sessile_plot_layout *L, double y) { return L->py0 + (y - L->y0) / (L->y1 - L->y0) * (L->py1 - L->py0); }
+
+static void draw_axes(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
+  char lab[32];
+  int nx = (int)floor((L->x1 - L->x0) / L->xstep + 0.5), ny = (int)floor((L->y1 - L->y0) / L->ystep + 0.5);
+  /* grid lines on pixel centres */
+  cairo_set_line_width(cr, 1);
+  cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
+  for (int k = 1; k < nx; k++) {
+    double x = floor(map_x(L, L->x0 + k * L->xstep)) + 0.5;
+    cairo_move_to(cr, x, L->py1), cairo_line_to(cr, x, L->py0);
+  }
+  for (int k = 1; k < ny; k++) {
+    double y = floor(map_y(L, L->y0 + k * L->ystep)) + 0.5;
+    cairo_move_to(cr, L->px0, y), cairo_line_to(cr, L->px1, y);
+  }
+  cairo_stroke(cr);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_rectangle(cr, floor(L->px0) - 0.5, floor(L->py1) - 0.5, L->px1 - L->px0 + 1, L->py0 - L->py1 + 1);
+  for (int k = 0; k <= nx; k++) {
+    double v = L->x0 + k * L->xstep, x = floor(map_x(L, v)) + 0.5;
+    cairo_move_to(cr, x, L->py0 + 0.5), cairo_line_to(cr, x, L->py0 + 5.5);
+    d2_tick_label(lab, sizeof lab, v, L->xstep);
+    d2_text(cr, map_x(L, v), L->py0 + 8, 12, 0.5, 0, 0, lab);
+  }
+  for (int k = 0; k <= ny; k++) {
+    double v = L->y0 + k * L->ystep, y = floor(map_y(L, v)) + 0.5;
+    cairo_move_to(cr, L->px0 - 0.5, y), cairo_line_to(cr, L->px0 - 5.5, y);
+    d2_tick_label(lab, sizeof lab, v, L->ystep);
+    d2_text(cr, L->px0 - 8, map_y(L, v), 12, 1, 0.5, 0, lab);
+  }
+  cairo_stroke(cr);
+  if (p->xlabel) d2_text(cr, 0.5 * (L->px0 + L->px1), L->py0 + 28, 13, 0.5, 0, 0, p->xlabel);
+  if (p->ylabel) d2_text(cr, 16, 0.5 * (L->py0 + L->py1), 13, 0.5, 0, -1.57079632679489662, p->ylabel);
+  if (p->title) d2_text(cr, 0.5 * L->width, 8, 15, 0.5, 0, 0, p->title);
+}
+
+static void draw_series(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
+  cairo_save(cr);
+  /* markers on the axes' ends may overhang the frame, as in matplotlib */
+  double m = MARKER_R + 1;
+  cairo_rectangle(cr, L->px0 - m, L->py1 - m, L->px1 - L->px0 + 2 * m, L->py0 - L->py1 + 2 * m);
+  cairo_clip(cr);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (int s = 0; s < p->nseries; s++) { /* lines first, then every marker on top */
+    const sessile_plot_series *ser = &p->series[s];
+    int pen = 0;
+    for (size_t i = 0; i < ser->n; i++) {
+      if (!isfinite(ser->x[i]) || !isfinite(ser->y[i])) { /* a gap */
+        pen = 0;
+        continue;
+      }
+      if (pen) cairo_line_to(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]));
+      else cairo_move_to(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]));
+      pen = 1;
+    }
+    cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
+    cairo_set_line_width(cr, 1.5);
+    cairo_stroke(cr);
+  }
+  for (int s = 0; s < p->nseries; s++) {
+    const sessile_plot_series *ser = &p->series[s];
+    if (ser->n > MAX_MARKERS) continue;
+    for (size_t i = 0; i < ser->n; i++)
+      if (isfinite(ser->x[i]) && isfinite(ser->y[i])) {
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]), MARKER_R, 0, 6.28318530717958648);
+      }
+    cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
+    cairo_fill(cr);
+  }
+  cairo_restore(cr);
+}
+
+static void draw_legend(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
+  double x = L->px0, y = 40;
+  for (int s = 0; s < p->nseries; s++) {
+    const char *label = p->series[s].label ? p->series[s].label : "";
+    cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
+    cairo_set_line_width(cr, 1.5);
+    cairo_move_to(cr, x, y), cairo_line_to(cr, x + 22, y);
+    cairo_stroke(cr);
+    cairo_arc(cr, x + 11, y, MARKER_R, 0, 6.28318530717958648);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    d2_text(cr, x + 28, y, 12, 0, 0.5, 0, label);
+    x += 28 + d2_text_width(cr, 12, label) + 18;
+  }
+}
+
+sessile_status sessile_render_plot(const sessile_plot *p, const sessile_render2d_opts *o, const char *png_out) {
+  SESSILE_CHECK(png_out && png_out[0], SESSILE_ERR_USAGE, "no output picture given");
+  sessile_plot_layout L;
+  SESSILE_CALL(sessile_render_plot_layout(p, o, &L));
+  d2_canvas cv;
+  SESSILE_CALL(d2_canvas_create(&cv, L.width, L.height, png_out));
+  draw_axes(cv.cr, &L, p);
+  draw_series(cv.cr, &L, p);
+  draw_legend(cv.cr, &L, p);
+  sessile_status st = d2_canvas_write_png(&cv, png_out);
+  d2_canvas_destroy(&cv);
+  return st;
+}
