@@ -220,6 +220,11 @@ static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
                                         o->phi[(size_t)b * o->nmorph + k] = o->phi[(size_t)a * o->nmorph + k];
   for (uint32_t k = 0; k < o->nstate; k++) o->state[(size_t)b * o->nstate + k] = o->state[(size_t)a * o->nstate + k];
   o->attract[b] = -1;
+  /* a growing tip is a lineage: daughter a (the mother's index, on the
+   * surface) stays the tip, b starts as an ordinary cell; a tip dividing
+   * inward so leaves a cell below itself, the pressure that pushes it out
+   * (§3.6; docs/sds_rules.md, "Tips") */
+  if (s->tip_state >= 0) o->state[(size_t)b * o->nstate + (uint32_t)s->tip_state] = 0;
   if (s->birth_state >= 0)
     o->state[(size_t)a * o->nstate + (uint32_t)s->birth_state] = o->state[(size_t)b * o->nstate + (uint32_t)s->birth_state] = o->r[a];
   /* the daughters' edges and tets are new: rest sizes from the new radii */

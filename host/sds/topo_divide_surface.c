@@ -137,7 +137,8 @@ sessile_status topo_divide_tangential(sessile_sds_topo_complex *cx, uint32_t c, 
     for (int m = 0; m < k; m++)
       vold += face_vol(c0, c0, x + 3 * (size_t)ring[m], x + 3 * (size_t)ring[(m + 1) % k]);
     for (int lift = 0; lift < 2; lift++) {
-      for (int q = 0; q < 3; q++) xa[q] = c0[q] + eps * t[q] + lift * nrm[q], xb[q] = c0[q] - eps * t[q] + lift * nrm[q];
+      for (int q = 0; q < 3; q++)
+        xa[q] = c0[q] + eps * t[q] + lift * nrm[q], xb[q] = c0[q] - eps * t[q] + lift * nrm[q];
       double v = 0;
       for (uint32_t f = 0; f < n; f++)
         v += face_vol(c0, x + 3 * (size_t)fan[3 * f], x + 3 * (size_t)fan[3 * f + 1], x + 3 * (size_t)fan[3 * f + 2]);
