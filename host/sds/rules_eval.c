@@ -62,6 +62,7 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
   for (int c = 0; c < cl->ncells; c++) {
     m->slot[SDS_SLOT_RADIUS] = cl->radius[c];
     m->slot[SDS_SLOT_VOLUME] = sessile_morph_vol(cl->radius[c]);
+    m->slot[SDS_SLOT_SURFACE] = cl->surface ? cl->surface[c] != 0 : 0;
     for (int k = 0; k < nm; k++) m->slot[SDS_SLOT_MORPH + k] = phi[(size_t)c * nm + k];
     for (int k = 0; k < ns; k++) m->slot[SDS_SLOT_STATE + k] = state[(size_t)c * ns + k];
     int divided = 0;

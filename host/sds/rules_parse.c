@@ -64,7 +64,7 @@ static int number(cur *c, double *v) {
 
 /* Names an expression gives another meaning (keywords are only keywords
  * where a line starts, so a state may be called `tip`). */
-static const char *const reserved[] = {"radius", "volume", "time", "grad", "_pi", "_e"};
+static const char *const reserved[] = {"radius", "volume", "time", "surface", "grad", "_pi", "_e"};
 
 static int find(const char names[][SESSILE_SDS_NAME], int n, const char *x) {
   for (int i = 0; i < n; i++)
@@ -106,13 +106,14 @@ static sessile_status check_names(cur *c, int col0, const char *text) {
     int j = i;
     while (text[j] == ' ' || text[j] == '\t') j++;
     if (text[j] == '(') continue; /* a function: muparser knows its own */
-    if (!strcmp(x, "radius") || !strcmp(x, "volume") || !strcmp(x, "time") || !strcmp(x, "_pi") ||
+    if (!strcmp(x, "radius") || !strcmp(x, "volume") || !strcmp(x, "time") || !strcmp(x, "surface") ||
+        !strcmp(x, "_pi") ||
         !strcmp(x, "_e"))
       continue;
     if (find(m->mname, m->nmorph, x) >= 0 || find(m->sname, m->nstate, x) >= 0 || find(m->cname, m->nconst, x) >= 0)
       continue;
     return fail(c, col0 + a, "unknown name '%s' (not a declared morphogen, timer, state variable or constant, "
-                "nor radius, volume, time)", x);
+                "nor radius, volume, time, surface)", x);
   }
   return SESSILE_OK;
 }
@@ -141,6 +142,7 @@ static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e) {
   mupDefineVar(h, "radius", &m->slot[SDS_SLOT_RADIUS]);
   mupDefineVar(h, "volume", &m->slot[SDS_SLOT_VOLUME]);
   mupDefineVar(h, "time", &m->slot[SDS_SLOT_TIME]);
+  mupDefineVar(h, "surface", &m->slot[SDS_SLOT_SURFACE]);
   for (int i = 0; i < m->nmorph; i++) mupDefineVar(h, m->mname[i], &m->slot[SDS_SLOT_MORPH + i]);
   for (int i = 0; i < m->nstate; i++) mupDefineVar(h, m->sname[i], &m->slot[SDS_SLOT_STATE + i]);
   for (int i = 0; i < m->nconst; i++) mupDefineConst(h, m->cname[i], m->cval[i]);

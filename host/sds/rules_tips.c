@@ -33,8 +33,17 @@ sessile_status sessile_sds_tips_below(const sessile_morph_cells *cl, const uint8
     }
     l = sqrt(l);
     for (int a = 0; a < 3; a++) q->inward[a] = l > 0 ? in[a] / l : 0;
-    double best_in = -2, best_any = -2;
+    double best_in = -2, best_any = -2, spacing = 0;
     int arg_in = -1;
+    /* "directly below": within the cone and no farther than the tip's mean
+     * distance to its neighbours.  A coarse body's interior cells lie deep
+     * (0.5 u below the surface of the level-2 sphere, its surface spacing
+     * 0.28): they receive no morphogen and push nothing. */
+    for (uint32_t e = cl->nbr_off[c]; e < cl->nbr_off[c + 1]; e++) {
+      double dl = 0;
+      for (int a = 0; a < 3; a++) dl += pow(cl->pos[3 * cl->nbr[e] + a] - cl->pos[3 * c + a], 2);
+      spacing += sqrt(dl) / (cl->nbr_off[c + 1] - cl->nbr_off[c]);
+    }
     for (uint32_t e = cl->nbr_off[c]; e < cl->nbr_off[c + 1]; e++) {
       int nb = (int)cl->nbr[e];
       double d[3], dl = 0, cs = 0;
@@ -42,7 +51,7 @@ sessile_status sessile_sds_tips_below(const sessile_morph_cells *cl, const uint8
       dl = sqrt(dl);
       if (!(dl > 0)) continue;
       for (int a = 0; a < 3; a++) cs += d[a] * q->inward[a] / dl;
-      if (!surface[nb] && cs > best_in) best_in = cs, arg_in = nb;
+      if (!surface[nb] && dl <= spacing && cs > best_in) best_in = cs, arg_in = nb;
       if (cs > best_any) best_any = cs;
     }
     if (arg_in >= 0 && best_in >= min_cos) {

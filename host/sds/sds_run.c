@@ -124,7 +124,7 @@ static sessile_status neighbours(sim *s) {
 }
 
 static sessile_morph_cells cells_of(const sim *s) {
-  sessile_morph_cells c = {(int)s->o.ncells, s->o.x, s->o.r, s->nbr_off, s->nbr};
+  sessile_morph_cells c = {(int)s->o.ncells, s->o.x, s->o.r, s->nbr_off, s->nbr, s->o.surface};
   return c;
 }
 

@@ -42,7 +42,7 @@ static inline lattice lattice_make(int nx, int ny, int nz, double h, double jit,
         }
       }
   L.off[n] = e;
-  L.cells = (sessile_morph_cells){n, L.pos, L.radius, L.off, L.nbr};
+  L.cells = (sessile_morph_cells){n, L.pos, L.radius, L.off, L.nbr, NULL};
   return L;
 }
 

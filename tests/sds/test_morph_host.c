@@ -127,7 +127,7 @@ int main(void) {
   }
   coff[NC] = e;
   ch[0] = sessile_morph_vol(0.45);
-  sessile_morph_cells chain = {NC, cp, cr, coff, cn};
+  sessile_morph_cells chain = {NC, cp, cr, coff, cn, NULL};
   double Dc = 0.5, Cc = 0;
   sessile_morph_coef cco = {1, &Dc, &Cc, NULL};
   double dtc = sessile_morph_dt_max(&chain, &cco);

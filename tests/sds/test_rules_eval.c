@@ -37,7 +37,7 @@ int main(void) {
   double radius[4] = {0.3, 0.3, 0.6, 0.3};
   uint32_t off[5] = {0, 3, 6, 9, 12};
   uint32_t nbr[12] = {1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2};
-  sessile_morph_cells cells = {4, pos, radius, off, nbr};
+  sessile_morph_cells cells = {4, pos, radius, off, nbr, NULL};
   double v[4];
   for (int c = 0; c < 4; c++) v[c] = sessile_morph_vol(radius[c]);
   double phi[4] = {0.5 * v[0], 0.95 * v[1], 0.5 * v[2], 0.01 * v[3]};

@@ -45,10 +45,9 @@ int main(void) {
     t_true(what, has_rule_core(m));
     snprintf(what, sizeof what, "%s: %d growing tips", names[i], tips[i]);
     t_true(what, sessile_sds_model_ntips(m) == tips[i]);
-    snprintf(what, sizeof what, "%s: edge 1, volume 2, damping 0.001 (the prototype's), surface 0.3 (tuned: docs/sds_rules.md)",
-             names[i]);
+    snprintf(what, sizeof what, "%s: edge 1, volume 2, damping 0.001, surface 1 (the prototype's)", names[i]);
     t_true(what, param(m, "edge_stiffness", 0) == 1 && param(m, "volume_stiffness", 0) == 2 &&
-                     param(m, "damping", 0) == 0.001 && param(m, "surface_multiplier", 0) == 0.3);
+                     param(m, "damping", 0) == 0.001 && param(m, "surface_multiplier", 0) == 1);
     double tl = 0;
     for (int t = 0; t < sessile_sds_model_ntips(m); t++) {
       const double *d = sessile_sds_model_tip(m, t);

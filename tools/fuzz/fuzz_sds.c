@@ -54,7 +54,7 @@ static void evaluate(const sessile_sds_model *m) {
   off[N] = e;
   for (int i = 0; i < N * 16; i++) r = r * 6364136223846793005u + 1442695040888963407u, phi[i] = (r >> 40) * 1e-8;
   for (int i = 0; i < N * 32; i++) state[i] = i % 3 == 0;
-  sessile_morph_cells cl = {N, pos, radius, off, nbr};
+  sessile_morph_cells cl = {N, pos, radius, off, nbr, NULL};
   sessile_sds_actions a = {0};
   sessile_status s = sessile_sds_rules_eval(m, &cl, phi, state, 1.5, &a);
   if (s != SESSILE_OK && s != SESSILE_ERR_NUMERIC) fail("an unexpected status from the evaluation");

@@ -29,6 +29,7 @@ typedef struct sessile_morph_cells {
   const double *radius;    /* 1 per cell */
   const uint32_t *nbr_off; /* ncells + 1 */
   const uint32_t *nbr;     /* nbr_off[ncells] */
+  const uint8_t *surface;  /* 1 per cell, 1 on the boundary (the rules' `surface`); NULL: all 0 */
 } sessile_morph_cells;
 
 typedef struct sessile_morph_coef {
