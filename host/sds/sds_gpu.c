@@ -9,7 +9,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_COUNT };
 
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
@@ -78,7 +78,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   sds_hash ho = {0};
   if (p->obstacle.nf)
     SESSILE_CALL(sds_hash_build(&ho, p->obstacle.pos, p->obstacle.tri, p->obstacle.nf,
-                                sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf)));
+                                SDS_HASH_CELL * sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf)));
   v[SP_H_OBS] = ho.h, v[SP_RHO_OBS] = ho.rho;
   sessile_status st = obstacle_upload(s, p, v, &ho);
   sds_hash_free(&ho);
@@ -93,7 +93,7 @@ static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_para
                                       const sds_hash *ho) {
   SESSILE_CALL(ensure(s, B_SP, SP_COUNT * 8));
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], 0, v, SP_COUNT));
-  size_t nw = 3 * ((size_t)p->nattract + p->obstacle.nv) + SDS_OBS_NRM * (size_t)p->obstacle.nf;
+  size_t nw = 3 * ((size_t)p->nattract + p->obstacle.nv) + (SDS_OBS_NRM + 4) * (size_t)p->obstacle.nf;
   SESSILE_CALL(ensure(s, B_WORLD, nw * s->real_bytes));
   size_t nf = p->obstacle.nf, nt = nf ? ho->tsize + 1 + nf : 0;
   SESSILE_CALL(ensure(s, B_OBSTRI, (3 * nf + nt) * 4));
@@ -105,9 +105,16 @@ static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_para
   if (nf) {
     double *nrm = NULL;
     SESSILE_CALL(sds_obstacle_normals(&p->obstacle, &nrm));
-    sessile_status st = sessile_buffer_upload_reals(s->b[B_WORLD], 3 * ((size_t)p->nattract + p->obstacle.nv), nrm,
-                                                    SDS_OBS_NRM * nf);
+    size_t o0 = 3 * ((size_t)p->nattract + p->obstacle.nv);
+    sessile_status st = sessile_buffer_upload_reals(s->b[B_WORLD], o0, nrm, SDS_OBS_NRM * nf);
     free(nrm);
+    double *sph = st == SESSILE_OK ? malloc(4 * nf * sizeof *sph) : NULL;
+    if (st == SESSILE_OK && !sph) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu spheres", nf);
+    if (sph) {
+      sds_tri_spheres(p->obstacle.pos, p->obstacle.tri, (uint32_t)nf, sph);
+      st = sessile_buffer_upload_reals(s->b[B_WORLD], o0 + SDS_OBS_NRM * nf, sph, 4 * nf);
+      free(sph);
+    }
     SESSILE_CALL(st);
     SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 0, p->obstacle.tri, 3 * nf * 4));
     SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 3 * nf * 4, ho->off, ((size_t)ho->tsize + 1) * 4));
@@ -134,8 +141,9 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(ensure(s, B_MOVE, n * rb));
   SESSILE_CALL(ensure(s, B_FLAG, T * 4));
-  uint32_t tsize = sds_prime_at_least(2 * (uint32_t)F + 1); /* Teschner: a prime; load 1/2 */
+  uint32_t tsize = sds_table_size((uint32_t)F);
   SESSILE_CALL(ensure(s, B_HASH, (3 * (size_t)tsize + 1 + F + 1) * 4));
+  SESSILE_CALL(ensure(s, B_FSPH, 4 * F * rb));
   size_t nh = 2 * n > T + E ? 2 * n : T + E;
   double *h = malloc((nh ? nh : 1) * sizeof *h);
   uint32_t *topo = malloc(ntopo * 4);
@@ -178,7 +186,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   s->nfaces = (uint32_t)F, s->tsize = tsize;
   /* hash cell size: the mean boundary side (Teschner et al.: about the mean
    * edge length); only the cost depends on it, never the result */
-  s->h_self = sds_mean_side(o->x, o->face, o->nfaces);
+  s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
   double hs = s->h_self;
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
   s->dt_stable = sessile_sds_stable_dt(o, &s->p);
@@ -238,8 +246,9 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
   if (p.tsize) { /* the surface hash of x (kernels.def, "The surface hash") */
     sessile_buffer *bh[] = {s->b[B_HASH]};
     sessile_buffer *bc[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_HASH]};
+    sessile_buffer *bs[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_HASH], s->b[B_FSPH]};
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_CLEAR], groups(s, SDS_HASH_CLEAR, p.tsize), bh, &p));
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_COUNT], groups(s, SDS_HASH_COUNT, p.nfaces), bc, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_COUNT], groups(s, SDS_HASH_COUNT, p.nfaces), bs, &p));
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_SCAN], 1, bh, &p));
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_FILL], groups(s, SDS_HASH_FILL, p.nfaces), bc, &p));
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_SORT], groups(s, SDS_HASH_SORT, p.tsize), bh, &p));
@@ -254,7 +263,7 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_TET], groups(s, SDS_TET, s->ntets), b, &p));
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
-                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_HASH], s->b[B_X0 + nx],
+                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_HASH], s->b[B_FSPH], s->b[B_X0 + nx],
                          s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
 }

@@ -29,6 +29,23 @@ uint32_t sds_prime_at_least(uint32_t n) {
   }
 }
 
+uint32_t sds_table_size(uint32_t n) { return sds_prime_at_least(4 * n + 1); }
+
+void sds_tri_spheres(const double *pos, const uint32_t *tri, uint32_t nf, double *sph) {
+  for (uint32_t f = 0; f < nf; f++) {
+    const uint32_t *t = tri + 3 * (size_t)f;
+    double *g = sph + 4 * (size_t)f, rho = 0;
+    for (int i = 0; i < 3; i++) g[i] = (pos[3 * (size_t)t[0] + i] + pos[3 * (size_t)t[1] + i] + pos[3 * (size_t)t[2] + i]) / 3.0;
+    for (int k = 0; k < 3; k++) {
+      double d[3];
+      sds_sub(g, pos + 3 * (size_t)t[k], d);
+      double l = sqrt(sds_dot(d, d));
+      if (l > rho) rho = l;
+    }
+    g[3] = rho;
+  }
+}
+
 double sds_mean_side(const double *pos, const uint32_t *tri, uint32_t nf) {
   double s = 0;
   for (uint32_t f = 0; f < nf; f++)
@@ -53,7 +70,7 @@ sessile_status sds_hash_build(sds_hash *hs, const double *pos, const uint32_t *t
   memset(hs, 0, sizeof *hs);
   SESSILE_CHECK(h > 0 && isfinite(h), SESSILE_ERR_USAGE, "sds: hash cell size %g is not positive", h);
   SESSILE_CHECK(nf < UINT32_MAX / 2, SESSILE_ERR_TOO_LARGE, "sds: %u triangles are too many to hash", nf);
-  hs->tsize = sds_prime_at_least(2 * nf + 1), hs->n = nf, hs->h = h;
+  hs->tsize = sds_table_size(nf), hs->n = nf, hs->h = h;
   hs->off = calloc((size_t)hs->tsize + 1, sizeof *hs->off);
   hs->ent = malloc((nf ? nf : 1) * sizeof *hs->ent);
   uint32_t *slot = malloc((nf ? nf : 1) * sizeof *slot);
@@ -297,10 +314,11 @@ sessile_status sessile_sds_contacts(const sessile_sds *o, const sessile_sds_para
   int self = p->self_collide && o->nfaces;
   double *onrm = NULL;
   sessile_status st = p->obstacle.nf ? sds_obstacle_normals(&p->obstacle, &onrm) : SESSILE_OK;
-  if (st == SESSILE_OK && self) st = sds_hash_build(&hself, o->x, o->face, o->nfaces, sds_mean_side(o->x, o->face, o->nfaces));
+  if (st == SESSILE_OK && self)
+    st = sds_hash_build(&hself, o->x, o->face, o->nfaces, SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces));
   if (st == SESSILE_OK && p->obstacle.nf)
     st = sds_hash_build(&hobs, p->obstacle.pos, p->obstacle.tri, p->obstacle.nf,
-                        sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf));
+                        SDS_HASH_CELL * sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf));
   if (st == SESSILE_OK)
     for (uint32_t c = 0; c < o->ncells; c++) contact_of(o, p, c, o->x + 3 * (size_t)c, &hself, &hobs, onrm, 0, &ct[c]);
   sds_hash_free(&hself), sds_hash_free(&hobs);

@@ -48,6 +48,13 @@ typedef struct sds_hash {
   uint32_t *off;     /* tsize + 1 */
   uint32_t *ent;     /* n */
 } sds_hash;
+/* Table size: a prime >= 4n + 1 (Teschner et al.: a prime; load 1/4 keeps
+ * the candidates that only share a bucket few); cell size: SDS_HASH_CELL x
+ * the mean side (measured: fewest candidates per query, docs/sds.md). */
+#define SDS_HASH_CELL 1.5
+uint32_t sds_table_size(uint32_t n);
+/* Bounding spheres of triangles: centroid and largest corner distance (4 per triangle). */
+void sds_tri_spheres(const double *pos, const uint32_t *tri, uint32_t nf, double *sph);
 sessile_status sds_hash_build(sds_hash *hs, const double *pos, const uint32_t *tri, uint32_t nf, double h);
 void sds_hash_free(sds_hash *hs);
 int32_t sds_grid_coord(double v, double h);

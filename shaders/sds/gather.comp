@@ -47,11 +47,17 @@ void self_contact(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
         uint b = grid_hash(gi, gj, gk, T);
         for (uint k = hash[T + b]; k < hash[T + b + 1u]; k++) {
           uint t = hash[e0 + k], of = o_face() + 3u * t;
+          uint v0 = topo[of], v1 = topo[of + 1u], v2 = topo[of + 2u];
+          if (v0 == c || v1 == c || v2 == c) continue; // its own faces: excluded, cheaply
+          // quick rejection by the face's bounding sphere (conservative)
+          REAL g0 = p[0] - fsph[4u * t], g1 = p[1] - fsph[4u * t + 1u], g2 = p[2] - fsph[4u * t + 2u];
+          REAL rr = (delta + fsph[4u * t + 3u]) * REAL(1.000000001);
+          if (g0 * g0 + g1 * g1 + g2 * g2 > rr * rr) continue;
           REAL a0[3], a1[3], a2[3];
-          corner(topo[of], a0), corner(topo[of + 1u], a1), corner(topo[of + 2u], a2);
+          corner(v0, a0), corner(v1, a1), corner(v2, a2);
           REAL dd = tri_dist2(p, a0, a1, a2);
-          if ((dd < best || (dd == best && t < bt && bt != 0xffffffffu)) && !near_cell(c, topo[of]) &&
-              !near_cell(c, topo[of + 1u]) && !near_cell(c, topo[of + 2u]))
+          if ((dd < best || (dd == best && t < bt && bt != 0xffffffffu)) && !near_cell(c, v0) && !near_cell(c, v1) &&
+              !near_cell(c, v2))
             best = dd, bt = t;
         }
       }
@@ -78,7 +84,10 @@ void obstacle_contact(REAL p[3], REAL delta, inout REAL acc[3]) {
       for (int gk = lo[2]; gk <= hi[2]; gk++) {
         uint b = grid_hash(gi, gj, gk, T);
         for (uint k = obs_tri[o0 + b]; k < obs_tri[o0 + b + 1u]; k++) {
-          uint t = obs_tri[e0 + k];
+          uint t = obs_tri[e0 + k], sq = 3u * pc.nattract + 3u * pc.nobs_v + 21u * pc.nobs + 4u * t;
+          REAL g0 = p[0] - world[sq], g1 = p[1] - world[sq + 1u], g2 = p[2] - world[sq + 2u];
+          REAL rr = (delta + world[sq + 3u]) * REAL(1.000000001);
+          if (g0 * g0 + g1 * g1 + g2 * g2 > rr * rr) continue;
           REAL a0[3], a1[3], a2[3];
           obs_corner(obs_tri[3u * t], a0), obs_corner(obs_tri[3u * t + 1u], a1), obs_corner(obs_tri[3u * t + 2u], a2);
           REAL dd = tri_dist2(p, a0, a1, a2);

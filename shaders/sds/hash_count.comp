@@ -4,7 +4,8 @@
 // centroid's grid cell (atomic sums: the counts do not depend on timing) and
 // raises the largest face radius rho (centroid to farthest corner; as float
 // bits, rounded up by 1e-5 so that it bounds the double; atomicMax of
-// non-negative float bits is order-free).  As sds_hash_build (host).
+// non-negative float bits is order-free); its bounding sphere (g, its
+// radius) into fsph, the gather's quick rejection.  As sds_hash_build (host).
 #include "sds_common.glsl"
 #include "sds_contact.glsl"
 
@@ -23,5 +24,7 @@ void main() {
     REAL d0 = x[3u * q[k]] - g[0], d1 = x[3u * q[k] + 1u] - g[1], d2 = x[3u * q[k] + 2u] - g[2];
     rho = max(rho, sqrt(d0 * d0 + d1 * d1 + d2 * d2));
   }
+  for (int i = 0; i < 3; i++) fsph[4u * f + uint(i)] = g[i];
+  fsph[4u * f + 3u] = rho;
   atomicMax(hash[3u * T + 1u + pc.nfaces], floatBitsToUint(float(rho) * 1.00001));
 }

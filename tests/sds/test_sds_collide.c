@@ -81,12 +81,18 @@ static void compare(sessile_gpu *g, const char *name, const sessile_sds *o, cons
  * contact force, for every cell with a contact. */
 static void finite_differences(const char *name, sessile_sds *o, const sessile_sds_params *p) {
   double err = 0, scale = 0;
-  int cells = 0;
+  int cells = 0, skipped = 0;
   for (uint32_t c = 0; c < o->ncells; c++) {
     double *x = o->x + 3 * (size_t)c, acc[3] = {0, 0, 0};
     sessile_sds_contact ct;
     sessile_sds_contact_brute(o, p, c, x, &ct);
     if (ct.tri < 0 && ct.obs < 0) continue;
+    /* the unsigned surface distance has a kink on the triangle (|s|): no
+     * derivative there (the snapped clouds put cells in a face's plane) */
+    if ((ct.tri >= 0 && fabs(ct.s) < 1e-6) || (ct.obs >= 0 && fabs(ct.s_obs) < 1e-6)) {
+      skipped++;
+      continue;
+    }
     cells++;
     sessile_sds_contact_accel(o, p, c, x, &ct, acc);
     for (int i = 0; i < 3; i++) {
@@ -115,8 +121,8 @@ static void finite_differences(const char *name, sessile_sds *o, const sessile_s
     }
   }
   char what[160];
-  snprintf(what, sizeof what, "%s: contact force = -grad of the cell's contact energy (%d cells; rel to max)", name,
-           cells);
+  snprintf(what, sizeof what, "%s: contact force = -grad of the cell's contact energy (%d cells, %d on a face "
+           "skipped; rel to max)", name, cells, skipped);
   t_check(what, scale > 0 ? err / scale : 1, 1e-6);
 }
 
@@ -163,7 +169,7 @@ int main(void) {
   /* (c) random clouds: the cells of an import scattered in a cube (the
    * boundary faces become a random triangle soup), an obstacle of random
    * triangles; a quarter of the coordinates put exactly on multiples of
-   * the hash cell size h (the mean boundary side, as the upload computes). */
+   * the hash cell size h (1.5 x the mean boundary side, as the upload). */
   for (int trial = 0; trial < 3; trial++) {
     const double ctr[3] = {0, 0, 0};
     sessile_sds o = {0};
@@ -177,7 +183,7 @@ int main(void) {
         const double *a = o.x + 3 * (size_t)o.face[3 * f + k], *b = o.x + 3 * (size_t)o.face[3 * f + (k + 1) % 3];
         h += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
       }
-    h /= 3.0 * o.nfaces;
+    h *= 1.5 / (3.0 * o.nfaces); /* SDS_HASH_CELL x the mean side, as the upload */
     for (size_t k = 0; k < 3 * (size_t)o.ncells; k += 4) o.x[k] = h * floor(o.x[k] / h);
     const uint32_t nv = 60, nf = 20;
     double *pos = t_dalloc(3 * nv);
