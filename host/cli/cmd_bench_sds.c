@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
 #include "cli.h"
 #include "sessile/bench.h"
 #include "sessile/sds.h"

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
 #include "sds/sds_builtin.h"
 #include "sds/sds_internal.h"
 #include "sessile/bench.h"
@@ -27,8 +28,8 @@ static double median(double *v, int n) {
 }
 
 typedef struct bench_size {
-  int level;      /* icosphere level */
-  int rock;       /* 1: the rock model's body (radius 1) with its rock (radius 2.4, below) */
+  int level; /* icosphere level */
+  int rock;  /* 1: the rock model's body (radius 1) with its rock (radius 2.4, below) */
   int host_steps, gpu_steps;
 } bench_size;
 
@@ -87,17 +88,20 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
 }
 
 sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out) {
-  static const bench_size sizes[] = {{2, 0, 200, 400}, {2, 1, 200, 400}, {3, 0, 100, 200},
-                                     {4, 0, 20, 60},   {5, 0, 5, 20}};
+  static const bench_size sizes[] = {
+      {2, 0, 200, 400}, {2, 1, 200, 400}, {3, 0, 100, 200}, {4, 0, 20, 60}, {5, 0, 5, 20}};
   const sessile_gpu_info *i = sessile_gpu_info_of(g);
-  fprintf(out, "sds physics: force + integrate step (hash build, edge, tet, gather kernels), device %s, fp%d; "
-               "medians of %d repeats\n", i->name, i->precision, REPS);
+  fprintf(out,
+          "sds physics: force + integrate step (hash build, edge, tet, gather kernels), device %s, fp%d; "
+          "medians of %d repeats\n",
+          i->name, i->precision, REPS);
   fprintf(out, "%8s %9s %7s %5s %9s %10s %10s %10s %8s %9s %9s\n", "cells", "tets", "faces", "rock", "import_s",
           "C_ms/step", "GPU_ms", "GPU_batch", "C/batch", "force_ms", "contacts");
   for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) SESSILE_CALL(bench_one(g, &sizes[k], out));
-  fprintf(out, "(C: the host reference step, one thread; GPU_ms: one submission per step with the move check; "
-               "GPU_batch: all steps in one submission; force_ms: one force evaluation in its own submission; "
-               "contacts: its share spent in the contact stages)\n");
+  fprintf(out,
+          "(C: the host reference step, one thread; GPU_ms: one submission per step with the move check; "
+          "GPU_batch: all steps in one submission; force_ms: one force evaluation in its own submission; "
+          "contacts: its share spent in the contact stages)\n");
   return SESSILE_OK;
 }
 
@@ -125,8 +129,14 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, FILE *out) {
   sessile_load_average(load0);
   double t0 = sessile_wall_seconds();
   if (st == SESSILE_OK) {
-    sessile_sds_run_options o = {.run = run, .gpu = g, .seed = 1, .model_text = m->text, .model_name = "rock",
-                                 .t_end = t_end, .frames = -1, .max_cells = 200000};
+    sessile_sds_run_options o = {.run = run,
+                                 .gpu = g,
+                                 .seed = 1,
+                                 .model_text = m->text,
+                                 .model_name = "rock",
+                                 .t_end = t_end,
+                                 .frames = -1,
+                                 .max_cells = 200000};
     st = sessile_sds_run(&o, &rs);
     st = sessile_run_close(run, st);
   }
@@ -135,8 +145,9 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, FILE *out) {
   nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
   SESSILE_CALL(st);
   double full = 400; /* the model's t_end (host/sds/models/rock.sds) */
-  fprintf(out, "sds rock (Figure 9) through the loop, frames on, to t = %g of %g: wall %.1f s (loop %.1f s), %u cells, "
-               "%u tets, %llu steps (%.2f ms/step), %llu divisions, %llu inversions; load %.2f -> %.2f\n",
+  fprintf(out,
+          "sds rock (Figure 9) through the loop, frames on, to t = %g of %g: wall %.1f s (loop %.1f s), %u cells, "
+          "%u tets, %llu steps (%.2f ms/step), %llu divisions, %llu inversions; load %.2f -> %.2f\n",
           rs.time, full, wall, rs.wall_s, rs.cells, rs.tets, (unsigned long long)rs.steps,
           rs.steps ? 1e3 * rs.wall_s / (double)rs.steps : 0.0, (unsigned long long)rs.divisions,
           (unsigned long long)rs.inversions, load0[0], load1[0]);
@@ -144,9 +155,11 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, FILE *out) {
     fprintf(out, "paper: %.0f s; ours %.1f s: %.2fx the paper's speed (target >= 5)\n", PAPER_S, wall, PAPER_S / wall);
   else {
     double ext = wall * full / (rs.time > 0 ? rs.time : 1e-9);
-    fprintf(out, "EXTRAPOLATION (linear in simulated time from t = %g; growth and divisions later make steps "
-                 "dearer, so a lower bound): %.0f s to t = %g; paper %.0f s: %.3fx the paper's speed "
-                 "(target >= 5)\n", rs.time, ext, full, PAPER_S, PAPER_S / ext);
+    fprintf(out,
+            "EXTRAPOLATION (linear in simulated time from t = %g; growth and divisions later make steps "
+            "dearer, so a lower bound): %.0f s to t = %g; paper %.0f s: %.3fx the paper's speed "
+            "(target >= 5)\n",
+            rs.time, ext, full, PAPER_S, PAPER_S / ext);
   }
   return SESSILE_OK;
 }

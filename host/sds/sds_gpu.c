@@ -109,7 +109,8 @@ static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_para
     sessile_status st = sessile_buffer_upload_reals(s->b[B_WORLD], o0, nrm, SDS_OBS_NRM * nf);
     free(nrm);
     double *sph = st == SESSILE_OK ? malloc(4 * nf * sizeof *sph) : NULL;
-    if (st == SESSILE_OK && !sph) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu spheres", nf);
+    if (st == SESSILE_OK && !sph)
+      st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu spheres", nf);
     if (sph) {
       sds_tri_spheres(p->obstacle.pos, p->obstacle.tri, (uint32_t)nf, sph);
       st = sessile_buffer_upload_reals(s->b[B_WORLD], o0 + SDS_OBS_NRM * nf, sph, 4 * nf);
@@ -263,7 +264,8 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_TET], groups(s, SDS_TET, s->ntets), b, &p));
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
-                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_HASH], s->b[B_FSPH], s->b[B_X0 + nx],
+                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_HASH],
+                         s->b[B_FSPH], s->b[B_X0 + nx],
                          s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
 }

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
 #include "sds/sds_internal.h"
 #include "sds_kernels.h"
 
@@ -35,7 +36,8 @@ void sds_tri_spheres(const double *pos, const uint32_t *tri, uint32_t nf, double
   for (uint32_t f = 0; f < nf; f++) {
     const uint32_t *t = tri + 3 * (size_t)f;
     double *g = sph + 4 * (size_t)f, rho = 0;
-    for (int i = 0; i < 3; i++) g[i] = (pos[3 * (size_t)t[0] + i] + pos[3 * (size_t)t[1] + i] + pos[3 * (size_t)t[2] + i]) / 3.0;
+    for (int i = 0; i < 3; i++)
+      g[i] = (pos[3 * (size_t)t[0] + i] + pos[3 * (size_t)t[1] + i] + pos[3 * (size_t)t[2] + i]) / 3.0;
     for (int k = 0; k < 3; k++) {
       double d[3];
       sds_sub(g, pos + 3 * (size_t)t[k], d);
@@ -63,7 +65,8 @@ void sds_hash_free(sds_hash *hs) {
 }
 
 static void centroid(const double *pos, const uint32_t *t, double *g) {
-  for (int i = 0; i < 3; i++) g[i] = (pos[3 * (size_t)t[0] + i] + pos[3 * (size_t)t[1] + i] + pos[3 * (size_t)t[2] + i]) / 3.0;
+  for (int i = 0; i < 3; i++)
+    g[i] = (pos[3 * (size_t)t[0] + i] + pos[3 * (size_t)t[1] + i] + pos[3 * (size_t)t[2] + i]) / 3.0;
 }
 
 sessile_status sds_hash_build(sds_hash *hs, const double *pos, const uint32_t *tri, uint32_t nf, double h) {
@@ -109,10 +112,16 @@ static int closest_on_tri(const double *p, const double *a, const double *b, con
   double ab[3], ac[3], ap[3], bp[3], cp[3];
   sds_sub(a, b, ab), sds_sub(a, c, ac), sds_sub(a, p, ap);
   double d1 = sds_dot(ab, ap), d2 = sds_dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) { memcpy(q, a, 24); return SDS_REGION_A; }
+  if (d1 <= 0 && d2 <= 0) {
+    memcpy(q, a, 24);
+    return SDS_REGION_A;
+  }
   sds_sub(b, p, bp);
   double d3 = sds_dot(ab, bp), d4 = sds_dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) { memcpy(q, b, 24); return SDS_REGION_B; }
+  if (d3 >= 0 && d4 <= d3) {
+    memcpy(q, b, 24);
+    return SDS_REGION_B;
+  }
   double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
     double v = d1 / (d1 - d3);
@@ -121,7 +130,10 @@ static int closest_on_tri(const double *p, const double *a, const double *b, con
   }
   sds_sub(c, p, cp);
   double d5 = sds_dot(ab, cp), d6 = sds_dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) { memcpy(q, c, 24); return SDS_REGION_C; }
+  if (d6 >= 0 && d5 <= d6) {
+    memcpy(q, c, 24);
+    return SDS_REGION_C;
+  }
   double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
     double w = d2 / (d2 - d6);
@@ -172,7 +184,9 @@ static double contact_dist(const double *p, const double *pos, const uint32_t *t
   return 0.0;
 }
 
-typedef struct edge_ref { uint32_t lo, hi, face, k; } edge_ref;
+typedef struct edge_ref {
+  uint32_t lo, hi, face, k;
+} edge_ref;
 static int edge_cmp(const void *x, const void *y) {
   const edge_ref *a = x, *b = y;
   if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
@@ -182,7 +196,8 @@ static int edge_cmp(const void *x, const void *y) {
 
 sessile_status sds_obstacle_normals(const sessile_sds_obstacle *ob, double **out) {
   size_t nf = ob->nf;
-  double *nrm = calloc(nf ? SDS_OBS_NRM * nf : 1, sizeof *nrm), *vn = calloc(ob->nv ? 3 * (size_t)ob->nv : 1, sizeof *vn);
+  double *nrm = calloc(nf ? SDS_OBS_NRM * nf : 1, sizeof *nrm),
+         *vn = calloc(ob->nv ? 3 * (size_t)ob->nv : 1, sizeof *vn);
   edge_ref *er = malloc((nf ? 3 * nf : 1) * sizeof *er);
   if (!nrm || !vn || !er) {
     free(nrm), free(vn), free(er);

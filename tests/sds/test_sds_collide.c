@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
 #include "collide_scenes.h"
 #include "sessile/rng.h"
 #include "sessile/sds.h"
@@ -21,8 +22,8 @@ static int fp64;
 
 /* GPU contact forces against m x the brute-force contact acceleration;
  * returns the number of cells with a contact (self, obstacle). */
-static void compare(sessile_gpu *g, const char *name, const sessile_sds *o, const sessile_sds_params *p,
-                    int *nself, int *nobs) {
+static void compare(sessile_gpu *g, const char *name, const sessile_sds *o, const sessile_sds_params *p, int *nself,
+                    int *nobs) {
   size_t n = o->ncells, n3 = 3 * n;
   double *fg = t_dalloc(n3), *fr = t_dalloc(n3), *fh = t_dalloc(n3);
   sessile_sds_contact *ct = t_xalloc(n * sizeof *ct), *ch = t_xalloc(n * sizeof *ch);
@@ -114,16 +115,18 @@ static void finite_differences(const char *name, sessile_sds *o, const sessile_s
         x[i] = x0 - h;
         sessile_sds_contact_brute(o, p, c, x, &c1);
         x[i] = x0;
-        printf("cell %u axis %d: tri %d s %.17g | +h tri %d s %.17g | -h tri %d s %.17g; obs %d %g, %d %g, %d %g\n", c, i,
-               ct.tri, ct.s, c0.tri, c0.s, c1.tri, c1.s, ct.obs, ct.s_obs, c0.obs, c0.s_obs, c1.obs, c1.s_obs);
+        printf("cell %u axis %d: tri %d s %.17g | +h tri %d s %.17g | -h tri %d s %.17g; obs %d %g, %d %g, %d %g\n", c,
+               i, ct.tri, ct.s, c0.tri, c0.s, c1.tri, c1.s, ct.obs, ct.s_obs, c0.obs, c0.s_obs, c1.obs, c1.s_obs);
       }
       err = fmax(err, e1);
       scale = fmax(scale, fabs(acc[i]));
     }
   }
   char what[160];
-  snprintf(what, sizeof what, "%s: contact force = -grad of the cell's contact energy (%d cells, %d on a face "
-           "skipped; rel to max)", name, cells, skipped);
+  snprintf(what, sizeof what,
+           "%s: contact force = -grad of the cell's contact energy (%d cells, %d on a face "
+           "skipped; rel to max)",
+           name, cells, skipped);
   t_check(what, scale > 0 ? err / scale : 1, 1e-6);
 }
 

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
 #include "collide_scenes.h"
 #include "sessile/intersect.h"
 #include "sessile/sds.h"
@@ -47,8 +48,10 @@ static uint64_t throw_bodies(sessile_gpu *g, int self_collide, int checks, sessi
         gap = fmin(gap, sqrt(d));
       }
   }
-  printf("self_collide %d: %.3f s simulated, most intersecting pairs at a check %llu, closest cells across %.4f u "
-         "(radius %.3f)\n", self_collide, t, (unsigned long long)worst, gap, o->r[0]);
+  printf(
+      "self_collide %d: %.3f s simulated, most intersecting pairs at a check %llu, closest cells across %.4f u "
+      "(radius %.3f)\n",
+      self_collide, t, (unsigned long long)worst, gap, o->r[0]);
   sessile_sds_gpu_destroy(s);
   return worst;
 }
