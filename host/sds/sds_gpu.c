@@ -9,7 +9,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_COUNT };
 
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
@@ -19,6 +19,9 @@ struct sessile_sds_gpu {
   sessile_buffer *b[B_COUNT];
   size_t cap[B_COUNT];
   uint32_t ncells, nedges, ntets, nobs, nattract;
+  uint32_t nfaces, tsize, tsize_obs, nobs_v; /* boundary faces; surface and obstacle hash table sizes */
+  double h_self;                     /* surface hash cell size (mean boundary side at upload) */
+  int no_contact;                    /* the benchmark's switch: contacts left out */
   int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
   sessile_sds_params p;
   double dt_stable; /* sessile_sds_stable_dt at the last upload */
@@ -49,8 +52,15 @@ static sds_push push_of(const sessile_sds_gpu *s, double dt, int damping, int mo
   p.ncells = s->ncells, p.nedges = s->nedges, p.ntets = s->ntets;
   p.nobs = s->nobs, p.nattract = s->nattract;
   p.box = s->p.box != 0, p.damping = damping != 0, p.mode = (uint32_t)mode;
+  p.nfaces = s->nfaces;
+  p.tsize = s->p.self_collide && s->nfaces && !s->no_contact ? s->tsize : 0;
+  p.tsize_obs = s->tsize_obs, p.nobs_v = s->nobs_v;
+  if (s->no_contact) p.nobs = 0;
   return p;
 }
+
+static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_params *p, const double *v,
+                                      const sds_hash *ho);
 
 sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p) {
   SESSILE_CHECK(p->nattract == 0 || p->attract_pos, SESSILE_ERR_USAGE, "sds: %u attraction points without positions",
@@ -63,27 +73,62 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   v[SP_DAMP_VISC] = p->damp_visc, v[SP_DAMP_VOL] = p->damp_vol, v[SP_GRAVITY] = p->gravity;
   for (int i = 0; i < 3; i++) v[SP_LO + i] = p->box_lo[i], v[SP_HI + i] = p->box_hi[i];
   v[SP_K_WALL] = p->k_wall, v[SP_K_ATTRACT] = p->k_attract;
+  v[SP_K_CONTACT] = p->k_contact, v[SP_CONTACT] = p->contact_scale, v[SP_H_SELF] = s->h_self;
+  /* the obstacle is static: its hash table is built here, once, on the host */
+  sds_hash ho = {0};
+  if (p->obstacle.nf)
+    SESSILE_CALL(sds_hash_build(&ho, p->obstacle.pos, p->obstacle.tri, p->obstacle.nf,
+                                SDS_HASH_CELL * sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf)));
+  v[SP_H_OBS] = ho.h, v[SP_RHO_OBS] = ho.rho;
+  sessile_status st = obstacle_upload(s, p, v, &ho);
+  sds_hash_free(&ho);
+  SESSILE_CALL(st);
+  s->nobs = p->obstacle.nf, s->nattract = p->nattract;
+  s->p.attract_pos = NULL, s->p.obstacle.pos = NULL, s->p.obstacle.tri = NULL; /* not kept */
+  return SESSILE_OK;
+}
+
+/* Params, attraction points, obstacle vertices, triangles and table. */
+static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_params *p, const double *v,
+                                      const sds_hash *ho) {
   SESSILE_CALL(ensure(s, B_SP, SP_COUNT * 8));
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], 0, v, SP_COUNT));
-  size_t nw = 3 * ((size_t)p->nattract + p->obstacle.nv);
+  size_t nw = 3 * ((size_t)p->nattract + p->obstacle.nv) + (SDS_OBS_NRM + 4) * (size_t)p->obstacle.nf;
   SESSILE_CALL(ensure(s, B_WORLD, nw * s->real_bytes));
-  SESSILE_CALL(ensure(s, B_OBSTRI, 3 * (size_t)p->obstacle.nf * 4));
+  size_t nf = p->obstacle.nf, nt = nf ? ho->tsize + 1 + nf : 0;
+  SESSILE_CALL(ensure(s, B_OBSTRI, (3 * nf + nt) * 4));
   if (p->nattract)
     SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_WORLD], 0, p->attract_pos, 3 * (size_t)p->nattract));
   if (p->obstacle.nv)
     SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_WORLD], 3 * (size_t)p->nattract, p->obstacle.pos,
                                              3 * (size_t)p->obstacle.nv));
-  if (p->obstacle.nf)
-    SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 0, p->obstacle.tri, 3 * (size_t)p->obstacle.nf * 4));
-  s->nobs = p->obstacle.nf, s->nattract = p->nattract;
-  s->p.attract_pos = NULL, s->p.obstacle.pos = NULL, s->p.obstacle.tri = NULL; /* not kept */
+  if (nf) {
+    double *nrm = NULL;
+    SESSILE_CALL(sds_obstacle_normals(&p->obstacle, &nrm));
+    size_t o0 = 3 * ((size_t)p->nattract + p->obstacle.nv);
+    sessile_status st = sessile_buffer_upload_reals(s->b[B_WORLD], o0, nrm, SDS_OBS_NRM * nf);
+    free(nrm);
+    double *sph = st == SESSILE_OK ? malloc(4 * nf * sizeof *sph) : NULL;
+    if (st == SESSILE_OK && !sph)
+      st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu spheres", nf);
+    if (sph) {
+      sds_tri_spheres(p->obstacle.pos, p->obstacle.tri, (uint32_t)nf, sph);
+      st = sessile_buffer_upload_reals(s->b[B_WORLD], o0 + SDS_OBS_NRM * nf, sph, 4 * nf);
+      free(sph);
+    }
+    SESSILE_CALL(st);
+    SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 0, p->obstacle.tri, 3 * nf * 4));
+    SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], 3 * nf * 4, ho->off, ((size_t)ho->tsize + 1) * 4));
+    SESSILE_CALL(sessile_buffer_upload(s->b[B_OBSTRI], (3 * nf + ho->tsize + 1) * 4, ho->ent, nf * 4));
+  }
+  s->tsize_obs = nf ? ho->tsize : 0, s->nobs_v = p->obstacle.nv;
   return SESSILE_OK;
 }
 
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
   SESSILE_CHECK(o->edge && o->cell_tet_off, SESSILE_ERR_USAGE, "sds: the organism has no derived data (call sessile_sds_rebuild)");
   size_t n = o->ncells, E = o->nedges, T = o->ntets, rb = s->real_bytes;
-  size_t ntopo = 4 * T + 2 * E + 2 * (n + 1) + 2 * E + 4 * T + T + E;
+  size_t F = o->nfaces, ntopo = 4 * T + 2 * E + 2 * (n + 1) + 2 * E + 4 * T + T + E + 3 * F + n;
   SESSILE_CHECK(ntopo < UINT32_MAX, SESSILE_ERR_TOO_LARGE, "sds: %zu cells and %zu tets are too many for 32-bit indices", n, T);
   for (int i = 0; i < 2; i++) {
     SESSILE_CALL(ensure(s, B_X0 + i, 3 * n * rb));
@@ -97,6 +142,9 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(ensure(s, B_MOVE, n * rb));
   SESSILE_CALL(ensure(s, B_FLAG, T * 4));
+  uint32_t tsize = sds_table_size((uint32_t)F);
+  SESSILE_CALL(ensure(s, B_HASH, (3 * (size_t)tsize + 1 + F + 1) * 4));
+  SESSILE_CALL(ensure(s, B_FSPH, 4 * F * rb));
   size_t nh = 2 * n > T + E ? 2 * n : T + E;
   double *h = malloc((nh ? nh : 1) * sizeof *h);
   uint32_t *topo = malloc(ntopo * 4);
@@ -122,6 +170,9 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   q += 4 * T;
   for (size_t t = 0; t < T; t++) *q++ = o->tet_surface[t];
   for (size_t e = 0; e < E; e++) *q++ = o->edge_surface[e];
+  if (F) memcpy(q, o->face, 3 * F * 4);
+  q += 3 * F;
+  for (size_t c = 0; c < n; c++) *q++ = o->surface[c];
   if (st == SESSILE_OK) st = sessile_buffer_upload(s->b[B_TOPO], 0, topo, ntopo * 4);
   free(h), free(topo);
   SESSILE_CALL(st);
@@ -133,6 +184,12 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->scratch = sc;
   s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
+  s->nfaces = (uint32_t)F, s->tsize = tsize;
+  /* hash cell size: the mean boundary side (Teschner et al.: about the mean
+   * edge length); only the cost depends on it, never the result */
+  s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
+  double hs = s->h_self;
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
   s->dt_stable = sessile_sds_stable_dt(o, &s->p);
   return SESSILE_OK;
 }
@@ -187,6 +244,16 @@ sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o) {
 static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode) {
   sds_push p = push_of(s, dt, damping, mode);
   int nx = 1 - c;
+  if (p.tsize) { /* the surface hash of x (kernels.def, "The surface hash") */
+    sessile_buffer *bh[] = {s->b[B_HASH]};
+    sessile_buffer *bc[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_HASH]};
+    sessile_buffer *bs[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_HASH], s->b[B_FSPH]};
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_CLEAR], groups(s, SDS_HASH_CLEAR, p.tsize), bh, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_COUNT], groups(s, SDS_HASH_COUNT, p.nfaces), bs, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_SCAN], 1, bh, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_FILL], groups(s, SDS_HASH_FILL, p.nfaces), bc, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_HASH_SORT], groups(s, SDS_HASH_SORT, p.tsize), bh, &p));
+  }
   if (s->nedges) {
     sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_EDGE], groups(s, SDS_EDGE, s->nedges), b, &p));
@@ -197,7 +264,8 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
     SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_TET], groups(s, SDS_TET, s->ntets), b, &p));
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
-                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_X0 + nx],
+                         s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_HASH],
+                         s->b[B_FSPH], s->b[B_X0 + nx],
                          s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
 }
@@ -285,5 +353,37 @@ sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uin
   for (uint32_t t = 0, k = 0; t < s->ntets; t++)
     if (flag[t]) (*list)[k++] = t;
   *n = cnt;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, size_t *n) {
+  *table = NULL, *n = 0;
+  size_t len = 3 * (size_t)s->tsize + 1 + s->nfaces + 1;
+  uint32_t *t = malloc(len * 4);
+  SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "sds: out of memory for a hash table of %zu words", len);
+  sessile_status st = sessile_buffer_download(s->b[B_HASH], 0, t, len * 4);
+  if (st != SESSILE_OK) {
+    free(t);
+    return st;
+  }
+  *table = t, *n = len;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, double *ms_all, double *ms_nocontact) {
+  for (int pass = 0; pass < 2; pass++) {
+    s->no_contact = pass;
+    SESSILE_CALL(run_forces(s, 0.0, 1, 0)); /* warm-up */
+    double t0 = sessile_wall_seconds();
+    for (int k = 0; k < reps; k++) {
+      sessile_status st = run_forces(s, 0.0, 1, 0);
+      if (st != SESSILE_OK) {
+        s->no_contact = 0;
+        return st;
+      }
+    }
+    *(pass ? ms_nocontact : ms_all) = 1e3 * (sessile_wall_seconds() - t0) / (reps > 0 ? reps : 1);
+  }
+  s->no_contact = 0;
   return SESSILE_OK;
 }

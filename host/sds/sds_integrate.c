@@ -46,7 +46,8 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
  * at rest bounds omega^2: its edges give 2 K_e (K_e = d2E/dL2 =
  * k_e (m_a + m_b) / R'), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
  * walls k_wall; gamma likewise from the volume damping (damp_vol in place of
- * k_vol) plus the viscous c.  Returns the smallest root over the cells. */
+ * k_vol) plus the viscous c; a surface cell adds k_contact when
+ * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells. */
 double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) {
   double *lam = calloc(o->ncells ? 2 * (size_t)o->ncells : 1, sizeof *lam); /* omega^2, gamma */
   if (!lam) return p->dt_min;
@@ -72,7 +73,8 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
   }
   double wall = p->box || p->obstacle.nf ? p->k_wall : 0, dt = p->dt_max;
   for (uint32_t c = 0; c < o->ncells; c++) {
-    double w2 = lam[2 * c] / o->m[c] + wall, gam = lam[2 * c + 1] / o->m[c] + p->damp_visc;
+    double w2 = lam[2 * c] / o->m[c] + wall + (p->self_collide && o->surface && o->surface[c] ? p->k_contact : 0),
+           gam = lam[2 * c + 1] / o->m[c] + p->damp_visc;
     /* the positive root of w2 dt^2 + 2 gam dt - 4 = 0 */
     double h = w2 > 0 ? 4.0 / (gam + sqrt(gam * gam + 4 * w2)) : (gam > 0 ? 2.0 / gam : p->dt_max);
     if (h < dt) dt = h;

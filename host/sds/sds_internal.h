@@ -33,9 +33,41 @@ static inline double sds_vol4(const double *p0, const double *p1, const double *
 double sds_edge_scale(const sessile_sds *o, uint32_t e);
 double sds_tet_scale(const sessile_sds *o, uint32_t t);
 
-/* Penalty and attraction acceleration of cell c at x (gravity included),
- * and their potential per unit mass (host reference of the GPU's). */
+/* Gravity, box penalty and attraction acceleration of a cell at x, and
+ * their potential per unit mass (host reference of the GPU's; the contacts
+ * are sessile_sds_contact_accel's). */
 void sds_external_accel(const sessile_sds_params *p, const double *x, int32_t attract, double *acc);
 double sds_external_potential(const sessile_sds_params *p, const double *x, int32_t attract);
+
+/* A spatial hash of triangles (Teschner et al. 2003; docs/sds.md,
+ * "Collisions"): each triangle one entry, in the bucket of its centroid's
+ * grid cell (size h); buckets [off[b], off[b+1]) of ent, ascending. */
+typedef struct sds_hash {
+  uint32_t tsize, n; /* table size (a prime >= 2n + 1), triangles */
+  double h, rho;     /* cell size; largest distance from a centroid to its corners */
+  uint32_t *off;     /* tsize + 1 */
+  uint32_t *ent;     /* n */
+} sds_hash;
+/* Table size: a prime >= 4n + 1 (Teschner et al.: a prime; load 1/4 keeps
+ * the candidates that only share a bucket few); cell size: SDS_HASH_CELL x
+ * the mean side (measured: fewest candidates per query, docs/sds.md). */
+#define SDS_HASH_CELL 1.5
+uint32_t sds_table_size(uint32_t n);
+/* Bounding spheres of triangles: centroid and largest corner distance (4 per triangle). */
+void sds_tri_spheres(const double *pos, const uint32_t *tri, uint32_t nf, double *sph);
+sessile_status sds_hash_build(sds_hash *hs, const double *pos, const uint32_t *tri, uint32_t nf, double h);
+void sds_hash_free(sds_hash *hs);
+int32_t sds_grid_coord(double v, double h);
+uint32_t sds_grid_hash(int32_t i, int32_t j, int32_t k, uint32_t T);
+uint32_t sds_prime_at_least(uint32_t n);
+/* Regions of the closest point on a triangle (a, b, c), and per obstacle
+ * triangle its SDS_OBS_NRM reals: a pseudo-normal per region (face normal;
+ * angle-weighted vertex normals; edge normals = sum of the two faces'),
+ * indexed 3 region. */
+enum { SDS_REGION_FACE, SDS_REGION_A, SDS_REGION_B, SDS_REGION_C, SDS_REGION_AB, SDS_REGION_AC, SDS_REGION_BC };
+#define SDS_OBS_NRM 21
+sessile_status sds_obstacle_normals(const sessile_sds_obstacle *ob, double **nrm);
+/* Mean side length of the triangles (1 when there are none). */
+double sds_mean_side(const double *pos, const uint32_t *tri, uint32_t nf);
 
 #endif

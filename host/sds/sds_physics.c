@@ -1,8 +1,10 @@
 /* The physics on the host (the reference of shaders/sds): scale-free edge and
  * volume springs E = k/2 ((V - R')/R')^2 (§3.2), damping, gravity, the box,
- * an obstacle, attraction points.  Forces are gathered per cell over its
+ * attraction points, contacts with an obstacle and of the surface with
+ * itself (sds_hash.c).  Forces are gathered per cell over its
  * incident edges and tets in CSR order, the GPU's order. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include "sds/sds_internal.h"
 
@@ -16,6 +18,8 @@ void sessile_sds_params_default(sessile_sds_params *p) {
   p->gravity = 10.0;     /* prototype */
   p->k_wall = 1000.0;    /* ours: a 1 % radius penetration at g = 10 for r = 1 */
   p->k_attract = 1.0;
+  p->self_collide = 1, p->contact_scale = 1.0; /* ours: a cell is a sphere of its radius */
+  p->k_contact = 1000.0;                       /* ours: as k_wall */
   p->dt = 1e-3, p->dt_min = 1e-7, p->dt_max = 0.05, p->max_move = 0.05;
   p->stable_safety = 0.5;
 }
@@ -32,64 +36,6 @@ double sds_tet_scale(const sessile_sds *o, uint32_t t) {
   return 0.5 * rs * 0.5 * ms;
 }
 
-/* Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision
- * Detection §5.1.5: Voronoi regions of the vertices, edges and face). */
-static void closest_on_tri(const double *p, const double *a, const double *b, const double *c,
-                           double *q) {
-  double ab[3], ac[3], ap[3], bp[3], cp[3];
-  sds_sub(a, b, ab), sds_sub(a, c, ac), sds_sub(a, p, ap);
-  double d1 = sds_dot(ab, ap), d2 = sds_dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) { memcpy(q, a, 24); return; }
-  sds_sub(b, p, bp);
-  double d3 = sds_dot(ab, bp), d4 = sds_dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) { memcpy(q, b, 24); return; }
-  double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    double v = d1 / (d1 - d3);
-    for (int i = 0; i < 3; i++) q[i] = a[i] + v * ab[i];
-    return;
-  }
-  sds_sub(c, p, cp);
-  double d5 = sds_dot(ab, cp), d6 = sds_dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) { memcpy(q, c, 24); return; }
-  double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    double w = d2 / (d2 - d6);
-    for (int i = 0; i < 3; i++) q[i] = a[i] + w * ac[i];
-    return;
-  }
-  double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    for (int i = 0; i < 3; i++) q[i] = b[i] + w * (c[i] - b[i]);
-    return;
-  }
-  double den = 1.0 / (va + vb + vc), v = vb * den, w = vc * den;
-  for (int i = 0; i < 3; i++) q[i] = a[i] + ab[i] * v + ac[i] * w;
-}
-
-/* Inside the closed obstacle (winding number > 1/2 by solid angles,
- * Van Oosterom & Strackee)?  Then q receives the nearest surface point. */
-static int obstacle_inside(const sessile_sds_obstacle *ob, const double *x, double *q) {
-  double wind = 0, best = INFINITY;
-  for (uint32_t f = 0; f < ob->nf; f++) {
-    const double *p0 = ob->pos + 3 * (size_t)ob->tri[3 * f], *p1 = ob->pos + 3 * (size_t)ob->tri[3 * f + 1],
-                 *p2 = ob->pos + 3 * (size_t)ob->tri[3 * f + 2];
-    double a[3], b[3], c[3], n[3], y[3];
-    sds_sub(x, p0, a), sds_sub(x, p1, b), sds_sub(x, p2, c);
-    double la = sqrt(sds_dot(a, a)), lb = sqrt(sds_dot(b, b)), lc = sqrt(sds_dot(c, c));
-    sds_cross(b, c, n);
-    wind += 2.0 * atan2(sds_dot(a, n), la * lb * lc + sds_dot(a, b) * lc + sds_dot(a, c) * lb +
-                                           sds_dot(b, c) * la);
-    closest_on_tri(x, p0, p1, p2, y);
-    double d[3];
-    sds_sub(x, y, d);
-    double dd = sds_dot(d, d);
-    if (dd < best) best = dd, memcpy(q, y, 24);
-  }
-  return wind > 2.0 * SDS_PI;
-}
-
 void sds_external_accel(const sessile_sds_params *p, const double *x, int32_t attract, double *acc) {
   acc[0] = 0, acc[1] = 0, acc[2] = -p->gravity;
   if (p->box)
@@ -97,9 +43,6 @@ void sds_external_accel(const sessile_sds_params *p, const double *x, int32_t at
       if (x[i] < p->box_lo[i]) acc[i] += p->k_wall * (p->box_lo[i] - x[i]);
       if (x[i] > p->box_hi[i]) acc[i] -= p->k_wall * (x[i] - p->box_hi[i]);
     }
-  double q[3];
-  if (p->obstacle.nf && obstacle_inside(&p->obstacle, x, q))
-    for (int i = 0; i < 3; i++) acc[i] += p->k_wall * (q[i] - x[i]);
   if (attract >= 0 && (uint32_t)attract < p->nattract) {
     double d[3];
     sds_sub(x, p->attract_pos + 3 * (size_t)attract, d);
@@ -116,18 +59,20 @@ double sds_external_potential(const sessile_sds_params *p, const double *x, int3
       double d = x[i] < p->box_lo[i] ? p->box_lo[i] - x[i] : (x[i] > p->box_hi[i] ? x[i] - p->box_hi[i] : 0);
       u += 0.5 * p->k_wall * d * d;
     }
-  double q[3];
-  if (p->obstacle.nf && obstacle_inside(&p->obstacle, x, q)) {
-    double d[3];
-    sds_sub(x, q, d);
-    u += 0.5 * p->k_wall * sds_dot(d, d);
-  }
   if (attract >= 0 && (uint32_t)attract < p->nattract) {
     double d[3];
     sds_sub(x, p->attract_pos + 3 * (size_t)attract, d);
     u += p->k_attract * sqrt(sds_dot(d, d));
   }
   return u;
+}
+
+/* The contacts of every cell through the host hash; NULL when out of
+ * memory (the callers then ask the brute force cell by cell). */
+static sessile_sds_contact *contacts_of(const sessile_sds *o, const sessile_sds_params *p) {
+  sessile_sds_contact *ct = malloc((o->ncells ? o->ncells : 1) * sizeof *ct);
+  if (ct && sessile_sds_contacts(o, p, ct) != SESSILE_OK) free(ct), ct = NULL;
+  return ct;
 }
 
 void sessile_sds_energy_of(const sessile_sds *o, const sessile_sds_params *p, sessile_sds_energy *e) {
@@ -145,11 +90,17 @@ void sessile_sds_energy_of(const sessile_sds *o, const sessile_sds_params *p, se
     double kk = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * sds_tet_scale(o, t);
     e->vol += 0.5 * kk * s * s;
   }
+  sessile_sds_contact *ct = contacts_of(o, p);
   for (uint32_t c = 0; c < o->ncells; c++) {
-    const double *v = o->v + 3 * (size_t)c;
+    const double *v = o->v + 3 * (size_t)c, *x = o->x + 3 * (size_t)c;
+    double acc[3] = {0, 0, 0};
+    sessile_sds_contact one;
+    if (!ct) sessile_sds_contact_brute(o, p, c, x, &one);
     e->kinetic += 0.5 * o->m[c] * sds_dot(v, v);
-    e->potential += o->m[c] * sds_external_potential(p, o->x + 3 * (size_t)c, o->attract[c]);
+    e->potential += o->m[c] * (sds_external_potential(p, x, o->attract[c]) +
+                               sessile_sds_contact_accel(o, p, c, x, ct ? &ct[c] : &one, acc));
   }
+  free(ct);
 }
 
 double sessile_sds_energy_total(const sessile_sds_energy *e) {
@@ -198,6 +149,7 @@ static void tet_force(const sessile_sds *o, const sessile_sds_params *p, uint32_
 
 void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, int with_damping,
                             double *f) {
+  sessile_sds_contact *ct = contacts_of(o, p);
   for (uint32_t c = 0; c < o->ncells; c++) {
     double s[3] = {0, 0, 0}, fe[3];
     for (uint32_t k = o->cell_edge_off[c]; k < o->cell_edge_off[c + 1]; k++) {
@@ -213,11 +165,15 @@ void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, i
       for (int i = 0; i < 3; i++) s[i] += fe[i];
     }
     double acc[3];
+    sessile_sds_contact one;
+    if (!ct) sessile_sds_contact_brute(o, p, c, o->x + 3 * (size_t)c, &one);
     sds_external_accel(p, o->x + 3 * (size_t)c, o->attract[c], acc);
+    sessile_sds_contact_accel(o, p, c, o->x + 3 * (size_t)c, ct ? &ct[c] : &one, acc);
     for (int i = 0; i < 3; i++) {
       s[i] += o->m[c] * acc[i];
       if (with_damping) s[i] -= p->damp_visc * o->m[c] * o->v[3 * (size_t)c + i];
       f[3 * (size_t)c + i] = s[i];
     }
   }
+  free(ct);
 }

@@ -13,6 +13,8 @@ uint o_ce() { return o_cto() + pc.ncells + 1u; }
 uint o_ct() { return o_ce() + 2u * pc.nedges; }
 uint o_tsurf() { return o_ct() + 4u * pc.ntets; }
 uint o_esurf() { return o_tsurf() + pc.ntets; }
+uint o_face() { return o_esurf() + pc.nedges; }
+uint o_csurf() { return o_face() + 3u * pc.nfaces; }
 #define R_OF(c) rm[2u * (c)]
 #define M_OF(c) rm[2u * (c) + 1u]
 

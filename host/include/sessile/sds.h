@@ -134,7 +134,8 @@ void sessile_sds_relax_multipliers(sessile_sds *o);
 
 /* --- physics (§3.2) ------------------------------------------------------- */
 /* A static obstacle: a closed triangle mesh (outward, counter-clockwise),
- * not owned.  Cells inside it are pushed out through the nearest face. */
+ * not owned.  A cell within its contact distance of the mesh is pushed out
+ * along its nearest triangle (docs/sds.md, "Collisions"). */
 typedef struct sessile_sds_obstacle {
   uint32_t nv, nf;
   const double *pos;   /* 3 nv */
@@ -151,6 +152,13 @@ typedef struct sessile_sds_params {
   int box;             /* 1: confine the cells to [box_lo, box_hi] */
   double box_lo[3], box_hi[3];
   double k_wall;       /* box and obstacle penalty: acceleration per unit depth, 1/s^2 */
+  /* contacts (docs/sds.md, "Collisions"): a cell closer than contact_scale x
+   * its radius to its nearest obstacle triangle (penalty k_wall) or, for a
+   * surface cell, to its nearest boundary face with no corner at the cell or
+   * a neighbour (penalty k_contact) is pushed out along that triangle */
+  int self_collide;    /* 1: surface self-collision on (default) */
+  double contact_scale; /* contact distance / cell radius (1) */
+  double k_contact;    /* self-contact penalty: acceleration per unit depth, 1/s^2 (1000) */
   sessile_sds_obstacle obstacle; /* nf 0: none */
   uint32_t nattract;
   const double *attract_pos; /* 3 nattract, not owned */
@@ -162,12 +170,16 @@ typedef struct sessile_sds_params {
   double stable_safety; /* steps stay below this fraction of sessile_sds_stable_dt (0.5) */
 } sessile_sds_params;
 
-/* The prototype's values above; no box, no obstacle, no attraction; dt 1e-3,
+/* The prototype's values above; no box, no obstacle, no attraction;
+ * self-collision on (contact_scale 1, k_contact 1000); dt 1e-3,
  * dt_min 1e-7, dt_max 0.05, max_move 0.05, stable_safety 0.5. */
 void sessile_sds_params_default(sessile_sds_params *p);
 
 /* Energies (host): elastic (edge + volume springs), potential (gravity, box
- * and obstacle penalties, attraction), kinetic. */
+ * penalty, attraction, contact penalties), kinetic.  The contact energy of a
+ * cell is a potential in its own position (its triangle held fixed): the
+ * contact force acts on the cell only (a gather), so -grad E equals the
+ * force only where no contact is active or per cell (test_sds_collide). */
 typedef struct sessile_sds_energy {
   double edge, vol, potential, kinetic;
 } sessile_sds_energy;
@@ -180,6 +192,25 @@ double sessile_sds_energy_total(const sessile_sds_energy *e);
  * (f is then exactly -grad E). */
 void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, int with_damping,
                             double *f);
+/* The contacts of a cell (docs/sds.md, "Collisions"). */
+typedef struct sessile_sds_contact {
+  int32_t tri;  /* nearest boundary face (index into face) closer than the contact distance, without
+                   a corner at the cell or a neighbour of it; -1 none (or not a surface cell) */
+  int32_t obs;  /* nearest obstacle triangle closer than the contact distance, -1 none */
+  double s, s_obs; /* their signed distances from the cell (negative behind the triangle) */
+} sessile_sds_contact;
+/* The reference: cell c placed at xc (3) against every triangle (brute force). */
+void sessile_sds_contact_brute(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
+                               sessile_sds_contact *ct);
+/* Every cell at its position (ct: ncells) through a host spatial hash; the
+ * same triangles as the brute force (ties go to the lower index). */
+sessile_status sessile_sds_contacts(const sessile_sds *o, const sessile_sds_params *p, sessile_sds_contact *ct);
+/* Adds the contact acceleration of cell c at xc for contacts ct to acc (3):
+ * k (delta - s) along the triangle's outward direction, delta = contact_scale r_c;
+ * returns the contact energy per unit mass, k/2 (delta - s)^2 summed. */
+double sessile_sds_contact_accel(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
+                                 const sessile_sds_contact *ct, double *acc);
+
 /* One step of the integrator on the host (semi-implicit Euler = leapfrog
  * Verlet): v += dt f/m, x += dt v.  Returns max over cells of |dt v| / r. */
 double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
@@ -221,13 +252,25 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
  * simulated time.  Fails with SESSILE_ERR_NUMERIC below dt_min or on a
  * non-finite state. */
 sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed);
+/* The surface hash table of the last force evaluation (uint32: counts T,
+ * offsets T + 1, cursors T, entries F, rho bits; docs/sds.md "Collisions"),
+ * malloc'd into *table, its length into *n: for the determinism test. */
+sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, size_t *n);
+/* Times `reps` force evaluations (forces only) with and without the contact
+ * stages into ms_all, ms_nocontact (for the benchmark's share of the hash). */
+sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, double *ms_all, double *ms_nocontact);
 /* Tets with signed volume <= 0 at the uploaded state, ascending. */
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
 
-/* Times force + integrate steps for complexes of about 1 k, 10 k and 100 k
- * cells (icosphere imports), GPU against the C reference; prints per size the
- * cells, tets, ms per step on each and the ratio. */
+/* Times force + integrate steps for icosphere imports of levels 2-5 (and
+ * the Figure 9 body over its rock), GPU against the C reference, with the
+ * contact stages' share (medians of 5 repeats); prints one line per size. */
 sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
+/* Runs the shipped rock model (Figure 9) through sessile_sds_run to t_end
+ * (< 0: the model's) in a temporary run directory (removed after) and prints
+ * wall time, cells, tets, steps and the ratio to the paper's 5.7 minutes
+ * (extrapolated, and labelled so, when t_end is short of the model's). */
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, FILE *out);
 
 #ifdef __cplusplus
 }
