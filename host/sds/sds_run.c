@@ -73,6 +73,9 @@ static sessile_status read_physics(sim *s, const char *where) {
   s->p.gravity = param1(m, "gravity", 0);
   s->p.dt = param1(m, "dt", s->p.dt);
   s->density = param1(m, "density", 1);
+  double sc = param1(m, "self_collide", s->p.self_collide);
+  SESSILE_CHECK(sc == 0 || sc == 1, SESSILE_ERR_USAGE, "%s: self_collide must be 0 or 1", where);
+  s->p.self_collide = (int)sc;
   SESSILE_CHECK(s->p.k_edge >= 0 && s->p.k_vol >= 0 && s->p.surface_mult >= 0 && damping >= 0 && s->density > 0 &&
                     isfinite(s->p.gravity) && s->p.dt > 0,
                 SESSILE_ERR_USAGE, "%s: stiffnesses and damping must be >= 0, density and dt > 0", where);
