@@ -44,6 +44,12 @@ void sessile_render2d_opts_default(sessile_render2d_opts *o);
 sessile_status sessile_render_slice(const char *exr_path, const char *channel, const sessile_render2d_opts *o,
                                     const char *png_out);
 
+/* The channels of a sessile EXR slice, as "a, b, c" in the file's order
+ * (OpenEXR keeps them sorted by name), into names (n bytes); the first is
+ * what `sessile render FILE.exr` draws by default.  The same checks as
+ * sessile_render_slice (SESSILE_ERR_USAGE for anything but a sessile slice). */
+sessile_status sessile_render_slice_channels(const char *exr_path, char *names, size_t n);
+
 /* The plot area of a slice picture (pixels: left, top, width, height, with
  * the image's physical extent [u0, u1] x [v0, v1] mapped onto it, v up) —
  * what sessile_render_slice draws for this EXR and options.  For tests and
