@@ -58,6 +58,14 @@ sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max
   return SESSILE_OK;
 }
 
+/* A directory stream on a copy of fd (fd stays open); NULL on failure. */
+static DIR *list_open(int fd) {
+  int c = dup(fd);
+  DIR *d = c >= 0 ? fdopendir(c) : NULL;
+  if (!d && c >= 0) close(c);
+  return d;
+}
+
 static char *path_join(const char *a, const char *b, const char *c) {
   size_t n = strlen(a) + strlen(b) + (c ? strlen(c) : 0) + 3;
   char *p = malloc(n);
@@ -115,7 +123,7 @@ static int slice_order(const void *a, const void *b) {
 
 /* The snapshots FOLDER/PREFIXNNNN.ply, sorted by NNNN. */
 static sessile_status list_snapshots(sessile_render_plan *p, int fd) {
-  DIR *d = fdopendir(dup(fd));
+  DIR *d = list_open(fd);
   SESSILE_CHECK(d, SESSILE_ERR_IO, "cannot list '%s/%s': %s", p->run_dir, p->lay->folder, strerror(errno));
   sessile_status s = SESSILE_OK;
   int cap = 0;
@@ -150,7 +158,7 @@ static sessile_status list_slices(sessile_render_plan *p, int mfd) {
   int fd = -1;
   SESSILE_CALL(open_folder(p, "slices", &fd));
   if (fd < 0) return SESSILE_OK;
-  DIR *d = fdopendir(dup(fd));
+  DIR *d = list_open(fd);
   if (!d) {
     close(fd);
     return sessile_error_set(SESSILE_ERR_IO, "cannot list '%s/slices': %s", p->run_dir, strerror(errno));

@@ -3,7 +3,7 @@
  * Every function writes one PNG atomically (sessile/png.h), writes nothing on
  * failure, and returns a sessile_status with a one-line message in
  * sessile_error_message() (bad input: SESSILE_ERR_USAGE, exit 2 in the CLI).
- * Same input, same Cairo version: the same PNG bytes.  docs/render2d.md. */
+ * Same input, same Cairo version: the same PNG bytes.  docs/render.md. */
 #ifndef SESSILE_RENDER2D_H
 #define SESSILE_RENDER2D_H
 #include <stddef.h>
