@@ -132,6 +132,13 @@ run render "$T/s" -o "$T/elsewhere/sds" --size 320x240 --quiet
 check "-o DIR: the pictures go there (created), the run's manifest is untouched" eval \
   'rc_is 0 && [ "$(ls "$T/elsewhere/sds" | wc -l)" = 9 ] && cmp -s "$T/s/manifest.json" "$T/s.manifest" && cmp -s "$T/elsewhere/sds/final_top.png" "$T/s/renders/final_top.png"'
 
+echo precious >"$T/precious"
+rm "$T/s/renders/final_top.png"
+ln -s "$T/precious" "$T/s/renders/final_top.png"
+run render "$T/s" --size 320x240 --quiet
+check "a symlink planted at a picture's name is replaced by the picture, its target untouched" eval \
+  'rc_is 0 && [ "$(cat "$T/precious")" = precious ] && test ! -L "$T/s/renders/final_top.png" && cmp -s "$T/s/renders/final_top.png" "$T/elsewhere/sds/final_top.png"'
+
 # a run holding its folder's lock (flock on the folder, as the run framework takes it)
 rm -rf "$T/p2/renders"
 (exec 9<"$T/p2" && flock -x 9 && exec sleep 30) >/dev/null 2>&1 &
@@ -173,6 +180,8 @@ mkdir -p "$T/bad/empty" "$T/bad/alien" "$T/bad/none/sponge" "$T/victim"
 echo '{"generator": "teapot", "files": []}' >"$T/bad/alien/manifest.json"
 echo '{"generator": "grow", "files": []}' >"$T/bad/none/manifest.json"
 cp -r "$T/p2" "$T/bad/link"
+cp -r "$T/p2" "$T/bad/meshlink"
+ln -s "$T/p2/sphere/final.ply" "$T/bad/meshlink/sphere/iter_0009.ply"
 ln -s "$T/victim" "$T/bad/link/renders"
 bad() { # description, expected words, args...
   local what="$1" words="$2"; shift 2
@@ -188,6 +197,7 @@ bad "a folder without manifest" "not a sessile run directory" "$T/bad/empty"
 bad "an unknown generator" "does not know" "$T/bad/alien"
 bad "an empty run" "nothing to draw" "$T/bad/none"
 bad "a symlink planted as renders/" "symlink" "$T/bad/link"
+bad "a symlink planted as a snapshot mesh" "symlink" "$T/bad/meshlink"
 bad "-o X.png for a run" "folder" "$T/bad/link" -o "$T/bad.png"
 bad "a mesh option for a run" "not an option for a run" "$T/bad/none" --view top
 bad "an unknown channel" "no channel 'q'" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --channel q
