@@ -94,6 +94,12 @@ check "sphere: preview.png 640x480, > 200 colours" eval 'rc_is 0 && pictures 640
 run sphere --out "$T/p2" --iterations 2 --quiet
 check "... the same preview bytes from a second run" cmp -s "$T/p/preview.png" "$T/p2/preview.png"
 
+run sphere --out "$T/w" --iterations 1 --quiet
+rm "$T/w/preview.png" && mkdir "$T/w/preview.png" # the picture cannot be renamed over a folder
+run sphere --out "$T/w" --iterations 1 --quiet --force
+check "a preview that fails: one warning line, exit 0, the run complete, preview.png not listed" eval \
+  'rc_is 0 && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "^sessile sphere: warning: no preview.png" "$T/err" && grep -q "\"completed\"" "$T/w/manifest.json" && ! grep -q "\"preview.png\"" "$T/w/manifest.json"'
+
 # --- sessile render RUN_DIR ------------------------------------------------------------
 run render "$T/g" --size 320x240
 GF="final_oblique.png final_side.png final_top.png final_front.png snap_iter_0001.png snap_iter_0002.png snapshots.png plot_solver.png plot_time.png"
