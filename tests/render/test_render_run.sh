@@ -132,6 +132,20 @@ run sphere --out "$T/p" --iterations 2 --force --quiet
 check "sphere --force over the rendered run removes renders/* (listed files)" eval \
   'rc_is 0 && [ -z "$(ls -A "$T/p/renders" 2>/dev/null)" ] && test -s "$T/p/preview.png"'
 
+# the other generators' layouts (docs/render.md "Runs"): preview, views, snapshots
+V="final_front.png final_oblique.png final_side.png final_top.png"
+layout() { # description, run dir, expected pictures besides the views, generator args...
+  local what="$1" dir="$2" want="$3"; shift 3
+  run "$@" --out "$dir" --quiet
+  local gen_rc; gen_rc=$(cat "$T/rc")
+  run render "$dir" --size 160x120 --quiet
+  check "$what: preview.png, then renders/ holds the views and $want" eval \
+    '[ "$gen_rc" = 0 ] && rc_is 0 && pictures 640 480 100 "$dir/preview.png" && [ "$(ls "$dir/renders" | tr "\n" " ")" = "$(echo $V $want | tr " " "\n" | LC_ALL=C sort | tr "\n" " ")" ]'
+}
+layout "sponge particles (10 iterations)" "$T/pv" "snap_iter_0010.png snapshots.png" sponge particles --iterations 10
+layout "coral venation" "$T/vn" "snap_iter_0020.png snap_iter_0040.png snap_iter_0060.png snapshots.png" coral venation
+layout "coral lsystem (4 iterations; no snapshots)" "$T/ls" "" coral lsystem --iterations 4
+
 mkdir "$T/elsewhere"
 cp "$T/s/manifest.json" "$T/s.manifest"
 run render "$T/s" -o "$T/elsewhere/sds" --size 320x240 --quiet
