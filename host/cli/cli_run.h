@@ -12,6 +12,7 @@ typedef struct cli_run_args {
   const char **configs, **sets; /* argc entries each */
   int nconfigs, nsets;
   int print_config, force, quiet;
+  int no_preview;               /* --no-preview: no preview.png at the end */
   int have_iterations;          /* --iterations given */
   int have_run_option;          /* an option a resume must not change */
   unsigned long long seed;
@@ -30,6 +31,14 @@ sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, 
 /* Opens the run directory (new, --force or --resume) with the stop flag. */
 sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run);
+/* At the end of a completed run (before sessile_run_close), unless
+ * --no-preview: preview.png in the run directory, the mesh mesh_rel (e.g.
+ * "sponge/final.ply") from the oblique view (docs/render.md "Preview"), on
+ * g, or on a device made from go (NULL: the default) when g is NULL.  A
+ * device that cannot draw, or any failure of the picture, is one warning
+ * on stderr: the run still succeeds, without preview.png. */
+void cli_run_preview(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel,
+                     sessile_gpu *g, const cli_gpu_opts *go);
 /* The exit code after sessile_run_close returned s. */
 int cli_run_exit(const char *cmd, sessile_status s, const char *dir, const volatile sig_atomic_t *stop,
                  int iterations_done);

@@ -177,6 +177,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     }
   }
   if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r, gpu);
+  if (s == SESSILE_OK) cli_run_preview(CMD, a, run, "coral/final.ply", gpu, &go);
   sessile_gpu_destroy(gpu);
   s = sessile_run_close(run, s);
   if (s == SESSILE_OK && !a->quiet)

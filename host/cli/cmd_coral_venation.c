@@ -98,6 +98,7 @@ static int venation_main(int argc, char **argv, const cli_gpu_opts *global, cli_
   int done = 0;
   o.run = run, o.gpu = g;
   if (s == SESSILE_OK) s = sessile_venation_run(&p, &o, &done);
+  if (s == SESSILE_OK) cli_run_preview(CMD, a, run, "coral/final.ply", g, &go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(g);
   if (s == SESSILE_OK && !a->quiet) printf("coral venation: %d iterations; run in %s\n", done, dir);

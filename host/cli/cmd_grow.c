@@ -148,6 +148,7 @@ static int grow_main(int argc, char **argv, grow_args *a) {
   memset(&sum, 0, sizeof sum);
   if (s == SESSILE_OK) s = sessile_grow_run(g, &p, &a->o, NULL, &sum);
   cli_monitor_end(&mon);
+  if (s == SESSILE_OK) cli_run_preview("grow", &a->ra, run, "sponge/final.ply", g, &a->go);
   s = sessile_run_close(run, s);
   cJSON_Delete(old);
   sessile_gpu_destroy(g);

@@ -1,27 +1,38 @@
 /* `sessile render`: pictures of sessile's outputs (docs/render.md).
- * Meshes (.ply, .obj) are drawn here through Vulkan; EXR slices and run
- * directories go to the 2-D renderer (sessile/render2d.h) once it is built
- * in. */
+ * Meshes (.ply, .obj) are drawn through Vulkan and annotated with Cairo
+ * (sessile/render_run.h); EXR slices by the 2-D renderer (sessile/render2d.h);
+ * run directories by both (host/render/run_*.c). */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include "cli.h"
 #include "sessile/png.h"
+#include "sessile/render2d.h"
 #include "sessile/render_mesh.h"
+#include "sessile/render_run.h"
 
 #define CMD "render"
 
 static const char *help =
     "usage: sessile render FILE.ply|FILE.obj -o OUT.png [options]\n"
+    "       sessile render FILE.exr -o OUT.png [--channel C] [--outline FILE.ply]\n"
+    "                      [--colormap NAME] [--range LO HI] [--size WxH]\n"
+    "       sessile render RUN_DIR [-o DIR] [--size WxH]\n"
     "\n"
-    "Draws a mesh offscreen through Vulkan (any device; lavapipe on a CPU) and\n"
-    "writes a PNG: smooth shading from per-vertex normals (computed, area-weighted,\n"
-    "when the file has none) under a key and a fill light, a ground grid in cm\n"
-    "below the mesh, a camera fitted to the bounds.  Same input, same device:\n"
-    "the same PNG bytes.  docs/render.md explains the lights, views and camera.\n"
+    "Meshes are drawn offscreen through Vulkan (any device; lavapipe on a CPU):\n"
+    "smooth shading from per-vertex normals (computed, area-weighted, when the\n"
+    "file has none) under a key and a fill light, a ground grid in cm below the\n"
+    "mesh with its spacing written in the lower left corner, a camera fitted to\n"
+    "the bounds.  EXR slices (sessile grow's slices/*.exr) become a colour-mapped\n"
+    "picture with a colour bar, axes in cm and the sponge's outline.  A run\n"
+    "directory gets renders/: the final mesh from the four views, a contact sheet\n"
+    "of the snapshots, the slices, plots of records.jsonl.  Same input, same\n"
+    "device: the same PNG bytes.  docs/render.md explains it all.\n"
     "\n"
+    "Meshes:\n"
     "  -o, --out PATH        the PNG to write (required); with --turntable N the\n"
     "                        frames are PATH without .png + _000.png, _001.png ...\n"
     "  --view V              oblique (default), side, top, front\n"
@@ -30,14 +41,28 @@ static const char *help =
     "  --samples N           multisampling: 1, 4 (default) or 8, as the device allows\n"
     "  --background C        white (default), black, none (transparent), #rrggbb or #rrggbbaa\n"
     "  --color-by PROP       colour by a per-vertex PLY property through a colour map\n"
+    "                        (a colour bar with the range is drawn on the right)\n"
     "  --colormap NAME       viridis (default), magma, coolwarm (default for ranges across 0)\n"
     "  --units U             cm per mesh unit (default 1: sessile writes cm)\n"
     "  --ortho               orthographic camera (default perspective)\n"
     "  --no-grid             no ground grid\n"
+    "  --no-annotate         no text over the picture (grid label, colour bar)\n"
+    "EXR slices:\n"
+    "  -o, --out PATH        the PNG to write (required)\n"
+    "  --channel C           the channel (default: the file's first, in name order: c\n"
+    "                        for sessile grow's slices)\n"
+    "  --outline FILE.ply    the surface whose cut by the slice's plane is drawn\n"
+    "                        (default: a solid/mask/phi/sdf channel when the file has one)\n"
+    "  --colormap NAME       viridis, magma, coolwarm (default: by the data's sign)\n"
+    "  --range LO HI         the mapped range (default: the data's)\n"
+    "  --size WxH            pixels (default 800x600; 64..16384 each)\n"
+    "Run directories:\n"
+    "  -o, --out DIR         the folder (default RUN_DIR/renders, listed in the run's\n"
+    "                        manifest; refused while a run is writing RUN_DIR)\n"
+    "  --size WxH            the final mesh's views (default 1280x960)\n"
+    "All:\n"
     "  --quiet               print nothing on success\n"
-    "  --device D, --validation   the Vulkan device, the validation layer\n"
-    "\n"
-    "EXR slices and run directories: drawn by the 2-D renderer (issue 14, items 2-4).\n";
+    "  --device D, --validation   the Vulkan device, the validation layer\n";
 
 static int parse_size(const char *v, uint32_t *w, uint32_t *h) {
   char *end = NULL;
@@ -104,8 +129,14 @@ static int fail(sessile_status s) {
 typedef struct render_cli {
   const char *in, *out;
   unsigned turntable;
-  int quiet;
+  int quiet, no_annotate, have_size;
   sessile_render_options o;
+  /* slices */
+  const char *channel, *outline;
+  int have_range;
+  double lo, hi;
+  /* an option of one kind of input only, to refuse it with another */
+  const char *mesh_only, *slice_only;
 } render_cli;
 
 static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_cli *c) {
@@ -129,6 +160,8 @@ static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_c
     sessile_render_result res;
     double az = c->turntable ? 360.0 * k / frames : 0.0;
     s = sessile_mesh_renderer_draw(r, az, px, &res);
+    if (s == SESSILE_OK && !c->no_annotate)
+      s = sessile_render_annotate(px, (int)c->o.width, (int)c->o.height, &res, c->o.color_by);
     if (s != SESSILE_OK) {
       rc = fail(s);
       break;
@@ -163,33 +196,50 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
     const char *v = NULL;
 #define VALUE() do { if (!(v = cli_value(CMD, argc, argv, &i))) return EXIT_USAGE; } while (0)
     if (!strcmp(a, "-o") || !strcmp(a, "--out")) { VALUE(); c->out = v; }
-    else if (!strcmp(a, "--view")) { VALUE(); c->o.view = v; }
+    else if (!strcmp(a, "--view")) { VALUE(); c->o.view = v; c->mesh_only = a; }
+    else if (!strcmp(a, "--channel")) { VALUE(); c->channel = v; c->slice_only = a; }
+    else if (!strcmp(a, "--outline")) { VALUE(); c->outline = v; c->slice_only = a; }
+    else if (!strcmp(a, "--range")) {
+      const char *v2 = NULL;
+      VALUE();
+      if (!(v2 = cli_value(CMD, argc, argv, &i))) return EXIT_USAGE;
+      char *e1 = NULL, *e2 = NULL;
+      c->lo = strtod(v, &e1), c->hi = strtod(v2, &e2);
+      if (e1 == v || *e1 || e2 == v2 || *e2 || !isfinite(c->lo) || !isfinite(c->hi) || !(c->lo < c->hi))
+        return cli_usage_error(CMD, "--range: '%.40s %.40s' is not two finite numbers LO < HI", v, v2);
+      c->have_range = 1, c->slice_only = a;
+    } else if (!strcmp(a, "--no-annotate")) { c->no_annotate = 1; c->mesh_only = a; }
     else if (!strcmp(a, "--turntable")) {
+      c->mesh_only = a;
       VALUE();
       if (cli_parse_uint(CMD, a, v, 1, 3600, &c->turntable)) return EXIT_USAGE;
     } else if (!strcmp(a, "--size")) {
       VALUE();
       if (parse_size(v, &c->o.width, &c->o.height))
         return cli_usage_error(CMD, "--size: '%.40s' is not WxH with 1..16384 pixels each", v);
+      c->have_size = 1;
     } else if (!strcmp(a, "--samples")) {
+      c->mesh_only = a;
       VALUE();
       if (cli_parse_uint(CMD, a, v, 1, 8, &c->o.samples)) return EXIT_USAGE;
       if (c->o.samples != 1 && c->o.samples != 4 && c->o.samples != 8)
         return cli_usage_error(CMD, "--samples: use 1, 4 or 8");
     } else if (!strcmp(a, "--background")) {
+      c->mesh_only = a;
       VALUE();
       if (parse_color(v, c->o.background))
         return cli_usage_error(CMD, "--background: '%.40s' is not white, black, none, #rrggbb or #rrggbbaa", v);
-    } else if (!strcmp(a, "--color-by")) { VALUE(); c->o.color_by = v; }
+    } else if (!strcmp(a, "--color-by")) { VALUE(); c->o.color_by = v; c->mesh_only = a; }
     else if (!strcmp(a, "--colormap")) { VALUE(); c->o.colormap = v; }
     else if (!strcmp(a, "--units")) {
+      c->mesh_only = a;
       VALUE();
       char *end = NULL;
       c->o.units_cm = strtod(v, &end);
       if (end == v || *end || !(c->o.units_cm > 0 && c->o.units_cm <= 1e6))
         return cli_usage_error(CMD, "--units: '%.40s' is not a number in (0, 1e6]", v);
-    } else if (!strcmp(a, "--ortho")) c->o.ortho = 1;
-    else if (!strcmp(a, "--no-grid")) c->o.grid = 0;
+    } else if (!strcmp(a, "--ortho")) c->o.ortho = 1, c->mesh_only = a;
+    else if (!strcmp(a, "--no-grid")) c->o.grid = 0, c->mesh_only = a;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
     else {
       int r = cli_gpu_option(CMD, argc, argv, &i, go);
@@ -220,6 +270,56 @@ static int check_out(const char *out) {
   return EXIT_OK;
 }
 
+/* FILE.exr -> OUT.png (no device). */
+static int render_slice(const render_cli *c) {
+  if (c->mesh_only) return cli_usage_error(CMD, "%s is for meshes, not EXR slices", c->mesh_only);
+  if (!c->out) return cli_usage_error(CMD, "name the PNG to write with -o OUT.png");
+  if (!ends_with(c->out, ".png")) return cli_usage_error(CMD, "-o '%.200s': the output must end in .png", c->out);
+  int rc = check_out(c->out);
+  if (rc != EXIT_OK) return rc;
+  char names[1024];
+  sessile_status s = sessile_render_slice_channels(c->in, names, sizeof names);
+  if (s != SESSILE_OK) return fail(s);
+  char first[256];
+  snprintf(first, sizeof first, "%.*s", (int)strcspn(names, ","), names);
+  const char *channel = c->channel ? c->channel : first;
+  sessile_render2d_opts o;
+  sessile_render2d_opts_default(&o);
+  if (c->have_size) o.width = (int)c->o.width, o.height = (int)c->o.height;
+  o.colormap = c->o.colormap;
+  o.fixed_range = c->have_range, o.vmin = c->lo, o.vmax = c->hi;
+  o.outline_ply = c->outline;
+  s = sessile_render_slice(c->in, channel, &o, c->out);
+  if (s != SESSILE_OK) return fail(s);
+  if (!c->quiet)
+    printf("wrote %s: %dx%d, channel %s%s%s\n", c->out, o.width, o.height, channel,
+           c->channel ? "" : " (the file's first)", c->outline ? ", outline from the mesh" : "");
+  return cli_finish_stdout(EXIT_OK);
+}
+
+/* RUN_DIR -> RUN_DIR/renders or -o DIR. */
+static int render_run(const render_cli *c, const cli_gpu_opts *go) {
+  if (c->mesh_only || c->slice_only)
+    return cli_usage_error(CMD, "%s is not an option for a run directory (-o DIR, --size, --quiet)",
+                           c->mesh_only ? c->mesh_only : c->slice_only);
+  if (c->out && ends_with(c->out, ".png"))
+    return cli_usage_error(CMD, "-o '%.200s': a run directory's pictures go into a folder", c->out);
+  sessile_render_run_opts o = {.out_dir = c->out, .quiet = c->quiet};
+  if (c->have_size) o.width = c->o.width, o.height = c->o.height;
+  sessile_render_plan *p = NULL;
+  sessile_status s = sessile_render_plan_make(c->in, &o, &p);
+  if (s != SESSILE_OK) return fail(s);
+  sessile_gpu *g = NULL;
+  s = cli_gpu_create(go, &g);
+  double t0 = sessile_wall_seconds();
+  if (s == SESSILE_OK) s = sessile_render_plan_run(p, g, stdout);
+  sessile_gpu_destroy(g);
+  sessile_render_plan_destroy(p);
+  if (s != SESSILE_OK) return fail(s);
+  if (!c->quiet) printf("rendered %s in %.2f s\n", c->in, sessile_wall_seconds() - t0);
+  return cli_finish_stdout(EXIT_OK);
+}
+
 int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -235,9 +335,9 @@ int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
   struct stat st;
   if (stat(c.in, &st) != 0)
     return cli_usage_error(CMD, "cannot read '%.200s': %s", c.in, strerror(errno));
-  if (S_ISDIR(st.st_mode) || ends_with(c.in, ".exr"))
-    return cli_usage_error(CMD, "'%.200s': rendering %s is not built yet (only meshes: .ply, .obj)",
-                           c.in, S_ISDIR(st.st_mode) ? "run directories" : "EXR slices");
+  if (S_ISDIR(st.st_mode)) return render_run(&c, &go);
+  if (ends_with(c.in, ".exr")) return render_slice(&c);
+  if (c.slice_only) return cli_usage_error(CMD, "%s is for EXR slices, not meshes", c.slice_only);
   if (!c.out) return cli_usage_error(CMD, "name the PNG to write with -o OUT.png");
   if (!ends_with(c.out, ".png")) return cli_usage_error(CMD, "-o '%.200s': the output must end in .png", c.out);
   if ((rc = check_out(c.out)) != EXIT_OK) return rc;

@@ -263,6 +263,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     s = sessile_sds_run(&o, &st);
     manifest_sds(run, name, &st, s);
   }
+  if (s == SESSILE_OK) cli_run_preview(CMD, a, run, "sds/final.ply", g, &go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(g);
   if (s == SESSILE_OK && !a->quiet)

@@ -67,6 +67,7 @@ static int sphere_main(int argc, char **argv, cli_run_args *a) {
   int done = 0;
   o.run = run;
   if (s == SESSILE_OK) s = sessile_sphere_run(&p, &o, &done);
+  if (s == SESSILE_OK) cli_run_preview("sphere", a, run, "sphere/final.ply", NULL, NULL);
   s = sessile_run_close(run, s);
   if (s == SESSILE_OK && !a->quiet) printf("sphere: %d iterations; run in %s\n", done, dir);
   return cli_run_exit("sphere", s, dir, stop, done);

@@ -107,6 +107,7 @@ static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_
   double t0 = sessile_wall_seconds();
   if (s == SESSILE_OK) s = sessile_psponge_run(&p, &o, &done);
   double secs = sessile_wall_seconds() - t0;
+  if (s == SESSILE_OK) cli_run_preview(CMD, a, run, "sponge/final.ply", g, &go);
   sessile_gpu_destroy(g);
   s = sessile_run_close(run, s);
   if (s == SESSILE_OK && !a->quiet) printf("sponge particles: %d iterations in %.1f s; run in %s\n", done, secs, dir);

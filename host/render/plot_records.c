@@ -13,18 +13,20 @@
 typedef struct preset {
   const char *name, *title, *xlabel, *ylabel, *x;
   const char *y[SESSILE_PLOT_MAX_SERIES], *label[SESSILE_PLOT_MAX_SERIES];
+  const char *skip_zero; /* records with 0 at this key have no y (NULL: none) */
 } preset;
 
 static const preset presets[] = {
     {"solver", "Solver iterations per growth iteration", "growth iteration", "solver iterations", "iteration",
      {"nutrient_solve.iterations", "fluid.linear_iterations"},
-     {"nutrient (PCG + multigrid)", "flow (linear, all Newton steps)"}},
+     {"nutrient (PCG + multigrid)", "flow (linear, all Newton steps)"}, NULL},
     {"time", "Time per growth iteration", "growth iteration", "time per iteration (s)", "iteration",
      {"seconds.total", "seconds.nutrient", "seconds.fluid", "seconds.remesh", "seconds.classify", "seconds.growth",
       "seconds.output", "seconds.upload"},
-     {"total", "nutrient", "fluid", "remesh", "classify", "growth", "output", "upload"}},
+     {"total", "nutrient", "fluid", "remesh", "classify", "growth", "output", "upload"}, NULL},
+    /* frame 0 is written before any step: its ms_per_step 0 is no measurement */
     {"steps", "Time per step against cells", "cells", "time per step (ms)", "cells", {"ms_per_step"},
-     {"ms per step"}},
+     {"ms per step"}, "steps"},
 };
 
 /* The number at a dotted key ("seconds.total"), or NaN. */
@@ -52,7 +54,8 @@ static void columns_free(columns *c) {
 }
 
 /* Every record's x and y values (NaN where a record lacks a key). */
-static sessile_status read_records(const char *path, const char *x, const char *const *y, int ny, columns *c) {
+static sessile_status read_records(const char *path, const char *x, const char *const *y, int ny,
+                                   const char *skip_zero, columns *c) {
   FILE *f = fopen(path, "r");
   SESSILE_CHECK(f, SESSILE_ERR_USAGE, "cannot read '%s': %s", path, strerror(errno));
   sessile_status st = SESSILE_OK;
@@ -79,7 +82,8 @@ static sessile_status read_records(const char *path, const char *x, const char *
     }
     if (st == SESSILE_OK) {
       c->v[0][c->n] = get_number(rec, x);
-      for (int k = 0; k < ny; k++) c->v[1 + k][c->n] = get_number(rec, y[k]);
+      int skip = skip_zero && get_number(rec, skip_zero) == 0;
+      for (int k = 0; k < ny; k++) c->v[1 + k][c->n] = skip ? NAN : get_number(rec, y[k]);
       c->n++;
     }
     cJSON_Delete(rec);
@@ -120,7 +124,7 @@ sessile_status sessile_render_plot_records(const char *records_jsonl, const char
   int ny = 0;
   while (ny < SESSILE_PLOT_MAX_SERIES && pr->y[ny]) ny++;
   columns c = {0};
-  sessile_status st = read_records(records_jsonl, pr->x, pr->y, ny, &c);
+  sessile_status st = read_records(records_jsonl, pr->x, pr->y, ny, pr->skip_zero, &c);
   sessile_plot p = {.title = pr->title, .xlabel = pr->xlabel, .ylabel = pr->ylabel};
   for (int k = 0; st == SESSILE_OK && k < ny; k++) { /* series absent from every record are left out */
     int any = 0;

@@ -1,12 +1,12 @@
 /* sessile render — the sponge's outline on a slice: marching squares on an
- * outline channel of the slice, or the exact cut of the surface mesh (a
- * sessile PLY) by the slice's plane. */
-#include <errno.h>
+ * outline channel of the slice, or the exact cut of the surface mesh (PLY or
+ * OBJ, read by the mesh renderer's reader) by the slice's plane. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "sessile/render_mesh.h"
 #include "slice_internal.h"
 
 void seg_list_free(seg_list *s) {
@@ -75,101 +75,21 @@ sessile_status slice_contour(const slice_image *im, const float *f, double level
 }
 
 /* --- the mesh cut ------------------------------------------------------------ */
-/* sessile's PLY (host/io/mesh_write.c): binary little-endian, float vertex
- * properties (x y z first), faces as "list uchar uint|int".  Only that is
- * read here; the mesh renderer's general reader can replace this one. */
-typedef struct ply_mesh {
-  float *v; /* nv x nprop */
-  uint32_t nv, nprop;
-  uint32_t *tri; /* nt x 3 (polygons fanned) */
-  size_t nt;
-} ply_mesh;
-
-static void ply_free(ply_mesh *m) {
-  free(m->v);
-  free(m->tri);
-}
-
-#define PLY_FAIL(...)                                        \
-  do {                                                       \
-    st = sessile_error_set(SESSILE_ERR_USAGE, __VA_ARGS__);  \
-    goto done;                                               \
-  } while (0)
-
-static sessile_status ply_read(const char *path, ply_mesh *m) {
-  memset(m, 0, sizeof *m);
-  FILE *f = fopen(path, "rb");
-  SESSILE_CHECK(f, SESSILE_ERR_USAGE, "cannot read the outline mesh '%s': %s", path, strerror(errno));
-  sessile_status st = SESSILE_OK;
-  char line[512];
-  int in_vertex = 0, in_face = 0, face_ok = 0, xyz = 0;
-  unsigned long long nv = 0, nf = 0;
-  if (!fgets(line, sizeof line, f) || strcmp(line, "ply\n")) PLY_FAIL("'%s' is not a PLY file", path);
-  for (;;) {
-    if (!fgets(line, sizeof line, f)) PLY_FAIL("'%s': the PLY header has no end_header", path);
-    char a[64], b[64], c[64], d[64];
-    if (!strcmp(line, "end_header\n")) break;
-    if (sscanf(line, "format %63s", a) == 1) {
-      if (strcmp(a, "binary_little_endian")) PLY_FAIL("'%s': only binary little-endian PLY is read for outlines (got %s)", path, a);
-    } else if (!strncmp(line, "element ", 8)) {
-      unsigned long long cnt = 0;
-      if (sscanf(line, "element %63s %llu", a, &cnt) != 2) PLY_FAIL("'%s': a bad PLY element line", path);
-      in_vertex = !strcmp(a, "vertex"), in_face = !strcmp(a, "face");
-      if (!in_vertex && !in_face) PLY_FAIL("'%s': a PLY element other than vertex and face", path);
-      if (in_vertex) nv = cnt;
-      else nf = cnt;
-    } else if (in_vertex && sscanf(line, "property %63s %63s", a, b) == 2) {
-      if (strcmp(a, "float")) PLY_FAIL("'%s': vertex property '%s' is not float", path, b);
-      if (m->nprop < 3 && !strcmp(b, (const char *[]){"x", "y", "z"}[m->nprop])) xyz++;
-      m->nprop++;
-    } else if (in_face && sscanf(line, "property list %63s %63s %63s", a, c, d) == 3) {
-      face_ok = !strcmp(a, "uchar") && (!strcmp(c, "uint") || !strcmp(c, "int"));
-    }
-  }
-  if (xyz != 3 || !face_ok || nv == 0 || nv > (1u << 28) || nf > (1u << 28))
-    PLY_FAIL("'%s': not a sessile PLY surface (float x y z, faces as list uchar uint; %llu vertices)", path, nv);
-  m->nv = (uint32_t)nv;
-  m->v = malloc((size_t)nv * m->nprop * sizeof(float));
-  m->tri = malloc((size_t)nf * 3 * sizeof(uint32_t));
-  if (!m->v || (nf && !m->tri)) {
-    st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory reading '%s'", path);
-    goto done;
-  }
-  if (fread(m->v, sizeof(float) * m->nprop, m->nv, f) != m->nv) PLY_FAIL("'%s': the PLY is truncated", path);
-  size_t cap = nf;
-  for (unsigned long long k = 0; k < nf; k++) {
-    unsigned char cnt;
-    uint32_t idx[256];
-    if (fread(&cnt, 1, 1, f) != 1 || fread(idx, 4, cnt, f) != cnt) PLY_FAIL("'%s': the PLY is truncated", path);
-    for (int q = 0; q < cnt; q++)
-      if (idx[q] >= m->nv) PLY_FAIL("'%s': face %llu names vertex %u of %u", path, k, idx[q], m->nv);
-    for (int q = 1; q + 1 < cnt; q++) {
-      if (m->nt == cap) {
-        uint32_t *t = realloc(m->tri, (cap = 2 * cap + 16) * 3 * sizeof *t);
-        if (!t) {
-          st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory reading '%s'", path);
-          goto done;
-        }
-        m->tri = t;
-      }
-      uint32_t *t = m->tri + 3 * m->nt++;
-      t[0] = idx[0], t[1] = idx[q], t[2] = idx[q + 1];
-    }
-  }
-done:
-  fclose(f);
-  if (st != SESSILE_OK) ply_free(m);
-  return st;
-}
-
+/* The surface is read by the mesh renderer's reader (sessile/render_mesh.h:
+ * ascii and binary PLY of either byte order, OBJ), which checks counts,
+ * indices and coordinates; its normals are not needed here. */
 sessile_status slice_cut_ply(const slice_image *im, const char *ply_path, seg_list *out) {
-  ply_mesh m;
-  SESSILE_CALL(ply_read(ply_path, &m));
-  sessile_status st = SESSILE_OK;
-  for (size_t t = 0; st == SESSILE_OK && t < m.nt; t++) {
+  sessile_render_mesh *m = NULL;
+  sessile_status st = sessile_render_mesh_read(ply_path, &m);
+  if (st != SESSILE_OK) {
+    char msg[1100];
+    snprintf(msg, sizeof msg, "%s", sessile_error_message());
+    return sessile_error_set(st, "the outline mesh: %s", msg);
+  }
+  for (size_t t = 0; st == SESSILE_OK && t < m->nf; t++) {
     double p[3][3], d[3];
     for (int k = 0; k < 3; k++) {
-      const float *q = m.v + (size_t)m.tri[3 * t + k] * m.nprop;
+      const float *q = m->pos + (size_t)m->tri[3 * t + k] * 3;
       d[k] = 0;
       for (int a = 0; a < 3; a++) {
         p[k][a] = q[a] - im->origin[a];
@@ -191,6 +111,6 @@ sessile_status slice_cut_ply(const slice_image *im, const char *ply_path, seg_li
     }
     if (n == 2) st = seg_add(out, pu[0], pv[0], pu[1], pv[1]);
   }
-  ply_free(&m);
+  sessile_render_mesh_destroy(m);
   return st;
 }

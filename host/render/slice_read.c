@@ -185,3 +185,33 @@ done:
   if (st != SESSILE_OK) slice_image_free(im);
   return st;
 }
+
+sessile_status sessile_render_slice_channels(const char *path, char *names, size_t n) {
+  SESSILE_CHECK(names && n > 0, SESSILE_ERR_INTERNAL, "no room for the channel names");
+  names[0] = 0;
+  SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "no slice file given");
+  SESSILE_CHECK(access(path, R_OK) == 0, SESSILE_ERR_USAGE, "cannot read '%s': %s", path, strerror(errno));
+  sessile_status st = SESSILE_OK;
+  exr_context_t ctx = NULL;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = on_exr_error;
+  exr_msg[0] = 0;
+  if (exr_start_read(&ctx, path, &init) != EXR_ERR_SUCCESS) {
+    ctx = NULL;
+    FAIL(SESSILE_ERR_USAGE, "'%s' is not an EXR file that OpenEXR can read: %s", path, exr_msg);
+  }
+  int parts = 0;
+  const char *pname = NULL, *plane = NULL;
+  int32_t plen = 0;
+  exr_get_count(ctx, &parts);
+  if (parts != 1 || exr_get_name(ctx, 0, &pname) != EXR_ERR_SUCCESS || !pname || strcmp(pname, "slice") ||
+      exr_attr_get_string(ctx, 0, "sessile:plane", &plen, &plane) != EXR_ERR_SUCCESS)
+    FAIL(SESSILE_ERR_USAGE, "'%s' is not a sessile slice (one part named 'slice' with sessile:plane expected)", path);
+  const exr_attr_chlist_t *cl = NULL;
+  exr_get_channels(ctx, 0, &cl);
+  if (!cl || cl->num_channels < 1) FAIL(SESSILE_ERR_USAGE, "'%s' has no channel", path);
+  channel_list(cl, names, n);
+done:
+  if (ctx) exr_finish(&ctx);
+  return st;
+}

@@ -1,5 +1,5 @@
-/* A small driver of the 2-D pictures (sessile/render2d.h) until `sessile
- * render` calls them:
+/* A small driver of the 2-D pictures (sessile/render2d.h) by hand; `sessile
+ * render` draws slices and runs, and this also makes contact sheets of any PNGs:
  *   render2d_tool slice EXR CHANNEL OUT.png [PLY]
  *   render2d_tool plot RECORDS.jsonl WHAT OUT.png
  *   render2d_tool sheet OUT.png COLS PNG CAPTION [PNG CAPTION ...]

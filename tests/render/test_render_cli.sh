@@ -102,8 +102,8 @@ bad "unknown colour map" "$T/tri.ply" -o "$T/bad.png" --color-by c --colormap je
 bad "no -o" "$T/tri.ply"
 bad "output not .png" "$T/tri.ply" -o "$T/bad.jpg"
 bad "output folder missing" "$T/tri.ply" -o "$T/no/bad.png"
-bad "EXR slices: not built yet" "$T/slice.exr" -o "$T/bad.png"
-bad "run directories: not built yet" "$T/sph" -o "$T/bad.png"
+bad "an empty .exr file" "$T/slice.exr" -o "$T/bad.png"
+bad "a run directory with -o X.png" "$T/sph" -o "$T/bad.png"
 run render "$T/tri.ply" -o "$T/c.png" --color-by c --size 64x48
 check "--color-by an existing property works (viridis over [1, 3])" eval 'rc_is 0 && grep -q "viridis by c over \[1, 3\]" "$T/out"'
 

@@ -86,6 +86,8 @@ int main(void) {
             3 * cells[k], ms[k]);
     if (k == 2) fprintf(f, "\n{\"frame\":99,\"note\":\"no timing\"}\n");
   }
+  /* a frame written before any step (steps 0): no time per step, so no point */
+  if (f) fprintf(f, "{\"frame\":5,\"cells\":2000,\"steps\":0,\"ms_per_step\":0}\n");
   if (f) fclose(f);
   t_ok("plot records preset steps", sessile_render_plot_records(P("records.jsonl"), "steps", &o, P("steps.png")));
   sessile_plot ps = {"", "", "", 1, {{"", cells, ms, 5}}};
@@ -96,6 +98,8 @@ int main(void) {
     int worst = 0;
     for (int k = 0; k < 5; k++) worst = (int)fmax(worst, t_rgb_diff(px_at(&img, &L, cells[k], ms[k]), blue));
     t_check("steps: the 5 records' markers at their pixels (max level diff)", worst, 1);
+    t_true("a record with steps 0 is no point: no line toward (2000, 0) (its midpoint is not blue)",
+           t_rgb_diff(px_at(&img, &L, 2950, 4.1), blue) > 40);
     free(img.px);
   } else t_true("steps PNG reads back", 0);
   t_ok("plot records by keys", sessile_render_plot_records(P("records.jsonl"), "time:cells,tets", &o, P("keys.png")));

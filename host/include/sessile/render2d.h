@@ -3,7 +3,7 @@
  * Every function writes one PNG atomically (sessile/png.h), writes nothing on
  * failure, and returns a sessile_status with a one-line message in
  * sessile_error_message() (bad input: SESSILE_ERR_USAGE, exit 2 in the CLI).
- * Same input, same Cairo version: the same PNG bytes.  docs/render2d.md. */
+ * Same input, same Cairo version: the same PNG bytes.  docs/render.md. */
 #ifndef SESSILE_RENDER2D_H
 #define SESSILE_RENDER2D_H
 #include <stddef.h>
@@ -43,6 +43,12 @@ void sessile_render2d_opts_default(sessile_render2d_opts *o);
  * in cm, and the sponge's outline (see the options).  o may be NULL. */
 sessile_status sessile_render_slice(const char *exr_path, const char *channel, const sessile_render2d_opts *o,
                                     const char *png_out);
+
+/* The channels of a sessile EXR slice, as "a, b, c" in the file's order
+ * (OpenEXR keeps them sorted by name), into names (n bytes); the first is
+ * what `sessile render FILE.exr` draws by default.  The same checks as
+ * sessile_render_slice (SESSILE_ERR_USAGE for anything but a sessile slice). */
+sessile_status sessile_render_slice_channels(const char *exr_path, char *names, size_t n);
 
 /* The plot area of a slice picture (pixels: left, top, width, height, with
  * the image's physical extent [u0, u1] x [v0, v1] mapped onto it, v up) —

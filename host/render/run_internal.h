@@ -1,0 +1,60 @@
+/* sessile render — a run directory's pictures: the plan (run_plan.c: what a
+ * generator's run holds and what to draw) shared with run_render.c (drawing). */
+#ifndef SESSILE_RUN_RENDER_INTERNAL_H
+#define SESSILE_RUN_RENDER_INTERNAL_H
+#include "sessile/render_run.h"
+
+/* Where a generator writes its meshes (docs/render.md "Runs"). */
+typedef struct rp_layout {
+  const char *generator;   /* the manifest's "generator" */
+  const char *folder;      /* meshes: FOLDER/final.ply and FOLDER/PREFIXNNNN.ply */
+  const char *snap_prefix; /* "iter_", "frame_", or NULL: no snapshots */
+  const char *snap_word;   /* caption: "iteration 10", "frame 3" */
+  int slices;              /* slices/iter_NNNN_PLANE.exr with FOLDER/iter_NNNN.ply as outline */
+  const char *plots[2];    /* records.jsonl presets (render2d.h) */
+} rp_layout;
+
+typedef struct rp_snap {
+  int index;         /* NNNN */
+  char *mesh;        /* path */
+  char caption[96];
+} rp_snap;
+
+typedef struct rp_slice {
+  int index;
+  char *exr, *outline; /* outline: the snapshot's mesh, or NULL */
+  char base[160];      /* "iter_0002_y" */
+  int all_channels;    /* the last snapshot's slices: every channel */
+} rp_slice;
+
+/* At most this many snapshots go on the contact sheet (evenly spaced, the
+ * first and the last included): 12 rows of 4 tiles of 320 x 240 fit the
+ * sheet's 16384-pixel limit with room to spare. */
+#define RP_MAX_TILES 48
+#define RP_TILE_W 320
+#define RP_TILE_H 240
+#define RP_SHEET_COLS 4
+
+struct sessile_render_plan {
+  char *run_dir, *out_dir;
+  int listed;   /* out_dir is RUN/renders: its files go into the manifest */
+  int dfd;      /* the run folder (flocked when listed) */
+  int running;  /* a run held the lock when planned (read-only plans only) */
+  const rp_layout *lay;
+  char *final_mesh; /* FOLDER/final.ply, or the last snapshot when the run has none yet */
+  int final_is_snapshot;
+  rp_snap *snaps;
+  int nsnaps;
+  rp_slice *slices;
+  int nslices;
+  char *records; /* records.jsonl, or NULL */
+  uint32_t width, height;
+  int quiet;
+  char **written; /* names written into out_dir */
+  int nwritten;
+};
+
+/* Reads a small regular file name in the folder dfd without following a
+ * symlink: *text NULL when absent. */
+sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max, char **text, size_t *len);
+#endif
