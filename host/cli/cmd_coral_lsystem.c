@@ -35,6 +35,7 @@ static const char *help =
     "  --seed N        seed of every random choice, 0..2^64-1 (default 1)\n"
     "  --out DIR       run directory (default runs/coral-lsystem); must be new or empty\n"
     "  --force         replace the earlier run in DIR\n"
+    "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "A derivation has no iterations to resume: --resume and --every are refused.\n"
     "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input (one line on stderr).\n";
 

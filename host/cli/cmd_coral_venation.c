@@ -28,6 +28,7 @@ static const char *help =
     "  --iterations N  iterations (default 60)      --every K  snapshot interval (default 20)\n"
     "  --out DIR       run directory (default runs/coral-venation); must be new or empty\n"
     "  --force         replace the earlier run in DIR     --resume DIR  continue it\n"
+    "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "  --device D      the device of the nearest-node search (search=gpu)\n"
     "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
 

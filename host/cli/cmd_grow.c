@@ -54,6 +54,7 @@ static const char *help =
     "                    'z=3.5,y=19.2' at given heights in cm, or '' for none\n"
     "  --no-fields       no VTU volume fields\n"
     "  --quiet           no progress output (warnings still go to stderr)\n"
+    "  --no-preview      no preview.png at the end of the run (docs/render.md)\n"
     "\n"
     "The run directory (docs/run.md) holds manifest.json (state, pid, host, command,\n"
     "times, every parameter, device, totals, the files of the run), records.jsonl (one\n"

@@ -36,6 +36,7 @@ static const char *help =
     "  --seed N        seed of the division directions where a gradient vanishes (default 1)\n"
     "  --out DIR       run directory (default runs/sds-MODEL); must be new or empty\n"
     "  --force         replace the earlier run in DIR\n"
+    "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "  --resume DIR    continue the run in DIR from its checkpoint (written at every frame\n"
     "                  and when SIGINT/SIGTERM stops it) with its own model and options; the\n"
     "                  outputs are the same bytes as a run that never stopped (same device).\n"

@@ -20,6 +20,7 @@ static const char *help =
     "  --iterations N  iterations (default 10)      --every K  snapshot interval (default 5)\n"
     "  --out DIR       run directory (default runs/sphere); must be new or empty\n"
     "  --force         replace the earlier run in DIR     --resume DIR  continue it\n"
+    "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
 
 static int sphere_main(int argc, char **argv, cli_run_args *a) {

@@ -29,6 +29,7 @@ static const char *help =
     "  --iterations N  iterations (default 50)      --every K  snapshot interval (default 10)\n"
     "  --out DIR       run directory (default runs/sponge); must be new or empty\n"
     "  --force         replace the earlier run in DIR     --resume DIR  continue it\n"
+    "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "  --check         check every iteration: closed 2-manifold, no self-intersection\n"
     "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n";
 
