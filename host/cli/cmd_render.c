@@ -21,6 +21,7 @@ static const char *help =
     "       sessile render FILE.exr -o OUT.png [--channel C] [--outline FILE.ply]\n"
     "                      [--colormap NAME] [--range LO HI] [--size WxH]\n"
     "       sessile render RUN_DIR [-o DIR] [--size WxH]\n"
+    "       sessile render --sheet COLS -o OUT.png A.png [--caption TEXT] B.png ...\n"
     "\n"
     "Meshes are drawn offscreen through Vulkan (any device; lavapipe on a CPU):\n"
     "smooth shading from per-vertex normals (computed, area-weighted, when the\n"
@@ -60,6 +61,13 @@ static const char *help =
     "  -o, --out DIR         the folder (default RUN_DIR/renders, listed in the run's\n"
     "                        manifest; refused while a run is writing RUN_DIR)\n"
     "  --size WxH            the final mesh's views (default 1280x960)\n"
+    "Contact sheets (no device; the options below only):\n"
+    "  --sheet COLS          tile the PNGs given, in order, in rows of COLS (1..1000);\n"
+    "                        each cell is the largest picture's size plus a 22-pixel\n"
+    "                        caption strip, 8 pixels apart; pictures are copied pixel\n"
+    "                        for pixel, never scaled; at most 16384 pixels a side\n"
+    "  -o, --out PATH        the PNG to write (required)\n"
+    "  --caption TEXT        the caption under the picture named just before it\n"
     "All:\n"
     "  --quiet               print nothing on success\n"
     "  --device D, --validation   the Vulkan device, the validation layer\n";
@@ -320,12 +328,64 @@ static int render_run(const render_cli *c, const cli_gpu_opts *go) {
   return cli_finish_stdout(EXIT_OK);
 }
 
+/* --sheet COLS -o OUT.png A.png [--caption T] B.png ...: a contact sheet of
+ * PNGs (sessile_render_contact_sheet; no device).  Its own parser, so that
+ * no mesh, slice or device option is silently ignored here. */
+static int render_sheet(int argc, char **argv) {
+  const char *out = NULL;
+  unsigned cols = 0;
+  int quiet = 0, n = 0;
+  const char **paths = calloc((size_t)argc, sizeof *paths);
+  const char **caps = calloc((size_t)argc, sizeof *caps);
+  int rc = EXIT_OK;
+  if (!paths || !caps) {
+    fprintf(stderr, "sessile " CMD ": error: out of host memory\n");
+    rc = EXIT_RUNTIME;
+  }
+  for (int i = 1; i < argc && rc == EXIT_OK; i++) {
+    const char *a = argv[i], *v = NULL;
+    if (!strcmp(a, "--sheet")) {
+      if (!(v = cli_value(CMD, argc, argv, &i)) || cli_parse_uint(CMD, a, v, 1, 1000, &cols)) rc = EXIT_USAGE;
+    } else if (!strcmp(a, "-o") || !strcmp(a, "--out")) {
+      if (!(v = cli_value(CMD, argc, argv, &i))) rc = EXIT_USAGE;
+      else out = v;
+    } else if (!strcmp(a, "--caption")) {
+      if (!(v = cli_value(CMD, argc, argv, &i))) rc = EXIT_USAGE;
+      else if (n == 0) rc = cli_usage_error(CMD, "--caption '%.60s' before any picture: it follows its picture", v);
+      else if (caps[n - 1]) rc = cli_usage_error(CMD, "two captions for '%.200s'", paths[n - 1]);
+      else caps[n - 1] = v;
+    } else if (!strcmp(a, "--quiet")) quiet = 1;
+    else if (a[0] == '-' && a[1])
+      rc = cli_usage_error(CMD, "'%.60s' is not an option of --sheet (-o, --caption, --quiet)", a);
+    else paths[n++] = a;
+  }
+  if (rc == EXIT_OK && !out) rc = cli_usage_error(CMD, "name the sheet to write with -o OUT.png");
+  if (rc == EXIT_OK && !ends_with(out, ".png"))
+    rc = cli_usage_error(CMD, "-o '%.200s': the output must end in .png", out);
+  if (rc == EXIT_OK && n == 0) rc = cli_usage_error(CMD, "--sheet: name the PNGs to tile");
+  if (rc == EXIT_OK) rc = check_out(out);
+  if (rc == EXIT_OK) {
+    sessile_status s = sessile_render_contact_sheet(paths, caps, n, (int)cols, out);
+    if (s != SESSILE_OK) rc = fail(s);
+  }
+  if (rc == EXIT_OK && !quiet) {
+    unsigned c = cols < (unsigned)n ? cols : (unsigned)n, rows = ((unsigned)n + c - 1) / c;
+    printf("wrote %s: %d picture%s in %u column%s, %u row%s\n", out, n, n == 1 ? "" : "s", c, c == 1 ? "" : "s",
+           rows, rows == 1 ? "" : "s");
+  }
+  free(paths);
+  free(caps);
+  return cli_finish_stdout(rc);
+}
+
 int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
   for (int i = 1; i < argc; i++)
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
       return cli_finish_stdout(EXIT_OK);
     }
+  for (int i = 1; i < argc; i++)
+    if (!strcmp(argv[i], "--sheet")) return render_sheet(argc, argv);
   render_cli c = {0};
   sessile_render_options_default(&c.o);
   cli_gpu_opts go = *global;
