@@ -36,6 +36,7 @@ import os
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 
@@ -50,7 +51,6 @@ for _mod in ("numpy", "scipy"):
 import numpy as np  # noqa: E402
 
 import metrics  # noqa: E402
-import render  # noqa: E402
 
 PARTS = ("grid", "box", "sweeps", "species")
 # Every run: no snapshots but the last, no VTU fields, no slices, no flow
@@ -623,26 +623,35 @@ def analyse_species(P, runs):
 # Pictures
 # ---------------------------------------------------------------------------
 
-def pictures(P, runs, out, picdir):
-    """One picture per species and seed, all at one scale, and a sheet of them."""
+def render_png(sessile, args):
+    """`sessile render ARGS --quiet`; raises RuntimeError with its one-line message."""
+    p = subprocess.run([sessile.path, "render"] + args + ["--quiet"], stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        raise RuntimeError(p.stderr.strip() or f"sessile render exited {p.returncode}")
+
+
+def pictures(P, runs, out, picdir, sessile):
+    """Every species' final surface per seed and a sheet of them, drawn by
+    `sessile render` (docs/render.md): 640 x 480, oblique, the grid's spacing
+    written in the corner; the sheet of 320 x 240 tiles (crella above radiate,
+    seeds left to right) by `sessile render --sheet`, captioned with the height.
+    The camera is fitted to each surface, so the pictures are not at one scale:
+    the grid label and the caption give it."""
     os.makedirs(picdir, exist_ok=True)
-    surfaces = {}
-    for (sp, s), r in runs.items():
-        surfaces[(sp, s)] = metrics.read_ply(os.path.join(r.folder(out), "sponge", "final.ply"))
-    ext = 0.0
-    for V, _ in surfaces.values():
-        span = V.max(axis=0) - V.min(axis=0)
-        ext = max(ext, 0.6 * float(np.hypot(span[0], span[1])), 0.55 * float(span[2]) * 480 / 360)
-    files, imgs = {}, []
-    for sp in ("crella", "radiate"):
-        for s in P.species_seeds:
-            V, F = surfaces[(sp, s)]
-            img = render.render(V, F, extent=ext)
-            name = f"{sp}-seed{s}.png"
-            render.write_png(os.path.join(picdir, name), img)
-            files[f"{sp}-{s}"] = name
-            imgs.append(render.render(V, F, width=240, height=180, extent=ext))
-    render.write_png(os.path.join(picdir, "species.png"), render.sheet(imgs, len(P.species_seeds)))
+    files, tiles = {}, []
+    with tempfile.TemporaryDirectory(prefix="study-tiles-") as tmp:
+        for sp in ("crella", "radiate"):
+            for s in P.species_seeds:
+                r = runs[(sp, s)]
+                ply = os.path.join(r.folder(out), "sponge", "final.ply")
+                name = f"{sp}-seed{s}.png"
+                render_png(sessile, [ply, "-o", os.path.join(picdir, name), "--size", "640x480"])
+                files[f"{sp}-{s}"] = name
+                tile = os.path.join(tmp, name)
+                render_png(sessile, [ply, "-o", tile, "--size", "320x240"])
+                tiles += [tile, "--caption", f"{sp} {s}: {r.metrics['height_cm']:.1f} cm tall"]
+        render_png(sessile, ["--sheet", str(len(P.species_seeds)), "-o", os.path.join(picdir, "species.png")] + tiles)
     files["sheet"] = "species.png"
     return files
 
@@ -898,7 +907,8 @@ def report_species(P, sp, picfiles, picrel):
         L.append(f"- {label}: crella's is {word} by {fnum(abs(t['mean_diff']), 3)} on average ({tests}): {verdict}.")
     if picfiles:
         L.append("")
-        L.append(f"Final surfaces, one scale (top row crella, bottom row radiate; seeds left to right): "
+        L.append(f"Final surfaces by `sessile render`, each fitted to its sponge (grid label and caption give the "
+                 f"scale; top row crella, bottom row radiate; seeds left to right): "
                  f"![species]({picrel}/{picfiles['sheet']})")
         L.append("")
         L.append(" · ".join(f"[{key}]({picrel}/{f})" for key, f in picfiles.items() if key != "sheet"))
@@ -1073,7 +1083,11 @@ def main(argv=None):
     picfiles = {}
     if "species" in parts:
         log("rendering the species' final surfaces")
-        picfiles = pictures(P, runs_by_part["species"], out, picdir)
+        try:
+            picfiles = pictures(P, runs_by_part["species"], out, picdir, sessile)
+        except RuntimeError as e:  # e.g. a device without graphics: keep the numbers' report
+            log(f"warning: no pictures of the surfaces (sessile render: {e})")
+            picfiles = {}
     try:
         plotfiles = plots(results, runs_by_part, out, picdir)
     except Exception as e:  # the plots are an extra: never lose the report to them
