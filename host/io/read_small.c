@@ -32,3 +32,33 @@ sessile_status sessile_read_small_file(const char *path, size_t max, const char 
   *text = t, *len = n;
   return SESSILE_OK;
 }
+
+sessile_status sessile_read_small_file_at(int dfd, const char *name, const char *shown, size_t max, char **text,
+                                          size_t *len) {
+  *text = NULL, *len = 0;
+  int fd = openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0 && errno == ENOENT) return SESSILE_OK;
+  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot read %s: %s%s", shown, strerror(errno),
+                errno == ELOOP ? " (a symlink: refused)" : "");
+  struct stat st;
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (uint64_t)st.st_size > (uint64_t)max) {
+    close(fd);
+    return sessile_error_set(SESSILE_ERR_USAGE, "%s is not a regular file of at most %zu bytes", shown, max);
+  }
+  char *t = malloc((size_t)st.st_size + 1);
+  if (!t) {
+    close(fd);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory reading %s", shown);
+  }
+  size_t n = 0;
+  while (n < (size_t)st.st_size) {
+    ssize_t k = read(fd, t + n, (size_t)st.st_size - n);
+    if (k < 0 && errno == EINTR) continue;
+    if (k <= 0) break;
+    n += (size_t)k;
+  }
+  close(fd);
+  t[n] = 0;
+  *text = t, *len = n;
+  return SESSILE_OK;
+}

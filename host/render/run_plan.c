@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "sessile/io.h"
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -28,34 +29,9 @@ static const rp_layout layouts[] = {
 };
 
 sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max, char **text, size_t *len) {
-  *text = NULL;
-  *len = 0;
-  int fd = openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0 && errno == ENOENT) return SESSILE_OK;
-  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot read '%s/%s': %s%s", dir, name, strerror(errno),
-                errno == ELOOP ? " (a symlink: refused)" : "");
-  struct stat st;
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size > max) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_USAGE, "'%s/%s' is not a regular file of at most %zu bytes", dir, name, max);
-  }
-  char *buf = malloc((size_t)st.st_size + 1);
-  if (!buf) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory reading '%s/%s'", dir, name);
-  }
-  size_t got = 0;
-  while (got < (size_t)st.st_size) {
-    ssize_t k = read(fd, buf + got, (size_t)st.st_size - got);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) break;
-    got += (size_t)k;
-  }
-  close(fd);
-  buf[got] = 0;
-  *text = buf;
-  *len = got;
-  return SESSILE_OK;
+  char shown[600];
+  snprintf(shown, sizeof shown, "'%.400s/%.150s'", dir, name);
+  return sessile_read_small_file_at(dfd, name, shown, max, text, len);
 }
 
 /* A directory stream on a copy of fd (fd stays open); NULL on failure. */

@@ -90,35 +90,9 @@ static int folder_empty(int dfd) {
 
 /* Reads a small regular file inside the folder (no symlink, FIFO or device). */
 sessile_status run_read_file(int dfd, const char *name, size_t max, char **text, size_t *len) {
-  *text = NULL;
-  *len = 0;
-  int fd = openat(dfd, name, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0 && errno == ENOENT) return SESSILE_OK;
-  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot read '%s' in the run directory: %s%s", name,
-                strerror(errno), errno == ELOOP ? " (a symlink: refused)" : "");
-  struct stat st;
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || (size_t)st.st_size > max) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_USAGE, "'%s' in the run directory is not a regular file of at "
-                                                "most %zu bytes", name, max);
-  }
-  char *buf = malloc((size_t)st.st_size + 1);
-  if (!buf) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory reading '%s'", name);
-  }
-  size_t got = 0;
-  while (got < (size_t)st.st_size) {
-    ssize_t k = read(fd, buf + got, (size_t)st.st_size - got);
-    if (k < 0 && errno == EINTR) continue;
-    if (k <= 0) break;
-    got += (size_t)k;
-  }
-  close(fd);
-  buf[got] = 0;
-  *text = buf;
-  *len = got;
-  return SESSILE_OK;
+  char shown[300];
+  snprintf(shown, sizeof shown, "'%.200s' in the run directory", name);
+  return sessile_read_small_file_at(dfd, name, shown, max, text, len);
 }
 
 /* The lock is an flock on the folder itself: taking it creates nothing, so

@@ -46,6 +46,12 @@ sessile_status sessile_write_file_atomic(const char *path, const void *data, siz
  * file of at most max bytes, opened so that a FIFO or device cannot hang
  * (SESSILE_ERR_USAGE naming `what` and the path otherwise). */
 sessile_status sessile_read_small_file(const char *path, size_t max, const char *what, char **text, size_t *len);
+/* The same for `name` inside the folder open at dfd, never through a
+ * symlink (O_NOFOLLOW); a missing file is SESSILE_OK with *text NULL.
+ * `shown` names the file in messages (e.g. "'manifest.json' in the run
+ * directory"). */
+sessile_status sessile_read_small_file_at(int dfd, const char *name, const char *shown, size_t max, char **text,
+                                          size_t *len);
 /* mkdir -p; fails with SESSILE_ERR_IO naming the folder and errno's text. */
 sessile_status sessile_mkdirs(const char *path);
 
