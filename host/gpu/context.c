@@ -165,26 +165,29 @@ sessile_status sessile_gpu_oneshot_begin_(sessile_gpu *g, VkCommandBuffer *cb) {
   return SESSILE_OK;
 }
 
-sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb) {
-  VkResult r = vkEndCommandBuffer(cb);
+VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb, const char **what) {
   VkFence fence = VK_NULL_HANDLE;
-  const char *what = "vkEndCommandBuffer";
-  if (r >= 0) {
-    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    r = vkCreateFence(g->device, &fi, NULL, &fence);
-    what = "vkCreateFence";
-  }
+  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkResult r = vkCreateFence(g->device, &fi, NULL, &fence);
+  *what = "vkCreateFence";
   if (r >= 0) {
     VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                        .pCommandBuffers = &cb};
-    r = vkQueueSubmit(g->queue, 1, &si, fence);
-    what = "vkQueueSubmit";
+    r = vkQueueSubmit(q, 1, &si, fence);
+    *what = "vkQueueSubmit";
   }
   if (r >= 0) {
     r = vkWaitForFences(g->device, 1, &fence, VK_TRUE, UINT64_MAX);
-    what = "vkWaitForFences";
+    *what = "vkWaitForFences";
   }
   if (fence) vkDestroyFence(g->device, fence, NULL);
+  return r;
+}
+
+sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb) {
+  VkResult r = vkEndCommandBuffer(cb);
+  const char *what = "vkEndCommandBuffer";
+  if (r >= 0) r = sessile_gpu_submit_wait_(g, g->queue, cb, &what);
   vkFreeCommandBuffers(g->device, g->pool, 1, &cb);
   if (r < 0) return sessile_vk_fail_(r, what, __func__);
   return SESSILE_OK;

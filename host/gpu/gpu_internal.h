@@ -73,6 +73,9 @@ uint32_t sessile_gpu_memory_type_(const sessile_gpu *g, uint32_t bits, VkMemoryP
 /* One-shot command buffer for transfers. */
 sessile_status sessile_gpu_oneshot_begin_(sessile_gpu *g, VkCommandBuffer *cb);
 sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb);
+/* Submits cb to queue q and waits on a fence; *what names the call that
+ * failed (the caller frees cb and reports). */
+VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb, const char **what);
 
 /* Pipeline cache persistence (pipeline_cache.c). */
 sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir);

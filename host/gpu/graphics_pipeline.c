@@ -156,7 +156,6 @@ static sessile_status raw_buffer(sessile_gpu *g, size_t bytes, VkBufferUsageFlag
 static sessile_status copy_on_gfx(sessile_gpu *g, VkBuffer src, VkBuffer dst, size_t bytes) {
   VkCommandPool pool = VK_NULL_HANDLE;
   VkCommandBuffer cb = VK_NULL_HANDLE;
-  VkFence fence = VK_NULL_HANDLE;
   VkCommandPoolCreateInfo pi = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                 .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
                                 .queueFamilyIndex = g->gfx_family};
@@ -182,22 +181,7 @@ static sessile_status copy_on_gfx(sessile_gpu *g, VkBuffer src, VkBuffer dst, si
     r = vkEndCommandBuffer(cb);
     what = "vkEndCommandBuffer";
   }
-  if (r >= 0) {
-    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    r = vkCreateFence(g->device, &fi, NULL, &fence);
-    what = "vkCreateFence";
-  }
-  if (r >= 0) {
-    VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
-                       .pCommandBuffers = &cb};
-    r = vkQueueSubmit(g->gfx_queue, 1, &si, fence);
-    what = "vkQueueSubmit";
-  }
-  if (r >= 0) {
-    r = vkWaitForFences(g->device, 1, &fence, VK_TRUE, UINT64_MAX);
-    what = "vkWaitForFences";
-  }
-  if (fence) vkDestroyFence(g->device, fence, NULL);
+  if (r >= 0) r = sessile_gpu_submit_wait_(g, g->gfx_queue, cb, &what);
   if (pool) vkDestroyCommandPool(g->device, pool, NULL);
   if (r < 0) return sessile_vk_fail_(r, what, __func__);
   return SESSILE_OK;
