@@ -13,8 +13,8 @@ void sessile_sds_params_default(sessile_sds_params *p) {
   p->k_edge = 1.0;       /* prototype */
   p->k_vol = 2.0;        /* prototype */
   p->surface_mult = 1.0; /* prototype */
-  p->damp_visc = 0.001;  /* prototype "damping" */
-  p->damp_vol = 0.001;   /* the same value on dV/dt (our choice) */
+  p->damp_visc = 1.0;    /* prototype VISCOSITY 0.01 per step, as a rate (docs/sds.md, "Damping") */
+  p->damp_vol = 0.001;   /* prototype kDamp: the tets' damping */
   p->gravity = 10.0;     /* prototype */
   p->k_wall = 1000.0;    /* ours: a 1 % radius penetration at g = 10 for r = 1 */
   p->k_attract = 1.0;

@@ -68,17 +68,19 @@ static sessile_status read_physics(sim *s, const char *where) {
   s->p.k_edge = param1(m, "edge_stiffness", s->p.k_edge);
   s->p.k_vol = param1(m, "volume_stiffness", s->p.k_vol);
   s->p.surface_mult = param1(m, "surface_multiplier", s->p.surface_mult);
-  double damping = param1(m, "damping", s->p.damp_visc);
-  s->p.damp_visc = damping, s->p.damp_vol = damping;
+  double damping = param1(m, "damping", s->p.damp_vol);
+  s->p.damp_vol = damping;
+  s->p.damp_visc = param1(m, "viscosity", s->p.damp_visc);
   s->p.gravity = param1(m, "gravity", 0);
   s->p.dt = param1(m, "dt", s->p.dt);
   s->density = param1(m, "density", 1);
   double sc = param1(m, "self_collide", s->p.self_collide);
   SESSILE_CHECK(sc == 0 || sc == 1, SESSILE_ERR_USAGE, "%s: self_collide must be 0 or 1", where);
   s->p.self_collide = (int)sc;
-  SESSILE_CHECK(s->p.k_edge >= 0 && s->p.k_vol >= 0 && s->p.surface_mult >= 0 && damping >= 0 && s->density > 0 &&
+  SESSILE_CHECK(s->p.k_edge >= 0 && s->p.k_vol >= 0 && s->p.surface_mult >= 0 && damping >= 0 &&
+                    s->p.damp_visc >= 0 && s->density > 0 &&
                     isfinite(s->p.gravity) && s->p.dt > 0,
-                SESSILE_ERR_USAGE, "%s: stiffnesses and damping must be >= 0, density and dt > 0", where);
+                SESSILE_ERR_USAGE, "%s: stiffnesses, damping and viscosity must be >= 0, density and dt > 0", where);
   const sessile_sds_param *box = sessile_sds_model_param_find(m, "box");
   if (box) {
     SESSILE_CHECK(box->nvalues == 6, SESSILE_ERR_USAGE, "%s:%d: box needs 6 values: xmin ymin zmin xmax ymax zmax",

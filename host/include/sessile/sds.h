@@ -146,7 +146,7 @@ typedef struct sessile_sds_params {
   double k_edge;       /* edge stiffness (prototype: 1) */
   double k_vol;        /* volume stiffness (prototype: 2) */
   double surface_mult; /* stiffness multiplier of surface edges and tets (prototype: 1) */
-  double damp_visc;    /* viscous damping c: force -c m v, 1/s (prototype "damping": 0.001) */
+  double damp_visc;    /* viscous damping c: force -c m v, 1/s (the prototype's 1 % per step at dt 0.01: 1) */
   double damp_vol;     /* volume-spring damping on dV/dt (the prototype's damping, 0.001) */
   double gravity;      /* u/s^2 along -z (prototype: 10) */
   int box;             /* 1: confine the cells to [box_lo, box_hi] */
