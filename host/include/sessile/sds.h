@@ -252,13 +252,16 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
  * simulated time.  Fails with SESSILE_ERR_NUMERIC below dt_min or on a
  * non-finite state. */
 sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed);
-/* The surface hash table of the last force evaluation (uint32: counts T,
+/* The surface hash table of the last build of the contact lists (uint32: counts T,
  * offsets T + 1, cursors T, entries F, rho bits; docs/sds.md "Collisions"),
  * malloc'd into *table, its length into *n: for the determinism test. */
 sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, size_t *n);
-/* Times `reps` force evaluations (forces only) with and without the contact
- * stages into ms_all, ms_nocontact (for the benchmark's share of the hash). */
-sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, double *ms_all, double *ms_nocontact);
+/* Times `reps` force evaluations (forces only) with and without the contacts
+ * (their lists built) into ms_all, ms_nocontact, and `reps` builds of the
+ * contact lists (surface hash and list kernel) into ms_build (0 without
+ * contacts): the benchmark's contact columns. */
+sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, double *ms_all, double *ms_nocontact,
+                                             double *ms_build);
 /* Tets with signed volume <= 0 at the uploaded state, ascending. */
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
 
