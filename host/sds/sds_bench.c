@@ -34,7 +34,7 @@ typedef struct bench_size {
 } bench_size;
 
 static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) {
-  const double ctr[3] = {0, 0, 0}, rc[3] = {0, 0, -3.2};
+  const double ctr[3] = {0, 0, 0}, rc[3] = {0, 0, -3.45}; /* as host/sds/models/rock.sds */
   sessile_sds o = {0};
   sessile_surface rock = {0};
   double t0 = sessile_wall_seconds();
@@ -90,7 +90,7 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
 
 sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out) {
   static const bench_size sizes[] = {
-      {2, 0, 200, 400}, {2, 1, 200, 400}, {3, 0, 100, 200}, {4, 0, 20, 60}, {5, 0, 5, 20}};
+      {2, 0, 200, 400}, {2, 1, 200, 400}, {3, 0, 100, 200}, {3, 1, 100, 200}, {4, 0, 20, 60}, {5, 0, 5, 20}};
   const sessile_gpu_info *i = sessile_gpu_info_of(g);
   fprintf(out,
           "sds physics: force + integrate step (edge, tet, gather kernels; contact lists rebuilt when stale), "

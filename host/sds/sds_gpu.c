@@ -43,6 +43,7 @@ struct sessile_sds_gpu {
   uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
   size_t ntopo_up;
   uint64_t builds;  /* list builds so far */
+  int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
 };
 
 /* (Re)creates buffer i with room for `bytes` (contents lost when it grows). */
@@ -234,7 +235,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   if (st == SESSILE_OK) st = lists_check_upload(s, o, topo, ntopo);
   else free(topo);
   SESSILE_CALL(st);
-  s->cur = 0;
+  s->cur = 0, s->flags_cur = -1;
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_X0], 0, o->x, 3 * n));
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_V0], 0, o->v, 3 * n));
   SESSILE_CALL(sessile_buffer_upload(s->b[B_ATTRACT], 0, o->attract, n * 4));
@@ -386,12 +387,26 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
 }
 
+/* Records the inverted-tet flags of pair c's x. */
+static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
+  sds_push p = push_of(s, 0.0, 0, 0);
+  sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG]};
+  return sessile_cmd_dispatch(s->cmd, s->k[SDS_INVERTED], groups(s, SDS_INVERTED, s->ntets), b, &p);
+}
+
+/* One force evaluation (mode 0) or step (mode 1) in one submission; a step
+ * also flags the inverted tets of its result (read by
+ * sessile_sds_gpu_inverted without a submission of its own). */
 static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
   SESSILE_CALL(lists_ensure(s));
   SESSILE_CALL(sessile_cmd_begin(s->cmd));
   SESSILE_CALL(record_forces(s, s->cur, dt, damping, mode));
+  if (mode == 1 && s->ntets) SESSILE_CALL(record_inverted(s, 1 - s->cur));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
-  return sessile_cmd_submit_wait(s->cmd);
+  s->flags_cur = -1;
+  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  if (mode == 1) s->flags_cur = 1 - s->cur;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double dt) {
@@ -409,6 +424,7 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
     SESSILE_CALL(record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1));
   }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
+  s->flags_cur = -1;
   SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
   s->cur = (s->cur + (int)steps) & 1;
   if (lists && steps > 1) {
@@ -479,13 +495,12 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
 
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n) {
   *list = NULL, *n = 0;
-  if (s->ntets) {
-    sds_push p = push_of(s, 0.0, 0, 0);
-    sessile_buffer *b[] = {s->b[B_X0 + s->cur], s->b[B_TOPO], s->b[B_FLAG]};
+  if (s->ntets && s->flags_cur != s->cur) { /* not flagged by the step that made this state */
     SESSILE_CALL(sessile_cmd_begin(s->cmd));
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_INVERTED], groups(s, SDS_INVERTED, s->ntets), b, &p));
+    SESSILE_CALL(record_inverted(s, s->cur));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
     SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+    s->flags_cur = s->cur;
   }
   const uint32_t *flag = sessile_buffer_host_ptr(s->b[B_FLAG]);
   SESSILE_CHECK(flag, SESSILE_ERR_INTERNAL, "sds: the inverted-flag buffer is not mapped");
