@@ -14,9 +14,9 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
        B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
- * radius: a larger skin rebuilds less often but lists more triangles
- * (docs/sds.md, "Collisions", measured). */
-#define SDS_SKIN_FRAC 0.5
+ * radius: a larger skin rebuilds less often but lists more triangles, which
+ * every step then visits (docs/sds.md, "Collisions": 1 measured best). */
+#define SDS_SKIN_FRAC 1.0
 #define SDS_LIST_MIN 16 /* the first capacity per cell */
 
 struct sessile_sds_gpu {
