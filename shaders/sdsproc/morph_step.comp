@@ -19,21 +19,27 @@ void main() {
   REAL cx = pos[3u * c], cy = pos[3u * c + 1u], cz = pos[3u * c + 2u];
   REAL vc = vol_of(radius[c]);
   uint a = nbr_off[c], b = nbr_off[c + 1u];
+  // one pass over the neighbours for all morphogens (the distance and the
+  // neighbour's volume once per neighbour); each morphogen's sum still runs
+  // in CSR order, the same operations as one morphogen at a time
+  precise REAL s[SDSPROC_MAX_MORPH];
+  REAL p[SDSPROC_MAX_MORPH];
+  for (uint k = 0u; k < nm; k++) s[k] = REAL(0), p[k] = phi_in[c * nm + k];
+  for (uint q = a; q < b; q++) {
+    uint n = nbr[q];
+    precise REAL dx = cx - pos[3u * n], dy = cy - pos[3u * n + 1u], dz = cz - pos[3u * n + 2u];
+    precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
+    REAL vn = vol_of(radius[n]);
+    for (uint k = 0u; k < nm; k++) {
+      precise REAL t = min(phi_in[n * nm + k], vc) - min(p[k], vn);
+      s[k] += t / d;
+    }
+  }
   for (uint k = 0u; k < nm; k++) {
     uint i = c * nm + k;
-    REAL p = phi_in[i];
-    precise REAL s = REAL(0);
-    for (uint q = a; q < b; q++) {
-      uint n = nbr[q];
-      precise REAL dx = cx - pos[3u * n], dy = cy - pos[3u * n + 1u], dz = cz - pos[3u * n + 2u];
-      precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
-      REAL vn = vol_of(radius[n]);
-      precise REAL t = min(phi_in[n * nm + k], vc) - min(p, vn);
-      s += t / d;
-    }
-    precise REAL rate = coef[3u * k] * s - coef[3u * k + 1u] * p;
+    precise REAL rate = coef[3u * k] * s[k] - coef[3u * k + 1u] * p[k];
     rate += src[i];
-    precise REAL v = p + pc.dt * rate;
+    precise REAL v = p[k] + pc.dt * rate;
     v = max(v, REAL(0));
     if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
     phi_out[i] = v;
