@@ -164,3 +164,21 @@ done:
   if (st == SESSILE_OK && report) *report = rep;
   return st;
 }
+
+sessile_status sessile_sds_topo_check_kept(const double *x0, uint32_t nt0, const uint32_t *tet0,
+                                           const sessile_sds_topo_complex *cx, const uint32_t *tet_from) {
+  SESSILE_CALL(sessile_sds_topo_check(cx->nv, cx->x, cx->nt, cx->tet, -INFINITY, NULL));
+  for (uint32_t t = 0; t < cx->nt; t++) {
+    const uint32_t *v = cx->tet + 4 * (size_t)t;
+    double vol = topo_vol4(cx->x, v);
+    if (vol > 0) continue;
+    uint32_t o = tet_from[t];
+    SESSILE_CHECK(o != SESSILE_SDS_TOPO_NEW_TET && o < nt0, SESSILE_ERR_INTERNAL,
+                  "new tet %u (%u %u %u %u) has volume %.17g <= 0", t, v[0], v[1], v[2], v[3], vol);
+    double vol0 = topo_vol4(x0, tet0 + 4 * (size_t)o);
+    SESSILE_CHECK(!(vol0 > 0), SESSILE_ERR_INTERNAL,
+                  "tet %u (%u %u %u %u) has volume %.17g <= 0, and %.17g before the transformation", t, v[0], v[1],
+                  v[2], v[3], vol, vol0);
+  }
+  return SESSILE_OK;
+}

@@ -205,6 +205,45 @@ int main(void) {
          tangential_seen >= 0.9 * tangential_expected);
   printf("random divisions: %d interior, mean %.2f ms; %d surface, mean %.2f ms; now %u vertices, %u tets\n", ni,
          1e3 * tsum_i / (ni ? ni : 1), ns, 1e3 * tsum_s / (ns ? ns : 1), cx.nv, cx.nt);
+  /* a sliver elsewhere does not count against a division
+   * (sessile_sds_topo_check_kept): push an interior cell far through its
+   * neighbours so that some of its tets invert, divide the interior cell
+   * farthest from it; the strict check fails on the old slivers, the kept
+   * check passes; a daughter pushed out through its own new tets fails it */
+  {
+    uint32_t vs = UINT32_MAX, vc = UINT32_MAX;
+    for (uint32_t v = 0; v < cx.nv && vs == UINT32_MAX; v++)
+      if (!fx_on_boundary(&cx, v)) vs = v;
+    double far = -1;
+    for (uint32_t v = 0; v < cx.nv; v++) {
+      double q2 = 0;
+      for (int k = 0; k < 3; k++) q2 += (cx.x[3 * v + k] - cx.x[3 * vs + k]) * (cx.x[3 * v + k] - cx.x[3 * vs + k]);
+      if (!fx_on_boundary(&cx, v) && q2 > far) far = q2, vc = v;
+    }
+    sessile_sds_topo_complex bad;
+    fx_copy(&cx, &bad);
+    for (int k = 0; k < 3; k++) bad.x[3 * vs + k] *= -1; /* through the centre: its tets turn inside out */
+    uint32_t ninv = 0;
+    for (uint32_t t = 0; t < bad.nt; t++)
+      ninv += !(sessile_sds_topo_volume(bad.x + 3 * bad.tet[4 * t], bad.x + 3 * bad.tet[4 * t + 1],
+                                        bad.x + 3 * bad.tet[4 * t + 2], bad.x + 3 * bad.tet[4 * t + 3]) > 0);
+    printf("cell %u pushed through the centre: %u tets inverted; dividing cell %u, %.2f u away\n", vs, ninv, vc,
+           sqrt(far));
+    sessile_sds_topo_complex before;
+    fx_copy(&bad, &before);
+    double dd[3] = {0.3, 1, -0.4};
+    sessile_sds_topo_division dv;
+    t_ok("divide beside the slivers", sessile_sds_topo_divide(&bad, vc, dd, 0.0, &dv));
+    t_true("the strict check fails on the old slivers",
+           ninv > 0 && sessile_sds_topo_check(bad.nv, bad.x, bad.nt, bad.tet, 0.0, NULL) != SESSILE_OK);
+    t_true("the kept check passes: every inverted tet was inverted before",
+           sessile_sds_topo_check_kept(before.x, before.nt, before.tet, &bad, dv.tet_from) == SESSILE_OK);
+    for (int k = 0; k < 3; k++) bad.x[3 * dv.b + k] = 3 * bad.x[3 * dv.b + k] - 2 * bad.x[3 * dv.a + k];
+    t_true("a daughter pushed out through its new tets fails the kept check",
+           sessile_sds_topo_check_kept(before.x, before.nt, before.tet, &bad, dv.tet_from) == SESSILE_ERR_INTERNAL);
+    free(dv.tet_from);
+    sessile_sds_topo_complex_free(&bad), sessile_sds_topo_complex_free(&before);
+  }
   /* bad input */
   sessile_sds_topo_division div;
   double z[3] = {0, 0, 0};

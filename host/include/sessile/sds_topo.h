@@ -53,6 +53,14 @@ typedef struct sessile_sds_topo_report {
  * faces around each boundary vertex form one fan); no duplicate tets; every
  * vertex in some tet.  report may be NULL.  Returns SESSILE_OK or
  * SESSILE_ERR_INTERNAL with a message naming the first violation. */
+/* The check of a transformation's result cx, made from the complex (x0,
+ * tet0 of nt0 tets) with tet_from[t] the origin of each tet of cx
+ * (SESSILE_SDS_TOPO_NEW_TET: new): as sessile_sds_topo_check, but a tet
+ * inverted both now and in its origin passes (a sliver elsewhere, left as
+ * it was: the repair's business, not the transformation's fault); any other
+ * tet of volume <= 0 fails.  SESSILE_OK or SESSILE_ERR_INTERNAL naming it. */
+sessile_status sessile_sds_topo_check_kept(const double *x0, uint32_t nt0, const uint32_t *tet0,
+                                           const sessile_sds_topo_complex *cx, const uint32_t *tet_from);
 sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt, const uint32_t *tet, double min_volume,
                                       sessile_sds_topo_report *report);
 
