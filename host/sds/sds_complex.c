@@ -290,6 +290,14 @@ static sessile_status build_csr(uint32_t ncells, const uint32_t *elem, uint32_t 
 
 sessile_status sessile_sds_rebuild(sessile_sds *o, sessile_sds_new_sm new_sm) {
   SESSILE_CALL(orient(o));
+  return sessile_sds_rebuild_oriented(o, new_sm);
+}
+
+sessile_status sessile_sds_rebuild_oriented(sessile_sds *o, sessile_sds_new_sm new_sm) {
+  for (uint32_t t = 0; t < o->ntets; t++)
+    for (int i = 0; i < 4; i++)
+      SESSILE_CHECK(o->tet[4 * (size_t)t + i] < o->ncells, SESSILE_ERR_USAGE, "sds: tetrahedron %u names cell %u of %u",
+                    t, o->tet[4 * (size_t)t + i], o->ncells);
   /* the old edge list (for s_m) survives until build_edges replaces it */
   free(o->surface), free(o->tet_surface), free(o->edge_surface), free(o->face);
   free(o->cell_edge_off), free(o->cell_edge), free(o->cell_tet_off), free(o->cell_tet);

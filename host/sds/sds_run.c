@@ -184,7 +184,7 @@ static sessile_status take_complex(sim *s, const sessile_sds_topo_complex *cx, c
   memcpy(o->tet, cx->tet, (size_t)cx->nt * 4 * sizeof *o->tet);
   o->ncells = cx->nv, o->ntets = cx->nt;
   (void)old_cells;
-  return sessile_sds_rebuild(o, SESSILE_SDS_NEW_UNIT);
+  return sessile_sds_rebuild_oriented(o, SESSILE_SDS_NEW_UNIT);
 }
 
 static void set_mass(sim *s, uint32_t c) { s->o.m[c] = s->density * 4.0 / 3.0 * PI * pow(s->o.r[c], 3); }

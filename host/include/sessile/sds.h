@@ -91,6 +91,11 @@ typedef enum sessile_sds_new_sm {
  * edges and tets with tet_sm <= 0 get s_m by `new_sm`.  Radii and masses are
  * not touched. */
 sessile_status sessile_sds_rebuild(sessile_sds *o, sessile_sds_new_sm new_sm);
+/* As sessile_sds_rebuild, but the tets' orientation is taken as given: for a
+ * complex a transformation made and the topology check passed, which may
+ * keep slivers inverted before it (sessile_sds_topo_check_kept).  Orienting
+ * those by their volume would turn them against their neighbours. */
+sessile_status sessile_sds_rebuild_oriented(sessile_sds *o, sessile_sds_new_sm new_sm);
 
 /* Builds an organism from cells x (3 n) and tets (4 nt, either orientation):
  * radii by §3.2.1, mass = density 4/3 pi r^3, s_m = V/R for every edge and
