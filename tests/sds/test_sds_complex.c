@@ -135,6 +135,21 @@ static void import_valid(void) {
   t_true("rebuild re-orients a negative tet", sessile_sds_tet_volume(&o, 3) > 0);
   t_true("rebuild gives a new tet s_m = 1 (NEW_UNIT)", o.tet_sm[9] == 1.0);
   (void)sm_e;
+  /* rebuild_oriented takes the orientation as given: a tet made inverted by
+   * moving a cell (a sliver) keeps its vertex order */
+  {
+    const uint32_t *q4 = o.tet + 4 * 4;
+    uint32_t keep[4] = {q4[0], q4[1], q4[2], q4[3]};
+    double save[3], *xa = o.x + 3 * (size_t)q4[0], *xb4 = o.x + 3 * (size_t)q4[1], *xc = o.x + 3 * (size_t)q4[2],
+                    *xd = o.x + 3 * (size_t)q4[3];
+    for (int k = 0; k < 3; k++) save[k] = xa[k], xa[k] = xb4[k] + xc[k] + xd[k] - 2 * xa[k]; /* through the face */
+    double v0 = sessile_sds_tet_volume(&o, 4);
+    t_ok("rebuild_oriented", sessile_sds_rebuild_oriented(&o, SESSILE_SDS_NEW_UNIT));
+    t_true("rebuild_oriented keeps an inverted tet's vertex order",
+           v0 < 0 && !memcmp(keep, o.tet + 4 * 4, sizeof keep) && sessile_sds_tet_volume(&o, 4) == v0);
+    for (int k = 0; k < 3; k++) xa[k] = save[k];
+    t_ok("rebuild_oriented back", sessile_sds_rebuild_oriented(&o, SESSILE_SDS_NEW_UNIT));
+  }
   /* a face in three tets is refused */
   sessile_sds bad = {0};
   const double xb[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1};
