@@ -38,6 +38,7 @@ struct sessile_sds_gpu {
   uint32_t lcap;    /* entries per cell */
   int lists_valid;  /* every triangle within delta of a cell is in its list */
   double skin;      /* of the last build, u */
+  double grown;     /* largest r - rb at the last upload (radii do not change on the device) */
   double *xb, *rb;  /* host copies: positions and radii at the last build */
   double *r_up;     /* radii of the last upload */
   uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
@@ -173,6 +174,7 @@ static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *
     if (!(d2 <= moved)) moved = d2;
     if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
   }
+  s->grown = grown;
   if (!(2 * sqrt(moved) + s->p.contact_scale * grown <= s->skin)) s->lists_valid = 0;
   return SESSILE_OK;
 }
@@ -362,7 +364,7 @@ static sessile_status lists_ensure(sessile_sds_gpu *s) {
   SESSILE_CHECK(xb && rb, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   SESSILE_CALL(sessile_buffer_download_reals(s->b[B_XB], 0, xb, 3 * n));
   memcpy(rb, s->r_up, n * sizeof *rb);
-  s->skin = skin, s->lists_valid = 1;
+  s->skin = skin, s->lists_valid = 1, s->grown = 0;
   return SESSILE_OK;
 }
 
@@ -449,10 +451,7 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
     double far = 0;
     for (uint32_t c = 0; c < s->ncells; c++)
       if (!(s->scratch[c] <= far)) far = s->scratch[c];
-    double grown = 0;
-    for (uint32_t c = 0; c < s->ncells; c++)
-      if (s->r_up[c] - s->rb[c] > grown) grown = s->r_up[c] - s->rb[c];
-    if (!(2 * far + s->p.contact_scale * grown <= s->skin)) s->lists_valid = 0;
+    if (!(2 * far + s->p.contact_scale * s->grown <= s->skin)) s->lists_valid = 0;
   }
   if (max_move) {
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], 0, s->scratch, s->ncells));
