@@ -9,7 +9,8 @@ enum { B_POS, B_RADIUS, B_OFF, B_NBR, B_COEF, B_SRC, B_PHI0, B_PHI1, B_COUNT };
 
 struct sessile_morph_gpu {
   sessile_gpu *gpu;
-  sessile_kernel *k;
+  sessile_kernel *k, *k_tex; /* storage reads; texel reads (vector loads on lavapipe, the same bits) */
+  int storage;               /* 1: storage reads always (sessile_morph_gpu_set_reads) */
   sessile_cmd *cmd;
   uint32_t real_bytes;
   sessile_buffer *b[B_COUNT];
@@ -35,6 +36,8 @@ sessile_status sessile_morph_gpu_create(sessile_gpu *g, sessile_morph_gpu **out)
   m->gpu = g;
   m->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
   sessile_status st = sessile_kernel_create_decl(g, &sessile_sdsproc_kernels[SPK_MORPH_STEP], m->real_bytes, 0, &m->k);
+  if (st == SESSILE_OK)
+    st = sessile_kernel_create_decl(g, &sessile_sdsproc_kernels[SPK_MORPH_STEP_TEX], m->real_bytes, 0, &m->k_tex);
   if (st == SESSILE_OK) st = sessile_cmd_create(g, &m->cmd);
   if (st != SESSILE_OK) {
     sessile_morph_gpu_destroy(m);
@@ -49,6 +52,7 @@ void sessile_morph_gpu_destroy(sessile_morph_gpu *m) {
   for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(m->b[i]);
   sessile_cmd_destroy(m->cmd);
   sessile_kernel_destroy(m->k);
+  sessile_kernel_destroy(m->k_tex);
   free(m);
 }
 
@@ -99,6 +103,21 @@ sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi
   return st;
 }
 
+void sessile_morph_gpu_set_reads(sessile_morph_gpu *m, int storage) { m->storage = storage != 0; }
+
+/* The texel variant when allowed and every view it reads fits the device's
+ * maxTexelBufferElements (texels of one real or one uint). */
+static sessile_kernel *kernel_of(const sessile_morph_gpu *m) {
+  uint64_t maxt = sessile_gpu_info_of(m->gpu)->max_texel_buffer_elements;
+  static const int reals[] = {B_POS, B_RADIUS, B_SRC, B_PHI0, B_PHI1}, words[] = {B_OFF, B_NBR};
+  if (m->storage) return m->k;
+  for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
+    if (m->bytes[reals[i]] / m->real_bytes > maxt) return m->k;
+  for (size_t i = 0; i < sizeof words / sizeof *words; i++)
+    if (m->bytes[words[i]] / 4 > maxt) return m->k;
+  return m->k_tex;
+}
+
 sessile_status sessile_morph_gpu_step(sessile_morph_gpu *m, double dt, int nsteps) {
   SESSILE_CHECK(m->ncells > 0, SESSILE_ERR_USAGE, "morphogen kernel: set_cells first");
   SESSILE_CHECK(dt > 0 && isfinite(dt) && nsteps >= 0, SESSILE_ERR_USAGE,
@@ -118,7 +137,7 @@ sessile_status sessile_morph_gpu_step(sessile_morph_gpu *m, double dt, int nstep
     int in = (m->cur + s) & 1;
     sessile_buffer *b[8] = {m->b[B_POS], m->b[B_RADIUS], m->b[B_OFF], m->b[B_NBR], m->b[B_COEF],
                             m->b[B_SRC], m->b[in ? B_PHI1 : B_PHI0], m->b[in ? B_PHI0 : B_PHI1]};
-    SESSILE_CALL(sessile_cmd_dispatch(m->cmd, m->k, groups, b, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(m->cmd, kernel_of(m), groups, b, &p));
   }
   SESSILE_CALL(sessile_cmd_end(m->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(m->cmd));

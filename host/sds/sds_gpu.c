@@ -45,6 +45,7 @@ struct sessile_sds_gpu {
   size_t ntopo_up;
   uint64_t builds;  /* list builds so far */
   int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
+  int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
 };
 
 /* (Re)creates buffer i with room for `bytes` (contents lost when it grows). */
@@ -58,6 +59,39 @@ static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   SESSILE_CALL(sessile_buffer_create(s->gpu, bytes, kind, &s->b[i]));
   s->cap[i] = bytes;
   return SESSILE_OK;
+}
+
+/* Do the views of every buffer the _tex kernels read through texels fit
+ * the device's maxTexelBufferElements (texels of one real, or one uint)? */
+static int texel_fits(const sessile_sds_gpu *s) {
+  static const int reals[] = {B_X0, B_X1, B_V0, B_V1, B_RM, B_SM, B_ELF, B_WORLD, B_FSPH};
+  static const int words[] = {B_TOPO, B_LIST, B_OBSTRI, B_HASH};
+  uint64_t maxt = sessile_gpu_info_of(s->gpu)->max_texel_buffer_elements;
+  for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
+    if (s->cap[reals[i]] / s->real_bytes > maxt) return 0;
+  for (size_t i = 0; i < sizeof words / sizeof *words; i++)
+    if (s->cap[words[i]] / 4 > maxt) return 0;
+  return 1;
+}
+
+/* Kernel k, or its _tex variant (shaders/sds/sds_load.glsl: vector loads on
+ * lavapipe, the same bits) when texel reads are allowed and fit. */
+static sessile_kernel *kern(const sessile_sds_gpu *s, int k) {
+  if (s->reads == 0 && texel_fits(s)) switch (k) {
+    case SDS_EDGE: return s->k[SDS_EDGE_TEX];
+    case SDS_TET: return s->k[SDS_TET_TEX];
+    case SDS_GATHER: return s->k[SDS_GATHER_TEX];
+    case SDS_INVERTED: return s->k[SDS_INVERTED_TEX];
+    case SDS_CONTACT_LIST: return s->k[SDS_CONTACT_LIST_TEX];
+    default: break;
+    }
+  return s->k[k];
+}
+
+void sessile_sds_gpu_set_reads(sessile_sds_gpu *s, int storage) {
+  s->reads = storage != 0;
+  s->lists_valid = 0; /* the next evaluation builds its lists, */
+  s->flags_cur = -1;  /* and the next query its flags, with the kernels chosen */
 }
 
 static uint32_t groups(const sessile_sds_gpu *s, int k, uint32_t items) {
@@ -316,7 +350,7 @@ static sessile_status record_lists(sessile_sds_gpu *s, int c) {
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_RM],   s->b[B_TOPO], s->b[B_WORLD], s->b[B_OBSTRI],
                          s->b[B_HASH], s->b[B_FSPH],   s->b[B_LIST], s->b[B_XB],   s->b[B_LMAX]};
-  return sessile_cmd_dispatch(s->cmd, s->k[SDS_CONTACT_LIST], groups(s, SDS_CONTACT_LIST, s->ncells), b, &p);
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_LIST), groups(s, SDS_CONTACT_LIST, s->ncells), b, &p);
 }
 
 static int contacts_on(const sessile_sds_gpu *s) {
@@ -375,25 +409,25 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
   int nx = 1 - c;
   if (s->nedges) {
     sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_EDGE], groups(s, SDS_EDGE, s->nedges), b, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_EDGE), groups(s, SDS_EDGE, s->nedges), b, &p));
   }
   if (s->ntets) {
     sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
                            s->b[B_ELF]};
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, s->k[SDS_TET], groups(s, SDS_TET, s->ntets), b, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_TET), groups(s, SDS_TET, s->ntets), b, &p));
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_LIST],
                          s->b[B_XB],   s->b[B_X0 + nx],
                          s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
-  return sessile_cmd_dispatch(s->cmd, s->k[SDS_GATHER], groups(s, SDS_GATHER, s->ncells), b, &p);
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_GATHER), groups(s, SDS_GATHER, s->ncells), b, &p);
 }
 
 /* Records the inverted-tet flags of pair c's x. */
 static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
   sds_push p = push_of(s, 0.0, 0, 0);
   sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG]};
-  return sessile_cmd_dispatch(s->cmd, s->k[SDS_INVERTED], groups(s, SDS_INVERTED, s->ntets), b, &p);
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_INVERTED), groups(s, SDS_INVERTED, s->ntets), b, &p);
 }
 
 /* One force evaluation (mode 0) or step (mode 1) in one submission; a step

@@ -15,8 +15,8 @@ uint o_tsurf() { return o_ct() + 4u * pc.ntets; }
 uint o_esurf() { return o_tsurf() + pc.ntets; }
 uint o_face() { return o_esurf() + pc.nedges; }
 uint o_csurf() { return o_face() + 3u * pc.nfaces; }
-#define R_OF(c) rm[2u * (c)]
-#define M_OF(c) rm[2u * (c) + 1u]
+#define R_OF(c) LD_RM(2u * (c)) // LD_*: sds_load.glsl
+#define M_OF(c) LD_RM(2u * (c) + 1u)
 
 REAL tet_rest(REAL a, REAL b, REAL c, REAL d) {
   REAL w = a * b * c;

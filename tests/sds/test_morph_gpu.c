@@ -6,7 +6,8 @@
  * same order; sqrt and the constant 4/3 pi may round differently by an ulp);
  * --fp32 1e-4 (float amounts, 50 steps).  Also: the GPU's total of a
  * diffusion-only morphogen is conserved (1e-12 relative), the same input
- * gives the same bytes twice, and dt above the bound is refused. */
+ * gives the same bytes twice and through either kernel (texel or storage
+ * reads), and dt above the bound is refused. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -57,6 +58,13 @@ int main(int argc, char **argv) {
   t_must("gpu steps", sessile_morph_gpu_step(m, dt, 30));
   t_must("get", sessile_morph_gpu_get_phi(m, gpu2));
   t_true("same bytes twice (50 steps in one call vs 20 + 30)", !memcmp(gpu, gpu2, sizeof(double) * n * nm));
+  /* the storage-read kernel gives the texel-read one's bytes */
+  sessile_morph_gpu_set_reads(m, 1);
+  t_must("set phi", sessile_morph_gpu_set_phi(m, phi, src));
+  t_must("gpu steps, storage reads", sessile_morph_gpu_step(m, dt, steps));
+  t_must("get", sessile_morph_gpu_get_phi(m, gpu2));
+  sessile_morph_gpu_set_reads(m, 0);
+  t_true("storage reads give the texel reads' bytes (50 steps)", !memcmp(gpu, gpu2, sizeof(double) * n * nm));
   double t0 = sessile_morph_total(n, nm, phi, 0), t1 = sessile_morph_total(n, nm, gpu, 0);
   t_check("gpu: total of the diffusion-only morphogen conserved (relative)", fabs(t1 - t0) / t0,
           fp32 ? 1e-5 : 1e-12);

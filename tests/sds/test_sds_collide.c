@@ -52,6 +52,15 @@ static void compare(sessile_gpu *g, const char *name, const sessile_sds *o, cons
   snprintf(what, sizeof what, "%s: GPU contact forces = brute force (rel; %s)", name,
            e == 0 ? "bit for bit" : "not bitwise");
   t_check(what, e, fp64 ? 1e-12 : 1e-5);
+  /* the storage-read kernels (lists built again with them) give the bytes of
+   * the texel-read ones (shaders/sds/sds_load.glsl) */
+  double *fs = t_dalloc(n3);
+  sessile_sds_gpu_set_reads(s, 1);
+  t_must("gpu forces, storage reads", sessile_sds_gpu_forces(s, 0, fs));
+  sessile_sds_gpu_set_reads(s, 0);
+  snprintf(what, sizeof what, "%s: storage-read kernels give the texel-read kernels' forces, bit for bit", name);
+  t_true(what, !memcmp(fs, fg, n3 * sizeof *fg));
+  free(fs);
   /* the same bytes on a second evaluation, table included, buckets ascending */
   uint32_t *t1 = NULL, *t2 = NULL;
   size_t l1 = 0, l2 = 0;

@@ -118,6 +118,11 @@ int main(void) {
   printf("inverted tets: host %u, GPU %u (first %u)\n", nh, ninv, ninv ? inv[0] : 0);
   t_true("GPU finds the constructed inverted tet 0", ninv > 0 && inv[0] == 0);
   t_true("GPU inverted list = host list", ninv == nh && !memcmp(inv, ih, nh * sizeof *ih));
+  free(inv), inv = NULL, ninv = 0;
+  sessile_sds_gpu_set_reads(sg, 1);
+  t_must("gpu inverted, storage reads", sessile_sds_gpu_inverted(sg, &inv, &ninv));
+  sessile_sds_gpu_set_reads(sg, 0);
+  t_true("GPU inverted list through storage reads = host list", ninv == nh && !memcmp(inv, ih, nh * sizeof *ih));
   free(inv), free(ih);
   sessile_sds_free(&w);
 
@@ -147,6 +152,14 @@ int main(void) {
   t_must("one more", sessile_sds_gpu_steps(s2, 1, dt));
   t_must("download", sessile_sds_gpu_download(s2, &r2));
   t_true("40 steps in two submissions (39 + 1): the same bytes as one at a time",
+         !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
+  /* the storage-read kernels give the bytes of the texel-read ones (the
+   * default where the views fit: shaders/sds/sds_load.glsl) */
+  t_must("upload", sessile_sds_gpu_upload(s2, &o));
+  sessile_sds_gpu_set_reads(s2, 1);
+  for (int k = 0; k < N; k++) t_must("step, storage reads", sessile_sds_gpu_step(s2, dt, NULL));
+  t_must("download", sessile_sds_gpu_download(s2, &r2));
+  t_true("40 steps through storage reads: the same bytes as through texel reads",
          !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
   t_check("GPU positions after 40 steps = host integrator's (rel to max)", t_relerr(r1.x, rh.x, n3),
           fp64 ? 1e-10 : 1e-4);

@@ -267,6 +267,11 @@ sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, 
  * contacts): the benchmark's contact columns. */
 sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, double *ms_all, double *ms_nocontact,
                                              double *ms_build);
+/* storage = 1: the force, flag and list kernels read through storage buffers
+ * even where texel views fit (the default, 0, reads through uniform texel
+ * buffers where every view fits maxTexelBufferElements: the same bits, vector
+ * loads on lavapipe).  For the tests that compare the two. */
+void sessile_sds_gpu_set_reads(sessile_sds_gpu *s, int storage);
 /* Tets with signed volume <= 0 at the uploaded state, ascending. */
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
 

@@ -88,6 +88,10 @@ sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi
  * dt > dt_max of the cells last set. */
 sessile_status sessile_morph_gpu_step(sessile_morph_gpu *m, double dt, int nsteps);
 sessile_status sessile_morph_gpu_get_phi(sessile_morph_gpu *m, double *phi);
+/* storage = 1: the step reads through storage buffers even where texel views
+ * fit (default 0: uniform texel buffers where they fit, the same bits, vector
+ * loads on lavapipe).  For the tests that compare the two. */
+void sessile_morph_gpu_set_reads(sessile_morph_gpu *m, int storage);
 
 /* --- rules (host/sds/rules_*.c) ------------------------------------------- */
 #define SESSILE_SDS_NAME 32

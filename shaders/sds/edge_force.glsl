@@ -1,0 +1,21 @@
+// One edge per invocation: the force of the scale-free edge spring
+// E = k/2 ((L - R')/R')^2, R' = s_m (r_a + r_b), k = k_edge R' (m_a + m_b)
+// (times the surface multiplier on surface edges), on its second cell b
+// (cell a gets the opposite).  Mirrors edge_force in host/sds/sds_physics.c.
+#include "sds_common.glsl"
+#include "sds_load.glsl"
+
+void main() {
+  uint e = sessile_gid();
+  if (e >= pc.nedges) return;
+  uint a = LD_TOPO(o_edge() + 2u * e), b = LD_TOPO(o_edge() + 2u * e + 1u);
+  REAL esm = LD_SM(pc.ntets + e);
+  REAL d0 = LD_X(3u * b) - LD_X(3u * a), d1 = LD_X(3u * b + 1u) - LD_X(3u * a + 1u), d2 = LD_X(3u * b + 2u) - LD_X(3u * a + 2u);
+  REAL L = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+  REAL R = esm * (R_OF(a) + R_OF(b));
+  REAL kk = sp[SP_K_EDGE] * (LD_TOPO(o_esurf() + e) != 0u ? sp[SP_SURF] : REAL(1)) * (esm * (R_OF(a) + R_OF(b)) * (M_OF(a) + M_OF(b)));
+  REAL g = kk * (L - R) / (R * R) / L;
+  elf[12u * pc.ntets + 3u * e] = -g * d0;
+  elf[12u * pc.ntets + 3u * e + 1u] = -g * d1;
+  elf[12u * pc.ntets + 3u * e + 2u] = -g * d2;
+}

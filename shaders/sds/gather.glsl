@@ -1,0 +1,117 @@
+// One cell per invocation: the sum of the forces of its incident edges and
+// tets (in CSR order, ascending element index: the same bytes every run),
+// gravity, the box penalty, attraction, the obstacle and self contacts
+// among the cell's contact list (docs/sds.md, "Collisions") and viscous damping;
+// in mode 1 one semi-implicit Euler step (v += dt f/m, x += dt v) into
+// x_out, v_out and the move |dt v| / r.  Mirrors sessile_sds_forces_ref and
+// sessile_sds_step_ref (host/sds).
+#include "sds_common.glsl"
+#include "sds_load.glsl"
+#include "sds_contact.glsl"
+
+void corner(uint q, out REAL a[3]) { a = REAL[3](LD_X(3u * q), LD_X(3u * q + 1u), LD_X(3u * q + 2u)); }
+void obs_corner(uint q, out REAL a[3]) {
+  uint w = 3u * pc.nattract + 3u * q;
+  a = REAL[3](LD_WORLD(w), LD_WORLD(w + 1u), LD_WORLD(w + 2u));
+}
+
+// The cell c at p against its nearest triangles closer than delta among its
+// contact candidates (contact_list.comp: every triangle that can be within
+// delta until the list is rebuilt): the obstacle's, signed by its
+// pseudo-normals, and the surface's (not at c or a neighbour).  The nearest
+// wins, ties to the lower index: the triangle a query of every triangle
+// finds (sessile_sds_contact_brute).
+void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
+  REAL best = delta * delta, best_o = delta * delta;
+  uint bt = 0xffffffffu, bo = 0xffffffffu, base = pc.ncells + c * pc.lcap, n = LD_LIST(c);
+  for (uint k = 0u; k < n; k++) {
+    uint e = LD_LIST(base + k), t = e & ~SDS_LIST_OBS;
+    bool obs = (e & SDS_LIST_OBS) != 0u;
+    REAL a0[3], a1[3], a2[3];
+    if (obs) {
+      obs_corner(LD_OBS(3u * t), a0), obs_corner(LD_OBS(3u * t + 1u), a1), obs_corner(LD_OBS(3u * t + 2u), a2);
+    } else {
+      uint of = o_face() + 3u * t;
+      corner(LD_TOPO(of), a0), corner(LD_TOPO(of + 1u), a1), corner(LD_TOPO(of + 2u), a2);
+    }
+    REAL dd = tri_dist2(p, a0, a1, a2);
+    if (obs) {
+      if (dd < best_o || (dd == best_o && t < bo && bo != 0xffffffffu)) best_o = dd, bo = t;
+    } else if (dd < best || (dd == best && t < bt && bt != 0xffffffffu))
+      best = dd, bt = t;
+  }
+  REAL a0[3], a1[3], a2[3];
+  if (bo != 0xffffffffu) {
+    obs_corner(LD_OBS(3u * bo), a0), obs_corner(LD_OBS(3u * bo + 1u), a1), obs_corner(LD_OBS(3u * bo + 2u), a2);
+    REAL nrm[21];
+    uint n0 = 3u * pc.nattract + 3u * pc.nobs_v + 21u * bo;
+    for (int i = 0; i < 21; i++) nrm[i] = LD_WORLD(n0 + uint(i));
+    contact_add(p, a0, a1, a2, delta, sp[SP_K_WALL], true, nrm, acc);
+  }
+  if (bt != 0xffffffffu) {
+    uint of = o_face() + 3u * bt;
+    corner(LD_TOPO(of), a0), corner(LD_TOPO(of + 1u), a1), corner(LD_TOPO(of + 2u), a2);
+    REAL none[21];
+    contact_add(p, a0, a1, a2, delta, sp[SP_K_CONTACT], false, none, acc);
+  }
+}
+
+void main() {
+  uint c = sessile_gid();
+  if (c >= pc.ncells) return;
+  REAL s[3] = REAL[3](REAL(0), REAL(0), REAL(0));
+  uint ce = o_ce(), ct = o_ct(), oe = o_edge(), ceo = o_ceo(), cto = o_cto(), efo = 12u * pc.ntets;
+  for (uint k = LD_TOPO(ceo + c); k < LD_TOPO(ceo + c + 1u); k++) {
+    uint e = LD_TOPO(ce + k);
+    REAL sg = LD_TOPO(oe + 2u * e + 1u) == c ? REAL(1) : REAL(-1);
+    for (int i = 0; i < 3; i++) s[i] += sg * LD_ELF(efo + 3u * e + i);
+  }
+  for (uint k = LD_TOPO(cto + c); k < LD_TOPO(cto + c + 1u); k++) {
+    uint t = LD_TOPO(ct + k);
+    uint j = 0u;
+    while (LD_TOPO(4u * t + j) != c) j++;
+    for (int i = 0; i < 3; i++) s[i] += LD_ELF(12u * t + 3u * j + i);
+  }
+  REAL p[3] = REAL[3](LD_X(3u * c), LD_X(3u * c + 1u), LD_X(3u * c + 2u));
+  REAL acc[3] = REAL[3](REAL(0), REAL(0), -sp[SP_GRAVITY]);
+  if (pc.box != 0u)
+    for (int i = 0; i < 3; i++) {
+      if (p[i] < sp[SP_LO + i]) acc[i] += sp[SP_K_WALL] * (sp[SP_LO + i] - p[i]);
+      if (p[i] > sp[SP_HI + i]) acc[i] -= sp[SP_K_WALL] * (p[i] - sp[SP_HI + i]);
+    }
+  int at = attract[c];
+  if (at >= 0 && uint(at) < pc.nattract) {
+    REAL d[3];
+    for (int i = 0; i < 3; i++) d[i] = LD_WORLD(3u * uint(at) + i) - p[i];
+    REAL l = sqrt(dot3(d, d));
+    if (l > REAL(0))
+      for (int i = 0; i < 3; i++) acc[i] += sp[SP_K_ATTRACT] * d[i] / l;
+  }
+  REAL delta = sp[SP_CONTACT] * R_OF(c);
+  if (pc.lcap > 0u) contacts(c, p, delta, acc);
+  REAL mc = M_OF(c);
+  for (int i = 0; i < 3; i++) {
+    s[i] += mc * acc[i];
+    if (pc.damping != 0u) s[i] -= sp[SP_DAMP_VISC] * mc * LD_V(3u * c + i);
+    f[3u * c + i] = s[i];
+  }
+  if (pc.mode == 1u) {
+    REAL d2 = REAL(0);
+    for (int i = 0; i < 3; i++) {
+      REAL vn = LD_V(3u * c + i) + pc.dt * s[i] / mc;
+      REAL dx = pc.dt * vn;
+      v_out[3u * c + i] = vn;
+      x_out[3u * c + i] = p[i] + dx;
+      d2 += dx * dx;
+    }
+    move[c] = sqrt(d2) / R_OF(c);
+    if (pc.lcap > 0u) { // how far the cell is from where its contact list was built
+      REAL e2 = REAL(0);
+      for (int i = 0; i < 3; i++) {
+        REAL d = p[i] + pc.dt * (LD_V(3u * c + i) + pc.dt * s[i] / mc) - xb[3u * c + i]; // x_out, as above
+        e2 += d * d;
+      }
+      move[pc.ncells + c] = sqrt(e2);
+    }
+  }
+}

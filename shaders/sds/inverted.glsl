@@ -1,0 +1,18 @@
+// One tetrahedron per invocation: flag[t] = 1 when its signed volume (eq 1)
+// is <= 0 or not finite (§3.1.2: an inverted tetrahedron), else 0.
+#include "sds_common.glsl"
+#include "sds_load.glsl"
+
+void main() {
+  uint t = sessile_gid();
+  if (t >= pc.ntets) return;
+  uint q0 = LD_TOPO(4u * t), q1 = LD_TOPO(4u * t + 1u), q2 = LD_TOPO(4u * t + 2u), q3 = LD_TOPO(4u * t + 3u);
+  REAL a[3], b[3], c[3];
+  for (int i = 0; i < 3; i++) {
+    a[i] = LD_X(3u * q1 + i) - LD_X(3u * q0 + i);
+    b[i] = LD_X(3u * q2 + i) - LD_X(3u * q0 + i);
+    c[i] = LD_X(3u * q3 + i) - LD_X(3u * q0 + i);
+  }
+  REAL V = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  flag[t] = (V > REAL(0) && is_finite(V)) ? 0u : 1u;
+}

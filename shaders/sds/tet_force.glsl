@@ -1,0 +1,40 @@
+// One tetrahedron per invocation: the forces of the volume spring
+// E = k/2 ((V - R')/R')^2, R' = s_m R (Appendix A), k = k_vol (sum r/2)(sum m/2)
+// (times the surface multiplier on surface tets), on its 4 cells, and with
+// damping the volume-rate term -c (sum r/2)(sum m/2) (dV/dt)/R'^2 grad V.
+// Mirrors tet_force in host/sds/sds_physics.c.
+#include "sds_common.glsl"
+#include "sds_load.glsl"
+
+void main() {
+  uint t = sessile_gid();
+  if (t >= pc.ntets) return;
+  uint q[4] = uint[4](LD_TOPO(4u * t), LD_TOPO(4u * t + 1u), LD_TOPO(4u * t + 2u), LD_TOPO(4u * t + 3u));
+  REAL a[3], b[3], c[3], g[4][3];
+  for (int i = 0; i < 3; i++) {
+    a[i] = LD_X(3u * q[1] + i) - LD_X(3u * q[0] + i);
+    b[i] = LD_X(3u * q[2] + i) - LD_X(3u * q[0] + i);
+    c[i] = LD_X(3u * q[3] + i) - LD_X(3u * q[0] + i);
+  }
+  g[1][0] = b[1] * c[2] - b[2] * c[1], g[1][1] = b[2] * c[0] - b[0] * c[2], g[1][2] = b[0] * c[1] - b[1] * c[0];
+  g[2][0] = c[1] * a[2] - c[2] * a[1], g[2][1] = c[2] * a[0] - c[0] * a[2], g[2][2] = c[0] * a[1] - c[1] * a[0];
+  g[3][0] = a[1] * b[2] - a[2] * b[1], g[3][1] = a[2] * b[0] - a[0] * b[2], g[3][2] = a[0] * b[1] - a[1] * b[0];
+  for (int i = 0; i < 3; i++) {
+    g[1][i] /= REAL(6), g[2][i] /= REAL(6), g[3][i] /= REAL(6);
+    g[0][i] = -(g[1][i] + g[2][i] + g[3][i]);
+  }
+  REAL V = a[0] * g[1][0] + a[1] * g[1][1] + a[2] * g[1][2];
+  REAL R = LD_SM(t) * tet_rest(R_OF(q[0]), R_OF(q[1]), R_OF(q[2]), R_OF(q[3]));
+  REAL rs = REAL(0), ms = REAL(0);
+  for (int i = 0; i < 4; i++) rs += R_OF(q[i]), ms += M_OF(q[i]);
+  REAL sc = REAL(0.5) * rs * REAL(0.5) * ms;
+  REAL coef = sp[SP_K_VOL] * (LD_TOPO(o_tsurf() + t) != 0u ? sp[SP_SURF] : REAL(1)) * sc * (V - R) / (R * R);
+  if (pc.damping != 0u && sp[SP_DAMP_VOL] > REAL(0)) {
+    REAL vdot = REAL(0);
+    for (int k = 0; k < 4; k++)
+      vdot += g[k][0] * LD_V(3u * q[k]) + g[k][1] * LD_V(3u * q[k] + 1u) + g[k][2] * LD_V(3u * q[k] + 2u);
+    coef += sp[SP_DAMP_VOL] * sc * vdot / (R * R);
+  }
+  for (int k = 0; k < 4; k++)
+    for (int i = 0; i < 3; i++) elf[12u * t + 3u * k + i] = -coef * g[k][i];
+}

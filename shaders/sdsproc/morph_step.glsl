@@ -1,0 +1,63 @@
+// One explicit Euler step of the morphogens (Porter & McCormack §3.3):
+//   lap = sum_n (min(n_phi, vol(c)) - min(c_phi, vol(n))) / |c_x - n_x|
+//   out = clamp(phi + dt (D lap - C phi + src), 0, vol(c) or +inf)
+// Operation for operation as sessile_morph_step (host/sds/morph.c); the
+// neighbour sum runs in CSR order so every run gives the same bytes.
+#include "sdsproc_kernels.glsl"
+// Reads through uniform texel buffers (MORPH_TEXEL = 1: vector loads on
+// lavapipe, as shaders/sds/sds_load.glsl) or storage buffers; the same bits.
+#if MORPH_TEXEL
+#include "texel_real.glsl"
+#define LD_POS(i) texel_real(pos_t, (i))
+#define LD_RADIUS(i) texel_real(radius_t, (i))
+#define LD_OFF(i) texelFetch(nbr_off_t, int(i)).x
+#define LD_NBR(i) texelFetch(nbr_t, int(i)).x
+#define LD_PHI(i) texel_real(phi_in_t, (i))
+#define LD_SRC(i) texel_real(src_t, (i))
+#else
+#define LD_POS(i) pos[i]
+#define LD_RADIUS(i) radius[i]
+#define LD_OFF(i) nbr_off[i]
+#define LD_NBR(i) nbr[i]
+#define LD_PHI(i) phi_in[i]
+#define LD_SRC(i) src[i]
+#endif
+
+REAL vol_of(REAL r) {
+  precise REAL v = REAL(4.0lf / 3.0lf * 3.14159265358979311600lf) * r * r * r;
+  return v;
+}
+
+void main() {
+  uint c = sessile_gid();
+  if (c >= pc.ncells) return;
+  uint nm = pc.nmorph;
+  REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
+  REAL vc = vol_of(LD_RADIUS(c));
+  uint a = LD_OFF(c), b = LD_OFF(c + 1u);
+  // one pass over the neighbours for all morphogens (the distance and the
+  // neighbour's volume once per neighbour); each morphogen's sum still runs
+  // in CSR order, the same operations as one morphogen at a time
+  precise REAL s[SDSPROC_MAX_MORPH];
+  REAL p[SDSPROC_MAX_MORPH];
+  for (uint k = 0u; k < nm; k++) s[k] = REAL(0), p[k] = LD_PHI(c * nm + k);
+  for (uint q = a; q < b; q++) {
+    uint n = LD_NBR(q);
+    precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
+    precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
+    REAL vn = vol_of(LD_RADIUS(n));
+    for (uint k = 0u; k < nm; k++) {
+      precise REAL t = min(LD_PHI(n * nm + k), vc) - min(p[k], vn);
+      s[k] += t / d;
+    }
+  }
+  for (uint k = 0u; k < nm; k++) {
+    uint i = c * nm + k;
+    precise REAL rate = coef[3u * k] * s[k] - coef[3u * k + 1u] * p[k];
+    rate += LD_SRC(i);
+    precise REAL v = p[k] + pc.dt * rate;
+    v = max(v, REAL(0));
+    if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
+    phi_out[i] = v;
+  }
+}

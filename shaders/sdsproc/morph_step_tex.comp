@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// morph_step.glsl reading its inputs through uniform texel buffers.
+#define MORPH_TEXEL 1
+#include "morph_step.glsl"
