@@ -183,11 +183,25 @@ static sessile_status obstacle_upload(sessile_sds_gpu *s, const sessile_sds_para
   return SESSILE_OK;
 }
 
+/* Have the contact lists gone stale, with every cell at most far_all and
+ * every surface cell at most far_surf from where the lists were built, and
+ * the radii grown by at most s->grown?  A list holds the triangles within
+ * delta + skin of its cell at the build.  An obstacle triangle does not
+ * move: its distance to a cell changes by at most the cell's move, so the
+ * obstacle's entries hold while far_all + contact_scale grown <= skin.  A
+ * boundary face's distance changes by at most the cell's move plus its
+ * corners' largest move, and both are surface cells (only they query the
+ * surface): 2 far_surf + contact_scale grown <= skin.  Interior cells (most
+ * daughters of a division) so count once, and only against the obstacle. */
+static int lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf) {
+  sds_push p = push_of(s, 0.0, 0, 0);
+  double g = s->p.contact_scale * s->grown;
+  return (p.nobs && !(far_all + g <= s->skin)) || (p.tsize && !(2 * far_surf + g <= s->skin));
+}
+
 /* Are the contact lists still complete for the organism about to be
- * uploaded?  Not after a topology change; else while 2 max |x - xb| +
- * contact_scale max (r - rb) <= skin (a triangle's distance to a cell
- * changes by at most the cell's move plus its corners' largest move).
- * Takes topo (malloc'd, ntopo words) as the new reference. */
+ * uploaded?  Not after a topology change; else lists_stale with the host's
+ * x and r.  Takes topo (malloc'd, ntopo words) as the new reference. */
 static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *o, uint32_t *topo, size_t ntopo) {
   size_t n = o->ncells;
   int same = s->topo_up && s->ntopo_up == ntopo && n == s->ncells && !memcmp(s->topo_up, topo, ntopo * 4);
@@ -201,15 +215,16 @@ static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *
     s->lists_valid = 0;
     return SESSILE_OK;
   }
-  double moved = 0, grown = 0;
+  double moved = 0, moved_surf = 0, grown = 0;
   for (size_t c = 0; c < n; c++) {
     double d2 = 0;
     for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
     if (!(d2 <= moved)) moved = d2;
+    if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
     if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
   }
   s->grown = grown;
-  if (!(2 * sqrt(moved) + s->p.contact_scale * grown <= s->skin)) s->lists_valid = 0;
+  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
   return SESSILE_OK;
 }
 
@@ -482,10 +497,13 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
   s->cur = 1 - s->cur;
   if (s->lists_valid && contacts_on(s)) { /* still complete at the new x? (radii do not change here) */
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], s->ncells, s->scratch, s->ncells));
-    double far = 0;
-    for (uint32_t c = 0; c < s->ncells; c++)
+    const uint32_t *surf = s->topo_up + s->ntopo_up - s->ncells; /* cell_surf, the last words of topo */
+    double far = 0, far_surf = 0;
+    for (uint32_t c = 0; c < s->ncells; c++) {
       if (!(s->scratch[c] <= far)) far = s->scratch[c];
-    if (!(2 * far + s->p.contact_scale * s->grown <= s->skin)) s->lists_valid = 0;
+      if (surf[c] && !(s->scratch[c] <= far_surf)) far_surf = s->scratch[c];
+    }
+    if (lists_stale(s, far, far_surf)) s->lists_valid = 0;
   }
   if (max_move) {
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], 0, s->scratch, s->ncells));
