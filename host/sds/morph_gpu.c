@@ -103,6 +103,8 @@ sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi
   return st;
 }
 
+double sessile_morph_gpu_dt_max(const sessile_morph_gpu *m) { return m->dt_max; }
+
 void sessile_morph_gpu_set_reads(sessile_morph_gpu *m, int storage) { m->storage = storage != 0; }
 
 /* The texel variant when allowed and every view it reads fits the device's

@@ -228,6 +228,34 @@ static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *
   return SESSILE_OK;
 }
 
+sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sds *o) {
+  SESSILE_CHECK(o->ncells == s->ncells && o->ntets == s->ntets && o->nedges == s->nedges &&
+                    o->nfaces == s->nfaces && s->topo_up,
+                SESSILE_ERR_USAGE, "sds: radii of %u cells and %u tets for a device organism of %u and %u "
+                "(a topology change needs sessile_sds_gpu_upload)", o->ncells, o->ntets, s->ncells, s->ntets);
+  size_t n = o->ncells;
+  for (size_t c = 0; c < n; c++) s->scratch[2 * c] = o->r[c], s->scratch[2 * c + 1] = o->m[c]; /* 3n scratch */
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_RM], 0, s->scratch, 2 * n));
+  memcpy(s->r_up, o->r, n * sizeof *s->r_up);
+  if (s->lists_valid) { /* as lists_check_upload, the topology being the same */
+    double moved = 0, moved_surf = 0, grown = 0;
+    for (size_t c = 0; c < n; c++) {
+      double d2 = 0;
+      for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
+      if (!(d2 <= moved)) moved = d2;
+      if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
+      if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
+    }
+    s->grown = grown;
+    if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
+  }
+  s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
+  double hs = s->h_self;
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
+  s->dt_stable = sessile_sds_stable_dt(o, &s->p);
+  return SESSILE_OK;
+}
+
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
   SESSILE_CHECK(o->edge && o->cell_tet_off, SESSILE_ERR_USAGE, "sds: the organism has no derived data (call sessile_sds_rebuild)");
   size_t n = o->ncells, E = o->nedges, T = o->ntets, rb = s->real_bytes;

@@ -42,6 +42,7 @@ typedef struct sim {
   uint64_t repair_next;       /* no repair of lasting slivers before this step (backoff) */
   uint64_t repair_fails;      /* failed repairs in a row of the same inverted tets */
   uint64_t repair_key;        /* the inverted tets of the last failed repair (FNV-1a) */
+  int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
   int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
@@ -136,21 +137,29 @@ static sessile_morph_cells cells_of(const sim *s) {
   return c;
 }
 
-/* After any topology change or growth: derived data, neighbours, the GPU. */
+/* After any topology change or growth: derived data, neighbours, the GPU.
+ * Without a topology change since the last upload only the radii and masses
+ * have changed (the device's x and v are the host's: every step downloads
+ * them), and only they go up. */
 static sessile_status refresh(sim *s) {
+  if (!s->topo_changed) return sessile_sds_gpu_update_radii(s->pg, &s->o);
   SESSILE_CALL(neighbours(s));
-  return sessile_sds_gpu_upload(s->pg, &s->o);
+  SESSILE_CALL(sessile_sds_gpu_upload(s->pg, &s->o));
+  s->topo_changed = 0;
+  return SESSILE_OK;
 }
 
 static sessile_status morphogens(sim *s, const double *src, double dt) {
   if (s->o.nmorph == 0) return SESSILE_OK;
   sessile_morph_cells cells = cells_of(s);
   sessile_morph_coef coef = sessile_sds_model_coef(s->model);
-  double bound = sessile_morph_dt_max(&cells, &coef);
-  if (!(bound > 0)) return blowup(s, "two adjacent cells coincide (the morphogens' step bound is 0)");
+  sessile_status st = sessile_morph_gpu_set_cells(s->mg, &cells, &coef); /* computes the step bound */
+  double bound = sessile_morph_gpu_dt_max(s->mg);
+  if (st == SESSILE_ERR_NUMERIC || (st == SESSILE_OK && !(bound > 0)))
+    return blowup(s, "two adjacent cells coincide (the morphogens' step bound is 0)");
+  SESSILE_CALL(st);
   double n = isfinite(bound) && dt > bound ? ceil(dt / bound * (1 + 1e-9)) : 1;
   if (n > 10000) return blowup(s, "the morphogen step needs %.3g sub-steps (cells too close)", n);
-  SESSILE_CALL(sessile_morph_gpu_set_cells(s->mg, &cells, &coef));
   SESSILE_CALL(sessile_morph_gpu_set_phi(s->mg, s->o.phi, src));
   SESSILE_CALL(sessile_morph_gpu_step(s->mg, dt / n, (int)n));
   return sessile_morph_gpu_get_phi(s->mg, s->o.phi);
@@ -187,6 +196,7 @@ static sessile_status take_complex(sim *s, const sessile_sds_topo_complex *cx, c
   memcpy(o->tet, cx->tet, (size_t)cx->nt * 4 * sizeof *o->tet);
   o->ncells = cx->nv, o->ntets = cx->nt;
   (void)old_cells;
+  s->topo_changed = 1;
   return sessile_sds_rebuild_oriented(o, SESSILE_SDS_NEW_UNIT);
 }
 

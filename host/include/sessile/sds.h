@@ -235,6 +235,11 @@ sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, cons
 void sessile_sds_gpu_destroy(sessile_sds_gpu *s);
 /* Uploads everything of o (after a topology change: grows the buffers). */
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
+/* After growth alone (the same complex as the last upload, and the device's
+ * x and v those of o: a step downloaded them): uploads r and m and refreshes
+ * what depends on them (the stable step bound, the contact lists' staleness).
+ * The same device state as sessile_sds_gpu_upload, without the topology. */
+sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sds *o);
 /* Downloads x, v, r, m into o (same sizes as uploaded; phi and state stay
  * on the host until the morphogen kernels exist). */
 sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);

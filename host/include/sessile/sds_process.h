@@ -92,6 +92,8 @@ sessile_status sessile_morph_gpu_get_phi(sessile_morph_gpu *m, double *phi);
  * fit (default 0: uniform texel buffers where they fit, the same bits, vector
  * loads on lavapipe).  For the tests that compare the two. */
 void sessile_morph_gpu_set_reads(sessile_morph_gpu *m, int storage);
+/* The explicit Euler bound of the cells last set (sessile_morph_dt_max). */
+double sessile_morph_gpu_dt_max(const sessile_morph_gpu *m);
 
 /* --- rules (host/sds/rules_*.c) ------------------------------------------- */
 #define SESSILE_SDS_NAME 32
