@@ -161,6 +161,30 @@ int main(void) {
   t_must("download", sessile_sds_gpu_download(s2, &r2));
   t_true("40 steps through storage reads: the same bytes as through texel reads",
          !memcmp(r1.x, r2.x, n3 * 8) && !memcmp(r1.v, r2.v, n3 * 8));
+  sessile_sds_gpu_set_reads(s2, 0);
+  /* growth alone: sessile_sds_gpu_update_radii gives the device state of a
+   * full upload (sg holds r1's x and v: it was downloaded from it) */
+  {
+    sessile_sds gr = {0};
+    t_must("copy", sessile_sds_copy(&r1, &gr));
+    for (uint32_t c = 0; c < gr.ncells; c++) gr.r[c] *= 1 + 0.02 * (c % 3), gr.m[c] *= 1.5;
+    double *fa = t_dalloc(n3), *fb = t_dalloc(n3);
+    t_must("update radii", sessile_sds_gpu_update_radii(sg, &gr));
+    t_must("forces", sessile_sds_gpu_forces(sg, 1, fa));
+    t_must("full upload", sessile_sds_gpu_upload(s2, &gr));
+    t_must("forces", sessile_sds_gpu_forces(s2, 1, fb));
+    t_true("grown radii: update_radii gives the forces of a full upload, bit for bit", !memcmp(fa, fb, n3 * 8));
+    t_must("step", sessile_sds_gpu_step(sg, dt, NULL));
+    t_must("step", sessile_sds_gpu_step(s2, dt, NULL));
+    t_must("download", sessile_sds_gpu_download(sg, &r2));
+    t_must("download", sessile_sds_gpu_download(s2, &gr));
+    t_true("and the same next step", !memcmp(r2.x, gr.x, n3 * 8) && !memcmp(r2.v, gr.v, n3 * 8));
+    gr.ncells--;
+    t_true("update_radii refuses another complex", sessile_sds_gpu_update_radii(sg, &gr) == SESSILE_ERR_USAGE);
+    gr.ncells++;
+    free(fa), free(fb);
+    sessile_sds_free(&gr);
+  }
   t_check("GPU positions after 40 steps = host integrator's (rel to max)", t_relerr(r1.x, rh.x, n3),
           fp64 ? 1e-10 : 1e-4);
   double disp = 0;
