@@ -23,7 +23,7 @@ typedef struct sds_ckpt_loop {
   uint64_t steps, divisions, inversions, resisted, slivers, deferred, repairs; /* run totals */
   double c0[3], size0;           /* the starting organism's centroid and size (blow-up test) */
   uint64_t retry_cap;            /* entries of retry_at */
-  uint64_t repair_next, repair_fails, repair_key; /* the repairs' backoff (sds_run.c, repair) */
+  uint64_t repair_next, repair_fails, repair_key, repair_last; /* the repairs' backoff (sds_run.c, repair) */
 } sds_ckpt_loop;
 
 #define SDS_CKPT_VERSION 3u

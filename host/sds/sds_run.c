@@ -42,6 +42,7 @@ typedef struct sim {
   uint64_t repair_next;       /* no repair of lasting slivers before this step (backoff) */
   uint64_t repair_fails;      /* failed repairs in a row of the same inverted tets */
   uint64_t repair_key;        /* the inverted tets of the last failed repair (FNV-1a) */
+  uint64_t repair_last;       /* the step of the last failed repair */
   int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
@@ -265,22 +266,39 @@ static sessile_status repair(sim *s) {
   sessile_sds *o = &s->o;
   uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0;
   SESSILE_CHECK(bad, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
-  uint64_t key = 14695981039346656037ull; /* FNV-1a of the tet count and the inverted tets */
-  key = (key ^ o->ntets) * 1099511628211ull;
+  /* the inverted tets named by their cells (cell indices outlive the
+   * renumbering of tets by a division elsewhere): the xor of an FNV-1a of
+   * each one's sorted cells, so that their order does not matter */
+  uint64_t key = 0;
   for (uint32_t t = 0; t < o->ntets; t++) {
     const uint32_t *v = o->tet + 4 * (size_t)t;
     if (!(sessile_sds_topo_volume(o->x + 3 * (size_t)v[0], o->x + 3 * (size_t)v[1], o->x + 3 * (size_t)v[2],
-                                  o->x + 3 * (size_t)v[3]) > 0))
-      bad[nbad++] = t, key = (key ^ t) * 1099511628211ull;
+                                  o->x + 3 * (size_t)v[3]) > 0)) {
+      bad[nbad++] = t;
+      uint32_t q[4] = {v[0], v[1], v[2], v[3]};
+      for (int i = 1; i < 4; i++)
+        for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
+          uint32_t w = q[j];
+          q[j] = q[j - 1], q[j - 1] = w;
+        }
+      uint64_t h = 14695981039346656037ull;
+      for (int i = 0; i < 4; i++) h = (h ^ q[i]) * 1099511628211ull;
+      key ^= h;
+    }
   }
+  key ^= nbad;
   /* The same inverted tets as at the last failed try (a cavity that did not
    * mesh, or gave an invalid complex): after k such failures in a row the
    * next try waits 2^k steps, at most 128.  A sliver can last thousands of
    * steps, and every try copies and checks the whole complex and calls
    * TetGen up to three times (about 5 ms per step at 2 800 cells, 40 % of
-   * the rock model's run, when it was tried every step); new inverted tets,
-   * or a topology change, are tried at once. */
-  if (nbad && key == s->repair_key && s->st->steps < s->repair_next) {
+   * the rock model's run, when it was tried every step).  Other inverted
+   * tets are tried at once, but not within 8 steps of a failed try: the
+   * rock model's late steps hold 10-25 slivers whose set changes every few
+   * steps. */
+  int wait = key == s->repair_key ? s->st->steps < s->repair_next
+                                   : s->repair_key != 0 && s->st->steps < s->repair_last + 8;
+  if (nbad && wait) {
     free(bad);
     return SESSILE_OK;
   }
@@ -300,7 +318,7 @@ static sessile_status repair(sim *s) {
       st = rst;
     else {
       s->repair_fails = key == s->repair_key ? s->repair_fails + 1 : 1;
-      s->repair_key = key;
+      s->repair_key = key, s->repair_last = s->st->steps;
       s->repair_next = s->st->steps + (1u << (s->repair_fails < 7 ? s->repair_fails : 7));
     }
     if (ok) s->repair_fails = 0, s->repair_key = 0;
@@ -682,7 +700,8 @@ static sessile_status save(sim *s, sessile_run *run) {
                      .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
                      .deferred = t->deferred, .repairs = t->repairs, .c0 = {s->c0[0], s->c0[1], s->c0[2]}, .size0 = s->size0,
                      .retry_cap = s->retry_at ? s->retry_cap : 0, .repair_next = s->repair_next,
-                     .repair_fails = s->repair_fails, .repair_key = s->repair_key};
+                     .repair_fails = s->repair_fails, .repair_key = s->repair_key,
+                     .repair_last = s->repair_last};
   return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at);
 }
 
@@ -699,6 +718,7 @@ static sessile_status restore(sim *s, const sessile_ckpt *ck) {
   memcpy(s->c0, l.c0, sizeof s->c0);
   s->size0 = l.size0, s->retry_cap = (uint32_t)l.retry_cap;
   s->repair_next = l.repair_next, s->repair_fails = l.repair_fails, s->repair_key = l.repair_key;
+  s->repair_last = l.repair_last;
   if (!s->retry_cap) free(s->retry_at), s->retry_at = NULL;
   SESSILE_CHECK(s->frame >= 1 && s->frame <= s->frames + 1 && isfinite(s->time) && s->dt > 0 && s->size0 > 0,
                 SESSILE_ERR_IO, "the checkpoint's loop section does not fit this run (damaged?)");
