@@ -199,6 +199,22 @@ static int lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf
   return (p.nobs && !(far_all + g <= s->skin)) || (p.tsize && !(2 * far_surf + g <= s->skin));
 }
 
+/* The lists' staleness at o's x and r (the same complex as at their build):
+ * the largest moves since the build, every cell's and the surface cells',
+ * and the radii's growth (kept in s->grown). */
+static void lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o) {
+  double moved = 0, moved_surf = 0, grown = 0;
+  for (size_t c = 0; c < o->ncells; c++) {
+    double d2 = 0;
+    for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
+    if (!(d2 <= moved)) moved = d2;
+    if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
+    if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
+  }
+  s->grown = grown;
+  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
+}
+
 /* Are the contact lists still complete for the organism about to be
  * uploaded?  Not after a topology change; else lists_stale with the host's
  * x and r.  Takes topo (malloc'd, ntopo words) as the new reference. */
@@ -215,16 +231,7 @@ static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *
     s->lists_valid = 0;
     return SESSILE_OK;
   }
-  double moved = 0, moved_surf = 0, grown = 0;
-  for (size_t c = 0; c < n; c++) {
-    double d2 = 0;
-    for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
-    if (!(d2 <= moved)) moved = d2;
-    if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
-    if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
-  }
-  s->grown = grown;
-  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
+  lists_check_moves(s, o);
   return SESSILE_OK;
 }
 
@@ -237,18 +244,7 @@ sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sd
   for (size_t c = 0; c < n; c++) s->scratch[2 * c] = o->r[c], s->scratch[2 * c + 1] = o->m[c]; /* 3n scratch */
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_RM], 0, s->scratch, 2 * n));
   memcpy(s->r_up, o->r, n * sizeof *s->r_up);
-  if (s->lists_valid) { /* as lists_check_upload, the topology being the same */
-    double moved = 0, moved_surf = 0, grown = 0;
-    for (size_t c = 0; c < n; c++) {
-      double d2 = 0;
-      for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
-      if (!(d2 <= moved)) moved = d2;
-      if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
-      if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
-    }
-    s->grown = grown;
-    if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
-  }
+  if (s->lists_valid) lists_check_moves(s, o); /* the topology is the same */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
   double hs = s->h_self;
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
