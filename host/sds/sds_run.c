@@ -78,6 +78,11 @@ static sessile_status read_physics(sim *s, const char *where) {
   s->p.damp_visc = param1(m, "viscosity", s->p.damp_visc);
   s->p.gravity = param1(m, "gravity", 0);
   s->p.dt = param1(m, "dt", s->p.dt);
+  s->p.max_move = param1(m, "max_move", s->p.max_move);
+  s->p.stable_safety = param1(m, "stable_safety", s->p.stable_safety);
+  SESSILE_CHECK(s->p.max_move > 0 && s->p.max_move <= 1 && s->p.stable_safety > 0 && s->p.stable_safety <= 1,
+                SESSILE_ERR_USAGE, "%s: max_move and stable_safety must be in (0, 1] (got %g and %g)", where,
+                s->p.max_move, s->p.stable_safety);
   s->density = param1(m, "density", 1);
   double sc = param1(m, "self_collide", s->p.self_collide);
   SESSILE_CHECK(sc == 0 || sc == 1, SESSILE_ERR_USAGE, "%s: self_collide must be 0 or 1", where);

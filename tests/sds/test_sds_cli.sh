@@ -95,9 +95,18 @@ printf 'model bad\nmorphogen phi diffusion=0.1 decay=0\nstate tip = 0\nrule r1: 
 run sds run "$T/bad.sds" --out "$T/c"
 check "an unknown morphogen in a rule: exit 2, file:line:column, nothing written" eval \
   'rc_is 2 && one_line && grep -q "bad.sds:4:26:" "$T/err" && [ ! -e "$T/c" ]'
-printf 'model bad\ndamping = -1\n' >"$T/neg.sds"
+sed 's/^damping = .*/damping = -1/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/neg.sds"
 run sds run "$T/neg.sds" --out "$T/c"
-check "physics out of range: exit 2, one line, nothing written" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
+check "physics out of range (damping -1 in the limb model): exit 2, one line naming it, nothing written" \
+  eval 'rc_is 2 && one_line && grep -q "damping" "$T/err" && [ ! -e "$T/c" ]'
+sed 's/^tips_below = 1.*/tips_below = 1\nmax_move = 0/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/mm.sds"
+run sds run "$T/mm.sds" --out "$T/c"
+check "max_move 0: exit 2, one line naming max_move, nothing written" \
+  eval 'rc_is 2 && one_line && grep -q "max_move" "$T/err" && [ ! -e "$T/c" ]'
+sed 's/^tips_below = 1.*/tips_below = 1\nstable_safety = 1.5/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/ss.sds"
+run sds run "$T/ss.sds" --out "$T/c"
+check "stable_safety 1.5: exit 2, one line naming stable_safety, nothing written" \
+  eval 'rc_is 2 && one_line && grep -q "stable_safety" "$T/err" && [ ! -e "$T/c" ]'
 run sds run nosuchmodel --out "$T/c"
 check "an unknown shipped model: exit 2, one line" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'
 mkfifo "$T/fifo.sds"

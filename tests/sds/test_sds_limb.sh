@@ -19,37 +19,17 @@ PY=/usr/bin/python3
 run sds run limb --t-end 100 --frames 5 --out "$T/l" --quiet
 check "the limb model runs to t = 100" rc_is 0
 check "the limb's length rises frame by frame to >= 1 body radius, its width <= a quarter of its length, the tip leads" \
-  "$PY" - "$T/l/sds" <<'PYEOF'
-import sys, struct, numpy as np
+  "$PY" - "$T/l/sds" "$(dirname "$0")/../.." <<'PYEOF'
+import os, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.path.join(sys.argv[2], "tools", "sds"))
+import limb
 d = sys.argv[1]
-
-def read_ply(path):
-    """sessile's binary PLY: float vertex properties, then faces."""
-    with open(path, "rb") as f:
-        data = f.read()
-    end = data.index(b"end_header\n") + len(b"end_header\n")
-    head = data[:end].decode().splitlines()
-    assert "format binary_little_endian 1.0" in head, head[:3]
-    nv = int([h for h in head if h.startswith("element vertex")][0].split()[2])
-    props, invert = [], False
-    for h in head:
-        if h.startswith("element vertex"): invert = True
-        elif h.startswith("element face"): invert = False
-        elif invert and h.startswith("property float "): props.append(h.split()[2])
-        elif invert and h.startswith("property"): raise SystemExit("unexpected vertex property " + h)
-    v = np.frombuffer(data, dtype="<f4", count=nv * len(props), offset=end).reshape(nv, len(props))
-    return {p: v[:, i].astype(float) for i, p in enumerate(props)}
-
 L, W, lead = [], [], True
-for i in range(6):
-    p = read_ply("%s/frame_%04d.ply" % (d, i))
-    x = np.stack([p["x"], p["y"], p["z"]], 1)
-    L.append(np.ptp(x[:, 0]) - 2.0)
-    W.append(max(np.ptp(x[:, 1]), np.ptp(x[:, 2])) - 2.0)
-    tips = np.flatnonzero(p["tip"] == 1)
-    assert len(tips) == 1, "one tip cell, found %d" % len(tips)
-    lead &= x[tips[0], 0] >= x[:, 0].max() - 2 * p["radius"][tips[0]]
-    print("frame %d: tip at x = %.3f, front at %.3f, tip radius %.3f" % (i, x[tips[0], 0], x[:, 0].max(), p["radius"][tips[0]]))
+for i, (l, w, tx, front, tr) in enumerate(limb.measure(d, 5)):
+    L.append(l), W.append(w)
+    lead &= tx >= front - 2 * tr
+    print("frame %d: tip at x = %.3f, front at %.3f, tip radius %.3f" % (i, tx, front, tr))
 print("t = 0..100: L =", " ".join("%.2f" % l for l in L), " W =", " ".join("%.2f" % w for w in W))
 ok = all(b >= a - 0.05 for a, b in zip(L, L[1:])) and L[-1] >= 1.0 and W[-1] <= 0.25 * L[-1] and lead
 sys.exit(0 if ok else 1)
