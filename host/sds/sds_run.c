@@ -319,6 +319,7 @@ static sessile_status repair(sim *s) {
     if (ok) {
       st = take_complex(s, &cx, tr.tet_from);
       if (st == SESSILE_OK) s->st->repairs++;
+      s->repair_fails = 0, s->repair_key = 0;
     } else if (st == SESSILE_OK && rst == SESSILE_ERR_NO_MEMORY)
       st = rst;
     else {
@@ -326,7 +327,6 @@ static sessile_status repair(sim *s) {
       s->repair_key = key, s->repair_last = s->st->steps;
       s->repair_next = s->st->steps + (1u << (s->repair_fails < 7 ? s->repair_fails : 7));
     }
-    if (ok) s->repair_fails = 0, s->repair_key = 0;
     free(tr.tet_from);
     sessile_sds_topo_complex_free(&cx);
   }
