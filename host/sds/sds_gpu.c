@@ -28,6 +28,7 @@ struct sessile_sds_gpu {
   size_t cap[B_COUNT];
   uint32_t ncells, nedges, ntets, nobs, nattract;
   uint32_t nfaces, tsize, tsize_obs, nobs_v; /* boundary faces; surface and obstacle hash table sizes */
+  uint32_t nsurf;                    /* surface cells (contact_self's invocations) */
   double h_self;                     /* surface hash cell size (mean boundary side at upload) */
   int no_contact;                    /* the benchmark's switch: contacts left out */
   int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
@@ -83,6 +84,7 @@ static sessile_kernel *kern(const sessile_sds_gpu *s, int k) {
     case SDS_GATHER: return s->k[SDS_GATHER_TEX];
     case SDS_INVERTED: return s->k[SDS_INVERTED_TEX];
     case SDS_CONTACT_LIST: return s->k[SDS_CONTACT_LIST_TEX];
+    case SDS_CONTACT_SELF: return s->k[SDS_CONTACT_SELF_TEX];
     default: break;
     }
   return s->k[k];
@@ -137,6 +139,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
     SESSILE_CALL(sds_hash_build(&ho, p->obstacle.pos, p->obstacle.tri, p->obstacle.nf,
                                 SDS_HASH_CELL * sds_mean_side(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf)));
   v[SP_H_OBS] = ho.h, v[SP_RHO_OBS] = ho.rho;
+  for (int i = 0; i < 3; i++) v[SP_OBS_GLO + i] = ho.glo[i], v[SP_OBS_GHI + i] = ho.ghi[i];
   sessile_status st = obstacle_upload(s, p, v, &ho);
   sds_hash_free(&ho);
   SESSILE_CALL(st);
@@ -255,7 +258,9 @@ sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sd
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
   SESSILE_CHECK(o->edge && o->cell_tet_off, SESSILE_ERR_USAGE, "sds: the organism has no derived data (call sessile_sds_rebuild)");
   size_t n = o->ncells, E = o->nedges, T = o->ntets, rb = s->real_bytes;
-  size_t F = o->nfaces, ntopo = 4 * T + 2 * E + 2 * (n + 1) + 2 * E + 4 * T + T + E + 3 * F + n;
+  size_t nsurf = 0;
+  for (size_t c = 0; c < n; c++) nsurf += o->surface[c] != 0;
+  size_t F = o->nfaces, ntopo = 4 * T + 2 * E + 2 * (n + 1) + 2 * E + 4 * T + T + E + 3 * F + n + 1 + nsurf;
   SESSILE_CHECK(ntopo < UINT32_MAX && F < SDS_LIST_OBS, SESSILE_ERR_TOO_LARGE,
                 "sds: %zu cells and %zu tets are too many for 32-bit indices", n, T);
   for (int i = 0; i < 2; i++) {
@@ -305,6 +310,9 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   if (F) memcpy(q, o->face, 3 * F * 4);
   q += 3 * F;
   for (size_t c = 0; c < n; c++) *q++ = o->surface[c];
+  *q++ = (uint32_t)nsurf; /* the surface cells, for contact_self's dispatch */
+  for (size_t c = 0; c < n; c++)
+    if (o->surface[c]) *q++ = (uint32_t)c;
   if (st == SESSILE_OK) st = sessile_buffer_upload(s->b[B_TOPO], 0, topo, ntopo * 4);
   free(h);
   if (st == SESSILE_OK) st = lists_check_upload(s, o, topo, ntopo);
@@ -318,7 +326,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->scratch = sc;
   s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
-  s->nfaces = (uint32_t)F, s->tsize = tsize;
+  s->nfaces = (uint32_t)F, s->tsize = tsize, s->nsurf = (uint32_t)nsurf;
   /* hash cell size: the mean boundary side (Teschner et al.: about the mean
    * edge length); only the cost depends on it, never the result */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
@@ -389,7 +397,11 @@ static sessile_status record_lists(sessile_sds_gpu *s, int c) {
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_RM],   s->b[B_TOPO], s->b[B_WORLD], s->b[B_OBSTRI],
                          s->b[B_HASH], s->b[B_FSPH],   s->b[B_LIST], s->b[B_XB],   s->b[B_LMAX]};
-  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_LIST), groups(s, SDS_CONTACT_LIST, s->ncells), b, &p);
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_LIST), groups(s, SDS_CONTACT_LIST, s->ncells), b, &p));
+  if (!p.tsize || !s->nsurf) return SESSILE_OK;
+  sessile_buffer *bs[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_RM],   s->b[B_TOPO],
+                          s->b[B_HASH], s->b[B_FSPH],   s->b[B_LIST], s->b[B_LMAX]};
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_SELF), groups(s, SDS_CONTACT_SELF, s->nsurf), bs, &p);
 }
 
 static int contacts_on(const sessile_sds_gpu *s) {
@@ -521,7 +533,7 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
   s->cur = 1 - s->cur;
   if (s->lists_valid && contacts_on(s)) { /* still complete at the new x? (radii do not change here) */
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], s->ncells, s->scratch, s->ncells));
-    const uint32_t *surf = s->topo_up + s->ntopo_up - s->ncells; /* cell_surf, the last words of topo */
+    const uint32_t *surf = s->topo_up + s->ntopo_up - 1 - s->nsurf - s->ncells; /* cell_surf (topo's layout: kernels.def) */
     double far = 0, far_surf = 0;
     for (uint32_t c = 0; c < s->ncells; c++) {
       if (!(s->scratch[c] <= far)) far = s->scratch[c];

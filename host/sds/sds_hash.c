@@ -84,7 +84,12 @@ sessile_status sds_hash_build(sds_hash *hs, const double *pos, const uint32_t *t
   for (uint32_t f = 0; f < nf; f++) {
     double g[3];
     centroid(pos, tri + 3 * (size_t)f, g);
-    slot[f] = sds_grid_hash(sds_grid_coord(g[0], h), sds_grid_coord(g[1], h), sds_grid_coord(g[2], h), hs->tsize);
+    int32_t gc[3] = {sds_grid_coord(g[0], h), sds_grid_coord(g[1], h), sds_grid_coord(g[2], h)};
+    for (int i = 0; i < 3; i++) {
+      if (f == 0 || gc[i] < hs->glo[i]) hs->glo[i] = gc[i];
+      if (f == 0 || gc[i] > hs->ghi[i]) hs->ghi[i] = gc[i];
+    }
+    slot[f] = sds_grid_hash(gc[0], gc[1], gc[2], hs->tsize);
     hs->off[slot[f] + 1]++;
     for (int k = 0; k < 3; k++) {
       double d[3];
@@ -282,7 +287,12 @@ static int32_t nearest(const double *pos, const uint32_t *tri, uint32_t nf, cons
   }
   double reach = (delta + hs->rho) * 1.000000001;
   int32_t lo[3], hi[3];
-  for (int i = 0; i < 3; i++) lo[i] = sds_grid_coord(p[i] - reach, hs->h), hi[i] = sds_grid_coord(p[i] + reach, hs->h);
+  for (int i = 0; i < 3; i++) {
+    lo[i] = sds_grid_coord(p[i] - reach, hs->h), hi[i] = sds_grid_coord(p[i] + reach, hs->h);
+    /* no centroid outside [glo, ghi]: the box's other buckets hold only other cells' collisions */
+    if (lo[i] < hs->glo[i]) lo[i] = hs->glo[i];
+    if (hi[i] > hs->ghi[i]) hi[i] = hs->ghi[i];
+  }
   for (int32_t gi = lo[0]; gi <= hi[0]; gi++)
     for (int32_t gj = lo[1]; gj <= hi[1]; gj++)
       for (int32_t gk = lo[2]; gk <= hi[2]; gk++) {

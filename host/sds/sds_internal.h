@@ -45,6 +45,7 @@ double sds_external_potential(const sessile_sds_params *p, const double *x, int3
 typedef struct sds_hash {
   uint32_t tsize, n; /* table size (a prime >= 2n + 1), triangles */
   double h, rho;     /* cell size; largest distance from a centroid to its corners */
+  int32_t glo[3], ghi[3]; /* the grid cells of the centroids lie in [glo, ghi] (a query clips its box to it) */
   uint32_t *off;     /* tsize + 1 */
   uint32_t *ent;     /* n */
 } sds_hash;
