@@ -51,14 +51,15 @@ static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *
 }
 
 sessile_status sds_ckpt_write(sessile_run *run, int frames, const sessile_sds *o, const sds_ckpt_loop *l,
-                              const double *retry_at) {
+                              const double *retry_at, const uint64_t *sliver) {
   counts c = {o->ncells, o->ntets, o->nedges, o->nfaces, o->nmorph, o->nstate};
   sessile_ckpt_section s[NSEC + 3];
   layout(o, &c, s, NULL);
   s[NSEC - 1] = (sessile_ckpt_section){"sds_counts", &c, sizeof c};
   s[NSEC] = (sessile_ckpt_section){"sds_loop", l, sizeof *l};
   s[NSEC + 1] = (sessile_ckpt_section){"retry_at", retry_at, l->retry_cap * sizeof(double)};
-  return sessile_run_checkpoint(run, frames, NSEC + 2, s);
+  s[NSEC + 2] = (sessile_ckpt_section){"slivers", sliver, 3 * l->nsliver * sizeof(uint64_t)};
+  return sessile_run_checkpoint(run, frames, NSEC + 3, s);
 }
 
 static sessile_status damaged(const char *what) {
@@ -66,8 +67,8 @@ static sessile_status damaged(const char *what) {
 }
 
 sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t nmorph, uint32_t nstate,
-                             sessile_sds *o, sds_ckpt_loop *l, double **retry_at) {
-  *retry_at = NULL;
+                             sessile_sds *o, sds_ckpt_loop *l, double **retry_at, uint64_t **sliver) {
+  *retry_at = NULL, *sliver = NULL;
   size_t n = 0;
   const void *p = sessile_ckpt_get(ck, "sds_loop", &n);
   if (!p || n != sizeof *l) return damaged("sds_loop");
@@ -123,10 +124,16 @@ sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t
     else if (!(*retry_at = malloc(n ? n : 1))) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
     else if (n) memcpy(*retry_at, p, n);
   }
+  if (st == SESSILE_OK) {
+    p = sessile_ckpt_get(ck, "slivers", &n);
+    if (!p || l->nsliver > 4 * t || n != 3 * l->nsliver * sizeof(uint64_t)) st = damaged("slivers");
+    else if (!(*sliver = malloc(n ? n : 1))) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    else if (n) memcpy(*sliver, p, n);
+  }
   if (st != SESSILE_OK) {
     sessile_sds_free(o);
-    free(*retry_at);
-    *retry_at = NULL;
+    free(*retry_at), free(*sliver);
+    *retry_at = NULL, *sliver = NULL;
   }
   return st;
 }

@@ -23,10 +23,10 @@ typedef struct sds_ckpt_loop {
   uint64_t steps, divisions, inversions, resisted, slivers, deferred, repairs; /* run totals */
   double c0[3], size0;           /* the starting organism's centroid and size (blow-up test) */
   uint64_t retry_cap;            /* entries of retry_at */
-  uint64_t repair_next, repair_fails, repair_key, repair_last; /* the repairs' backoff (sds_run.c, repair) */
+  uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_run.c, repair) */
 } sds_ckpt_loop;
 
-#define SDS_CKPT_VERSION 3u
+#define SDS_CKPT_VERSION 4u
 
 /* A 64-bit FNV-1a over the model text and the options that shape the
  * outputs (seed, t_end, frames, cell limit). */
@@ -35,12 +35,13 @@ uint64_t sds_ckpt_key(const char *model_text, uint64_t seed, double t_end, int f
 /* Writes the checkpoint (atomically, through the run) after `frames`
  * frames were written. */
 sessile_status sds_ckpt_write(sessile_run *run, int frames, const sessile_sds *o, const sds_ckpt_loop *l,
-                              const double *retry_at);
+                              const double *retry_at, const uint64_t *sliver);
 
 /* Reads it back: o (freed first) gets every array, l the scalars, *retry_at
- * a new array of l->retry_cap entries (caller frees).  SESSILE_ERR_USAGE
+ * a new array of l->retry_cap entries and *sliver one of 3 l->nsliver words
+ * (caller frees both).  SESSILE_ERR_USAGE
  * when the checkpoint belongs to another model or configuration (key !=
  * want_key), SESSILE_ERR_IO when it is damaged (sizes that do not fit). */
 sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t nmorph, uint32_t nstate,
-                             sessile_sds *o, sds_ckpt_loop *l, double **retry_at);
+                             sessile_sds *o, sds_ckpt_loop *l, double **retry_at, uint64_t **sliver);
 #endif

@@ -39,10 +39,9 @@ typedef struct sim {
   int stalled;                /* steps in a row that were rewound to their start */
   double *retry_at;           /* per cell: a deferred division is not tried again before this time */
   uint32_t retry_cap;
-  uint64_t repair_next;       /* no repair of lasting slivers before this step (backoff) */
-  uint64_t repair_fails;      /* failed repairs in a row of the same inverted tets */
-  uint64_t repair_key;        /* the inverted tets of the last failed repair (FNV-1a) */
-  uint64_t repair_last;       /* the step of the last failed repair */
+  uint64_t *sliver;           /* the repairs' backoff: per failed inverted tet (FNV-1a of its cells),
+                                 failures in a row, the step before which it is not tried again */
+  uint32_t nsliver, sliver_cap;
   int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
@@ -269,68 +268,89 @@ static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
  * division for the rest of a run (they wait for a valid complex). */
 static sessile_status repair(sim *s) {
   sessile_sds *o = &s->o;
-  uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0;
-  SESSILE_CHECK(bad, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
-  /* the inverted tets named by their cells (cell indices outlive the
-   * renumbering of tets by a division elsewhere): the xor of an FNV-1a of
-   * each one's sorted cells, so that their order does not matter */
-  uint64_t key = 0;
+  uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0, ntry = 0;
+  uint64_t *hb = malloc(((size_t)o->ntets + 1) * sizeof *hb);
+  if (!bad || !hb) {
+    free(bad), free(hb);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  }
+  /* the inverted tets, each named by its cells (cell indices outlive the
+   * renumbering of tets by a division elsewhere): an FNV-1a of its sorted
+   * cells */
   for (uint32_t t = 0; t < o->ntets; t++) {
     const uint32_t *v = o->tet + 4 * (size_t)t;
-    if (!(sessile_sds_topo_volume(o->x + 3 * (size_t)v[0], o->x + 3 * (size_t)v[1], o->x + 3 * (size_t)v[2],
-                                  o->x + 3 * (size_t)v[3]) > 0)) {
-      bad[nbad++] = t;
-      uint32_t q[4] = {v[0], v[1], v[2], v[3]};
-      for (int i = 1; i < 4; i++)
-        for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
-          uint32_t w = q[j];
-          q[j] = q[j - 1], q[j - 1] = w;
-        }
-      uint64_t h = 14695981039346656037ull;
-      for (int i = 0; i < 4; i++) h = (h ^ q[i]) * 1099511628211ull;
-      key ^= h;
-    }
+    if (sessile_sds_topo_volume(o->x + 3 * (size_t)v[0], o->x + 3 * (size_t)v[1], o->x + 3 * (size_t)v[2],
+                                o->x + 3 * (size_t)v[3]) > 0)
+      continue;
+    uint32_t q[4] = {v[0], v[1], v[2], v[3]};
+    for (int i = 1; i < 4; i++)
+      for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
+        uint32_t w = q[j];
+        q[j] = q[j - 1], q[j - 1] = w;
+      }
+    uint64_t h = 14695981039346656037ull;
+    for (int i = 0; i < 4; i++) h = (h ^ q[i]) * 1099511628211ull;
+    hb[nbad] = h, bad[nbad++] = t;
   }
-  key ^= nbad;
-  /* The same inverted tets as at the last failed try (a cavity that did not
-   * mesh, or gave an invalid complex): after k such failures in a row the
-   * next try waits 2^k steps, at most 128.  A sliver can last thousands of
-   * steps, and every try copies and checks the whole complex and calls
-   * TetGen up to three times (about 5 ms per step at 2 800 cells, 40 % of
-   * the rock model's run, when it was tried every step).  Other inverted
-   * tets are tried at once, but not within 8 steps of a failed try: the
-   * rock model's late steps hold 10-25 slivers whose set changes every few
-   * steps. */
-  int wait = key == s->repair_key ? s->st->steps < s->repair_next
-                                   : s->repair_key != 0 && s->st->steps < s->repair_last + 8;
-  if (nbad && wait) {
-    free(bad);
-    return SESSILE_OK;
+  /* The backoff, per inverted tet: after k failed tries in a row it waits
+   * 2^k steps (at most 128) before the next.  A sliver can last thousands
+   * of steps, and a try copies and checks the whole complex and calls
+   * TetGen up to three times: tried at every step it was 40 % of the rock
+   * model's run, and keyed on the whole set of inverted tets (which changes
+   * every few steps late in that run, with 40 slivers) a try every 8 steps
+   * still cost 12 ms each, 2.5 ms per step.  A try takes the tets that are
+   * due, alone, so that a new sliver is not held back by old ones that
+   * TetGen cannot mesh.  Entries of tets no longer inverted are dropped. */
+  uint32_t keep = 0;
+  for (uint32_t e = 0; e < s->nsliver; e++) {
+    uint32_t i = 0;
+    while (i < nbad && hb[i] != s->sliver[3 * e]) i++;
+    if (i < nbad) memmove(s->sliver + 3 * keep++, s->sliver + 3 * e, 3 * sizeof *s->sliver);
+  }
+  s->nsliver = keep;
+  for (uint32_t i = 0; i < nbad; i++) {
+    uint32_t e = 0;
+    while (e < s->nsliver && s->sliver[3 * e] != hb[i]) e++;
+    if (e == s->nsliver || s->st->steps >= s->sliver[3 * e + 2]) hb[ntry] = hb[i], bad[ntry++] = bad[i];
   }
   sessile_status st = SESSILE_OK;
-  if (nbad) {
+  if (ntry) {
     sessile_sds_topo_complex cx;
     sessile_sds_topo_transform tr;
     memset(&tr, 0, sizeof tr);
     st = complex_of(o, &cx);
-    sessile_status rst = st == SESSILE_OK ? sessile_sds_topo_repair(&cx, bad, nbad, &tr) : st;
+    sessile_status rst = st == SESSILE_OK ? sessile_sds_topo_repair(&cx, bad, ntry, &tr) : st;
+    /* inverted tets left out of the try may stay as they were */
     int ok = st == SESSILE_OK && rst == SESSILE_OK &&
-             sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL) == SESSILE_OK;
+             sessile_sds_topo_check_kept(o->x, o->ntets, o->tet, &cx, tr.tet_from) == SESSILE_OK;
     if (ok) {
       st = take_complex(s, &cx, tr.tet_from);
       if (st == SESSILE_OK) s->st->repairs++;
-      s->repair_fails = 0, s->repair_key = 0;
     } else if (st == SESSILE_OK && rst == SESSILE_ERR_NO_MEMORY)
       st = rst;
-    else {
-      s->repair_fails = key == s->repair_key ? s->repair_fails + 1 : 1;
-      s->repair_key = key, s->repair_last = s->st->steps;
-      s->repair_next = s->st->steps + (1u << (s->repair_fails < 7 ? s->repair_fails : 7));
-    }
+    else
+      for (uint32_t i = 0; i < ntry && st == SESSILE_OK; i++) {
+        uint32_t e = 0;
+        while (e < s->nsliver && s->sliver[3 * e] != hb[i]) e++;
+        if (e == s->nsliver) {
+          if (s->nsliver == s->sliver_cap) {
+            uint32_t cap = s->sliver_cap ? 2 * s->sliver_cap : 16;
+            uint64_t *w = realloc(s->sliver, 3 * (size_t)cap * sizeof *w);
+            if (!w) {
+              st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+              break;
+            }
+            s->sliver = w, s->sliver_cap = cap;
+          }
+          s->sliver[3 * e] = hb[i], s->sliver[3 * e + 1] = 0, s->nsliver++;
+        }
+        uint64_t k = ++s->sliver[3 * e + 1];
+        s->sliver[3 * e + 2] = s->st->steps + (1u << (k < 7 ? k : 7));
+      }
     free(tr.tet_from);
     sessile_sds_topo_complex_free(&cx);
   }
-  free(bad);
+  free(bad), free(hb);
   return st;
 }
 
@@ -704,16 +724,14 @@ static sessile_status save(sim *s, sessile_run *run) {
                      .inv_interval = s->inv_interval, .steps = t->steps, .divisions = t->divisions,
                      .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
                      .deferred = t->deferred, .repairs = t->repairs, .c0 = {s->c0[0], s->c0[1], s->c0[2]}, .size0 = s->size0,
-                     .retry_cap = s->retry_at ? s->retry_cap : 0, .repair_next = s->repair_next,
-                     .repair_fails = s->repair_fails, .repair_key = s->repair_key,
-                     .repair_last = s->repair_last};
-  return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at);
+                     .retry_cap = s->retry_at ? s->retry_cap : 0, .nsliver = s->nsliver};
+  return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at, s->sliver);
 }
 
 static sessile_status restore(sim *s, const sessile_ckpt *ck) {
   sds_ckpt_loop l;
   SESSILE_CALL(sds_ckpt_read(ck, s->key, (uint32_t)sessile_sds_model_nmorph(s->model),
-                             (uint32_t)sessile_sds_model_nstate(s->model), &s->o, &l, &s->retry_at));
+                             (uint32_t)sessile_sds_model_nstate(s->model), &s->o, &l, &s->retry_at, &s->sliver));
   sessile_sds_run_stats *t = s->st;
   s->time = l.time, s->dt = l.dt, s->calm = (int)l.calm, s->stalled = (int)l.stalled, s->rng = l.rng;
   s->frame = (int)l.frame, s->steps_frame = l.steps_frame;
@@ -722,8 +740,7 @@ static sessile_status restore(sim *s, const sessile_ckpt *ck) {
   t->slivers = l.slivers, t->deferred = l.deferred, t->repairs = l.repairs, t->frames = s->frame;
   memcpy(s->c0, l.c0, sizeof s->c0);
   s->size0 = l.size0, s->retry_cap = (uint32_t)l.retry_cap;
-  s->repair_next = l.repair_next, s->repair_fails = l.repair_fails, s->repair_key = l.repair_key;
-  s->repair_last = l.repair_last;
+  s->nsliver = s->sliver_cap = (uint32_t)l.nsliver;
   if (!s->retry_cap) free(s->retry_at), s->retry_at = NULL;
   SESSILE_CHECK(s->frame >= 1 && s->frame <= s->frames + 1 && isfinite(s->time) && s->dt > 0 && s->size0 > 0,
                 SESSILE_ERR_IO, "the checkpoint's loop section does not fit this run (damaged?)");
@@ -774,7 +791,7 @@ static void teardown(sim *s) {
   sessile_morph_gpu_destroy(s->mg);
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
-  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at);
+  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver);
 }
 
 static sessile_status record(sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps) {
