@@ -35,27 +35,23 @@ void main() {
   REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
   REAL vc = vol_of(LD_RADIUS(c));
   uint a = LD_OFF(c), b = LD_OFF(c + 1u);
-  // one pass over the neighbours for all morphogens (the distance and the
-  // neighbour's volume once per neighbour); each morphogen's sum still runs
-  // in CSR order, the same operations as one morphogen at a time
-  precise REAL s[SDSPROC_MAX_MORPH];
-  REAL p[SDSPROC_MAX_MORPH];
-  for (uint k = 0u; k < nm; k++) s[k] = REAL(0), p[k] = LD_PHI(c * nm + k);
-  for (uint q = a; q < b; q++) {
-    uint n = LD_NBR(q);
-    precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
-    precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
-    REAL vn = vol_of(LD_RADIUS(n));
-    for (uint k = 0u; k < nm; k++) {
-      precise REAL t = min(LD_PHI(n * nm + k), vc) - min(p[k], vn);
-      s[k] += t / d;
-    }
-  }
+  // one morphogen at a time, its sum over the neighbours in CSR order (no
+  // per-morphogen arrays: llvmpipe keeps a dynamically indexed local array
+  // in memory, lane by lane)
   for (uint k = 0u; k < nm; k++) {
     uint i = c * nm + k;
-    precise REAL rate = coef[3u * k] * s[k] - coef[3u * k + 1u] * p[k];
+    REAL pk = LD_PHI(i);
+    precise REAL s = REAL(0);
+    for (uint q = a; q < b; q++) {
+      uint n = LD_NBR(q);
+      precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
+      precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
+      precise REAL t = min(LD_PHI(n * nm + k), vc) - min(pk, vol_of(LD_RADIUS(n)));
+      s += t / d;
+    }
+    precise REAL rate = coef[3u * k] * s - coef[3u * k + 1u] * pk;
     rate += LD_SRC(i);
-    precise REAL v = p[k] + pc.dt * rate;
+    precise REAL v = pk + pc.dt * rate;
     v = max(v, REAL(0));
     if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
     phi_out[i] = v;
