@@ -22,7 +22,7 @@ static const char *help =
     "runs the Figure 9 model (rock, Porter & McCormack: 5.7 minutes on a\n"
     "dual-core 2 GHz PC) through the loop, frames on, into a temporary run\n"
     "directory, to simulated time T (default 1; 400 is the model's whole run,\n"
-    "about 15 minutes on lavapipe with 2 cores); short of 400 the time of the\n"
+    "about 7 minutes on lavapipe with 2 cores); short of 400 the time of the\n"
     "whole run is extrapolated, and labelled so.  The load average is printed\n"
     "before.  Figures are for the record (docs/performance.md), never pass/fail.\n"
     "\n"
