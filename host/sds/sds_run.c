@@ -266,6 +266,13 @@ static sessile_status divide(sim *s, uint32_t c, const double dir[3]) {
  * the whole complex is then valid; else the volume springs go on resisting
  * (docs/sds.md, "The loop").  Without it one lasting sliver stopped every
  * division for the rest of a run (they wait for a valid complex). */
+/* The backoff table's entry of the inverted tet with hash h, or nsliver. */
+static uint32_t sliver_find(const sim *s, uint64_t h) {
+  uint32_t e = 0;
+  while (e < s->nsliver && s->sliver[3 * e] != h) e++;
+  return e;
+}
+
 static sessile_status repair(sim *s) {
   sessile_sds *o = &s->o;
   uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0, ntry = 0;
@@ -309,8 +316,7 @@ static sessile_status repair(sim *s) {
   }
   s->nsliver = keep;
   for (uint32_t i = 0; i < nbad; i++) {
-    uint32_t e = 0;
-    while (e < s->nsliver && s->sliver[3 * e] != hb[i]) e++;
+    uint32_t e = sliver_find(s, hb[i]);
     if (e == s->nsliver || s->st->steps >= s->sliver[3 * e + 2]) hb[ntry] = hb[i], bad[ntry++] = bad[i];
   }
   sessile_status st = SESSILE_OK;
@@ -330,8 +336,7 @@ static sessile_status repair(sim *s) {
       st = rst;
     else
       for (uint32_t i = 0; i < ntry && st == SESSILE_OK; i++) {
-        uint32_t e = 0;
-        while (e < s->nsliver && s->sliver[3 * e] != hb[i]) e++;
+        uint32_t e = sliver_find(s, hb[i]);
         if (e == s->nsliver) {
           if (s->nsliver == s->sliver_cap) {
             uint32_t cap = s->sliver_cap ? 2 * s->sliver_cap : 16;
