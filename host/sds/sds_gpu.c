@@ -11,7 +11,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which
@@ -33,7 +33,6 @@ struct sessile_sds_gpu {
   int no_contact;                    /* the benchmark's switch: contacts left out */
   int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
   sessile_sds_params p;
-  double dt_stable; /* sessile_sds_stable_dt at the last upload */
   double *scratch; /* 3 ncells (host side of downloads) */
   /* the contact lists */
   uint32_t lcap;    /* entries per cell */
@@ -56,7 +55,8 @@ static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   sessile_buffer_destroy(s->b[i]);
   s->b[i] = NULL, s->cap[i] = 0;
   sessile_buffer_kind kind =
-      (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX) ? SESSILE_BUFFER_MAPPED : SESSILE_BUFFER_DEVICE;
+      (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX || i == B_STEP) ? SESSILE_BUFFER_MAPPED
+                                                                              : SESSILE_BUFFER_DEVICE;
   SESSILE_CALL(sessile_buffer_create(s->gpu, bytes, kind, &s->b[i]));
   s->cap[i] = bytes;
   return SESSILE_OK;
@@ -85,6 +85,7 @@ static sessile_kernel *kern(const sessile_sds_gpu *s, int k) {
     case SDS_INVERTED: return s->k[SDS_INVERTED_TEX];
     case SDS_CONTACT_LIST: return s->k[SDS_CONTACT_LIST_TEX];
     case SDS_CONTACT_SELF: return s->k[SDS_CONTACT_SELF_TEX];
+    case SDS_STABLE: return s->k[SDS_STABLE_TEX];
     default: break;
     }
   return s->k[k];
@@ -133,6 +134,10 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   for (int i = 0; i < 3; i++) v[SP_LO + i] = p->box_lo[i], v[SP_HI + i] = p->box_hi[i];
   v[SP_K_WALL] = p->k_wall, v[SP_K_ATTRACT] = p->k_attract;
   v[SP_K_CONTACT] = p->k_contact, v[SP_CONTACT] = p->contact_scale, v[SP_H_SELF] = s->h_self;
+  /* the stable bound's constants (stable.glsl, as sessile_sds_stable_dt) */
+  v[SP_SAFETY] = p->stable_safety, v[SP_DT_MAX] = p->dt_max;
+  v[SP_STAB_WALL] = p->box || p->obstacle.nf ? p->k_wall : 0;
+  v[SP_STAB_CONTACT] = p->self_collide ? p->k_contact : 0;
   /* the obstacle is static: its hash table is built here, once, on the host */
   sds_hash ho = {0};
   if (p->obstacle.nf)
@@ -250,9 +255,7 @@ sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sd
   if (s->lists_valid) lists_check_moves(s, o); /* the topology is the same */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
   double hs = s->h_self;
-  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
-  s->dt_stable = sessile_sds_stable_dt(o, &s->p);
-  return SESSILE_OK;
+  return sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1);
 }
 
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
@@ -271,9 +274,11 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(ensure(s, B_ATTRACT, n * 4));
   SESSILE_CALL(ensure(s, B_TOPO, ntopo * 4));
   SESSILE_CALL(ensure(s, B_SM, (T + E) * rb));
-  SESSILE_CALL(ensure(s, B_ELF, (12 * T + 3 * E) * rb));
+  SESSILE_CALL(ensure(s, B_ELF, (20 * T + 4 * E) * rb)); /* forces, then the stable bound's terms */
   SESSILE_CALL(ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(ensure(s, B_MOVE, 2 * n * rb));
+  SESSILE_CALL(ensure(s, B_STAB, (4 * n + 3) * rb)); /* bounds, 3 scalars, element sums */
+  SESSILE_CALL(ensure(s, B_STEP, 3 * rb));
   SESSILE_CALL(ensure(s, B_XB, 3 * n * rb));
   if (!s->lcap) s->lcap = SDS_LIST_MIN;
   SESSILE_CALL(ensure(s, B_LIST, (n + n * (size_t)s->lcap) * 4));
@@ -301,9 +306,20 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   q += 2 * E;
   memcpy(q, o->cell_edge_off, (n + 1) * 4), q += n + 1;
   memcpy(q, o->cell_tet_off, (n + 1) * 4), q += n + 1;
-  if (E) memcpy(q, o->cell_edge, 2 * E * 4);
+  /* the CSR entries carry the cell's side of the edge and corner of the tet
+   * (kernels.def), so that a gather need not search for them */
+  for (size_t c = 0; c < n; c++)
+    for (uint32_t k = o->cell_edge_off[c]; k < o->cell_edge_off[c + 1]; k++) {
+      uint32_t e = o->cell_edge[k];
+      q[k] = 2 * e + (o->edge[2 * (size_t)e + 1] == c);
+    }
   q += 2 * E;
-  if (T) memcpy(q, o->cell_tet, 4 * T * 4);
+  for (size_t c = 0; c < n; c++)
+    for (uint32_t k = o->cell_tet_off[c]; k < o->cell_tet_off[c + 1]; k++) {
+      uint32_t t = o->cell_tet[k], j = 0;
+      while (j < 3 && o->tet[4 * (size_t)t + j] != c) j++;
+      q[k] = 4 * t + j;
+    }
   q += 4 * T;
   for (size_t t = 0; t < T; t++) *q++ = o->tet_surface[t];
   for (size_t e = 0; e < E; e++) *q++ = o->edge_surface[e];
@@ -331,9 +347,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
    * edge length); only the cost depends on it, never the result */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
   double hs = s->h_self;
-  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1));
-  s->dt_stable = sessile_sds_stable_dt(o, &s->p);
-  return SESSILE_OK;
+  return sessile_buffer_upload_reals(s->b[B_SP], SP_H_SELF, &hs, 1);
 }
 
 sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, const sessile_sds_params *p,
@@ -453,24 +467,41 @@ static sessile_status lists_ensure(sessile_sds_gpu *s) {
   return SESSILE_OK;
 }
 
-/* Records edge, tet and gather dispatches (mode 0 or 1) reading pair c and
- * writing pair 1 - c. */
+static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) {
+  if (!s->nedges) return SESSILE_OK;
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_EDGE), groups(s, SDS_EDGE, s->nedges), b, p);
+}
+
+static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
+  if (!s->ntets) return SESSILE_OK;
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
+                         s->b[B_ELF]};
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_TET), groups(s, SDS_TET, s->ntets), b, p);
+}
+
+/* Records the stable bound (after record_edge and record_tet in mode 2,
+ * whose terms it reads): per cell, then the min and the capped step into
+ * stab. */
+static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB]};
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_STABLE), groups(s, SDS_STABLE, s->ncells), b, p));
+  sessile_buffer *bm[] = {s->b[B_SP], s->b[B_STAB], s->b[B_STEP]};
+  return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
+}
+
+/* Records edge, tet and gather dispatches (mode 0, 1 or 2; mode 2 with the
+ * stable bound between them) reading pair c and writing pair 1 - c. */
 static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode) {
   sds_push p = push_of(s, dt, damping, mode);
   int nx = 1 - c;
-  if (s->nedges) {
-    sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_EDGE), groups(s, SDS_EDGE, s->nedges), b, &p));
-  }
-  if (s->ntets) {
-    sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
-                           s->b[B_ELF]};
-    SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_TET), groups(s, SDS_TET, s->ntets), b, &p));
-  }
+  SESSILE_CALL(record_edge(s, c, &p));
+  SESSILE_CALL(record_tet(s, c, &p));
+  if (mode == 2) SESSILE_CALL(record_stable(s, &p));
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_LIST],
                          s->b[B_XB],   s->b[B_X0 + nx],
-                         s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE]};
+                         s->b[B_V0 + nx], s->b[B_F],   s->b[B_MOVE],    s->b[B_STAB]};
   return sessile_cmd_dispatch(s->cmd, kern(s, SDS_GATHER), groups(s, SDS_GATHER, s->ncells), b, &p);
 }
 
@@ -481,18 +512,19 @@ static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
   return sessile_cmd_dispatch(s->cmd, kern(s, SDS_INVERTED), groups(s, SDS_INVERTED, s->ntets), b, &p);
 }
 
-/* One force evaluation (mode 0) or step (mode 1) in one submission; a step
- * also flags the inverted tets of its result (read by
- * sessile_sds_gpu_inverted without a submission of its own). */
+/* One force evaluation (mode 0) or step (mode 1, or 2 with the step capped
+ * by the stable bound) in one submission; a step also flags the inverted
+ * tets of its result (read by sessile_sds_gpu_inverted without a submission
+ * of its own). */
 static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
   SESSILE_CALL(lists_ensure(s));
   SESSILE_CALL(sessile_cmd_begin(s->cmd));
   SESSILE_CALL(record_forces(s, s->cur, dt, damping, mode));
-  if (mode == 1 && s->ntets) SESSILE_CALL(record_inverted(s, 1 - s->cur));
+  if (mode != 0 && s->ntets) SESSILE_CALL(record_inverted(s, 1 - s->cur));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   s->flags_cur = -1;
   SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
-  if (mode == 1) s->flags_cur = 1 - s->cur;
+  if (mode != 0) s->flags_cur = 1 - s->cur;
   return SESSILE_OK;
 }
 
@@ -528,8 +560,10 @@ sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, doub
   return sessile_buffer_download_reals(s->b[B_F], 0, f, 3 * (size_t)s->ncells);
 }
 
-sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move) {
-  SESSILE_CALL(run_forces(s, dt, 1, 1));
+/* One step of mode 1 (dt as given) or 2 (dt capped by the stable bound;
+ * stab then holds the step taken, the cap and the bound). */
+static sessile_status step_mode(sessile_sds_gpu *s, double dt, int mode, double *max_move) {
+  SESSILE_CALL(run_forces(s, dt, 1, mode));
   s->cur = 1 - s->cur;
   if (s->lists_valid && contacts_on(s)) { /* still complete at the new x? (radii do not change here) */
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], s->ncells, s->scratch, s->ncells));
@@ -551,15 +585,30 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
   return SESSILE_OK;
 }
 
+sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move) {
+  return step_mode(s, dt, 1, max_move);
+}
+
+sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound) {
+  sds_push p = push_of(s, 0.0, 1, 2);
+  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  SESSILE_CALL(record_edge(s, s->cur, &p));
+  SESSILE_CALL(record_tet(s, s->cur, &p));
+  SESSILE_CALL(record_stable(s, &p));
+  SESSILE_CALL(sessile_cmd_end(s->cmd));
+  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  return sessile_buffer_download_reals(s->b[B_STEP], 2, bound, 1);
+}
+
 sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed) {
   const sessile_sds_params *p = &s->p;
-  double hmax = p->dt_max;
-  if (p->stable_safety > 0 && p->stable_safety * s->dt_stable < hmax) hmax = p->stable_safety * s->dt_stable;
-  double h = *dt > hmax ? hmax : *dt;
+  double h = *dt; /* asked for: each step takes min(h, the cap of its state's stable bound) */
   uint32_t done = 0, good = 0;
   while (done < steps) {
-    double mv;
-    SESSILE_CALL(sessile_sds_gpu_step(s, h, &mv));
+    double mv, hc[2]; /* the step taken, the cap */
+    SESSILE_CALL(step_mode(s, h, 2, &mv));
+    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], 0, hc, 2));
+    h = hc[0];
     if (!isfinite(mv))
       return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", h);
     if (mv > p->max_move) { /* undo: the previous x, v are still in the other pair */
@@ -572,7 +621,7 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
     done++;
     if (elapsed) *elapsed += h;
     if (++good >= 10) {
-      h = h * 1.25 > hmax ? hmax : h * 1.25;
+      h = h * 1.25 > hc[1] ? hc[1] : h * 1.25;
       good = 0;
     }
   }

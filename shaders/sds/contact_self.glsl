@@ -14,7 +14,7 @@ bool near_cell(uint c, uint v) {
   if (v == c) return true;
   uint oe = o_edge(), ce = o_ce();
   for (uint k = LD_TOPO(o_ceo() + c); k < LD_TOPO(o_ceo() + c + 1u); k++) {
-    uint e = LD_TOPO(ce + k);
+    uint e = LD_TOPO(ce + k) >> 1u; // 2 e + side (kernels.def)
     if (LD_TOPO(oe + 2u * e) == v || LD_TOPO(oe + 2u * e + 1u) == v) return true;
   }
   return false;

@@ -1,7 +1,8 @@
 // One edge per invocation: the force of the scale-free edge spring
 // E = k/2 ((L - R')/R')^2, R' = s_m (r_a + r_b), k = k_edge R' (m_a + m_b)
 // (times the surface multiplier on surface edges), on its second cell b
-// (cell a gets the opposite).  Mirrors edge_force in host/sds/sds_physics.c.
+// (cell a gets the opposite); in mode 2 also the edge's term of the stable
+// bound (stable.glsl).  Mirrors edge_force in host/sds/sds_physics.c.
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
@@ -18,4 +19,8 @@ void main() {
   elf[12u * pc.ntets + 3u * e] = -g * d0;
   elf[12u * pc.ntets + 3u * e + 1u] = -g * d1;
   elf[12u * pc.ntets + 3u * e + 2u] = -g * d2;
+  if (pc.mode == 2u) { // the stable bound's term of both cells, 2 K_e (sessile_sds_stable_dt's order)
+    precise REAL K = sp[SP_K_EDGE] * (LD_TOPO(o_esurf() + e) != 0u ? sp[SP_SURF] : REAL(1)) * (M_OF(a) + M_OF(b)) / R;
+    elf[20u * pc.ntets + 3u * pc.nedges + e] = REAL(2) * K;
+  }
 }

@@ -3,7 +3,8 @@
 // gravity, the box penalty, attraction, the obstacle and self contacts
 // among the cell's contact list (docs/sds.md, "Collisions") and viscous damping;
 // in mode 1 one semi-implicit Euler step (v += dt f/m, x += dt v) into
-// x_out, v_out and the move |dt v| / r.  Mirrors sessile_sds_forces_ref and
+// x_out, v_out and the move |dt v| / r; in mode 2 the same step with the dt
+// that stable_min capped (stab[n]).  Mirrors sessile_sds_forces_ref and
 // sessile_sds_step_ref (host/sds).
 #include "sds_common.glsl"
 #include "sds_load.glsl"
@@ -60,16 +61,16 @@ void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
   REAL s[3] = REAL[3](REAL(0), REAL(0), REAL(0));
-  uint ce = o_ce(), ct = o_ct(), oe = o_edge(), ceo = o_ceo(), cto = o_cto(), efo = 12u * pc.ntets;
-  for (uint k = LD_TOPO(ceo + c); k < LD_TOPO(ceo + c + 1u); k++) {
-    uint e = LD_TOPO(ce + k);
-    REAL sg = LD_TOPO(oe + 2u * e + 1u) == c ? REAL(1) : REAL(-1);
+  uint ce = o_ce(), ct = o_ct(), ceo = o_ceo(), cto = o_cto(), efo = 12u * pc.ntets;
+  if (pc.mode == 2u) // stable.glsl summed the elements already, in this order
+    for (int i = 0; i < 3; i++) s[i] = stab[pc.ncells + 3u + 3u * c + i];
+  else for (uint k = LD_TOPO(ceo + c); k < LD_TOPO(ceo + c + 1u); k++) {
+    uint w = LD_TOPO(ce + k), e = w >> 1u; // 2 e + 1 where c is the edge's second cell
+    REAL sg = (w & 1u) != 0u ? REAL(1) : REAL(-1);
     for (int i = 0; i < 3; i++) s[i] += sg * LD_ELF(efo + 3u * e + i);
   }
-  for (uint k = LD_TOPO(cto + c); k < LD_TOPO(cto + c + 1u); k++) {
-    uint t = LD_TOPO(ct + k);
-    uint j = 0u;
-    while (LD_TOPO(4u * t + j) != c) j++;
+  if (pc.mode != 2u) for (uint k = LD_TOPO(cto + c); k < LD_TOPO(cto + c + 1u); k++) {
+    uint w = LD_TOPO(ct + k), t = w >> 2u, j = w & 3u; // 4 t + c's corner
     for (int i = 0; i < 3; i++) s[i] += LD_ELF(12u * t + 3u * j + i);
   }
   REAL p[3] = REAL[3](LD_X(3u * c), LD_X(3u * c + 1u), LD_X(3u * c + 2u));
@@ -95,11 +96,12 @@ void main() {
     if (pc.damping != 0u) s[i] -= sp[SP_DAMP_VISC] * mc * LD_V(3u * c + i);
     f[3u * c + i] = s[i];
   }
-  if (pc.mode == 1u) {
+  if (pc.mode != 0u) {
+    REAL dt = pc.mode == 2u ? stab[pc.ncells] : pc.dt;
     REAL d2 = REAL(0);
     for (int i = 0; i < 3; i++) {
-      REAL vn = LD_V(3u * c + i) + pc.dt * s[i] / mc;
-      REAL dx = pc.dt * vn;
+      REAL vn = LD_V(3u * c + i) + dt * s[i] / mc;
+      REAL dx = dt * vn;
       v_out[3u * c + i] = vn;
       x_out[3u * c + i] = p[i] + dx;
       d2 += dx * dx;
@@ -108,7 +110,7 @@ void main() {
     if (pc.lcap > 0u) { // how far the cell is from where its contact list was built
       REAL e2 = REAL(0);
       for (int i = 0; i < 3; i++) {
-        REAL d = p[i] + pc.dt * (LD_V(3u * c + i) + pc.dt * s[i] / mc) - xb[3u * c + i]; // x_out, as above
+        REAL d = p[i] + dt * (LD_V(3u * c + i) + dt * s[i] / mc) - xb[3u * c + i]; // x_out, as above
         e2 += d * d;
       }
       move[pc.ncells + c] = sqrt(e2);

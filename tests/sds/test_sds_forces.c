@@ -100,6 +100,57 @@ int main(void) {
   t_must("gpu forces", sessile_sds_gpu_forces(sg, 0, fg));
   t_check("GPU forces = -grad E by differences (rel to max)", t_relerr(fg, ffd, n3), 1e-6);
 
+  /* the stable bound: the device's kernels (stable.glsl, stable_min) against
+   * the host's sessile_sds_stable_dt, which sums the same terms in element
+   * order (rounding only); with the box and the rock (the wall term), then
+   * with self-collision alone (the contact term on surface cells), through
+   * texel and storage reads */
+  {
+    double bh = sessile_sds_stable_dt(&o, &p), bg = 0;
+    t_must("gpu stable bound", sessile_sds_gpu_stable_dt(sg, &bg));
+    printf("stable bound: host %.17g, device %.17g\n", bh, bg);
+    t_true("the bound is below dt_max (the springs set it)", bh < p.dt_max);
+    t_check("GPU stable bound = host's, box and rock (rel)", fabs(bg - bh) / bh, fp64 ? 1e-12 : 1e-5);
+    sessile_sds_gpu_set_reads(sg, 1);
+    t_must("gpu stable bound, storage reads", sessile_sds_gpu_stable_dt(sg, &bg));
+    t_check("GPU stable bound = host's, storage reads (rel)", fabs(bg - bh) / bh, fp64 ? 1e-12 : 1e-5);
+    sessile_sds_gpu_set_reads(sg, 0);
+    sessile_sds_params q = p;
+    q.box = 0, q.obstacle.nf = q.obstacle.nv = 0, q.self_collide = 1, q.k_contact = 3000;
+    double bq = sessile_sds_stable_dt(&o, &q);
+    t_must("gpu set params", sessile_sds_gpu_set_params(sg, &q));
+    t_must("gpu stable bound, self-collision", sessile_sds_gpu_stable_dt(sg, &bg));
+    t_true("the contact term changes the bound", fabs(bq - bh) > 1e-3 * bh);
+    t_check("GPU stable bound = host's, self-collision (rel)", fabs(bg - bq) / bq, fp64 ? 1e-12 : 1e-5);
+    /* an advance step asked for more than the cap takes the cap,
+     * stable_safety x the bound */
+    double ask = 1.0, el = 0;
+    q.max_move = 1e9, q.dt_max = 10;
+    t_must("gpu set params", sessile_sds_gpu_set_params(sg, &q));
+    t_must("gpu stable bound, dt_max 10", sessile_sds_gpu_stable_dt(sg, &bg));
+    t_must("advance one step", sessile_sds_gpu_advance(sg, 1, &ask, &el));
+    printf("advance asked 1 s: took %.17g s, the cap %.17g s\n", el, q.stable_safety * bg);
+    t_check("the step taken is stable_safety x the device's bound (rel)", fabs(el - q.stable_safety * bg) / el, 0);
+    t_check("and the host's (rel)", fabs(el - q.stable_safety * sessile_sds_stable_dt(&o, &q)) / el, fp64 ? 1e-12 : 1e-5);
+    /* the advance's gather takes the element sums from the stable kernel:
+     * the same bytes as a plain step of the same dt (its own sums) */
+    sessile_sds wa = {0}, wb = {0};
+    t_must("copies", sessile_sds_copy(&o, &wa));
+    t_must("copies", sessile_sds_copy(&o, &wb));
+    t_must("download", sessile_sds_gpu_download(sg, &wa));
+    t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+    t_must("one plain step", sessile_sds_gpu_step(sg, el, NULL));
+    t_must("download", sessile_sds_gpu_download(sg, &wb));
+    t_true("an advance step = a plain step of its dt, bit for bit",
+           !memcmp(wa.x, wb.x, n3 * sizeof *wa.x) && !memcmp(wa.v, wb.v, n3 * sizeof *wa.v));
+    double moved = 0;
+    for (size_t k = 0; k < n3; k++) moved = fmax(moved, fabs(wa.x[k] - o.x[k]));
+    t_true("and the step moved the cells", moved > 0);
+    sessile_sds_free(&wa), sessile_sds_free(&wb);
+    t_must("gpu set params", sessile_sds_gpu_set_params(sg, &p));
+    t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+  }
+
   /* inversion: reflect a vertex of tet 0 through its opposite face */
   sessile_sds w = {0};
   t_must("copy", sessile_sds_copy(&o, &w));

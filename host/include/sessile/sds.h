@@ -237,14 +237,13 @@ void sessile_sds_gpu_destroy(sessile_sds_gpu *s);
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
 /* After growth alone (the same complex as the last upload, and the device's
  * x and v those of o: a step downloaded them): uploads r and m and refreshes
- * what depends on them (the stable step bound, the contact lists' staleness).
+ * what depends on them (the contact lists' staleness).
  * The same device state as sessile_sds_gpu_upload, without the topology. */
 sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sds *o);
 /* Downloads x, v, r, m into o (same sizes as uploaded; phi and state stay
  * on the host until the morphogen kernels exist). */
 sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);
-/* Changes the parameters (obstacle and attraction points re-uploaded; the
- * stable step bound is refreshed by the next upload). */
+/* Changes the parameters (obstacle and attraction points re-uploaded). */
 sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_params *p);
 /* Forces at the uploaded state into f (3 ncells), as sessile_sds_forces_ref. */
 sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f);
@@ -254,8 +253,13 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
 /* `steps` (1..1024) steps of fixed dt in one submission, without the move
  * check: for runs that check every K steps (the bench, inversion checks). */
 sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double dt);
-/* Advances by `steps` accepted steps with step control (docs/sds.md): steps
- * stay below stable_safety x sessile_sds_stable_dt (computed at upload); a step
+/* The stable step bound of the device's state (shaders/sds/stable.glsl, the
+ * kernels of every advance step), as sessile_sds_stable_dt computes it on the
+ * host: the test's handle on the kernels. */
+sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound);
+/* Advances by `steps` accepted steps with step control (docs/sds.md): each
+ * step stays below stable_safety x the stable bound of the state it starts
+ * from (computed on the device in the step's submission); a step
  * whose largest move exceeds max_move is undone and retried at half dt; after
  * 10 accepted steps dt grows by 1.25 up to dt_max.  *dt is the step to try
  * first and receives the next one; *elapsed (may be NULL) is increased by the
