@@ -49,6 +49,7 @@ typedef struct sim {
   sessile_sds_run_stats *st;
   uint64_t div_interval, inv_interval; /* counts since the last record */
   uint64_t key;               /* sds_ckpt_key of the model and options */
+  uint64_t seed;              /* the run's seed (division directions, the start's jitter) */
   double c0[3], size0;        /* the starting organism's centroid and size */
   int frame;                  /* the next frame to write */
   uint64_t steps_frame;       /* steps since the last frame */
@@ -642,6 +643,33 @@ static sessile_status check_model(sim *s, const char *where, int *level, double 
   return SESSILE_OK;
 }
 
+/* A realisation of the starting sphere (the model's start_jitter J, docs/
+ * sds_rules.md): each vertex moved along its radius by J x the mean edge
+ * length x a normal deviate clipped to +-3, drawn from the seed's own stream
+ * (2; the division directions draw from 1).  The sphere stays star-shaped
+ * about its centre for J <= 0.2, so TetGen meshes it. */
+static void jitter_sphere(sessile_surface *srf, double jitter, uint64_t seed) {
+  double len = 0, c[3] = {0, 0, 0};
+  for (uint32_t f = 0; f < srf->nf; f++)
+    for (int k = 0; k < 3; k++) {
+      const double *a = srf->pos + 3 * (size_t)srf->tri[3 * (size_t)f + k];
+      const double *b = srf->pos + 3 * (size_t)srf->tri[3 * (size_t)f + (k + 1) % 3];
+      len += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    }
+  len /= srf->nf ? 3.0 * srf->nf : 1.0;
+  for (uint32_t v = 0; v < srf->nv; v++)
+    for (int k = 0; k < 3; k++) c[k] += srf->pos[3 * (size_t)v + k] / srf->nv;
+  uint64_t rng = sessile_rng_stream(seed, 2);
+  for (uint32_t v = 0; v < srf->nv; v++) {
+    double *x = srf->pos + 3 * (size_t)v, d[3], n = 0;
+    for (int k = 0; k < 3; k++) d[k] = x[k] - c[k], n += d[k] * d[k];
+    n = sqrt(n);
+    double z = fmax(-3.0, fmin(3.0, sessile_rng_normal(&rng)));
+    if (n > 0)
+      for (int k = 0; k < 3; k++) x[k] += jitter * len * z * d[k] / n;
+  }
+}
+
 /* The starting organism: the model's `surface = "FILE.ply"` (relative to
  * the model file's folder), or the icosphere (sphere_radius,
  * sphere_subdivisions), through TetGen.  A surface that is not closed and
@@ -649,9 +677,20 @@ static sessile_status check_model(sim *s, const char *where, int *level, double 
 static sessile_status import_organism(sim *s, const char *where, int level, double radius) {
   uint32_t nm = (uint32_t)sessile_sds_model_nmorph(s->model), ns = (uint32_t)sessile_sds_model_nstate(s->model);
   const sessile_sds_param *sf = sessile_sds_model_param_find(s->model, "surface");
+  double jitter = param1(s->model, "start_jitter", 0);
+  SESSILE_CHECK(jitter >= 0 && jitter <= 0.2, SESSILE_ERR_USAGE, "%s: start_jitter must be in [0, 0.2] (got %g)", where,
+                jitter);
+  SESSILE_CHECK(!(sf && jitter > 0), SESSILE_ERR_USAGE,
+                "%s: start_jitter moves the icosphere's vertices; a model with its own surface has none to move", where);
   if (!sf) {
     const double c0[3] = {0, 0, 0};
-    return sessile_sds_from_icosphere(level, radius, c0, 0, nm, ns, s->density, &s->o);
+    if (jitter == 0) return sessile_sds_from_icosphere(level, radius, c0, 0, nm, ns, s->density, &s->o);
+    sessile_surface srf = {0};
+    SESSILE_CALL(sessile_surface_icosphere(level, radius, c0, &srf));
+    jitter_sphere(&srf, jitter, s->seed);
+    sessile_status st = sessile_sds_from_surface(&srf, NULL, 0, nm, ns, s->density, &s->o);
+    sessile_surface_free(&srf);
+    return st;
   }
   SESSILE_CHECK(sf->nvalues == 0 && sf->text[0], SESSILE_ERR_USAGE, "%s:%d: surface names a PLY file: surface = \"FILE.ply\"",
                 where, sf->line);
@@ -679,7 +718,7 @@ static sessile_status import_organism(sim *s, const char *where, int level, doub
 sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps) {
   sim s;
   memset(&s, 0, sizeof s);
-  s.text = text;
+  s.text = text, s.seed = 1; /* the estimate: any realisation of the start will do */
   int level;
   double radius;
   const char *where = name ? name : "model";
@@ -966,6 +1005,7 @@ sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_r
   memset(&s, 0, sizeof s);
   s.st = st;
   s.rng = sessile_rng_stream(opt->seed, 1);
+  s.seed = opt->seed;
   double t0 = sessile_wall_seconds();
   sessile_status r = setup(&s, opt);
   if (r == SESSILE_OK) r = loop(&s, opt);

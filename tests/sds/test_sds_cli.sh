@@ -8,7 +8,8 @@
 # (an unknown morphogen in a rule, an unknown shipped name, a FIFO, physics
 # out of range, springs too stiff to finish, a surface that is open, that
 # TetGen rejects or that is missing) exit 2 with one line and write nothing;
-# a model's own surface (ASCII and binary PLY) is imported.
+# a model's own surface (ASCII and binary PLY) is imported; start_jitter gives
+# each seed its own start, the same seed the same bytes.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -111,6 +112,19 @@ PYEOF
 run sds run limb --t-end 30 --frames 3 --out "$T/b" --quiet
 check "the same seed gives the same bytes (every frame)" eval \
   'for f in frame_0003.ply frame_0003.vtu final.ply; do cmp -s "$T/a/sds/$f" "$T/b/sds/$f" || exit 1; done'
+# start_jitter: each seed a realisation of the starting sphere (the ensemble
+# study's), the same seed the same bytes
+sed 's/^tips_below = 1.*/tips_below = 1\nstart_jitter = 0.1/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/jit.sds"
+for sd in 1 1 2; do
+  run sds run "$T/jit.sds" --t-end 5 --frames 1 --seed $sd --out "$T/j$sd$([ -e "$T/j$sd" ] && echo b)" --quiet
+  check "start_jitter 0.1, seed $sd: the run completes" rc_is 0
+done
+check "start_jitter: the same seed gives the same bytes, another seed another start, both unlike the sphere's" eval \
+  'cmp -s "$T/j1/sds/frame_0001.vtu" "$T/j1b/sds/frame_0001.vtu" && ! cmp -s "$T/j1/sds/frame_0000.ply" "$T/j2/sds/frame_0000.ply" && ! cmp -s "$T/j1/sds/frame_0000.ply" "$T/a/sds/frame_0000.ply"'
+sed 's/^tips_below = 1.*/tips_below = 1\nstart_jitter = 0.5/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/jit5.sds"
+run sds run "$T/jit5.sds" --out "$T/c"
+check "start_jitter 0.5: exit 2, one line naming start_jitter, nothing written" \
+  eval 'rc_is 2 && one_line && grep -q "start_jitter" "$T/err" && [ ! -e "$T/c" ]'
 
 printf 'model bad\nmorphogen phi diffusion=0.1 decay=0\nstate tip = 0\nrule r1: tip == 1 -> set psi = volume\n' >"$T/bad.sds"
 run sds run "$T/bad.sds" --out "$T/c"
