@@ -25,15 +25,9 @@ OUT="${2:-runs/sds-ensemble-study}"
 SEEDS="${3:-6}"
 JITTER="${4:-0.1}"
 MOVES="${5:-0.05 0.025 0.0125 0.00625}"
-[ -x "$SESSILE" ] || { echo "ensemble_study: no sessile binary at $SESSILE (build first, or name it)" >&2; exit 2; }
 [[ "$SEEDS" =~ ^[0-9]+$ ]] && [ "$SEEDS" -ge 2 ] || { echo "ensemble_study: SEEDS must be an integer >= 2" >&2; exit 2; }
-if [ -e "$OUT" ]; then
-  [ -d "$OUT" ] && [ ! -L "$OUT" ] && [ -f "$OUT/.sds_ensemble_study" ] ||
-    { echo "ensemble_study: $OUT exists and is not an ensemble study's folder: name another" >&2; exit 2; }
-  rm -rf -- "$OUT"
-fi
-mkdir -p -- "$OUT"
-touch "$OUT/.sds_ensemble_study"
+. "$here/study_dir.sh"
+study_prepare ensemble_study "$SESSILE" "$OUT" .sds_ensemble_study
 model="$root/host/sds/models/limb.sds"
 jobs=()
 for mm in $MOVES; do

@@ -16,14 +16,8 @@ here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
 SESSILE="${1:-$root/build/sessile}"
 OUT="${2:-runs/sds-step-study}"
-[ -x "$SESSILE" ] || { echo "step_study: no sessile binary at $SESSILE (build first, or name it)" >&2; exit 2; }
-if [ -e "$OUT" ]; then
-  [ -d "$OUT" ] && [ ! -L "$OUT" ] && [ -f "$OUT/.sds_step_study" ] ||
-    { echo "step_study: $OUT exists and is not a step study's folder: name another" >&2; exit 2; }
-  rm -rf -- "$OUT"
-fi
-mkdir -p -- "$OUT"
-touch "$OUT/.sds_step_study"
+. "$here/study_dir.sh"
+study_prepare step_study "$SESSILE" "$OUT" .sds_step_study
 model="$root/host/sds/models/limb.sds"
 cases="0.2:0.5 0.1:0.5 0.05:0.5 0.025:0.5 0.0125:0.5 0.05:0.25"
 for c in $cases; do
