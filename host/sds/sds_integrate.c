@@ -82,3 +82,61 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
   free(lam);
   return dt;
 }
+
+/* The critical step of semi-implicit Euler at the current state, undamped:
+ * 2 / sqrt(lambda_max) of the generalised problem K u = lambda M u, K the
+ * Jacobian of -F (central differences of sessile_sds_forces_ref without
+ * damping, a step of 1e-7 mean radii), by power iteration on M^-1 K from a
+ * fixed pseudo-random start.  The Rayleigh quotient never exceeds lambda_max,
+ * so an iteration stopped early errs toward a longer step: *residual gets
+ * the relative residual |K u - lambda M u|_{M^-1} / (lambda |u|_M) of the
+ * last iterate, which says how far it settled.  A reference for the tests and
+ * the benchmark (docs/sds.md, "Integrator"), not for the loop.  Returns 0
+ * when out of memory. */
+double sessile_sds_critical_dt(const sessile_sds *o, const sessile_sds_params *p, int iters, double *residual) {
+  size_t n = 3 * (size_t)o->ncells;
+  double *buf = malloc(5 * (n ? n : 1) * sizeof *buf);
+  if (residual) *residual = INFINITY;
+  if (!buf || !n) {
+    free(buf);
+    return 0;
+  }
+  double *x = buf, *u = buf + n, *fp = buf + 2 * n, *fm = buf + 3 * n, *ku = buf + 4 * n;
+  sessile_sds q = *o; /* the same complex at displaced positions */
+  q.x = x;
+  double rmean = 0;
+  for (uint32_t c = 0; c < o->ncells; c++) rmean += o->r[c] / o->ncells;
+  uint64_t z = 0x9e3779b97f4a7c15ull;
+  for (size_t i = 0; i < n; i++) { /* splitmix64: a start with a part along every mode */
+    uint64_t w = (z += 0x9e3779b97f4a7c15ull);
+    w = (w ^ (w >> 30)) * 0xbf58476d1ce4e5b9ull, w = (w ^ (w >> 27)) * 0x94d049bb133111ebull, w ^= w >> 31;
+    u[i] = (double)(w >> 11) / 9007199254740992.0 - 0.5;
+  }
+  double lam = 0;
+  for (int it = 0; it < iters; it++) {
+    double umax = 0;
+    for (size_t i = 0; i < n; i++) umax = fmax(umax, fabs(u[i]));
+    if (!(umax > 0) || !isfinite(umax)) break;
+    for (size_t i = 0; i < n; i++) u[i] /= umax; /* kept at unit size: lambda^k would overflow */
+    double h = 1e-7 * rmean;
+    for (size_t i = 0; i < n; i++) x[i] = o->x[i] + h * u[i];
+    sessile_sds_forces_ref(&q, p, 0, fp);
+    for (size_t i = 0; i < n; i++) x[i] = o->x[i] - h * u[i];
+    sessile_sds_forces_ref(&q, p, 0, fm);
+    double uku = 0, umu = 0;
+    for (size_t i = 0; i < n; i++) {
+      ku[i] = -(fp[i] - fm[i]) / (2 * h);
+      uku += u[i] * ku[i], umu += u[i] * u[i] * o->m[i / 3];
+    }
+    lam = uku / umu;
+    double r2 = 0;
+    for (size_t i = 0; i < n; i++) {
+      double ri = ku[i] - lam * o->m[i / 3] * u[i];
+      r2 += ri * ri / o->m[i / 3];
+      u[i] = ku[i] / o->m[i / 3]; /* the next iterate: M^-1 K u */
+    }
+    if (residual) *residual = sqrt(r2 / umu) / fabs(lam);
+  }
+  free(buf);
+  return lam > 0 ? 2 / sqrt(lam) : INFINITY;
+}

@@ -223,6 +223,12 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
  * for the fastest mode, by Gershgorin at rest; docs/sds.md, "Integrator").
  * sessile_sds_gpu_advance never steps above stable_safety times it. */
 double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p);
+/* The critical step of that scheme at the current state, undamped (2 /
+ * sqrt of M^-1 K's largest eigenvalue, K by finite differences of the
+ * forces), by `iters` steps of power iteration; *residual (may be NULL) gets
+ * the last iterate's relative residual.  A host reference for tests and the
+ * benchmark: it checks how far below the critical step the bound lies. */
+double sessile_sds_critical_dt(const sessile_sds *o, const sessile_sds_params *p, int iters, double *residual);
 /* Tets with signed volume <= 0, ascending (malloc'd into *list, n into *n). */
 sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, uint32_t *n);
 
