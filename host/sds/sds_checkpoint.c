@@ -71,11 +71,14 @@ sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t
   *retry_at = NULL, *sliver = NULL;
   size_t n = 0;
   const void *p = sessile_ckpt_get(ck, "sds_loop", &n);
-  if (!p || n != sizeof *l) return damaged("sds_loop");
-  memcpy(l, p, n);
-  SESSILE_CHECK(l->version == SDS_CKPT_VERSION, SESSILE_ERR_USAGE,
+  if (!p || n < sizeof l->version) return damaged("sds_loop");
+  uint64_t version; /* first, so that another version's layout is named as such */
+  memcpy(&version, p, sizeof version);
+  SESSILE_CHECK(version == SDS_CKPT_VERSION, SESSILE_ERR_USAGE,
                 "the checkpoint is of SDS checkpoint version %llu, this sessile reads version %u",
-                (unsigned long long)l->version, SDS_CKPT_VERSION);
+                (unsigned long long)version, SDS_CKPT_VERSION);
+  if (n != sizeof *l) return damaged("sds_loop");
+  memcpy(l, p, n);
   SESSILE_CHECK(l->key == want_key, SESSILE_ERR_USAGE,
                 "the checkpoint was written by another model or configuration (seed, t_end, frames, "
                 "max-cells) than the run's manifest names: it cannot be resumed");

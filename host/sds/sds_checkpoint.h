@@ -15,7 +15,7 @@ typedef struct sds_ckpt_loop {
   uint64_t version;              /* SDS_CKPT_VERSION */
   uint64_t key;                  /* sds_ckpt_key of the model and options that made it */
   double time, dt;               /* simulated time, next step */
-  int64_t calm, stalled;         /* step-control counters */
+  int64_t stalled;               /* steps in a row rewound to their start */
   uint64_t rng;                  /* the division-direction stream */
   int64_t frame;                 /* the next frame to write */
   uint64_t steps_frame;          /* steps since the last frame */
@@ -26,7 +26,7 @@ typedef struct sds_ckpt_loop {
   uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_run.c, repair) */
 } sds_ckpt_loop;
 
-#define SDS_CKPT_VERSION 4u
+#define SDS_CKPT_VERSION 5u /* 5: the step control keeps no counter (2026-11-24) */
 
 /* A 64-bit FNV-1a over the model text and the options that shape the
  * outputs (seed, t_end, frames, cell limit). */

@@ -18,6 +18,11 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
  * every step then visits (docs/sds.md, "Collisions": 1 measured best). */
 #define SDS_SKIN_FRAC 1.0
 #define SDS_LIST_MIN 16 /* the first capacity per cell */
+/* Step control (docs/sds.md, "Integrator"): the next step aims the largest
+ * move at this fraction of max_move, so that few steps are undone, and grows
+ * by at most SDS_GROW a step. */
+#define SDS_MOVE_AIM 0.8
+#define SDS_GROW 1.25
 
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
@@ -605,7 +610,7 @@ sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound) {
 sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed) {
   const sessile_sds_params *p = &s->p;
   double h = *dt; /* asked for: each step takes min(h, the cap of its state's stable bound) */
-  uint32_t done = 0, good = 0;
+  uint32_t done = 0;
   while (done < steps) {
     double mv, hc[2]; /* the step taken, the cap */
     SESSILE_CALL(step_mode(s, h, 2, &mv));
@@ -615,17 +620,22 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
       return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", h);
     if (mv > p->max_move) { /* undo: the previous x, v are still in the other pair */
       s->cur = 1 - s->cur;
-      h *= 0.5, good = 0;
+      h *= 0.5;
       SESSILE_CHECK(h >= p->dt_min, SESSILE_ERR_NUMERIC,
                     "sds: the step fell below dt_min = %g s (a cell moves %g radii per step)", p->dt_min, mv);
       continue;
     }
     done++;
     if (elapsed) *elapsed += h;
-    if (++good >= 10) {
-      h = h * 1.25 > hc[1] ? hc[1] : h * 1.25;
-      good = 0;
-    }
+    /* the next step: a cell's move grows with the step, so aim the largest
+     * at SDS_MOVE_AIM x max_move, growing by at most SDS_GROW a step (the
+     * device caps whatever is asked at its bound) */
+    double f = mv > 0 ? SDS_MOVE_AIM * p->max_move / mv : SDS_GROW, taken = h;
+    h *= f < SDS_GROW ? f : SDS_GROW;
+    if (h > p->dt_max) h = p->dt_max;
+    SESSILE_CHECK(h >= p->dt_min, SESSILE_ERR_NUMERIC,
+                  "sds: the step fell below dt_min = %g s (a cell moved %g radii in a step of %g s)", p->dt_min, mv,
+                  taken);
   }
   *dt = h;
   return SESSILE_OK;

@@ -21,7 +21,7 @@ void sessile_sds_params_default(sessile_sds_params *p) {
   p->self_collide = 1, p->contact_scale = 1.0; /* ours: a cell is a sphere of its radius */
   p->k_contact = 1000.0;                       /* ours: as k_wall */
   p->dt = 1e-3, p->dt_min = 1e-7, p->dt_max = 0.05, p->max_move = 0.05;
-  p->stable_safety = 0.5;
+  p->stable_safety = 0.8;
 }
 
 double sds_edge_scale(const sessile_sds *o, uint32_t e) {

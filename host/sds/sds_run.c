@@ -35,7 +35,6 @@ typedef struct sim {
   uint32_t *nbr_off, *nbr;    /* cell neighbours (from the edges) */
   double *xprev;              /* positions before the step (rewind) */
   double time, dt;
-  int calm;                   /* accepted steps since dt last changed */
   int stalled;                /* steps in a row that were rewound to their start */
   double *retry_at;           /* per cell: a deferred division is not tried again before this time */
   uint32_t retry_cap;
@@ -763,7 +762,7 @@ static void measure_start(sim *s) {
 static sessile_status save(sim *s, sessile_run *run) {
   const sessile_sds_run_stats *t = s->st;
   sds_ckpt_loop l = {.version = SDS_CKPT_VERSION, .key = s->key, .time = s->time, .dt = s->dt,
-                     .calm = s->calm, .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
+                     .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
                      .steps_frame = s->steps_frame, .div_interval = s->div_interval,
                      .inv_interval = s->inv_interval, .steps = t->steps, .divisions = t->divisions,
                      .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
@@ -777,7 +776,7 @@ static sessile_status restore(sim *s, const sessile_ckpt *ck) {
   SESSILE_CALL(sds_ckpt_read(ck, s->key, (uint32_t)sessile_sds_model_nmorph(s->model),
                              (uint32_t)sessile_sds_model_nstate(s->model), &s->o, &l, &s->retry_at, &s->sliver));
   sessile_sds_run_stats *t = s->st;
-  s->time = l.time, s->dt = l.dt, s->calm = (int)l.calm, s->stalled = (int)l.stalled, s->rng = l.rng;
+  s->time = l.time, s->dt = l.dt, s->stalled = (int)l.stalled, s->rng = l.rng;
   s->frame = (int)l.frame, s->steps_frame = l.steps_frame;
   s->div_interval = l.div_interval, s->inv_interval = l.inv_interval;
   t->steps = l.steps, t->divisions = l.divisions, t->inversions = l.inversions, t->resisted = l.resisted;
@@ -931,11 +930,9 @@ static sessile_status step(sim *s, double next_frame) {
   }
   SESSILE_CALL(st);
   /* step control across calls (one step per call, so that an inversion is
-   * rewound over one step): a step that had to be halved sets dt; after 10
-   * steps at full size dt grows by 1.25 (the integrator caps it at its
-   * stable bound and at dt_max) */
-  if (elapsed < dt * (1 - 1e-12)) s->dt = elapsed, s->calm = 0;
-  else if (!clamped && ++s->calm >= 10) s->dt = fmin(s->dt * 1.25, s->p.dt_max), s->calm = 0;
+   * rewound over one step): the integrator proposes the next step; a step cut
+   * short to land on a frame keeps the step it had, unless it was undone */
+  if (!clamped || elapsed < dt * (1 - 1e-12)) s->dt = try_dt;
   SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
   SESSILE_CALL(check_motion(s));
   int handled = 0;

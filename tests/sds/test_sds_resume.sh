@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `sessile sds run --resume`: a limb bud that grows fast (Delta 0.01: cells
+# `sessile sds run --resume`: a limb bud that grows fast (Delta 0.03: cells
 # divide and tets invert from t = 4) run to t = 10 in 5 frames at once, and
 # again stopped by SIGINT after frame 1, resumed, killed by SIGKILL after
 # frame 4 (mid-interval, no checkpoint of its own), resumed again: every file
@@ -19,7 +19,7 @@ signal_after() { # file signal pid
   for _ in $(seq 1 3000); do [ -e "$1" ] && break; sleep 0.02; done
   kill "-$2" "$3" 2>/dev/null
 }
-sed 's/^const Delta = .*/const Delta = 0.01/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/fast.sds"
+sed 's/^const Delta = .*/const Delta = 0.03/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/fast.sds"
 ARGS=(sds run "$T/fast.sds" --t-end 10 --frames 5 --quiet)
 
 run "${ARGS[@]}" --out "$T/a"

@@ -177,7 +177,7 @@ typedef struct sessile_sds_params {
 
 /* The prototype's values above; no box, no obstacle, no attraction;
  * self-collision on (contact_scale 1, k_contact 1000); dt 1e-3,
- * dt_min 1e-7, dt_max 0.05, max_move 0.05, stable_safety 0.5. */
+ * dt_min 1e-7, dt_max 0.05, max_move 0.05, stable_safety 0.8. */
 void sessile_sds_params_default(sessile_sds_params *p);
 
 /* Energies (host): elastic (edge + volume springs), potential (gravity, box
@@ -267,10 +267,11 @@ sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound);
  * step stays below stable_safety x the stable bound of the state it starts
  * from (computed on the device in the step's submission); a step
  * whose largest move exceeds max_move is undone and retried at half dt; after
- * 10 accepted steps dt grows by 1.25 up to dt_max.  *dt is the step to try
- * first and receives the next one; *elapsed (may be NULL) is increased by the
- * simulated time.  Fails with SESSILE_ERR_NUMERIC below dt_min or on a
- * non-finite state. */
+ * an accepted step the next aims the largest move at 0.8 max_move (the move
+ * taken as proportional to the step), growing by at most 1.25, up to dt_max.
+ * *dt is the step to try first and receives the next one; *elapsed (may be
+ * NULL) is increased by the simulated time.  Fails with SESSILE_ERR_NUMERIC
+ * when a step would fall below dt_min or on a non-finite state. */
 sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, double *dt, double *elapsed);
 /* The surface hash table of the last build of the contact lists (uint32: counts T,
  * offsets T + 1, cursors T, entries F, rho bits; docs/sds.md "Collisions"),
