@@ -9,7 +9,7 @@
 # W(100) <= 0.25 L(100); and the tip leads it: the tip cell (PLY property
 # tip = 1, one surface cell) is within two of its radii of the front in every
 # frame.  Measured (docs/sds_rules.md, "What the limb model grows"): L =
-# 0.17, 0.55, 0.91, 1.19, 1.50 at t = 20..100, W(100) = 0.00 (viscosity 1;
+# 0.17, 0.50, 0.87, 1.27, 1.60 at t = 20..100, W(100) = 0.00 (viscosity 1;
 # nearly undamped, 0.001: L(100) = 1.45, W = 0.10).
 set -u
 S="$1"
