@@ -13,23 +13,7 @@
 #include "sessile/rng.h"
 #include "sessile/sds.h"
 #include "testutil.h"
-
-/* Two cells of radius 1 joined by one edge at its rest length 2. */
-static void one_edge(sessile_sds *o) {
-  t_must("alloc", sessile_sds_alloc(o, 2, 0, 0, 0));
-  o->x[3] = 2;
-  o->r[0] = o->r[1] = 1;
-  o->m[0] = o->m[1] = 4.0 / 3.0 * 3.14159265358979323846;
-  o->nedges = 1;
-  o->edge = t_xalloc(8), o->edge[0] = 0, o->edge[1] = 1;
-  o->edge_sm = t_dalloc(1), o->edge_sm[0] = 1;
-  o->edge_surface = t_xalloc(1);
-  o->surface = t_xalloc(2);
-  o->cell_edge_off = t_xalloc(12), o->cell_edge_off[1] = 1, o->cell_edge_off[2] = 2;
-  o->cell_edge = t_xalloc(8);
-  o->cell_tet_off = t_xalloc(12);
-  o->cell_tet = t_xalloc(4);
-}
+#include "one_edge.h"
 
 /* The undamped physics of the springs alone: no gravity, walls or contacts. */
 static sessile_sds_params springs_only(void) {
@@ -42,7 +26,7 @@ static sessile_sds_params springs_only(void) {
 
 static void edge_analytic(void) {
   sessile_sds o = {0};
-  one_edge(&o);
+  one_edge(&o, 2.0);
   sessile_sds_params p = springs_only();
   double res = 0, crit = sessile_sds_critical_dt(&o, &p, 50, &res), bound = sessile_sds_stable_dt(&o, &p);
   /* the relative coordinate: omega^2 = K_e (1/m_a + 1/m_b), K_e = k (m_a + m_b) / R' = 2 k m / R' */
