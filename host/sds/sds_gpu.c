@@ -48,7 +48,12 @@ struct sessile_sds_gpu {
   double *r_up;     /* radii of the last upload */
   uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
   size_t ntopo_up;
-  uint64_t builds;  /* list builds so far */
+  uint64_t builds;  /* list builds so far (partial ones included) */
+  uint64_t partial_builds; /* of which partial: the cells a topology change touched */
+  uint32_t lbase;   /* cells the list buffer has room for (B_LIST, B_XB) */
+  int lists_part;   /* the next build may be partial: only the cells in sub */
+  uint32_t *sub;    /* a partial build's cells, then its surface cells */
+  size_t nsub, nsub_surf, sub_cap;
   int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
   int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
 };
@@ -66,6 +71,9 @@ static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   s->cap[i] = bytes;
   return SESSILE_OK;
 }
+
+/* The contact lists must be built again, every cell's. */
+static void lists_invalidate(sessile_sds_gpu *s) { s->lists_valid = 0, s->lists_part = 0; }
 
 /* Do the views of every buffer the _tex kernels read through texels fit
  * the device's maxTexelBufferElements (texels of one real, or one uint)? */
@@ -98,7 +106,7 @@ static sessile_kernel *kern(const sessile_sds_gpu *s, int k) {
 
 void sessile_sds_gpu_set_reads(sessile_sds_gpu *s, int storage) {
   s->reads = storage != 0;
-  s->lists_valid = 0; /* the next evaluation builds its lists, */
+  lists_invalidate(s); /* the next evaluation builds its lists, */
   s->flags_cur = -1;  /* and the next query its flags, with the kernels chosen */
 }
 
@@ -119,6 +127,7 @@ static sds_push push_of(const sessile_sds_gpu *s, double dt, int damping, int mo
   p.tsize_obs = s->tsize_obs, p.nobs_v = s->nobs_v;
   if (s->no_contact) p.nobs = 0;
   p.lcap = p.tsize || p.nobs ? s->lcap : 0;
+  p.lbase = s->lbase;
   return p;
 }
 
@@ -155,7 +164,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   SESSILE_CALL(st);
   s->nobs = p->obstacle.nf, s->nattract = p->nattract;
   s->p.attract_pos = NULL, s->p.obstacle.pos = NULL, s->p.obstacle.tri = NULL; /* not kept */
-  s->lists_valid = 0;
+  lists_invalidate(s);
   return SESSILE_OK;
 }
 
@@ -225,23 +234,108 @@ static void lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o) {
     if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
   }
   s->grown = grown;
-  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) s->lists_valid = 0;
+  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) lists_invalidate(s);
+}
+
+/* The neighbours of cell c, sorted, from a topo upload's edges and CSR
+ * (kernels.def's layout, entries 2 e + side) into nb (room for its degree). */
+static uint32_t topo_neighbours(const uint32_t *topo, uint32_t n, uint32_t E, uint32_t T, uint32_t c, uint32_t *nb) {
+  const uint32_t *edge = topo + 4 * (size_t)T, *ceo = edge + 2 * (size_t)E, *ce = ceo + 2 * ((size_t)n + 1);
+  uint32_t k = 0;
+  for (uint32_t j = ceo[c]; j < ceo[c + 1]; j++) {
+    uint32_t w = ce[j], v = edge[2 * (size_t)(w >> 1) + (1 - (w & 1))];
+    uint32_t i = k++;
+    while (i > 0 && nb[i - 1] > v) nb[i] = nb[i - 1], i--; /* a few entries: insertion */
+    nb[i] = v;
+  }
+  return k;
+}
+
+/* After a topology change, can the lists be kept but for a few cells?  Yes
+ * when the boundary is the same faces in the same order (boundary faces
+ * are sorted by their cells, sds_complex.c, so an unchanged boundary is an
+ * unchanged array), the cells were only appended and fit the lists' room,
+ * and the other cells are within the skin of their builds: then a list
+ * entry still names the same triangle, and only these need listing anew:
+ * the new cells, and every cell whose neighbours changed (a surface cell's
+ * self list leaves out the faces at its neighbours; a moved dividing cell
+ * is among them).  The others' lists are exactly what a full build would
+ * make of them while they stay within the skin.  Fills sub; 0 if not. */
+static int lists_partial(sessile_sds_gpu *s, const sessile_sds *o, const uint32_t *topo) {
+  uint32_t n0 = s->ncells, E0 = s->nedges, T0 = s->ntets, F = s->nfaces, n = o->ncells;
+  /* valid lists, or lists valid but for a partial build not made yet */
+  if (!(s->lists_valid || s->lists_part) || !s->topo_up || n < n0 || n > s->lbase || o->nfaces != F) return 0;
+  size_t f0 = 4 * (size_t)T0 + 2 * (size_t)E0 + 2 * ((size_t)n0 + 1) + 2 * (size_t)E0 + 4 * (size_t)T0 + T0 + E0;
+  size_t f1 = 4 * (size_t)o->ntets + 2 * (size_t)o->nedges + 2 * ((size_t)n + 1) + 2 * (size_t)o->nedges +
+              4 * (size_t)o->ntets + o->ntets + o->nedges;
+  if (F && memcmp(s->topo_up + f0, topo + f1, 3 * (size_t)F * 4)) return 0;
+  size_t cap = n + n + 2;
+  if (s->sub_cap < cap) {
+    uint32_t *q = realloc(s->sub, cap * sizeof *q);
+    if (!q) return 0;
+    s->sub = q, s->sub_cap = cap;
+  }
+  uint32_t dmax = 0;
+  for (uint32_t c = 0; c < n; c++)
+    if (o->cell_edge_off[c + 1] - o->cell_edge_off[c] > dmax) dmax = o->cell_edge_off[c + 1] - o->cell_edge_off[c];
+  const uint32_t *ceo0 = s->topo_up + 4 * (size_t)T0 + 2 * (size_t)E0;
+  for (uint32_t c = 0; c < n0; c++)
+    if (ceo0[c + 1] - ceo0[c] > dmax) dmax = ceo0[c + 1] - ceo0[c];
+  uint32_t *nb = malloc((2 * ((size_t)dmax + 1) + n0) * sizeof *nb), *pend = nb + 2 * ((size_t)dmax + 1);
+  if (!nb) return 0;
+  memset(pend, 0, n0 * sizeof *pend); /* the pending partial build's cells are redone too */
+  if (s->lists_part)
+    for (size_t i = 0; i < s->nsub; i++)
+      if (s->sub[i] < n0) pend[s->sub[i]] = 1;
+  size_t k = 0;
+  double moved = 0, moved_surf = 0, grown = 0;
+  for (uint32_t c = 0; c < n; c++) {
+    int redo = c >= n0 || pend[c];
+    if (!redo) {
+      uint32_t a = topo_neighbours(s->topo_up, n0, E0, T0, c, nb);
+      uint32_t b = topo_neighbours(topo, n, o->nedges, o->ntets, c, nb + dmax + 1);
+      redo = a != b || memcmp(nb, nb + dmax + 1, a * sizeof *nb);
+    }
+    if (redo) {
+      s->sub[k++] = c;
+      continue;
+    }
+    double d2 = 0;
+    for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
+    if (!(d2 <= moved)) moved = d2;
+    if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
+    if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
+  }
+  free(nb);
+  s->grown = grown;
+  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) return 0;
+  size_t ns = 0;
+  for (size_t i = 0; i < k; i++)
+    if (o->surface[s->sub[i]]) s->sub[k + ns++] = s->sub[i];
+  s->nsub = k, s->nsub_surf = ns;
+  return 1;
 }
 
 /* Are the contact lists still complete for the organism about to be
- * uploaded?  Not after a topology change; else lists_stale with the host's
- * x and r.  Takes topo (malloc'd, ntopo words) as the new reference. */
+ * uploaded?  After a topology change, complete but for the cells of a
+ * partial build (lists_partial) or not at all; else lists_stale with the
+ * host's x and r.  Takes topo (malloc'd, ntopo words) as the new reference. */
 static sessile_status lists_check_upload(sessile_sds_gpu *s, const sessile_sds *o, uint32_t *topo, size_t ntopo) {
   size_t n = o->ncells;
   int same = s->topo_up && s->ntopo_up == ntopo && n == s->ncells && !memcmp(s->topo_up, topo, ntopo * 4);
+  int part = !same && lists_partial(s, o, topo);
   free(s->topo_up);
   s->topo_up = topo, s->ntopo_up = ntopo;
   double *ru = realloc(s->r_up, (n ? n : 1) * sizeof *ru);
   SESSILE_CHECK(ru, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->r_up = ru;
   memcpy(ru, o->r, n * sizeof *ru);
+  if (part) {
+    s->lists_valid = 0, s->lists_part = 1;
+    return SESSILE_OK;
+  }
   if (!same || !s->lists_valid) {
-    s->lists_valid = 0;
+    lists_invalidate(s);
     return SESSILE_OK;
   }
   lists_check_moves(s, o);
@@ -284,9 +378,11 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(ensure(s, B_MOVE, 2 * n * rb));
   SESSILE_CALL(ensure(s, B_STAB, (4 * n + 3) * rb)); /* bounds, 3 scalars, element sums */
   SESSILE_CALL(ensure(s, B_STEP, 3 * rb));
-  SESSILE_CALL(ensure(s, B_XB, 3 * n * rb));
+  /* the lists' buffers are sized by their builds (lists_ensure), which keep
+   * room for the cells a partial build appends: never shrunk or grown here */
+  SESSILE_CALL(ensure(s, B_XB, 16));
   if (!s->lcap) s->lcap = SDS_LIST_MIN;
-  SESSILE_CALL(ensure(s, B_LIST, (n + n * (size_t)s->lcap) * 4));
+  SESSILE_CALL(ensure(s, B_LIST, 16));
   SESSILE_CALL(ensure(s, B_LMAX, 16));
   SESSILE_CALL(ensure(s, B_FLAG, T * 4));
   uint32_t tsize = sds_table_size((uint32_t)F);
@@ -381,7 +477,7 @@ void sessile_sds_gpu_destroy(sessile_sds_gpu *s) {
   for (int i = 0; i < B_COUNT; i++) sessile_buffer_destroy(s->b[i]);
   for (int i = 0; i < SDS_COUNT; i++) sessile_kernel_destroy(s->k[i]);
   sessile_cmd_destroy(s->cmd);
-  free(s->scratch), free(s->xb), free(s->rb), free(s->r_up), free(s->topo_up);
+  free(s->scratch), free(s->xb), free(s->rb), free(s->r_up), free(s->topo_up), free(s->sub);
   free(s);
 }
 
@@ -402,8 +498,11 @@ sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o) {
 
 /* Records the surface hash of pair c's x (if self-collision is on) and the
  * contact lists' build (kernels.def, "The contact lists"). */
-static sessile_status record_lists(sessile_sds_gpu *s, int c) {
+/* Records a build of the lists: every cell's (lsub 0) or those of a
+ * partial build (lsub cells in lmax, kernels.def). */
+static sessile_status record_lists(sessile_sds_gpu *s, int c, uint32_t lsub) {
   sds_push p = push_of(s, 0.0, 0, 0);
+  p.lsub = lsub;
   if (p.tsize) { /* the surface hash of x (kernels.def, "The surface hash") */
     sessile_buffer *bh[] = {s->b[B_HASH]};
     sessile_buffer *bc[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_HASH]};
@@ -416,11 +515,13 @@ static sessile_status record_lists(sessile_sds_gpu *s, int c) {
   }
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_RM],   s->b[B_TOPO], s->b[B_WORLD], s->b[B_OBSTRI],
                          s->b[B_HASH], s->b[B_FSPH],   s->b[B_LIST], s->b[B_XB],   s->b[B_LMAX]};
-  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_LIST), groups(s, SDS_CONTACT_LIST, s->ncells), b, &p));
-  if (!p.tsize || !s->nsurf) return SESSILE_OK;
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_LIST),
+                                    groups(s, SDS_CONTACT_LIST, lsub ? lsub : s->ncells), b, &p));
+  uint32_t nsurf = lsub ? (uint32_t)s->nsub_surf : s->nsurf;
+  if (!p.tsize || !nsurf) return SESSILE_OK;
   sessile_buffer *bs[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_RM],   s->b[B_TOPO],
                           s->b[B_HASH], s->b[B_FSPH],   s->b[B_LIST], s->b[B_LMAX]};
-  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_SELF), groups(s, SDS_CONTACT_SELF, s->nsurf), bs, &p);
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_CONTACT_SELF), groups(s, SDS_CONTACT_SELF, nsurf), bs, &p);
 }
 
 static int contacts_on(const sessile_sds_gpu *s) {
@@ -435,18 +536,62 @@ static double skin_now(const sessile_sds_gpu *s) {
   return SDS_SKIN_FRAC * s->p.contact_scale * (s->ncells ? sum / s->ncells : 1.0);
 }
 
+/* A partial build (lists_partial): lists only the cells in sub, the others
+ * untouched; *ok 0 when a list overflowed (then a full build follows). */
+static sessile_status lists_build_part(sessile_sds_gpu *s, int *ok) {
+  *ok = 0;
+  SESSILE_CALL(ensure(s, B_LMAX, (2 + s->nsub + s->nsub_surf) * 4)); /* rewritten below */
+  uint32_t *lmax = sessile_buffer_host_ptr(s->b[B_LMAX]);
+  SESSILE_CHECK(lmax, SESSILE_ERR_INTERNAL, "sds: the contact-list count buffer is not mapped");
+  lmax[0] = 0, lmax[1] = (uint32_t)s->nsub_surf;
+  memcpy(lmax + 2, s->sub, (s->nsub + s->nsub_surf) * sizeof *lmax);
+  if (s->nsub) {
+    SESSILE_CALL(sessile_cmd_begin(s->cmd));
+    SESSILE_CALL(record_lists(s, s->cur, (uint32_t)s->nsub));
+    SESSILE_CALL(sessile_cmd_end(s->cmd));
+    SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  }
+  s->builds++, s->partial_builds++;
+  if (lmax[0] > s->lcap) return SESSILE_OK;
+  size_t n = s->ncells;
+  double *xb = realloc(s->xb, (n ? 3 * n : 1) * sizeof *xb), *rb = realloc(s->rb, (n ? n : 1) * sizeof *rb);
+  if (xb) s->xb = xb;
+  if (rb) s->rb = rb;
+  SESSILE_CHECK(xb && rb, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
+  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_XB], 0, xb, 3 * n)); /* the others' are unchanged */
+  for (size_t i = 0; i < s->nsub; i++) rb[s->sub[i]] = s->r_up[s->sub[i]];
+  s->lists_valid = 1, s->lists_part = 0;
+  *ok = 1;
+  return SESSILE_OK;
+}
+
 /* Builds the contact lists at the current x (pair cur) when they are stale,
- * growing them until every count fits; keeps xb and the radii on the host. */
+ * growing them until every count fits; keeps xb and the radii on the host.
+ * The lists get room for a quarter more cells than there are, so that a
+ * division's daughters can be listed by a partial build. */
 static sessile_status lists_ensure(sessile_sds_gpu *s) {
   if (s->lists_valid || !contacts_on(s)) return SESSILE_OK;
+  if (s->lists_part) {
+    int ok = 0;
+    SESSILE_CALL(lists_build_part(s, &ok));
+    if (ok) return SESSILE_OK;
+    lists_invalidate(s); /* an overflow: grow and build every list */
+  }
   double skin = skin_now(s);
   SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_SP], SP_SKIN, &skin, 1));
+  size_t lbase = (size_t)s->ncells + s->ncells / 4 + 16;
+  SESSILE_CHECK(lbase * ((size_t)s->lcap + 1) < UINT32_MAX, SESSILE_ERR_TOO_LARGE,
+                "sds: contact lists of %zu cells x %u entries are too many for 32-bit indices", lbase, s->lcap);
+  s->lbase = (uint32_t)lbase;
+  SESSILE_CALL(ensure(s, B_LIST, (lbase + lbase * (size_t)s->lcap) * 4));
+  SESSILE_CALL(ensure(s, B_XB, 3 * lbase * s->real_bytes));
+  SESSILE_CALL(ensure(s, B_LMAX, 16));
   uint32_t *lmax = sessile_buffer_host_ptr(s->b[B_LMAX]);
   SESSILE_CHECK(lmax, SESSILE_ERR_INTERNAL, "sds: the contact-list count buffer is not mapped");
   for (;;) {
     lmax[0] = 0;
     SESSILE_CALL(sessile_cmd_begin(s->cmd));
-    SESSILE_CALL(record_lists(s, s->cur));
+    SESSILE_CALL(record_lists(s, s->cur, 0));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
     SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
     s->builds++;
@@ -456,10 +601,10 @@ static sessile_status lists_ensure(sessile_sds_gpu *s) {
       SESSILE_CHECK(cap <= (1u << 20), SESSILE_ERR_TOO_LARGE, "sds: %u contact candidates for one cell", lmax[0]);
       cap *= 2;
     }
-    SESSILE_CHECK((size_t)s->ncells * (cap + 1) < UINT32_MAX, SESSILE_ERR_TOO_LARGE,
-                  "sds: contact lists of %u cells x %u entries are too many for 32-bit indices", s->ncells, cap);
+    SESSILE_CHECK(lbase * ((size_t)cap + 1) < UINT32_MAX, SESSILE_ERR_TOO_LARGE,
+                  "sds: contact lists of %zu cells x %u entries are too many for 32-bit indices", lbase, cap);
     s->lcap = cap;
-    SESSILE_CALL(ensure(s, B_LIST, ((size_t)s->ncells + (size_t)s->ncells * cap) * 4));
+    SESSILE_CALL(ensure(s, B_LIST, (lbase + lbase * (size_t)cap) * 4));
   }
   size_t n = s->ncells;
   double *xb = realloc(s->xb, (n ? 3 * n : 1) * sizeof *xb), *rb = realloc(s->rb, (n ? n : 1) * sizeof *rb);
@@ -544,7 +689,7 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
   if (lmax) lmax[0] = 0;
   SESSILE_CALL(sessile_cmd_begin(s->cmd));
   for (uint32_t k = 0; k < steps; k++) {
-    if (lists && k > 0) SESSILE_CALL(record_lists(s, (s->cur + (int)k) & 1));
+    if (lists && k > 0) SESSILE_CALL(record_lists(s, (s->cur + (int)k) & 1, 0));
     SESSILE_CALL(record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1));
   }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
@@ -552,7 +697,7 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
   SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
   s->cur = (s->cur + (int)steps) & 1;
   if (lists && steps > 1) {
-    s->lists_valid = 0; /* built inside the batch: xb is not on the host */
+    lists_invalidate(s); /* built inside the batch: xb is not on the host */
     SESSILE_CHECK(lmax && lmax[0] <= s->lcap, SESSILE_ERR_TOO_LARGE,
                   "sds: a cell had %u contact candidates inside a batch of steps, more than the lists hold (%u): "
                   "use single steps", lmax ? lmax[0] : 0, s->lcap);
@@ -580,7 +725,7 @@ static sessile_status step_mode(sessile_sds_gpu *s, double dt, int mode, double 
       if (!(s->scratch[c] <= far)) far = s->scratch[c];
       if (surf[c] && !(s->scratch[c] <= far_surf)) far_surf = s->scratch[c];
     }
-    if (lists_stale(s, far, far_surf)) s->lists_valid = 0;
+    if (lists_stale(s, far, far_surf)) lists_invalidate(s);
   }
   if (max_move) {
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_MOVE], 0, s->scratch, s->ncells));
@@ -662,6 +807,10 @@ sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uin
   return SESSILE_OK;
 }
 
+void sessile_sds_gpu_list_builds(const sessile_sds_gpu *s, uint64_t *all, uint64_t *partial) {
+  *all = s->builds, *partial = s->partial_builds;
+}
+
 sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, size_t *n) {
   *table = NULL, *n = 0;
   size_t len = 3 * (size_t)s->tsize + 1 + s->nfaces + 1;
@@ -682,7 +831,7 @@ sessile_status sessile_sds_gpu_time_contacts(sessile_sds_gpu *s, int reps, doubl
   if (contacts_on(s)) {
     double t0 = sessile_wall_seconds();
     for (int k = 0; k < reps; k++) {
-      s->lists_valid = 0;
+      lists_invalidate(s);
       SESSILE_CALL(lists_ensure(s));
     }
     *ms_build = 1e3 * (sessile_wall_seconds() - t0) / (reps > 0 ? reps : 1);

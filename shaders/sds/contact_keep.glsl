@@ -5,7 +5,7 @@
 #define SDS_CONTACT_KEEP_GLSL
 uint n_in = 0u; // candidates found (may exceed the list's capacity: the host grows it and builds again)
 void keep(uint c, uint entry) {
-  if (n_in < pc.lcap) list[pc.ncells + c * pc.lcap + n_in] = entry;
+  if (n_in < pc.lcap) list[pc.lbase + c * pc.lcap + n_in] = entry;
   n_in++;
 }
 

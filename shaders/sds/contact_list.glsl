@@ -49,7 +49,11 @@ void obstacle_candidates(uint c, REAL p[3], REAL reach) {
 
 void main() {
   uint c = sessile_gid();
-  if (c >= pc.ncells) return;
+  if (pc.lsub > 0u) { // a partial build: the cells the host listed
+    if (c >= pc.lsub) return;
+    c = lmax[2u + c];
+  } else if (c >= pc.ncells)
+    return;
   REAL p[3] = REAL[3](LD_X(3u * c), LD_X(3u * c + 1u), LD_X(3u * c + 2u));
   for (int i = 0; i < 3; i++) xb[3u * c + uint(i)] = p[i];
   REAL reach = sp[SP_CONTACT] * R_OF(c) + sp[SP_SKIN];

@@ -50,9 +50,15 @@ void self_candidates(uint c, REAL p[3], REAL reach) {
 }
 
 void main() {
-  uint i = sessile_gid(), s0 = o_csurf() + pc.ncells;
-  if (pc.tsize == 0u || i >= LD_TOPO(s0)) return;
-  uint c = LD_TOPO(s0 + 1u + i);
+  uint i = sessile_gid(), s0 = o_csurf() + pc.ncells, c;
+  if (pc.tsize == 0u) return;
+  if (pc.lsub > 0u) { // a partial build: the surface cells among those the host listed
+    if (i >= lmax[1]) return;
+    c = lmax[2u + pc.lsub + i];
+  } else {
+    if (i >= LD_TOPO(s0)) return;
+    c = LD_TOPO(s0 + 1u + i);
+  }
   REAL p[3] = REAL[3](LD_X(3u * c), LD_X(3u * c + 1u), LD_X(3u * c + 2u));
   REAL reach = sp[SP_CONTACT] * R_OF(c) + sp[SP_SKIN];
   n_in = list[c]; // the obstacle's entries

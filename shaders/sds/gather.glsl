@@ -24,7 +24,7 @@ void obs_corner(uint q, out REAL a[3]) {
 // finds (sessile_sds_contact_brute).
 void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
   REAL best = delta * delta, best_o = delta * delta;
-  uint bt = 0xffffffffu, bo = 0xffffffffu, base = pc.ncells + c * pc.lcap, n = LD_LIST(c);
+  uint bt = 0xffffffffu, bo = 0xffffffffu, base = pc.lbase + c * pc.lcap, n = LD_LIST(c);
   for (uint k = 0u; k < n; k++) {
     uint e = LD_LIST(base + k), t = e & ~SDS_LIST_OBS;
     bool obs = (e & SDS_LIST_OBS) != 0u;

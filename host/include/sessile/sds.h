@@ -277,6 +277,10 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
  * offsets T + 1, cursors T, entries F, rho bits; docs/sds.md "Collisions"),
  * malloc'd into *table, its length into *n: for the determinism test. */
 sessile_status sessile_sds_gpu_hash_table(sessile_sds_gpu *s, uint32_t **table, size_t *n);
+/* The contact lists' builds so far: all of them, and of those the partial
+ * ones (after a topology change that kept the boundary, only the cells it
+ * touched; docs/sds.md "Collisions"). */
+void sessile_sds_gpu_list_builds(const sessile_sds_gpu *s, uint64_t *all, uint64_t *partial);
 /* Times `reps` force evaluations (forces only) with and without the contacts
  * (their lists built) into ms_all, ms_nocontact, and `reps` builds of the
  * contact lists (surface hash and list kernel) into ms_build (0 without
