@@ -221,12 +221,13 @@ static int lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf
   return (p.nobs && !(far_all + g <= s->skin)) || (p.tsize && !(2 * far_surf + g <= s->skin));
 }
 
-/* The lists' staleness at o's x and r (the same complex as at their build):
- * the largest moves since the build, every cell's and the surface cells',
- * and the radii's growth (kept in s->grown). */
-static void lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o) {
+/* The lists' staleness at o's x and r (the same complex as at their build,
+ * but for the cells skip marks): the largest moves since the build, every
+ * cell's and the surface cells', and the radii's growth (kept in s->grown). */
+static int lists_moved_stale(sessile_sds_gpu *s, const sessile_sds *o, const uint8_t *skip) {
   double moved = 0, moved_surf = 0, grown = 0;
   for (size_t c = 0; c < o->ncells; c++) {
+    if (skip && skip[c]) continue;
     double d2 = 0;
     for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
     if (!(d2 <= moved)) moved = d2;
@@ -234,7 +235,11 @@ static void lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o) {
     if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
   }
   s->grown = grown;
-  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) lists_invalidate(s);
+  return lists_stale(s, sqrt(moved), sqrt(moved_surf));
+}
+
+static void lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o) {
+  if (lists_moved_stale(s, o, NULL)) lists_invalidate(s);
 }
 
 /* The neighbours of cell c, sorted, from a topo upload's edges and CSR
@@ -281,34 +286,29 @@ static int lists_partial(sessile_sds_gpu *s, const sessile_sds *o, const uint32_
   const uint32_t *ceo0 = s->topo_up + 4 * (size_t)T0 + 2 * (size_t)E0;
   for (uint32_t c = 0; c < n0; c++)
     if (ceo0[c + 1] - ceo0[c] > dmax) dmax = ceo0[c + 1] - ceo0[c];
-  uint32_t *nb = malloc((2 * ((size_t)dmax + 1) + n0) * sizeof *nb), *pend = nb + 2 * ((size_t)dmax + 1);
-  if (!nb) return 0;
-  memset(pend, 0, n0 * sizeof *pend); /* the pending partial build's cells are redone too */
+  uint32_t *nb = malloc(2 * ((size_t)dmax + 1) * sizeof *nb);
+  uint8_t *redo_of = calloc(n ? n : 1, 1); /* the pending partial build's cells are redone too */
+  if (!nb || !redo_of) {
+    free(nb), free(redo_of);
+    return 0;
+  }
   if (s->lists_part)
     for (size_t i = 0; i < s->nsub; i++)
-      if (s->sub[i] < n0) pend[s->sub[i]] = 1;
+      if (s->sub[i] < n0) redo_of[s->sub[i]] = 1;
   size_t k = 0;
-  double moved = 0, moved_surf = 0, grown = 0;
   for (uint32_t c = 0; c < n; c++) {
-    int redo = c >= n0 || pend[c];
+    int redo = c >= n0 || redo_of[c];
     if (!redo) {
       uint32_t a = topo_neighbours(s->topo_up, n0, E0, T0, c, nb);
       uint32_t b = topo_neighbours(topo, n, o->nedges, o->ntets, c, nb + dmax + 1);
       redo = a != b || memcmp(nb, nb + dmax + 1, a * sizeof *nb);
     }
-    if (redo) {
-      s->sub[k++] = c;
-      continue;
-    }
-    double d2 = 0;
-    for (int i = 0; i < 3; i++) d2 += (o->x[3 * c + i] - s->xb[3 * c + i]) * (o->x[3 * c + i] - s->xb[3 * c + i]);
-    if (!(d2 <= moved)) moved = d2;
-    if (o->surface[c] && !(d2 <= moved_surf)) moved_surf = d2;
-    if (!(o->r[c] - s->rb[c] <= grown)) grown = o->r[c] - s->rb[c];
+    if (redo) s->sub[k++] = c, redo_of[c] = 1;
   }
   free(nb);
-  s->grown = grown;
-  if (lists_stale(s, sqrt(moved), sqrt(moved_surf))) return 0;
+  int stale = lists_moved_stale(s, o, redo_of); /* the kept lists: still within the skin? */
+  free(redo_of);
+  if (stale) return 0;
   size_t ns = 0;
   for (size_t i = 0; i < k; i++)
     if (o->surface[s->sub[i]]) s->sub[k + ns++] = s->sub[i];
