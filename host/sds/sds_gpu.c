@@ -386,7 +386,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(ensure(s, B_LMAX, 16));
   SESSILE_CALL(ensure(s, B_FLAG, T * 4));
   uint32_t tsize = sds_table_size((uint32_t)F);
-  SESSILE_CALL(ensure(s, B_HASH, (3 * (size_t)tsize + 1 + F + 1) * 4));
+  SESSILE_CALL(ensure(s, B_HASH, (4 * (size_t)tsize + 1 + F + 1) * 4)); /* kernels.def, "The surface hash" */
   SESSILE_CALL(ensure(s, B_FSPH, 4 * F * rb));
   size_t nh = 2 * n > T + E ? 2 * n : T + E;
   double *h = malloc((nh ? nh : 1) * sizeof *h);

@@ -21,8 +21,25 @@ bool near_cell(uint c, uint v) {
 }
 
 void corner(uint q, out REAL a[3]) { a = REAL[3](LD_X(3u * q), LD_X(3u * q + 1u), LD_X(3u * q + 2u)); }
+// Is p farther than d from grid cell (i, j, k)'s box (cell size h)?  The
+// box is widened by 1e-9 h so that a centroid floor() put in the cell lies
+// in it despite the rounding of g/h.
+bool box_far(REAL p[3], int i, int j, int k, REAL h, REAL d) {
+  int g[3] = int[3](i, j, k);
+  REAL e = REAL(1e-9) * h, s = REAL(0);
+  for (int a = 0; a < 3; a++) {
+    REAL lo = REAL(g[a]) * h - e, hi = REAL(g[a] + 1) * h + e;
+    REAL o = p[a] < lo ? lo - p[a] : (p[a] > hi ? p[a] - hi : REAL(0));
+    s += o * o;
+  }
+  return s > d * d;
+}
 // Boundary faces within reach of p through the surface hash: the buckets of
-// the grid cells within reach + rho (rho: the largest face radius).
+// the grid cells within reach + rho (rho: the largest face radius), each
+// skipped when its grid cell lies farther from p than reach + the largest
+// radius of the bucket's faces (brho; a bucket also holds the faces of the
+// grid cells that collide with it, which the visit of their own cell finds:
+// a face's centroid lies in its cell's box).
 void self_candidates(uint c, REAL p[3], REAL reach) {
   uint T = pc.tsize, e0 = 3u * T + 1u;
   REAL h = sp[SP_H_SELF], rho = REAL(uintBitsToFloat(LD_HASH(e0 + pc.nfaces)));
@@ -33,6 +50,8 @@ void self_candidates(uint c, REAL p[3], REAL reach) {
     for (int gj = lo[1]; gj <= hi[1]; gj++)
       for (int gk = lo[2]; gk <= hi[2]; gk++) {
         uint b = grid_hash(gi, gj, gk, T);
+        REAL brho = REAL(uintBitsToFloat(LD_HASH(e0 + pc.nfaces + 1u + b)));
+        if (box_far(p, gi, gj, gk, h, (reach + brho) * REAL(1.000000001))) continue;
         for (uint k = LD_HASH(T + b); k < LD_HASH(T + b + 1u); k++) {
           uint t = LD_HASH(e0 + k), of = o_face() + 3u * t;
           uint v0 = LD_TOPO(of), v1 = LD_TOPO(of + 1u), v2 = LD_TOPO(of + 2u);

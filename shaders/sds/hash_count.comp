@@ -4,8 +4,9 @@
 // centroid's grid cell (atomic sums: the counts do not depend on timing) and
 // raises the largest face radius rho (centroid to farthest corner; as float
 // bits, rounded up by 1e-5 so that it bounds the double; atomicMax of
-// non-negative float bits is order-free); its bounding sphere (g, its
-// radius) into fsph, the gather's quick rejection.  As sds_hash_build (host).
+// non-negative float bits is order-free), of all faces and of the bucket's;
+// its bounding sphere (g, its radius) into fsph, the gather's quick
+// rejection.  As sds_hash_build (host), which has no bucket radii.
 #include "sds_common.glsl"
 #include "sds_contact.glsl"
 
@@ -26,5 +27,7 @@ void main() {
   }
   for (int i = 0; i < 3; i++) fsph[4u * f + uint(i)] = g[i];
   fsph[4u * f + 3u] = rho;
-  atomicMax(hash[3u * T + 1u + pc.nfaces], floatBitsToUint(float(rho) * 1.00001));
+  uint rb = floatBitsToUint(float(rho) * 1.00001);
+  atomicMax(hash[3u * T + 1u + pc.nfaces], rb);
+  atomicMax(hash[3u * T + 2u + pc.nfaces + b], rb);
 }
