@@ -207,6 +207,26 @@ static sessile_status build_edges(sessile_sds *o, sessile_sds_new_sm new_sm) {
   return SESSILE_OK;
 }
 
+/* Sorts records made in ascending tet as face_cmp does: a stable radix
+ * sort of their sorted cells (ties keep the tets' order); 0 when a cell
+ * index does not fit the key or memory is short (then the caller qsorts).
+ * Every division rebuilds the organism, and qsort's comparator calls were
+ * most of a rebuild. */
+static int faces_radix(face_rec *r, size_t n) {
+  uint64_t *k = malloc((2 * n + 1) * sizeof *k);
+  uint32_t *ix = malloc((2 * n + 1) * sizeof *ix);
+  face_rec *out = malloc((n + 1) * sizeof *out);
+  int ok = k && ix && out && n < UINT32_MAX;
+  for (size_t i = 0; ok && i < n; i++) ok = mesh_key3(r[i].s[0], r[i].s[1], r[i].s[2], k + i), ix[i] = (uint32_t)i;
+  if (ok) {
+    mesh_sort_u64_idx(k, ix, k + n, ix + n, n);
+    for (size_t i = 0; i < n; i++) out[i] = r[ix[i]];
+    memcpy(r, out, n * sizeof *r);
+  }
+  free(k), free(ix), free(out);
+  return ok;
+}
+
 /* Boundary faces (in one tet), the closedness check, surface flags. */
 static sessile_status build_faces(sessile_sds *o) {
   /* outward faces of a positive tet (0, 1, 2, 3) */
@@ -227,7 +247,7 @@ static sessile_status build_faces(sessile_sds *o) {
       sort3(r->o, r->s);
       r->tet = (uint32_t)t;
     }
-  qsort(rec, nr, sizeof *rec, face_cmp);
+  if (!faces_radix(rec, nr)) qsort(rec, nr, sizeof *rec, face_cmp);
   size_t nb = 0;
   for (size_t i = 0; i < nr;) {
     size_t j = i + 1;
