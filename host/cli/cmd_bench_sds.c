@@ -12,7 +12,7 @@
 #include "sessile/sds.h"
 
 static const char *help =
-    "usage: sessile bench sds [--rock-t T] [--no-physics] [--device D]\n"
+    "usage: sessile bench sds [--rock-t T] [--no-physics] [--kernels] [--device D]\n"
     "\n"
     "Times the SDS physics step (edge and volume springs, damping, contacts\n"
     "through per-cell lists, integration) for TetGen imports of icosphere\n"
@@ -29,12 +29,43 @@ static const char *help =
     "before.  Figures are for the record (docs/performance.md), never pass/fail.\n"
     "\n"
     "  --rock-t T      simulated time of the rock run, 0 < T <= 400 (0: skip it)\n"
-    "  --no-physics    skip the per-step table\n";
+    "  --no-physics    skip the per-step table\n"
+    "  --kernels       after the rock run, the device time of each kernel in it (timestamps\n"
+    "                  around every dispatch: calls, total, per call, share of the wall time);\n"
+    "                  the rest of the wall time is the host's work and the submissions\n";
+
+/* The rock run's kernels, dearest first. */
+static int by_ms(const void *a, const void *b) {
+  const sessile_kernel_time *p = a, *q = b;
+  return (p->ms < q->ms) - (p->ms > q->ms);
+}
+
+static void print_kernels(sessile_gpu *g, double wall_s) {
+  const sessile_kernel_time *t = NULL;
+  uint64_t untimed = 0;
+  size_t n = sessile_gpu_profile_read(g, &t, &untimed);
+  sessile_kernel_time *s = malloc((n ? n : 1) * sizeof *s);
+  if (!s) return;
+  memcpy(s, t, n * sizeof *s);
+  qsort(s, n, sizeof *s, by_ms);
+  double sum = 0;
+  for (size_t i = 0; i < n; i++) sum += s[i].ms;
+  printf("kernels of the rock run (device time from timestamps; wall %.1f s):\n", wall_s);
+  printf("%-28s %10s %10s %10s %7s\n", "kernel", "calls", "total_s", "ms/call", "wall%");
+  for (size_t i = 0; i < n; i++)
+    printf("%-28s %10llu %10.2f %10.4f %6.1f%%\n", s[i].name, (unsigned long long)s[i].calls, 1e-3 * s[i].ms,
+           s[i].calls ? s[i].ms / (double)s[i].calls : 0.0, wall_s > 0 ? 100 * 1e-3 * s[i].ms / wall_s : 0.0);
+  printf("%-28s %10s %10.2f %10s %6.1f%%  (the rest: host work, transfers, submissions%s)\n", "all kernels", "",
+         1e-3 * sum, "", wall_s > 0 ? 100 * 1e-3 * sum / wall_s : 0.0,
+         untimed ? "; some dispatches untimed" : "");
+  if (untimed) printf("(%llu dispatches past the 64 timed per submission)\n", (unsigned long long)untimed);
+  free(s);
+}
 
 int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   double rock_t = 1;
-  int physics = 1;
+  int physics = 1, kernels = 0;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
@@ -42,6 +73,10 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
     }
     if (!strcmp(argv[i], "--no-physics")) {
       physics = 0;
+      continue;
+    }
+    if (!strcmp(argv[i], "--kernels")) {
+      kernels = 1;
       continue;
     }
     if (!strcmp(argv[i], "--rock-t")) {
@@ -62,7 +97,10 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_gpu *g = NULL;
   sessile_status s = cli_gpu_create(&go, &g);
   if (s == SESSILE_OK && physics) s = sessile_sds_bench_physics(g, stdout);
+  if (s == SESSILE_OK && kernels && rock_t > 0) s = sessile_gpu_profile(g, 1);
+  double t0 = sessile_wall_seconds();
   if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, stdout);
+  if (s == SESSILE_OK && kernels && rock_t > 0) print_kernels(g, sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
   return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
 }

@@ -5,7 +5,7 @@
 #include <string.h>
 #include "gpu_internal.h"
 
-enum { SETS_PER_POOL = 512, MAX_POOLS = 256, TIMESTAMPS = 64 };
+enum { SETS_PER_POOL = 512, MAX_POOLS = 256, TIMESTAMPS = 64, PROF_MAX = 64 };
 
 struct sessile_cmd {
   sessile_gpu *gpu;
@@ -20,6 +20,12 @@ struct sessile_cmd {
   uint64_t ts_written; /* bitmask of slots written in this recording */
   uint64_t ts[TIMESTAMPS];
   int ts_valid;
+  /* sessile_gpu_profile: a pool of its own (2 per dispatch), whether this
+   * recording is timed, and the kernels of its timed dispatches */
+  VkQueryPool prof_q;
+  int prof_rec;
+  uint32_t nprof, nuntimed;
+  const char *prof_name[PROF_MAX];
 };
 
 static sessile_status add_pool(sessile_cmd *c) {
@@ -79,6 +85,7 @@ void sessile_cmd_destroy(sessile_cmd *c) {
   if (c->fence) vkDestroyFence(d, c->fence, NULL);
   for (uint32_t i = 0; i < c->ndpools; i++) vkDestroyDescriptorPool(d, c->dpools[i], NULL);
   if (c->queries) vkDestroyQueryPool(d, c->queries, NULL);
+  if (c->prof_q) vkDestroyQueryPool(d, c->prof_q, NULL);
   if (c->pool) vkDestroyCommandPool(d, c->pool, NULL); /* frees the command buffer */
   free(c);
 }
@@ -94,6 +101,14 @@ sessile_status sessile_cmd_begin(sessile_cmd *c) {
   VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   SESSILE_VK(vkBeginCommandBuffer(c->cb, &bi));
   if (c->queries) vkCmdResetQueryPool(c->cb, c->queries, 0, TIMESTAMPS);
+  c->nprof = c->nuntimed = 0;
+  c->prof_rec = c->gpu->prof_on && c->queries; /* c->queries: the queue has timestamps */
+  if (c->prof_rec && !c->prof_q) {
+    VkQueryPoolCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = 2 * PROF_MAX};
+    SESSILE_VK(vkCreateQueryPool(d, &qi, NULL, &c->prof_q));
+  }
+  if (c->prof_rec) vkCmdResetQueryPool(c->cb, c->prof_q, 0, 2 * PROF_MAX);
   c->recording = 1;
   c->recorded = 0;
   return SESSILE_OK;
@@ -181,7 +196,14 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
     SESSILE_CHECK(gy <= c->gpu->limits.maxComputeWorkGroupCount[1], SESSILE_ERR_TOO_LARGE,
                   "kernel %s needs %u workgroups, more than the device allows", k->name, groups);
   }
+  int timed = c->prof_rec && c->nprof < PROF_MAX;
+  if (timed) vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->prof_q, 2 * c->nprof);
   vkCmdDispatch(c->cb, gx, gy, 1);
+  if (timed) {
+    vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->prof_q, 2 * c->nprof + 1);
+    c->prof_name[c->nprof++] = k->name;
+  } else if (c->prof_rec)
+    c->nuntimed++;
   c->ndispatch++;
   return SESSILE_OK;
 }
@@ -222,6 +244,15 @@ sessile_status sessile_cmd_submit_wait(sessile_cmd *c) {
                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     }
     c->ts_valid = 1;
+  }
+  if (c->prof_rec) c->gpu->prof_untimed += c->nuntimed;
+  if (c->prof_rec && c->nprof) {
+    uint64_t t[2 * PROF_MAX];
+    SESSILE_VK(vkGetQueryPoolResults(d, c->prof_q, 0, 2 * c->nprof, sizeof t, t, sizeof(uint64_t),
+                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    for (uint32_t i = 0; i < c->nprof; i++)
+      SESSILE_CALL(sessile_gpu_profile_add_(c->gpu, c->prof_name[i],
+                                            1e-6 * (double)(t[2 * i + 1] - t[2 * i]) * c->gpu->info.timestamp_period_ns));
   }
   return SESSILE_OK;
 }

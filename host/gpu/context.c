@@ -1,5 +1,6 @@
 /* The compute context: instance, chosen device, one compute queue, a command
  * pool for transfers, and the pipeline cache. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -137,10 +138,43 @@ void sessile_gpu_destroy(sessile_gpu *g) {
     vkDestroyDevice(g->device, NULL);
   }
   sessile_instance_destroy_(g->instance, g->messenger);
+  free(g->prof);
   free(g);
 }
 
 const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g) { return &g->info; }
+
+sessile_status sessile_gpu_profile(sessile_gpu *g, int on) {
+  SESSILE_CHECK(!on || g->info.timestamp_period_ns > 0, SESSILE_ERR_UNSUPPORTED,
+                "%s has no timestamps on its compute queue: no kernel profile", g->info.name);
+  if (on) g->nprof = 0, g->prof_untimed = 0;
+  g->prof_on = on != 0;
+  return SESSILE_OK;
+}
+
+size_t sessile_gpu_profile_read(const sessile_gpu *g, const sessile_kernel_time **out, uint64_t *untimed) {
+  if (out) *out = g->prof;
+  if (untimed) *untimed = g->prof_untimed;
+  return g->nprof;
+}
+
+sessile_status sessile_gpu_profile_add_(sessile_gpu *g, const char *name, double ms) {
+  size_t i = 0;
+  while (i < g->nprof && strncmp(g->prof[i].name, name, sizeof g->prof[i].name - 1)) i++;
+  if (i == g->nprof) {
+    if (g->nprof == g->cap_prof) {
+      size_t cap = g->cap_prof ? 2 * g->cap_prof : 32;
+      sessile_kernel_time *p = realloc(g->prof, cap * sizeof *p);
+      SESSILE_CHECK(p, SESSILE_ERR_NO_MEMORY, "out of host memory for the kernel profile");
+      g->prof = p, g->cap_prof = cap;
+    }
+    memset(&g->prof[i], 0, sizeof g->prof[i]);
+    snprintf(g->prof[i].name, sizeof g->prof[i].name, "%s", name);
+    g->nprof++;
+  }
+  g->prof[i].calls++, g->prof[i].ms += ms;
+  return SESSILE_OK;
+}
 uint64_t sessile_gpu_validation_count(const sessile_gpu *g) { return g->validation.count; }
 
 uint32_t sessile_gpu_memory_type_(const sessile_gpu *g, uint32_t bits, VkMemoryPropertyFlags want) {

@@ -32,7 +32,14 @@ struct sessile_gpu {
   VkPhysicalDeviceLimits limits;
   sessile_gpu_info info;
   sessile_validation_sink_ validation;
+  /* sessile_gpu_profile: on, the per-kernel table, untimed dispatches */
+  int prof_on;
+  sessile_kernel_time *prof;
+  size_t nprof, cap_prof;
+  uint64_t prof_untimed;
 };
+/* Adds one timed call of kernel `name` (cmd.c, after a profiled submission). */
+sessile_status sessile_gpu_profile_add_(sessile_gpu *g, const char *name, double ms);
 
 struct sessile_buffer {
   sessile_gpu *gpu;

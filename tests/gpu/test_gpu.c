@@ -262,6 +262,60 @@ static void test_dispatch(sessile_gpu *g) {
   sessile_kernel_destroy(k);
 }
 
+/* The kernel profile: 70 dispatches of la/fill in one recording submitted
+ * twice give 2 x 64 timed calls of it and 2 x 6 untimed dispatches, with a
+ * positive device time; off, a submission adds nothing; on again clears. */
+static void test_profile(sessile_gpu *g) {
+  printf("-- kernel profile (sessile_gpu_profile)\n");
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  if (!(i->timestamp_period_ns > 0)) {
+    t_true("no timestamps on this device: profile on -> SESSILE_ERR_UNSUPPORTED",
+           sessile_gpu_profile(g, 1) == SESSILE_ERR_UNSUPPORTED);
+    return;
+  }
+  const uint32_t n = 1001, n4 = (n + 3) / 4, rb = i->precision == 64 ? 8 : 4;
+  sessile_kernel *k = NULL;
+  sessile_cmd *c = NULL;
+  sessile_buffer *scal = NULL, *y = NULL;
+  sessile_status s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_FILL], 0, 0, &k);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 64 * rb, SESSILE_BUFFER_MAPPED, &scal);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, (size_t)(n4 + 1) * 4 * rb, SESSILE_BUFFER_DEVICE, &y);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
+  if (s == SESSILE_OK) s = sessile_gpu_profile(g, 1);
+  vec_push push = {.n4 = n4, .n = n, .a_slot = -1, .guard = -1};
+  sessile_buffer *bufs[2] = {scal, y};
+  uint32_t groups = k ? (n4 + sessile_kernel_local_size(k) - 1) / sessile_kernel_local_size(k) : 1;
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  for (int d = 0; d < 70 && s == SESSILE_OK; d++) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  t_ok("profile on, 70 dispatches recorded, submitted twice", s);
+  const sessile_kernel_time *t = NULL;
+  uint64_t untimed = 0;
+  size_t nt = sessile_gpu_profile_read(g, &t, &untimed);
+  if (nt == 1) printf("   %s: %llu calls, %.4f ms, %llu untimed\n", t[0].name, (unsigned long long)t[0].calls, t[0].ms,
+                      (unsigned long long)untimed);
+  t_true("one kernel, la/fill, 128 timed calls, 12 untimed dispatches, device time > 0",
+         nt == 1 && strncmp(t[0].name, "la/fill", 7) == 0 && t[0].calls == 128 && untimed == 12 && t[0].ms > 0);
+  double ms = nt == 1 ? t[0].ms : -1;
+  if (s == SESSILE_OK) s = sessile_gpu_profile(g, 0);
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  nt = sessile_gpu_profile_read(g, &t, &untimed);
+  t_true("profile off: a further submission adds nothing",
+         s == SESSILE_OK && nt == 1 && t[0].calls == 128 && t[0].ms == ms && untimed == 12);
+  if (s == SESSILE_OK) s = sessile_gpu_profile(g, 1);
+  t_true("profile on again clears the table", s == SESSILE_OK && sessile_gpu_profile_read(g, NULL, NULL) == 0);
+  sessile_gpu_profile(g, 0);
+  sessile_cmd_destroy(c);
+  sessile_buffer_destroy(y);
+  sessile_buffer_destroy(scal);
+  sessile_kernel_destroy(k);
+}
+
 static void test_device_choice(void) {
   printf("-- device choice\n");
   sessile_gpu_options o;
@@ -371,6 +425,7 @@ int main(void) {
   test_buffers(g);
   test_kernels(g);
   test_dispatch(g);
+  test_profile(g);
   test_device_choice();
   test_validation_callback();
   test_destroy_null();

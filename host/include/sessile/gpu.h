@@ -71,6 +71,23 @@ sessile_status sessile_gpu_create(const sessile_gpu_options *opt, sessile_gpu **
 void sessile_gpu_destroy(sessile_gpu *g);
 const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g);
 
+/* Device time per kernel, from timestamps around each dispatch (for
+ * benchmarks: `sessile bench sds --kernels`).  sessile_gpu_profile(g, 1)
+ * clears the table and times the dispatches of every recording begun from
+ * then on, (g, 0) stops; the first 64 dispatches of a recording are timed,
+ * the others counted as untimed.  A timed dispatch ends at the next
+ * dispatch's barrier as before, so results are unchanged.  Fails with
+ * SESSILE_ERR_UNSUPPORTED on a queue without timestamps. */
+typedef struct sessile_kernel_time {
+  char name[64];
+  uint64_t calls;
+  double ms; /* summed over its calls */
+} sessile_kernel_time;
+sessile_status sessile_gpu_profile(sessile_gpu *g, int on);
+/* The table (entries in first-dispatch order; valid until the next
+ * sessile_gpu_profile or destroy) and the count of untimed dispatches. */
+size_t sessile_gpu_profile_read(const sessile_gpu *g, const sessile_kernel_time **out, uint64_t *untimed);
+
 /* Number of validation-layer warnings and errors seen so far (tests fail on > 0). */
 uint64_t sessile_gpu_validation_count(const sessile_gpu *g);
 
