@@ -92,7 +92,8 @@ static int texel_fits(const sessile_sds_gpu *s) {
  * lavapipe, the same bits) when texel reads are allowed and fit. */
 static sessile_kernel *kern(const sessile_sds_gpu *s, int k) {
   if (s->reads == 0 && texel_fits(s)) switch (k) {
-    case SDS_ELEMENTS: return s->k[SDS_ELEMENTS_TEX];
+    case SDS_EDGE: return s->k[SDS_EDGE_TEX];
+    case SDS_TET: return s->k[SDS_TET_TEX];
     case SDS_GATHER: return s->k[SDS_GATHER_TEX];
     case SDS_INVERTED: return s->k[SDS_INVERTED_TEX];
     case SDS_CONTACT_LIST: return s->k[SDS_CONTACT_LIST_TEX];
@@ -616,16 +617,20 @@ static sessile_status lists_ensure(sessile_sds_gpu *s) {
   return SESSILE_OK;
 }
 
-/* The tets' and the edges' forces of pair c in one dispatch (elements.glsl). */
-static sessile_status record_elements(sessile_sds_gpu *s, int c, const sds_push *p) {
-  uint32_t n = s->ntets + s->nedges;
-  if (!n) return SESSILE_OK;
-  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
-                         s->b[B_ELF]};
-  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_ELEMENTS), groups(s, SDS_ELEMENTS, n), b, p);
+static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) {
+  if (!s->nedges) return SESSILE_OK;
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_EDGE), groups(s, SDS_EDGE, s->nedges), b, p);
 }
 
-/* Records the stable bound (after record_elements in mode 2,
+static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
+  if (!s->ntets) return SESSILE_OK;
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
+                         s->b[B_ELF]};
+  return sessile_cmd_dispatch(s->cmd, kern(s, SDS_TET), groups(s, SDS_TET, s->ntets), b, p);
+}
+
+/* Records the stable bound (after record_edge and record_tet in mode 2,
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
@@ -635,12 +640,13 @@ static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
 }
 
-/* Records the element and gather dispatches (mode 0, 1 or 2; mode 2 with the
+/* Records edge, tet and gather dispatches (mode 0, 1 or 2; mode 2 with the
  * stable bound between them) reading pair c and writing pair 1 - c. */
 static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode) {
   sds_push p = push_of(s, dt, damping, mode);
   int nx = 1 - c;
-  SESSILE_CALL(record_elements(s, c, &p));
+  SESSILE_CALL(record_edge(s, c, &p));
+  SESSILE_CALL(record_tet(s, c, &p));
   if (mode == 2) SESSILE_CALL(record_stable(s, &p));
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_LIST],
@@ -738,7 +744,8 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
 sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound) {
   sds_push p = push_of(s, 0.0, 1, 2);
   SESSILE_CALL(sessile_cmd_begin(s->cmd));
-  SESSILE_CALL(record_elements(s, s->cur, &p));
+  SESSILE_CALL(record_edge(s, s->cur, &p));
+  SESSILE_CALL(record_tet(s, s->cur, &p));
   SESSILE_CALL(record_stable(s, &p));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));

@@ -1,14 +1,14 @@
-// One edge (elements.glsl calls it per invocation): the force of the scale-free edge spring
+// One edge per invocation: the force of the scale-free edge spring
 // E = k/2 ((L - R')/R')^2, R' = s_m (r_a + r_b), k = k_edge R' (m_a + m_b)
 // (times the surface multiplier on surface edges), on its second cell b
 // (cell a gets the opposite); in mode 2 also the edge's term of the stable
 // bound (stable.glsl).  Mirrors edge_force in host/sds/sds_physics.c.
-#ifndef SDS_EDGE_FORCE_GLSL
-#define SDS_EDGE_FORCE_GLSL
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void edge_force(uint e) {
+void main() {
+  uint e = sessile_gid();
+  if (e >= pc.nedges) return;
   uint a = LD_TOPO(o_edge() + 2u * e), b = LD_TOPO(o_edge() + 2u * e + 1u);
   REAL esm = LD_SM(pc.ntets + e);
   REAL d0 = LD_X(3u * b) - LD_X(3u * a), d1 = LD_X(3u * b + 1u) - LD_X(3u * a + 1u), d2 = LD_X(3u * b + 2u) - LD_X(3u * a + 2u);
@@ -24,4 +24,3 @@ void edge_force(uint e) {
     elf[20u * pc.ntets + 3u * pc.nedges + e] = REAL(2) * K;
   }
 }
-#endif

@@ -1,4 +1,4 @@
-// One tetrahedron (elements.glsl calls it per invocation): the forces of the volume spring
+// One tetrahedron per invocation: the forces of the volume spring
 // E = k/2 ((V - R')/R')^2, R' = s_m R (Appendix A), k = k_vol (sum r/2)(sum m/2)
 // (times the surface multiplier on surface tets), on its 4 cells, and with
 // damping the volume-rate term -c (sum r/2)(sum m/2) (dV/dt)/R'^2 grad V.
@@ -8,12 +8,12 @@
 // sessile_sds_stable_dt, so that the bound has the host's bits where the
 // device rounds as the host does (precise: no fused multiply-adds).
 // Mirrors tet_force in host/sds/sds_physics.c.
-#ifndef SDS_TET_FORCE_GLSL
-#define SDS_TET_FORCE_GLSL
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void tet_force(uint t) {
+void main() {
+  uint t = sessile_gid();
+  if (t >= pc.ntets) return;
   uint q[4] = uint[4](LD_TOPO(4u * t), LD_TOPO(4u * t + 1u), LD_TOPO(4u * t + 2u), LD_TOPO(4u * t + 3u));
   REAL a[3], b[3], c[3], g[4][3];
   for (int i = 0; i < 3; i++) {
@@ -61,4 +61,3 @@ void tet_force(uint t) {
     }
   }
 }
-#endif

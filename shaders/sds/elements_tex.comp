@@ -1,5 +1,0 @@
-#version 450
-#extension GL_GOOGLE_include_directive : require
-// elements.glsl reading its inputs through uniform texel buffers (sds_load.glsl).
-#define SDS_TEXEL 1
-#include "elements.glsl"

@@ -1,0 +1,5 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// tet_force.glsl reading its inputs through storage buffers (sds_load.glsl).
+#define SDS_TEXEL 0
+#include "tet_force.glsl"
