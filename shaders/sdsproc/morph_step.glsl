@@ -28,6 +28,17 @@ REAL vol_of(REAL r) {
   return v;
 }
 
+// Morphogen k of cell c from its neighbour sum s.
+void finish(uint c, uint k, REAL pk, REAL s, REAL vc) {
+  uint i = c * pc.nmorph + k;
+  precise REAL rate = coef[3u * k] * s - coef[3u * k + 1u] * pk;
+  rate += LD_SRC(i);
+  precise REAL v = pk + pc.dt * rate;
+  v = max(v, REAL(0));
+  if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
+  phi_out[i] = v;
+}
+
 void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
@@ -35,12 +46,30 @@ void main() {
   REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
   REAL vc = vol_of(LD_RADIUS(c));
   uint a = LD_OFF(c), b = LD_OFF(c + 1u);
-  // one morphogen at a time, its sum over the neighbours in CSR order (no
-  // per-morphogen arrays: llvmpipe keeps a dynamically indexed local array
-  // in memory, lane by lane)
-  for (uint k = 0u; k < nm; k++) {
-    uint i = c * nm + k;
-    REAL pk = LD_PHI(i);
+  // two morphogens at a time, each its own sum over the neighbours in CSR
+  // order (the host's order: the same bits), the distance and the
+  // neighbour's volume read once for both; no per-morphogen arrays
+  // (llvmpipe keeps a dynamically indexed local array in memory, lane by
+  // lane)
+  uint k = 0u;
+  for (; k + 1u < nm; k += 2u) {
+    REAL p0 = LD_PHI(c * nm + k), p1 = LD_PHI(c * nm + k + 1u);
+    precise REAL s0 = REAL(0), s1 = REAL(0);
+    for (uint q = a; q < b; q++) {
+      uint n = LD_NBR(q);
+      precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
+      precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
+      REAL vn = vol_of(LD_RADIUS(n));
+      precise REAL t0 = min(LD_PHI(n * nm + k), vc) - min(p0, vn);
+      precise REAL t1 = min(LD_PHI(n * nm + k + 1u), vc) - min(p1, vn);
+      s0 += t0 / d;
+      s1 += t1 / d;
+    }
+    finish(c, k, p0, s0, vc);
+    finish(c, k + 1u, p1, s1, vc);
+  }
+  if (k < nm) {
+    REAL pk = LD_PHI(c * nm + k);
     precise REAL s = REAL(0);
     for (uint q = a; q < b; q++) {
       uint n = LD_NBR(q);
@@ -49,11 +78,6 @@ void main() {
       precise REAL t = min(LD_PHI(n * nm + k), vc) - min(pk, vol_of(LD_RADIUS(n)));
       s += t / d;
     }
-    precise REAL rate = coef[3u * k] * s - coef[3u * k + 1u] * pk;
-    rate += LD_SRC(i);
-    precise REAL v = pk + pc.dt * rate;
-    v = max(v, REAL(0));
-    if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
-    phi_out[i] = v;
+    finish(c, k, pk, s, vc);
   }
 }
