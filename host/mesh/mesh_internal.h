@@ -23,6 +23,11 @@ void mesh_sort_u64_idx(uint64_t *keys, uint32_t *idx, uint64_t *ktmp, uint32_t *
 /* The key of an ascending triple whose entries are below 2^21 (0 if one is
  * not): sorting by it sorts by (a, b, c). */
 int mesh_key3(uint32_t a, uint32_t b, uint32_t c, uint64_t *key);
+/* The stable order of n records of `stride` words whose first three words
+ * are an ascending triple below 2^21, sorted by the triple (order[i]: the
+ * record at rank i; ties keep the records' order); 0 when a triple does not
+ * fit the key or memory is short. */
+int mesh_order3(const uint32_t *rec, size_t stride, size_t n, uint32_t *order);
 
 
 

@@ -1,6 +1,7 @@
 /* The organism's arrays: allocation, copy, and the derived data (edges,
  * boundary faces, surface flags, incidence) rebuilt from (x, tet). */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/mesh_internal.h"
@@ -213,17 +214,13 @@ static sessile_status build_edges(sessile_sds *o, sessile_sds_new_sm new_sm) {
  * Every division rebuilds the organism, and qsort's comparator calls were
  * most of a rebuild. */
 static int faces_radix(face_rec *r, size_t n) {
-  uint64_t *k = malloc((2 * n + 1) * sizeof *k);
-  uint32_t *ix = malloc((2 * n + 1) * sizeof *ix);
+  _Static_assert(offsetof(face_rec, s) == 0 && sizeof(face_rec) % sizeof(uint32_t) == 0, "s leads face_rec");
+  uint32_t *order = malloc((n + 1) * sizeof *order);
   face_rec *out = malloc((n + 1) * sizeof *out);
-  int ok = k && ix && out && n < UINT32_MAX;
-  for (size_t i = 0; ok && i < n; i++) ok = mesh_key3(r[i].s[0], r[i].s[1], r[i].s[2], k + i), ix[i] = (uint32_t)i;
-  if (ok) {
-    mesh_sort_u64_idx(k, ix, k + n, ix + n, n);
-    for (size_t i = 0; i < n; i++) out[i] = r[ix[i]];
-    memcpy(r, out, n * sizeof *r);
-  }
-  free(k), free(ix), free(out);
+  int ok = order && out && mesh_order3((const uint32_t *)r, sizeof *r / sizeof(uint32_t), n, order);
+  for (size_t i = 0; ok && i < n; i++) out[i] = r[order[i]];
+  if (ok) memcpy(r, out, n * sizeof *r);
+  free(order), free(out);
   return ok;
 }
 

@@ -1,6 +1,7 @@
 /* Shared pieces of the SDS topology: faces, cavity hulls, TetGen filling of
  * a hull (through host/mesh/tetgen_shim.cpp) and the rebuild of the tets. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -62,17 +63,13 @@ int topo_face_same(const topo_face *a, const topo_face *b) {
  * A complex of 10 000 tets checked after each division spent most of the
  * check in qsort's comparator calls. */
 static int faces_radix(topo_face *f, size_t n) {
-  uint64_t *k = malloc((2 * n + 1) * sizeof *k);
-  uint32_t *ix = malloc((2 * n + 1) * sizeof *ix);
+  _Static_assert(offsetof(topo_face, o) == 0 && sizeof(topo_face) % sizeof(uint32_t) == 0, "o leads topo_face");
+  uint32_t *order = malloc((n + 1) * sizeof *order);
   topo_face *out = malloc((n + 1) * sizeof *out);
-  int ok = k && ix && out;
-  for (size_t i = 0; ok && i < n; i++) ok = mesh_key3(f[i].o[0], f[i].o[1], f[i].o[2], k + i), ix[i] = (uint32_t)i;
-  if (ok) {
-    mesh_sort_u64_idx(k, ix, k + n, ix + n, n);
-    for (size_t i = 0; i < n; i++) out[i] = f[ix[i]];
-    memcpy(f, out, n * sizeof *f);
-  }
-  free(k), free(ix), free(out);
+  int ok = order && out && mesh_order3((const uint32_t *)f, sizeof *f / sizeof(uint32_t), n, order);
+  for (size_t i = 0; ok && i < n; i++) out[i] = f[order[i]];
+  if (ok) memcpy(f, out, n * sizeof *f);
+  free(order), free(out);
   return ok;
 }
 

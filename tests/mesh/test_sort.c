@@ -1,6 +1,7 @@
 /* The radix sorts (host/mesh/mesh_sort.c) against qsort: keys ascending, the
  * same multiset, and for the payload version equal keys in their input
- * order (stability, which the SDS face sorts rely on to order ties by tet).
+ * order (stability, which the SDS face sorts rely on to order ties by tet),
+ * and mesh_order3, the ranking of records led by a triple that they use.
  * Keys drawn from small and full ranges, so that passes are skipped and
  * taken.  Pure C: no GPU. */
 #include <stdlib.h>
@@ -52,6 +53,35 @@ int main(void) {
   one("one byte (a pass per digit skipped)", 5000, 0xff00, 2);
   one("full 64-bit keys", 20000, ~(uint64_t)0, 3);
   one("one key", 1, ~(uint64_t)0, 4);
+  /* mesh_order3: records of 5 words led by an ascending triple, ranked as
+   * qsort ranks (triple, position); a triple past 2^21 refuses */
+  {
+    enum { N = 3000, W = 5 };
+    uint32_t *rec = t_xalloc(N * W * sizeof *rec), *order = t_xalloc(N * sizeof *order);
+    pair *ref = t_xalloc(N * sizeof *ref);
+    uint64_t st = 9;
+    for (uint32_t i = 0; i < N; i++) {
+      uint32_t t[3];
+      for (int q = 0; q < 3; q++) t[q] = (uint32_t)(sessile_rng_next(&st) % 40);
+      for (int q = 0; q < 3; q++) /* ascending */
+        for (int r = q + 1; r < 3; r++)
+          if (t[r] < t[q]) { uint32_t x = t[q]; t[q] = t[r]; t[r] = x; }
+      memcpy(rec + W * i, t, sizeof t);
+      rec[W * i + 3] = rec[W * i + 4] = 0xdeadbeef; /* payload words: not part of the key */
+      uint64_t k = 0;
+      mesh_key3(t[0], t[1], t[2], &k);
+      ref[i] = (pair){k, i};
+    }
+    qsort(ref, N, sizeof *ref, pair_cmp);
+    int ok = mesh_order3(rec, W, N, order);
+    size_t bad = 0;
+    for (uint32_t i = 0; ok && i < N; i++) bad += order[i] != ref[i].i;
+    t_true("order3: 3000 records of 5 words (triples < 40: many ties) in qsort's (triple, position) order",
+           ok && bad == 0);
+    rec[W * 7 + 2] = 2097152;
+    t_true("order3 refuses a record whose triple reaches 2^21", !mesh_order3(rec, W, N, order));
+    free(rec), free(order), free(ref);
+  }
   /* mesh_key3: its order is the triples' lexicographic order; a cell index
    * of 2^21 or more has no key */
   uint64_t a, b, c;
