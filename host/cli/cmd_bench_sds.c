@@ -91,6 +91,8 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error("bench sds", "unknown option '%.60s'", argv[i]);
   }
+  if (kernels && !(rock_t > 0))
+    return cli_usage_error("bench sds", "--kernels times the rock run: give --rock-t T > 0 with it");
   double load[3];
   sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);

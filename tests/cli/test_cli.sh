@@ -21,7 +21,8 @@ check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessil
 for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4" \
-            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "sds" "sds grow" "sds run" "bench sds --x"; do
+            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "sds" "sds grow" "sds run" "bench sds --x" \
+            "bench sds --kernels --rock-t 0"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
 done
@@ -38,6 +39,11 @@ check "'sessile bench la --size 8' prints kernels, solves and ratios" eval \
 check "'sessile bench la --mg 1' compares multigrid and Jacobi-PCG on 33x33x25" eval \
   'rc_is 0 && grep -q "^33x33x25 " "$T/out" && grep -q "mg/jacobi" "$T/out" && grep -q "load average" "$T/out"'
 check "bench under the validation layer is silent" no_validation
+
+run --validation bench sds --no-physics --rock-t 1 --kernels
+check "'sessile bench sds --rock-t 1 --kernels' prints the rock run's kernels and their sum" eval \
+  'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
+check "bench sds --kernels under the validation layer is silent" no_validation
 run --precision 32 bench la --size 8 --repeat 1 --no-solvers
 check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
 
