@@ -106,8 +106,11 @@ sessile_status sessile_buffer_create(sessile_gpu *g, size_t bytes, sessile_buffe
     fallback = 0;
   }
   sessile_status s = alloc_buffer(g, bytes, usage, want, fallback, b);
-  if (s == SESSILE_OK && kind == SESSILE_BUFFER_DEVICE && !g->info.unified_memory && b->mapped) {
-    /* A discrete GPU handed us host-visible device memory (BAR): fine, keep it mapped. */
+  /* A discrete GPU may hand us host-visible device memory (BAR): kept mapped,
+   * unless the context takes the staged paths on purpose ($SESSILE_STAGED). */
+  if (s == SESSILE_OK && kind == SESSILE_BUFFER_DEVICE && g->staged_only && b->mapped) {
+    vkUnmapMemory(g->device, b->memory);
+    b->mapped = NULL;
   }
   if (s == SESSILE_OK) s = fill_zero(b);
   if (s != SESSILE_OK) {
@@ -125,6 +128,15 @@ void sessile_buffer_destroy(sessile_buffer *b) {
   free(b);
 }
 
+sessile_status sessile_buffer_reserve(sessile_gpu *g, sessile_buffer **b, size_t bytes, sessile_buffer_kind kind) {
+  if (*b && (*b)->bytes >= bytes) return SESSILE_OK;
+  sessile_buffer_destroy(*b);
+  *b = NULL;
+  size_t room = bytes + bytes / 4, max = g->info.max_storage_buffer_range;
+  if (room > max) room = bytes > max ? bytes : max; /* bytes > max: create() says so */
+  return sessile_buffer_create(g, room, kind, b);
+}
+
 size_t sessile_buffer_size(const sessile_buffer *b) { return b->bytes; }
 void *sessile_buffer_host_ptr(sessile_buffer *b) { return b->mapped; }
 
@@ -135,24 +147,54 @@ static sessile_status check_range(const sessile_buffer *b, size_t offset, size_t
   return SESSILE_OK;
 }
 
-/* Transfers through a temporary staging buffer when the memory is not mapped. */
-static sessile_status staged(sessile_buffer *b, size_t offset, void *host, size_t bytes, int up) {
-  sessile_buffer st = {0};
-  sessile_gpu *g = b->gpu;
-  sessile_status s = alloc_buffer(g, bytes,
-                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, &st);
-  if (s == SESSILE_OK && up) {
-    memcpy(st.mapped, host, bytes);
-    s = copy_buffer(g, st.buffer, 0, b->buffer, offset, bytes);
-  } else if (s == SESSILE_OK) {
-    s = copy_buffer(g, b->buffer, offset, st.buffer, 0, bytes);
-    if (s == SESSILE_OK) memcpy(host, st.mapped, bytes);
+/* A host-visible buffer of at least `bytes` for a staged transfer: the
+ * context's kept one (grown to a power of two, at most
+ * SESSILE_STAGING_KEEP_), or for a larger transfer a temporary in *tmp. */
+static sessile_status staging_for(sessile_gpu *g, size_t bytes, sessile_buffer *tmp, sessile_buffer **out) {
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkMemoryPropertyFlags hv = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  if (bytes > SESSILE_STAGING_KEEP_) {
+    *out = tmp;
+    return alloc_buffer(g, bytes, usage, hv, hv, tmp);
   }
-  release(&st);
+  if (!g->staging || g->staging->bytes < bytes) {
+    size_t want = (size_t)64 << 10;
+    while (want < bytes) want *= 2;
+    sessile_gpu_staging_free_(g);
+    sessile_buffer *b = calloc(1, sizeof *b);
+    SESSILE_CHECK(b, SESSILE_ERR_NO_MEMORY, "out of host memory for a staging buffer");
+    sessile_status s = alloc_buffer(g, want, usage, hv, hv, b);
+    if (s != SESSILE_OK) {
+      release(b);
+      free(b);
+      return s;
+    }
+    g->staging = b;
+  }
+  *out = g->staging;
+  return SESSILE_OK;
+}
+
+void sessile_gpu_staging_free_(sessile_gpu *g) {
+  if (!g->staging) return;
+  release(g->staging);
+  free(g->staging);
+  g->staging = NULL;
+}
+
+/* Transfers through a staging buffer when the memory is not mapped. */
+static sessile_status staged(sessile_buffer *b, size_t offset, void *host, size_t bytes, int up) {
+  sessile_buffer tmp = {0}, *st = NULL;
+  sessile_gpu *g = b->gpu;
+  sessile_status s = staging_for(g, bytes, &tmp, &st);
+  if (s == SESSILE_OK && up) {
+    memcpy(st->mapped, host, bytes);
+    s = copy_buffer(g, st->buffer, 0, b->buffer, offset, bytes);
+  } else if (s == SESSILE_OK) {
+    s = copy_buffer(g, b->buffer, offset, st->buffer, 0, bytes);
+    if (s == SESSILE_OK) memcpy(host, st->mapped, bytes);
+  }
+  release(&tmp);
   return s;
 }
 

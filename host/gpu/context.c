@@ -102,6 +102,11 @@ static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(g->phys, &props);
   g->limits = props.limits;
+  /* SESSILE_STAGED=1 takes a discrete GPU's paths on unified memory too
+   * (device buffers unmapped, transfers staged), so that the tests on
+   * lavapipe cover them (tests/CMakeLists.txt, the *_staged tests). */
+  const char *staged = getenv("SESSILE_STAGED");
+  if (staged && *staged && strcmp(staged, "0") != 0) g->info.unified_memory = 0, g->staged_only = 1;
   SESSILE_CALL(resolve_precision(o->precision, g->info.float64, g->info.name, &g->info.precision));
   /* The reductions use subgroupAdd (fewer barriers on lavapipe); every
    * Vulkan 1.1 GPU driver we know of has it, but a device may not. */
@@ -134,6 +139,8 @@ void sessile_gpu_destroy(sessile_gpu *g) {
   if (g->device) {
     vkDeviceWaitIdle(g->device); /* result irrelevant: we tear down either way */
     sessile_pipeline_cache_close_(g);
+    sessile_gpu_staging_free_(g);
+    if (g->fence) vkDestroyFence(g->device, g->fence, NULL);
     if (g->pool) vkDestroyCommandPool(g->device, g->pool, NULL);
     vkDestroyDevice(g->device, NULL);
   }
@@ -200,21 +207,26 @@ sessile_status sessile_gpu_oneshot_begin_(sessile_gpu *g, VkCommandBuffer *cb) {
 }
 
 VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb, const char **what) {
-  VkFence fence = VK_NULL_HANDLE;
-  VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VkResult r = vkCreateFence(g->device, &fi, NULL, &fence);
+  VkResult r = VK_SUCCESS;
   *what = "vkCreateFence";
+  if (!g->fence) {
+    VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    r = vkCreateFence(g->device, &fi, NULL, &g->fence);
+    if (r < 0) g->fence = VK_NULL_HANDLE;
+  } else {
+    r = vkResetFences(g->device, 1, &g->fence);
+    *what = "vkResetFences";
+  }
   if (r >= 0) {
     VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                        .pCommandBuffers = &cb};
-    r = vkQueueSubmit(q, 1, &si, fence);
+    r = vkQueueSubmit(q, 1, &si, g->fence);
     *what = "vkQueueSubmit";
   }
   if (r >= 0) {
-    r = vkWaitForFences(g->device, 1, &fence, VK_TRUE, UINT64_MAX);
+    r = vkWaitForFences(g->device, 1, &g->fence, VK_TRUE, UINT64_MAX);
     *what = "vkWaitForFences";
   }
-  if (fence) vkDestroyFence(g->device, fence, NULL);
   return r;
 }
 

@@ -26,6 +26,15 @@ struct sessile_gpu {
   VkQueue gfx_queue;
   uint32_t gfx_family;
   VkCommandPool pool; /* for internal one-shot transfers */
+  /* Kept between blocking transfers (buffer.c, context.c): on a discrete GPU
+   * each vkAllocateMemory and vkCreateFence is a driver call of 0.1-1 ms, and
+   * a loop that moves a few small arrays per step paid it every transfer.
+   * staging is the buffer of staged transfers up to SESSILE_STAGING_KEEP_
+   * bytes (larger ones use a temporary); fence, that of sessile_gpu_submit_wait_.
+   * A context is used by one host thread at a time, so one of each serves. */
+  struct sessile_buffer *staging;
+  VkFence fence;
+  int staged_only; /* $SESSILE_STAGED: device buffers are never mapped (context.c) */
   VkPipelineCache pipeline_cache;
   char cache_path[1024]; /* "" when the on-disk cache is off */
   VkPhysicalDeviceMemoryProperties mem;
@@ -38,6 +47,9 @@ struct sessile_gpu {
   size_t nprof, cap_prof;
   uint64_t prof_untimed;
 };
+/* The staged-transfer buffer kept by a context (buffer.c), freed with it. */
+#define SESSILE_STAGING_KEEP_ ((size_t)64 << 20)
+void sessile_gpu_staging_free_(sessile_gpu *g);
 /* Adds one timed call of kernel `name` (cmd.c, after a profiled submission). */
 sessile_status sessile_gpu_profile_add_(sessile_gpu *g, const char *name, double ms);
 

@@ -20,13 +20,9 @@ struct sessile_morph_gpu {
 };
 
 static sessile_status ensure(sessile_morph_gpu *m, int i, size_t bytes) {
-  if (bytes < 16) bytes = 16;
-  if (m->b[i] && m->bytes[i] >= bytes) return SESSILE_OK;
-  sessile_buffer_destroy(m->b[i]);
-  m->b[i] = NULL, m->bytes[i] = 0;
-  SESSILE_CALL(sessile_buffer_create(m->gpu, bytes, SESSILE_BUFFER_DEVICE, &m->b[i]));
-  m->bytes[i] = bytes;
-  return SESSILE_OK;
+  sessile_status st = sessile_buffer_reserve(m->gpu, &m->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
+  m->bytes[i] = m->b[i] ? sessile_buffer_size(m->b[i]) : 0;
+  return st;
 }
 
 sessile_status sessile_morph_gpu_create(sessile_gpu *g, sessile_morph_gpu **out) {

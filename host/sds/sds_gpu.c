@@ -61,15 +61,12 @@ struct sessile_sds_gpu {
 /* (Re)creates buffer i with room for `bytes` (contents lost when it grows). */
 static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   if (bytes < 16) bytes = 16;
-  if (s->b[i] && s->cap[i] >= bytes) return SESSILE_OK;
-  sessile_buffer_destroy(s->b[i]);
-  s->b[i] = NULL, s->cap[i] = 0;
   sessile_buffer_kind kind =
       (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX || i == B_STEP) ? SESSILE_BUFFER_MAPPED
                                                                               : SESSILE_BUFFER_DEVICE;
-  SESSILE_CALL(sessile_buffer_create(s->gpu, bytes, kind, &s->b[i]));
-  s->cap[i] = bytes;
-  return SESSILE_OK;
+  sessile_status st = sessile_buffer_reserve(s->gpu, &s->b[i], bytes, kind);
+  s->cap[i] = s->b[i] ? sessile_buffer_size(s->b[i]) : 0;
+  return st;
 }
 
 /* The contact lists must be built again, every cell's. */

@@ -106,6 +106,12 @@ typedef enum sessile_buffer_kind {
 sessile_status sessile_buffer_create(sessile_gpu *g, size_t bytes, sessile_buffer_kind kind,
                                      sessile_buffer **out);
 void sessile_buffer_destroy(sessile_buffer *b);
+/* Makes *b (NULL or a buffer of this kind) hold at least `bytes`: kept when
+ * it does, else replaced by a zeroed buffer with a quarter more room (within
+ * maxStorageBufferRange), so that a size growing in small steps (an organism
+ * dividing cell by cell) reallocates a logarithmic number of times; on a
+ * discrete GPU each allocation is a driver call of up to a millisecond. */
+sessile_status sessile_buffer_reserve(sessile_gpu *g, sessile_buffer **b, size_t bytes, sessile_buffer_kind kind);
 size_t sessile_buffer_size(const sessile_buffer *b);
 /* Host pointer of a MAPPED buffer (or of a DEVICE one on unified memory); NULL otherwise. */
 void *sessile_buffer_host_ptr(sessile_buffer *b);
