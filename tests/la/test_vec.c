@@ -5,10 +5,13 @@
  * invariant, length-mismatch errors and bitwise determinism of dot/nrm2.
  *
  * Tolerances (the context precision decides):
- *  - fp64, element-wise ops: 1e-15 relative to max|ref|.  Each output is one
- *    or two IEEE operations on the same inputs; the only legal difference is
- *    FMA contraction (one rounding instead of two), i.e. <= 1 ulp of the
- *    largest term, ~2.2e-16 relative.
+ *  - fp64, element-wise ops: 1e-15 relative to the largest term (max|ref| for
+ *    one-operation kernels, max(|a x_i| + |y_i|) for axpy, aypx and waxpy).
+ *    Each output is one or two IEEE operations on the same inputs; the only
+ *    legal difference is FMA contraction (one rounding instead of two; GPU
+ *    compilers do it, lavapipe does not), i.e. <= 1 ulp of the largest term,
+ *    ~2.2e-16 relative to it: relative to a result that cancels it can be
+ *    larger (seen on an NVIDIA H100: 1.8e-15 of max|ref| for waxpy at n = 1).
  *  - fp64, dot: 1e-12 relative to sum|x_i y_i| (the classical bound on any
  *    summation order is (n eps) sum|x_i y_i|, 100003 * 1.1e-16 = 1.1e-11 in
  *    the worst case, ~sqrt(n) eps in practice; sum|x y| is used instead of
@@ -41,6 +44,19 @@ static double err_vs(sessile_vec *v, const double *ref, double *tmp) {
   uint32_t n = sessile_vec_size(v);
   t_ok("vec_download", sessile_vec_download(v, tmp));
   return t_relerr(tmp, ref, n);
+}
+
+/* max|gpu - ref| / max(|a x_i| + |y_i|): the error of a kernel of two terms
+ * relative to the terms, not to a result that may cancel them. */
+static double err_terms(sessile_vec *v, const double *ref, double a, const double *x, const double *y, double *tmp) {
+  uint32_t n = sessile_vec_size(v);
+  t_ok("vec_download", sessile_vec_download(v, tmp));
+  double e = 0, m = 0;
+  for (uint32_t i = 0; i < n; i++) {
+    e = fmax(e, fabs(tmp[i] - ref[i]));
+    m = fmax(m, fabs(a * x[i]) + fabs(y[i]));
+  }
+  return m > 0 ? e / m : e;
 }
 
 /* The value the device stores for x (fp32 contexts round to float). */
@@ -89,22 +105,22 @@ static void test_length(uint32_t n) {
   t_ok("axpy", sessile_vec_axpy(la, alpha, vx, vw));
   sessile_ref_copy(n, y, r);
   sessile_ref_axpy(n, stored(alpha), x, r);
-  snprintf(what, sizeof what, "n=%u axpy(%.7g) vs ref_axpy", n, alpha);
-  t_check(what, err_vs(vw, r, t), tol);
+  snprintf(what, sizeof what, "n=%u axpy(%.7g) vs ref_axpy (rel to the terms)", n, alpha);
+  t_check(what, err_terms(vw, r, stored(alpha), x, y, t), tol);
 
   /* aypx: w = y; w = x + beta w */
   t_ok("copy", sessile_vec_copy(la, vy, vw));
   t_ok("aypx", sessile_vec_aypx(la, beta, vx, vw));
   sessile_ref_copy(n, y, r);
   sessile_ref_aypx(n, stored(beta), x, r);
-  snprintf(what, sizeof what, "n=%u aypx(%.7g) vs ref_aypx", n, beta);
-  t_check(what, err_vs(vw, r, t), tol);
+  snprintf(what, sizeof what, "n=%u aypx(%.7g) vs ref_aypx (rel to the terms)", n, beta);
+  t_check(what, err_terms(vw, r, stored(beta), y, x, t), tol);
 
   /* waxpy: w = beta x + y */
   t_ok("waxpy", sessile_vec_waxpy(la, beta, vx, vy, vw));
   sessile_ref_waxpy(n, stored(beta), x, y, r);
-  snprintf(what, sizeof what, "n=%u waxpy(%.7g) vs ref_waxpy", n, beta);
-  t_check(what, err_vs(vw, r, t), tol);
+  snprintf(what, sizeof what, "n=%u waxpy(%.7g) vs ref_waxpy (rel to the terms)", n, beta);
+  t_check(what, err_terms(vw, r, stored(beta), x, y, t), tol);
 
   /* pmul: w = x .* y */
   t_ok("pmul", sessile_vec_pmul(la, vx, vy, vw));
