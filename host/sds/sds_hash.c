@@ -178,13 +178,14 @@ static double contact_dist(const double *p, const double *pos, const uint32_t *t
   n[0] = e1[1] * e2[2] - e1[2] * e2[1];
   n[1] = e1[2] * e2[0] - e1[0] * e2[2];
   n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-  double dd = sqrt(sds_dot(d, d));
-  if (dd > 0) {
+  /* within 2^-30 of the triangle's size: the face's normal (the shader's
+   * contact_add says why) */
+  double ln = sqrt(sds_dot(n, n)), dd = sqrt(sds_dot(d, d));
+  if (dd > 0x1p-30 * sqrt(ln)) {
     double sg = nrm && sds_dot(d, nrm + SDS_OBS_NRM * (size_t)ti + 3 * region) < 0 ? -1.0 : 1.0;
     for (int i = 0; i < 3; i++) w[i] = sg * d[i] / dd;
     return sg * dd;
   }
-  double ln = sqrt(sds_dot(n, n));
   for (int i = 0; i < 3; i++) w[i] = n[i] / ln;
   return 0.0;
 }

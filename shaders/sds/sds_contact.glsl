@@ -78,8 +78,12 @@ void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k,
   n[0] = e1[1] * e2[2] - e1[2] * e2[1];
   n[1] = e1[2] * e2[0] - e1[0] * e2[2];
   n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-  REAL dd = sqrt(dot3(d, d)), s;
-  if (dd > REAL(0)) {
+  // Within 2^-30 of the triangle's size of it (a cell on the face, say)
+  // p - q is rounding noise, whose direction a GPU's FMA contraction and the
+  // host's separate roundings pick differently: the push takes the face's
+  // normal there, as at dd = 0.  2^-30 is exact as a float literal.
+  REAL ln = sqrt(dot3(n, n)), dd = sqrt(dot3(d, d)), s;
+  if (dd > REAL(9.313225746154785e-10) * sqrt(ln)) {
     REAL sg = REAL(1);
     if (has_nrm) {
       REAL pn[3] = REAL[3](nrm[3 * region], nrm[3 * region + 1], nrm[3 * region + 2]);
@@ -88,7 +92,6 @@ void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k,
     for (int i = 0; i < 3; i++) w[i] = sg * d[i] / dd;
     s = sg * dd;
   } else {
-    REAL ln = sqrt(dot3(n, n));
     for (int i = 0; i < 3; i++) w[i] = n[i] / ln;
     s = REAL(0);
   }
