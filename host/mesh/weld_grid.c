@@ -204,7 +204,7 @@ double weld_node_value(const weld_grid *g, uint32_t x, uint32_t y, uint32_t z, u
     uint32_t c = g->blist[e];
     double d = weld_capsule_sdf(g->cap + (size_t)c * WC_STRIDE, px, py, pz);
     f = g->blend > 0 ? weld_smin(f, d, g->blend) : weld_min(f, d);
-    if (best == UINT32_MAX || d < bd) best = c, bd = d;
+    if (best == UINT32_MAX || d < bd - 0x1p-30 * g->h) best = c, bd = d; /* ties to 2^-30 h: weld_sdf.comp */
   }
   *nearest = best;
   int interior = x > 0 && y > 0 && z > 0 && x + 1 < g->n[0] && y + 1 < g->n[1] && z + 1 < g->n[2];

@@ -80,7 +80,7 @@ void weld_vertex(const weld_grid *g, const double *field, const uint32_t *nnear,
   uint32_t best = c0;
   if (c1 != UINT32_MAX && c1 != c0 &&
       weld_capsule_sdf(g->cap + (size_t)c1 * WC_STRIDE, qx, qy, qz) <
-          weld_capsule_sdf(g->cap + (size_t)c0 * WC_STRIDE, qx, qy, qz))
+          weld_capsule_sdf(g->cap + (size_t)c0 * WC_STRIDE, qx, qy, qz) - 0x1p-30 * g->h)
     best = c1;
   pos[3 * (size_t)v] = qx, pos[3 * (size_t)v + 1] = qy, pos[3 * (size_t)v + 2] = qz;
   nearest[v] = best;

@@ -27,13 +27,17 @@ void main() {
     bd[j] = REAL(0);
     best[j] = 0xFFFFFFFFu;
   }
+  // a capsule nearer by under 2^-30 h is a tie (to the first listed): a
+  // GPU contracts a*b+c into FMA, which moves exact ties (a ring's joints)
+  // by an ulp either way (docs/weld.md, "Vertex value")
+  REAL tie = REAL(9.313225746154785e-10) * pc.h;
   uint e1 = boff[b + 1u];
   for (uint e = boff[b]; e < e1; e++) {
     uint c = blist[e];
     for (uint j = 0u; j < 8u; j++) {
       REAL d = capsule_sdf(c, px, py, pz[j]);
       f[j] = pc.blend > REAL(0) ? weld_smin(f[j], d, pc.blend) : min(f[j], d);
-      if (best[j] == 0xFFFFFFFFu || d < bd[j]) best[j] = c, bd[j] = d;
+      if (best[j] == 0xFFFFFFFFu || d < bd[j] - tie) best[j] = c, bd[j] = d;
     }
   }
   for (uint j = 0u; j < 8u; j++) {

@@ -26,14 +26,15 @@ void main() {
   precise REAL t = f0 / (f0 - f1);
   t = min(max(t, pc.tmin), REAL(1) - pc.tmin);
   precise REAL qx = px + t * (pc.h * REAL(dx)), qy = py + t * (pc.h * REAL(dy)), qz = pz + t * (pc.h * REAL(dz));
-  // the nearer at the vertex of its two nodes' nearest capsules (ties: lower index)
+  // the nearer at the vertex of its two nodes' nearest capsules (ties, to 2^-30 h: lower index)
   uint c0 = nnear[i], c1 = nnear[i + dx + pc.nx * (dy + pc.ny * dz)];
   if (c1 < c0) {
     uint tmp = c0;
     c0 = c1, c1 = tmp;
   }
   uint best = c0;
-  if (c1 != 0xFFFFFFFFu && c1 != c0 && capsule_sdf(c1, qx, qy, qz) < capsule_sdf(c0, qx, qy, qz)) best = c1;
+  if (c1 != 0xFFFFFFFFu && c1 != c0 && capsule_sdf(c1, qx, qy, qz) < capsule_sdf(c0, qx, qy, qz) - REAL(9.313225746154785e-10) * pc.h)
+    best = c1; // nearer by 2^-30 h (weld_sdf.comp says why)
   pos[3u * v] = qx;
   pos[3u * v + 1u] = qy;
   pos[3u * v + 2u] = qz;
