@@ -86,6 +86,19 @@ sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_m
   return SESSILE_OK;
 }
 
+sessile_status sessile_morph_gpu_move_cells(sessile_morph_gpu *m, const sessile_morph_cells *cl,
+                                            const sessile_morph_coef *co) {
+  SESSILE_CHECK(m->ncells > 0 && cl->ncells == m->ncells && co->nmorph == m->nmorph, SESSILE_ERR_USAGE,
+                "morphogen kernel: move_cells needs set_cells first with the same %d cells and %d morphogens",
+                cl->ncells, co->nmorph);
+  size_t nc = (size_t)cl->ncells;
+  SESSILE_CALL(sessile_buffer_upload_reals(m->b[B_POS], 0, cl->pos, 3 * nc));
+  SESSILE_CALL(sessile_buffer_upload_reals(m->b[B_RADIUS], 0, cl->radius, nc));
+  m->dt_max = sessile_morph_dt_max(cl, co);
+  SESSILE_CHECK(m->dt_max > 0, SESSILE_ERR_NUMERIC, "morphogen kernel: two adjacent cells coincide");
+  return SESSILE_OK;
+}
+
 sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi, const double *src) {
   SESSILE_CHECK(m->ncells > 0, SESSILE_ERR_USAGE, "morphogen kernel: set_cells first");
   size_t n = (size_t)m->ncells * m->nmorph;

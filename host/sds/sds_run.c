@@ -42,6 +42,7 @@ typedef struct sim {
                                  failures in a row, the step before which it is not tried again */
   uint32_t nsliver, sliver_cap;
   int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
+  int morph_lists_set;        /* the morphogen kernel has the current neighbour lists (neighbours() clears) */
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
   int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
@@ -124,6 +125,7 @@ static sessile_status blowup(sim *s, const char *fmt, ...) __attribute__((format
 /* --- neighbours and morphogens -------------------------------------------- */
 static sessile_status neighbours(sim *s) {
   const sessile_sds *o = &s->o;
+  s->morph_lists_set = 0;
   free(s->nbr_off), free(s->nbr);
   s->nbr_off = malloc(((size_t)o->ncells + 1) * sizeof *s->nbr_off);
   s->nbr = malloc(((size_t)o->nedges * 2 + 1) * sizeof *s->nbr);
@@ -158,7 +160,10 @@ static sessile_status morphogens(sim *s, const double *src, double dt) {
   if (s->o.nmorph == 0) return SESSILE_OK;
   sessile_morph_cells cells = cells_of(s);
   sessile_morph_coef coef = sessile_sds_model_coef(s->model);
-  sessile_status st = sessile_morph_gpu_set_cells(s->mg, &cells, &coef); /* computes the step bound */
+  /* both compute the step bound; the lists go up after a topology change only */
+  sessile_status st = s->morph_lists_set ? sessile_morph_gpu_move_cells(s->mg, &cells, &coef)
+                                         : sessile_morph_gpu_set_cells(s->mg, &cells, &coef);
+  if (st == SESSILE_OK) s->morph_lists_set = 1;
   double bound = sessile_morph_gpu_dt_max(s->mg);
   if (st == SESSILE_ERR_NUMERIC || (st == SESSILE_OK && !(bound > 0)))
     return blowup(s, "two adjacent cells coincide (the morphogens' step bound is 0)");

@@ -69,6 +69,34 @@ int main(int argc, char **argv) {
   t_check("gpu: total of the diffusion-only morphogen conserved (relative)", fabs(t1 - t0) / t0,
           fp32 ? 1e-5 : 1e-12);
   t_true("gpu refuses dt above the bound", sessile_morph_gpu_step(m, 1.01 * dtm, 1) == SESSILE_ERR_USAGE);
+  /* move_cells (the loop between topology changes: positions and radii
+   * only) gives the bytes of set_cells with the moved cells, and its bound */
+  double *pos0 = t_dalloc(3 * (size_t)n), *rad0 = t_dalloc((size_t)n);
+  memcpy(pos0, L.cells.pos, 3 * (size_t)n * sizeof *pos0), memcpy(rad0, L.cells.radius, (size_t)n * sizeof *rad0);
+  sessile_morph_cells moved = L.cells;
+  double *pos1 = t_dalloc(3 * (size_t)n), *rad1 = t_dalloc((size_t)n);
+  for (int k = 0; k < 3 * n; k++) pos1[k] = pos0[k] + sessile_rng_range(&s, -0.05, 0.05);
+  for (int c = 0; c < n; c++) rad1[c] = rad0[c] * sessile_rng_range(&s, 0.9, 1.1);
+  moved.pos = pos1, moved.radius = rad1;
+  double dtm1 = sessile_morph_dt_max(&moved, &co);
+  t_must("move cells", sessile_morph_gpu_move_cells(m, &moved, &co));
+  t_true("move_cells: the moved cells' step bound", sessile_morph_gpu_dt_max(m) == dtm1);
+  t_must("set phi", sessile_morph_gpu_set_phi(m, phi, src));
+  t_must("gpu steps", sessile_morph_gpu_step(m, 0.9 * dtm1, 20));
+  t_must("get", sessile_morph_gpu_get_phi(m, gpu));
+  sessile_morph_gpu *m2 = NULL;
+  t_must("create", sessile_morph_gpu_create(g, &m2));
+  t_must("set cells", sessile_morph_gpu_set_cells(m2, &moved, &co));
+  t_must("set phi", sessile_morph_gpu_set_phi(m2, phi, src));
+  t_must("gpu steps", sessile_morph_gpu_step(m2, 0.9 * dtm1, 20));
+  t_must("get", sessile_morph_gpu_get_phi(m2, gpu2));
+  t_true("move_cells gives set_cells' bytes with the moved cells (20 steps)",
+         !memcmp(gpu, gpu2, sizeof(double) * n * nm));
+  moved.ncells = n - 1;
+  t_true("move_cells refuses another cell count",
+         sessile_morph_gpu_move_cells(m2, &moved, &co) == SESSILE_ERR_USAGE);
+  sessile_morph_gpu_destroy(m2);
+  free(pos0), free(rad0), free(pos1), free(rad1);
   sessile_morph_gpu_destroy(m);
   free(phi), free(src), free(ref), free(tmp), free(gpu), free(gpu2);
   lattice_free(&L);

@@ -82,6 +82,13 @@ void sessile_morph_gpu_destroy(sessile_morph_gpu *m);
 /* Uploads cells and coefficients (grows the buffers as needed). */
 sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_morph_cells *cells,
                                            const sessile_morph_coef *coef);
+/* As set_cells when the cells' neighbour lists and the coefficients are
+ * those of the last set_cells (between topology changes): uploads the
+ * positions and radii alone, and recomputes the step bound.  On a discrete
+ * GPU each upload is a staged copy of its own, and the SDS loop sets the
+ * cells every step.  Refuses another cell count. */
+sessile_status sessile_morph_gpu_move_cells(sessile_morph_gpu *m, const sessile_morph_cells *cells,
+                                            const sessile_morph_coef *coef);
 /* Uploads amounts and source rates (src NULL: zero). */
 sessile_status sessile_morph_gpu_set_phi(sessile_morph_gpu *m, const double *phi, const double *src);
 /* nsteps steps of size dt in one submission (ping-pong buffers); refuses
