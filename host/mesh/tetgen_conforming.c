@@ -484,10 +484,11 @@ sessile_status sessile_tetgen_conforming(const sessile_box *box, const sessile_s
   build_free(&b);
   if (code != 0) {
     /* Only TetGen's verdicts on the input geometry are SESSILE_ERR_NUMERIC
-     * (callers may fall back to another domain on those); running out of
-     * memory and TetGen's internal errors are not about the input. */
+     * (callers may fall back to another domain on those), and a failed
+     * assert() in TetGen (-3), which an input it cannot mesh trips; running
+     * out of memory and TetGen's internal errors are not about the input. */
     sessile_status st_tg = code == 1 || code == -2                         ? SESSILE_ERR_NO_MEMORY
-                           : code == 3 || code == 4 || code == 5 || code == 10 ? SESSILE_ERR_NUMERIC
+                           : code == 3 || code == 4 || code == 5 || code == 10 || code == -3 ? SESSILE_ERR_NUMERIC
                                                                               : SESSILE_ERR_INTERNAL;
     return sessile_error_set(st_tg, "conforming mesh of the box minus the sponge (%u vertices, %u triangles): %s",
                              sponge->nv, sponge->nf, msg);

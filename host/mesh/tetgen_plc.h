@@ -33,12 +33,14 @@ typedef struct tg_result {
   int *face_marker; /* nfaces */
 } tg_result;
 
-/* Runs tetrahedralize(switches, plc) and copies the output into malloc'd
- * arrays.  Returns 0, or TetGen's error code (1 out of memory, std::bad_alloc
- * included; 2 internal error; 3 self-intersection, 4 small feature, 5 close
- * facets, 10 input error: the input rejected), -1 for another exception or
- * an output without tetrahedra, -2 when copying the output ran out of
- * memory; msg receives a sentence saying which. Never throws. */
+/* Runs tetrahedralize(switches, plc) in a child process (tetgen_shim.cpp
+ * says why) and copies the output into malloc'd arrays.  Returns 0, or
+ * TetGen's error code (1 out of memory, std::bad_alloc included; 2 internal
+ * error; 3 self-intersection, 4 small feature, 5 close facets, 10 input
+ * error: the input rejected), -1 for another exception or an output without
+ * tetrahedra, -2 when copying the output ran out of memory, -3 when TetGen's
+ * process died (a failed assert() in TetGen: its message is in msg); msg
+ * receives a sentence saying which. Never throws. */
 int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_result *out, char *msg,
                       size_t msglen);
 
@@ -46,9 +48,9 @@ int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_result *out, c
  * tests/growth/test_grow_fallback.c): while non-zero, tg_tetrahedralize
  * builds TetGen's input and then fails as if TetGen had thrown this error
  * code, or std::bad_alloc for TG_FAULT_BAD_ALLOC, through the same catch
- * clauses as a real failure.  0 (the default) in every normal use; not
+ * clauses as a real failure, or calls abort() for TG_FAULT_ABORT.  0 (the default) in every normal use; not
  * thread-safe, set it only from a test's main thread. */
-enum { TG_FAULT_BAD_ALLOC = -100 };
+enum { TG_FAULT_BAD_ALLOC = -100, TG_FAULT_ABORT = -101 /* abort() inside the call */ };
 extern int tg_fault_inject;
 void tg_result_free(tg_result *r);
 

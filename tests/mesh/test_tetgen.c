@@ -252,6 +252,9 @@ int main(int argc, char **argv) {
       {3, SESSILE_ERR_NUMERIC, "TetGen error 3 (self-intersection)"},
       {4, SESSILE_ERR_NUMERIC, "TetGen error 4 (small feature)"},
       {10, SESSILE_ERR_NUMERIC, "TetGen error 10 (invalid input)"},
+      /* TetGen's process dies (Debian's libtet keeps its assert()s): a
+       * verdict on the input, and this process goes on */
+      {TG_FAULT_ABORT, SESSILE_ERR_NUMERIC, "abort() in TetGen (a failed assertion)"},
       {7, SESSILE_ERR_INTERNAL, "an unknown TetGen error code"}};
   t_ok("icosphere", sessile_surface_icosphere(3, 2.5, mid, &s));
   for (size_t k = 0; k < sizeof faults / sizeof faults[0]; k++) {
@@ -265,6 +268,10 @@ int main(int argc, char **argv) {
              sessile_status_name(faults[k].want));
     t_true(what, st == faults[k].want && strlen(sessile_error_message()) > 0 && m.xyz == NULL && m.tet == NULL);
   }
+  tg_fault_inject = TG_FAULT_ABORT;
+  st = sessile_tetgen_conforming(&box, &s, &o, &m);
+  tg_fault_inject = 0;
+  t_true("injected abort(): the message names the signal", strstr(sessile_error_message(), "signal 6") != NULL);
   t_ok("after the injected faults, the same surface meshes", sessile_tetgen_conforming(&box, &s, &o, &m));
   sessile_tetmesh_free(&m);
   sessile_surface_free(&s);
