@@ -137,7 +137,7 @@ sessile_status sessile_buffer_reserve(sessile_gpu *g, sessile_buffer **b, size_t
   return sessile_buffer_create(g, room, kind, b);
 }
 
-size_t sessile_buffer_size(const sessile_buffer *b) { return b->bytes; }
+size_t sessile_buffer_size(const sessile_buffer *b) { return b ? b->bytes : 0; }
 void *sessile_buffer_host_ptr(sessile_buffer *b) { return b->mapped; }
 
 static sessile_status check_range(const sessile_buffer *b, size_t offset, size_t bytes) {

@@ -14,15 +14,12 @@ struct sessile_morph_gpu {
   sessile_cmd *cmd;
   uint32_t real_bytes;
   sessile_buffer *b[B_COUNT];
-  size_t bytes[B_COUNT];
   int ncells, nmorph, cur; /* cur: which of PHI0/PHI1 holds the amounts */
   double dt_max;
 };
 
 static sessile_status ensure(sessile_morph_gpu *m, int i, size_t bytes) {
-  sessile_status st = sessile_buffer_reserve(m->gpu, &m->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
-  m->bytes[i] = m->b[i] ? sessile_buffer_size(m->b[i]) : 0;
-  return st;
+  return sessile_buffer_reserve(m->gpu, &m->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
 sessile_status sessile_morph_gpu_create(sessile_gpu *g, sessile_morph_gpu **out) {
@@ -123,9 +120,9 @@ static sessile_kernel *kernel_of(const sessile_morph_gpu *m) {
   static const int reals[] = {B_POS, B_RADIUS, B_SRC, B_PHI0, B_PHI1}, words[] = {B_OFF, B_NBR};
   if (m->storage) return m->k;
   for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
-    if (m->bytes[reals[i]] / m->real_bytes > maxt) return m->k;
+    if (sessile_buffer_size(m->b[reals[i]]) / m->real_bytes > maxt) return m->k;
   for (size_t i = 0; i < sizeof words / sizeof *words; i++)
-    if (m->bytes[words[i]] / 4 > maxt) return m->k;
+    if (sessile_buffer_size(m->b[words[i]]) / 4 > maxt) return m->k;
   return m->k_tex;
 }
 

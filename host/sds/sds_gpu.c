@@ -30,7 +30,6 @@ struct sessile_sds_gpu {
   sessile_kernel *k[SDS_COUNT];
   sessile_cmd *cmd;
   sessile_buffer *b[B_COUNT];
-  size_t cap[B_COUNT];
   uint32_t ncells, nedges, ntets, nobs, nattract;
   uint32_t nfaces, tsize, tsize_obs, nobs_v; /* boundary faces; surface and obstacle hash table sizes */
   uint32_t nsurf;                    /* surface cells (contact_self's invocations) */
@@ -64,9 +63,7 @@ static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   sessile_buffer_kind kind =
       (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX || i == B_STEP) ? SESSILE_BUFFER_MAPPED
                                                                               : SESSILE_BUFFER_DEVICE;
-  sessile_status st = sessile_buffer_reserve(s->gpu, &s->b[i], bytes, kind);
-  s->cap[i] = s->b[i] ? sessile_buffer_size(s->b[i]) : 0;
-  return st;
+  return sessile_buffer_reserve(s->gpu, &s->b[i], bytes, kind);
 }
 
 /* The contact lists must be built again, every cell's. */
@@ -79,9 +76,9 @@ static int texel_fits(const sessile_sds_gpu *s) {
   static const int words[] = {B_TOPO, B_LIST, B_OBSTRI, B_HASH};
   uint64_t maxt = sessile_gpu_info_of(s->gpu)->max_texel_buffer_elements;
   for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
-    if (s->cap[reals[i]] / s->real_bytes > maxt) return 0;
+    if (sessile_buffer_size(s->b[reals[i]]) / s->real_bytes > maxt) return 0;
   for (size_t i = 0; i < sizeof words / sizeof *words; i++)
-    if (s->cap[words[i]] / 4 > maxt) return 0;
+    if (sessile_buffer_size(s->b[words[i]]) / 4 > maxt) return 0;
   return 1;
 }
 
