@@ -26,6 +26,24 @@ struct sessile_cmd {
   int prof_rec;
   uint32_t nprof, nuntimed;
   const char *prof_name[PROF_MAX];
+  /* transfers of this recording (sessile_cmd_upload/download): its own
+   * host-visible staging buffer, replaced when it runs out mid-recording
+   * (the old ones are kept in `retired` until the next begin, when nothing
+   * can still read them); uploads done, and reads to finish after the wait */
+  sessile_buffer *stage;
+  size_t stage_used;
+  sessile_buffer **retired;
+  size_t nretired;
+  uint32_t ncopies_up, nuploads; /* recorded copies to the device; uploads of any kind */
+  int submits;                    /* of this recording */
+  int down_barrier; /* the barrier before the download copies is recorded */
+  struct cmd_read {
+    void *dst;
+    sessile_buffer *src; /* the stage, or a mapped buffer */
+    size_t offset, bytes;
+    int f32; /* floats to widen into doubles */
+  } *reads;
+  size_t nreads, cap_reads;
 };
 
 static sessile_status add_pool(sessile_cmd *c) {
@@ -78,8 +96,17 @@ sessile_status sessile_cmd_create(sessile_gpu *g, sessile_cmd **out) {
   return SESSILE_OK;
 }
 
+static void free_retired(sessile_cmd *c) {
+  for (size_t i = 0; i < c->nretired; i++) sessile_buffer_destroy(c->retired[i]);
+  free(c->retired);
+  c->retired = NULL, c->nretired = 0;
+}
+
 void sessile_cmd_destroy(sessile_cmd *c) {
   if (!c) return;
+  free_retired(c);
+  sessile_buffer_destroy(c->stage);
+  free(c->reads);
   VkDevice d = c->gpu->device;
   /* Nothing can be pending: submit_wait always waits for its fence. */
   if (c->fence) vkDestroyFence(d, c->fence, NULL);
@@ -96,6 +123,8 @@ sessile_status sessile_cmd_begin(sessile_cmd *c) {
   for (uint32_t i = 0; i < c->ndpools; i++) SESSILE_VK(vkResetDescriptorPool(d, c->dpools[i], 0));
   c->cur_pool = 0;
   c->ndispatch = 0;
+  free_retired(c); /* the last submission has been waited for */
+  c->stage_used = 0, c->ncopies_up = c->nuploads = 0, c->nreads = 0, c->down_barrier = 0, c->submits = 0;
   c->ts_written = 0;
   c->ts_valid = 0;
   VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -180,7 +209,15 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
       w[i].pTexelBufferView = &views[i];
     }
   }
+  SESSILE_CHECK(c->nreads == 0, SESSILE_ERR_INTERNAL,
+                "dispatch of %s after a download in the same recording (downloads come last)", k->name);
   vkUpdateDescriptorSets(c->gpu->device, k->nbuffers, w, 0, NULL);
+  if (c->ndispatch == 0 && c->ncopies_up > 0) { /* the recorded uploads, before the first dispatch */
+    VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                          .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &mb, 0,
+                         NULL, 0, NULL);
+  }
   if (c->ndispatch > 0)
     barrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -219,21 +256,168 @@ sessile_status sessile_cmd_timestamp(sessile_cmd *c, uint32_t slot) {
 
 sessile_status sessile_cmd_end(sessile_cmd *c) {
   SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "end without begin");
-  barrier(c->cb, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  /* the shaders' and the recorded copies' writes, visible to the host */
+  VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                        .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                        .dstAccessMask = VK_ACCESS_HOST_READ_BIT};
+  vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, NULL, 0, NULL);
   SESSILE_VK(vkEndCommandBuffer(c->cb));
   c->recording = 0;
   c->recorded = 1;
   return SESSILE_OK;
 }
 
+/* --- transfers inside a recording -------------------------------------- */
+int sessile_cmd_recording(const sessile_cmd *c) { return c->recording; }
+
+static sessile_status sync_mapped(sessile_buffer *b, int flush) {
+  if (b->coherent) return SESSILE_OK;
+  VkMappedMemoryRange r = {.sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, .memory = b->memory, .size = VK_WHOLE_SIZE};
+  if (flush) SESSILE_VK(vkFlushMappedMemoryRanges(b->gpu->device, 1, &r));
+  else SESSILE_VK(vkInvalidateMappedMemoryRanges(b->gpu->device, 1, &r));
+  return SESSILE_OK;
+}
+
+/* `bytes` of this recording's stage, at *off (16-byte aligned). */
+static sessile_status stage_take(sessile_cmd *c, size_t bytes, size_t *off) {
+  size_t at = (c->stage_used + 15) & ~(size_t)15;
+  if (!c->stage || sessile_buffer_size(c->stage) < at + bytes) {
+    size_t want = (size_t)64 << 10;
+    while (want < 2 * (at + bytes)) want *= 2;
+    if (c->stage) { /* recorded copies may still name it: kept until the next begin */
+      sessile_buffer **r = realloc(c->retired, (c->nretired + 1) * sizeof *r);
+      SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory for a recording's transfers");
+      c->retired = r;
+      c->retired[c->nretired++] = c->stage;
+      c->stage = NULL;
+    }
+    SESSILE_CALL(sessile_buffer_create(c->gpu, want, SESSILE_BUFFER_MAPPED, &c->stage));
+    SESSILE_CHECK(c->stage->mapped, SESSILE_ERR_INTERNAL, "a recording's staging buffer is not mapped");
+    at = 0;
+  }
+  *off = at;
+  c->stage_used = at + bytes;
+  return SESSILE_OK;
+}
+
+static sessile_status check_transfer(const sessile_cmd *c, const sessile_buffer *b, size_t offset, size_t bytes,
+                                     const char *what) {
+  SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "%s outside a recording", what);
+  SESSILE_CHECK(b && offset <= b->bytes && bytes <= b->bytes - offset, SESSILE_ERR_USAGE,
+                "%s of %zu bytes at offset %zu exceeds the %zu-byte buffer", what, bytes, offset, b ? b->bytes : 0);
+  return SESSILE_OK;
+}
+
+/* Where an upload of `bytes` goes on the host: the mapped buffer itself, or
+ * the stage (and the copy to the device recorded). */
+static sessile_status upload_dst(sessile_cmd *c, sessile_buffer *b, size_t offset, size_t bytes, void **dst) {
+  SESSILE_CHECK(c->ndispatch == 0 && c->nreads == 0, SESSILE_ERR_INTERNAL,
+                "an upload after a dispatch or a download in the same recording (uploads come first)");
+  c->nuploads++;
+  if (b->mapped) {
+    *dst = (char *)b->mapped + offset;
+    return SESSILE_OK;
+  }
+  size_t at;
+  SESSILE_CALL(stage_take(c, bytes, &at));
+  VkBufferCopy region = {.srcOffset = at, .dstOffset = offset, .size = bytes};
+  vkCmdCopyBuffer(c->cb, c->stage->buffer, b->buffer, 1, &region);
+  c->ncopies_up++;
+  *dst = (char *)c->stage->mapped + at;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_upload(sessile_cmd *c, sessile_buffer *b, size_t offset, const void *src, size_t bytes) {
+  SESSILE_CALL(check_transfer(c, b, offset, bytes, "a recorded upload"));
+  if (bytes == 0) return SESSILE_OK;
+  void *dst = NULL;
+  SESSILE_CALL(upload_dst(c, b, offset, bytes, &dst));
+  memcpy(dst, src, bytes);
+  return b->mapped ? sync_mapped(b, 1) : SESSILE_OK;
+}
+
+sessile_status sessile_cmd_upload_reals(sessile_cmd *c, sessile_buffer *b, size_t offset_reals, const double *src,
+                                        size_t n) {
+  if (c->gpu->info.precision == 64) return sessile_cmd_upload(c, b, offset_reals * 8, src, n * 8);
+  SESSILE_CALL(check_transfer(c, b, offset_reals * 4, n * 4, "a recorded upload"));
+  if (n == 0) return SESSILE_OK;
+  void *dst = NULL;
+  SESSILE_CALL(upload_dst(c, b, offset_reals * 4, n * 4, &dst));
+  float *t = dst;
+  for (size_t i = 0; i < n; i++) t[i] = (float)src[i];
+  return b->mapped ? sync_mapped(b, 1) : SESSILE_OK;
+}
+
+static sessile_status download_rec(sessile_cmd *c, sessile_buffer *b, size_t offset, void *dst, size_t bytes,
+                                   int f32) {
+  SESSILE_CALL(check_transfer(c, b, offset, bytes, "a recorded download"));
+  if (bytes == 0) return SESSILE_OK;
+  if (c->nreads == c->cap_reads) {
+    size_t cap = c->cap_reads ? 2 * c->cap_reads : 8;
+    struct cmd_read *r = realloc(c->reads, cap * sizeof *r);
+    SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory for a recording's transfers");
+    c->reads = r, c->cap_reads = cap;
+  }
+  struct cmd_read rd = {.dst = dst, .src = b, .offset = offset, .bytes = bytes, .f32 = f32};
+  if (!b->mapped) {
+    if (!c->down_barrier) { /* the dispatches' and uploads' writes, before the copies read them */
+      c->down_barrier = 1;
+      VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                            .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                            .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT};
+      vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, NULL, 0, NULL);
+    }
+    size_t at;
+    SESSILE_CALL(stage_take(c, bytes, &at));
+    VkBufferCopy region = {.srcOffset = offset, .dstOffset = at, .size = bytes};
+    vkCmdCopyBuffer(c->cb, b->buffer, c->stage->buffer, 1, &region);
+    rd.src = c->stage, rd.offset = at;
+  }
+  c->reads[c->nreads++] = rd;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_download(sessile_cmd *c, sessile_buffer *b, size_t offset, void *dst, size_t bytes) {
+  return download_rec(c, b, offset, dst, bytes, 0);
+}
+
+sessile_status sessile_cmd_download_reals(sessile_cmd *c, sessile_buffer *b, size_t offset_reals, double *dst,
+                                          size_t n) {
+  if (c->gpu->info.precision == 64) return download_rec(c, b, offset_reals * 8, dst, n * 8, 0);
+  return download_rec(c, b, offset_reals * 4, dst, n * 4, 1);
+}
+
+/* After the wait: the recorded downloads into their host arrays. */
+static sessile_status finish_reads(sessile_cmd *c) {
+  for (size_t i = 0; i < c->nreads; i++) {
+    const struct cmd_read *r = &c->reads[i];
+    SESSILE_CALL(sync_mapped(r->src, 0));
+    const char *p = (const char *)r->src->mapped + r->offset;
+    if (!r->f32) memcpy(r->dst, p, r->bytes);
+    else {
+      const float *f = (const float *)(const void *)p;
+      double *d = r->dst;
+      for (size_t k = 0; k < r->bytes / 4; k++) d[k] = f[k];
+    }
+  }
+  return SESSILE_OK;
+}
+
 sessile_status sessile_cmd_submit_wait(sessile_cmd *c) {
   SESSILE_CHECK(c->recorded, SESSILE_ERR_INTERNAL, "submit of an unfinished recording");
+  /* a mapped buffer's upload was written when recorded, once: no replay */
+  SESSILE_CHECK(c->nuploads == 0 || c->submits == 0, SESSILE_ERR_INTERNAL,
+                "a recording with uploads runs once (record it again to run it again)");
+  c->submits++;
   VkDevice d = c->gpu->device;
   SESSILE_VK(vkResetFences(d, 1, &c->fence));
   VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                      .pCommandBuffers = &c->cb};
   SESSILE_VK(vkQueueSubmit(c->gpu->queue, 1, &si, c->fence));
   SESSILE_VK(vkWaitForFences(d, 1, &c->fence, VK_TRUE, UINT64_MAX));
+  SESSILE_CALL(finish_reads(c));
   c->ts_valid = 0;
   if (c->queries && c->ts_written) {
     /* Read the slots that were written (contiguous runs of the mask). */

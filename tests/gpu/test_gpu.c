@@ -1,7 +1,9 @@
 /* Tests of the Vulkan compute runtime (host/include/sessile/gpu.h): device
  * info, device choice and its errors, buffers (round trips at offsets, the
  * size limits and their messages), kernels from the embedded SPIR-V table,
- * command recording with a dispatch and timestamps, and destroy(NULL).
+ * command recording with a dispatch and timestamps, transfers recorded inside
+ * a submission (uploads, a dispatch, downloads, their order enforced), and
+ * destroy(NULL).
  * Every check prints what it compared; the exit status is non-zero if any
  * check failed or the validation layer reported anything. */
 #include <inttypes.h>
@@ -265,6 +267,102 @@ static void test_dispatch(sessile_gpu *g) {
 /* The kernel profile: 70 dispatches of la/fill in one recording submitted
  * twice give 2 x 64 timed calls of it and 2 x 6 untimed dispatches, with a
  * positive device time; off, a submission adds nothing; on again clears. */
+/* sessile_cmd_upload/download: two uploads, a scale, two downloads in one
+ * submission; the bytes of the host's own product (2 a and 3 a are exact in
+ * either precision: a holds floats); a re-submission replays the uploads; the
+ * order is enforced.  Under SESSILE_STAGED=1 the device buffer is not mapped
+ * and every transfer is a copy through the recording's staging buffer, which
+ * runs out mid-recording and is replaced (1.6 MB of transfers against its
+ * first 1 MiB). */
+static void test_recorded_transfers(sessile_gpu *g) {
+  printf("-- transfers inside a recording: uploads, a dispatch, downloads\n");
+  const size_t n = 100003, n4 = (n + 3) / 4, half = n / 2;
+  sessile_kernel *k = NULL;
+  sessile_cmd *c = NULL;
+  sessile_buffer *scal = NULL, *y = NULL;
+  double *a = malloc(n * sizeof *a), *out = calloc(n, sizeof *out), tail[7] = {0};
+  uint64_t z = 12345;
+  for (size_t i = 0; i < n; i++) {
+    z = z * 6364136223846793005ull + 1442695040888963407ull;
+    a[i] = (double)(float)((double)(z >> 11) / 9007199254740992.0 - 0.5);
+  }
+  sessile_status e, s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_SCALE], 0, 0, &k);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 64 * 8, SESSILE_BUFFER_MAPPED, &scal);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, n4 * 4 * 8, SESSILE_BUFFER_DEVICE, &y);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
+  t_ok("scale kernel, buffers, recording", s);
+  if (s != SESSILE_OK) goto done;
+  printf("   y is %s\n", sessile_buffer_host_ptr(y) ? "mapped (direct copies)" : "not mapped (staged copies)");
+  vec_push push = {.n4 = (uint32_t)n4, .n = (uint32_t)n, .a_slot = 0, .guard = -1};
+  sessile_buffer *bufs[2] = {scal, y};
+  uint32_t groups = (uint32_t)((n4 + sessile_kernel_local_size(k) - 1) / sessile_kernel_local_size(k));
+  const double two = 2, three = 3;
+  s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_upload_reals(c, scal, 0, &two, 1);
+  if (s == SESSILE_OK) s = sessile_cmd_upload_reals(c, y, 0, a, half);
+  if (s == SESSILE_OK) s = sessile_cmd_upload_reals(c, y, half, a + half, n - half);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_download_reals(c, y, 0, out, n);
+  if (s == SESSILE_OK) s = sessile_cmd_download_reals(c, y, n - 7, tail, 7);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  int ok_rec = s == SESSILE_OK;
+  for (size_t i = 0; ok_rec && i < n; i++) ok_rec &= out[i] == 0;
+  t_true("nothing is downloaded before the submission", ok_rec);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  t_ok("upload, upload, scale, download, download: one submission", s);
+  int ok = s == SESSILE_OK;
+  for (size_t i = 0; ok && i < n; i++) ok &= out[i] == 2 * a[i];
+  for (size_t i = 0; ok && i < 7; i++) ok &= tail[i] == 2 * a[n - 7 + i];
+  t_true("the downloads hold 2 a, every value exact (and the 7 at an offset)", ok);
+  e = s == SESSILE_OK ? sessile_cmd_submit_wait(c) : s;
+  t_true("a recording with uploads is not submitted twice (SESSILE_ERR_INTERNAL)", e == SESSILE_ERR_INTERNAL);
+  /* without uploads, a re-submission writes the downloads again */
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_download_reals(c, y, 0, out, n);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  memset(out, 0, n * sizeof *out);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  ok = s == SESSILE_OK;
+  for (size_t i = 0; ok && i < n; i++) ok &= out[i] == 8 * a[i];
+  t_true("a recording without uploads submitted twice: 4 a, then 8 a downloaded again", ok);
+  /* a mapped buffer's upload is written when the call is made */
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_upload_reals(c, scal, 0, &three, 1);
+  if (s == SESSILE_OK) s = sessile_cmd_upload_reals(c, y, 0, a, n);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  if (s == SESSILE_OK) s = sessile_cmd_download_reals(c, y, 0, out, n);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  ok = s == SESSILE_OK;
+  for (size_t i = 0; ok && i < n; i++) ok &= out[i] == 3 * a[i];
+  t_true("a second recording on the same command: 3 a", ok);
+  /* the order: uploads first, downloads last */
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  e = s == SESSILE_OK ? sessile_cmd_upload_reals(c, y, 0, a, 4) : s;
+  printf("   upload after a dispatch: %s: \"%s\"\n", sessile_status_name(e), sessile_error_message());
+  t_true("an upload after a dispatch fails (SESSILE_ERR_INTERNAL)", e == SESSILE_ERR_INTERNAL);
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_download_reals(c, y, 0, out, 4);
+  e = s == SESSILE_OK ? sessile_cmd_dispatch(c, k, groups, bufs, &push) : s;
+  printf("   dispatch after a download: %s: \"%s\"\n", sessile_status_name(e), sessile_error_message());
+  t_true("a dispatch after a download fails (SESSILE_ERR_INTERNAL)", e == SESSILE_ERR_INTERNAL);
+  e = s == SESSILE_OK ? sessile_cmd_download_reals(c, y, n4 * 4 - 2, out, 4) : s;
+  t_true("a download past the buffer's end fails (SESSILE_ERR_USAGE)", e == SESSILE_ERR_USAGE);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  e = sessile_cmd_upload(c, y, 0, a, 8);
+  t_true("an upload outside a recording fails (SESSILE_ERR_INTERNAL)", e == SESSILE_ERR_INTERNAL);
+  t_ok("the recordings end cleanly", s);
+done:
+  sessile_cmd_destroy(c);
+  sessile_buffer_destroy(y);
+  sessile_buffer_destroy(scal);
+  sessile_kernel_destroy(k);
+  free(a), free(out);
+}
+
 static void test_profile(sessile_gpu *g) {
   printf("-- kernel profile (sessile_gpu_profile)\n");
   const sessile_gpu_info *i = sessile_gpu_info_of(g);
@@ -425,6 +523,7 @@ int main(void) {
   test_buffers(g);
   test_kernels(g);
   test_dispatch(g);
+  test_recorded_transfers(g);
   test_profile(g);
   test_device_choice();
   test_validation_callback();

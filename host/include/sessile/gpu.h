@@ -197,6 +197,24 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
 /* Records a GPU timestamp into slot (0..63) after all previous work. */
 sessile_status sessile_cmd_timestamp(sessile_cmd *c, uint32_t slot);
 sessile_status sessile_cmd_end(sessile_cmd *c);
+/* Transfers inside a recording, so that a loop which moves a few arrays a
+ * step pays one submission a step, not one per array (on a discrete GPU each
+ * blocking transfer is a submission and a wait of about 0.1 ms).  Uploads come
+ * before the recording's first dispatch: src is copied when the call is made
+ * (into a mapped buffer at once, else into the recording's own staging
+ * buffer, copied to the device when the recording runs).  Downloads come after
+ * its last dispatch: dst (which must stay valid) is written by each
+ * sessile_cmd_submit_wait.  Out of that order, or a second submission of a
+ * recording with uploads, they fail with SESSILE_ERR_INTERNAL.  The _reals variants convert as
+ * sessile_buffer_upload_reals does. */
+sessile_status sessile_cmd_upload(sessile_cmd *c, sessile_buffer *b, size_t offset, const void *src, size_t bytes);
+sessile_status sessile_cmd_download(sessile_cmd *c, sessile_buffer *b, size_t offset, void *dst, size_t bytes);
+sessile_status sessile_cmd_upload_reals(sessile_cmd *c, sessile_buffer *b, size_t offset_reals, const double *src,
+                                        size_t n);
+sessile_status sessile_cmd_download_reals(sessile_cmd *c, sessile_buffer *b, size_t offset_reals, double *dst,
+                                          size_t n);
+/* Is a recording open (begun and not ended)? */
+int sessile_cmd_recording(const sessile_cmd *c);
 /* Submits the recording and waits; can be called again to re-run it. */
 sessile_status sessile_cmd_submit_wait(sessile_cmd *c);
 /* Nanoseconds between two timestamp slots of the last submitted run. */
