@@ -45,6 +45,13 @@ struct sessile_sds_gpu {
   double grown;     /* largest r - rb at the last upload (radii do not change on the device) */
   double *xb, *rb;  /* host copies: positions and radii at the last build */
   double *r_up;     /* radii of the last upload */
+  /* One submission a step on a discrete GPU (gpu.h, sessile_cmd_upload):
+   * rm holds r, m as the device holds them (it never writes them), and goes
+   * up with the next recording when rm_pending; a step of the loop downloads
+   * its x, v into hx, hv inside its own submission (pair `mirror`, -1: none)
+   * when the buffers are not mapped. */
+  double *rm, *hx, *hv;
+  int rm_pending, rm_in_rec, mirror;
   uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
   size_t ntopo_up;
   uint64_t builds;  /* list builds so far (partial ones included) */
@@ -65,6 +72,23 @@ static sessile_status ensure(sessile_sds_gpu *s, int i, size_t bytes) {
                                                                               : SESSILE_BUFFER_DEVICE;
   return sessile_buffer_reserve(s->gpu, &s->b[i], bytes, kind);
 }
+
+/* Starts a recording: r, m first when update_radii left them pending. */
+static sessile_status begin(sessile_sds_gpu *s) {
+  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  s->rm_in_rec = s->rm_pending;
+  if (s->rm_pending) return sessile_cmd_upload_reals(s->cmd, s->b[B_RM], 0, s->rm, 2 * (size_t)s->ncells);
+  return SESSILE_OK;
+}
+
+static sessile_status submit(sessile_sds_gpu *s) {
+  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  if (s->rm_in_rec) s->rm_pending = 0, s->rm_in_rec = 0;
+  return SESSILE_OK;
+}
+
+/* A real as the device stores it (r, m kept on the host: rm). */
+static double dev_real(const sessile_sds_gpu *s, double v) { return s->real_bytes == 8 ? v : (double)(float)v; }
 
 /* The contact lists must be built again, every cell's. */
 static void lists_invalidate(sessile_sds_gpu *s) { s->lists_valid = 0, s->lists_part = 0; }
@@ -342,8 +366,9 @@ sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sd
                 SESSILE_ERR_USAGE, "sds: radii of %u cells and %u tets for a device organism of %u and %u "
                 "(a topology change needs sessile_sds_gpu_upload)", o->ncells, o->ntets, s->ncells, s->ntets);
   size_t n = o->ncells;
-  for (size_t c = 0; c < n; c++) s->scratch[2 * c] = o->r[c], s->scratch[2 * c + 1] = o->m[c]; /* 3n scratch */
-  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_RM], 0, s->scratch, 2 * n));
+  /* they go up with the next recording (begin) */
+  for (size_t c = 0; c < n; c++) s->rm[2 * c] = dev_real(s, o->r[c]), s->rm[2 * c + 1] = dev_real(s, o->m[c]);
+  s->rm_pending = 1;
   memcpy(s->r_up, o->r, n * sizeof *s->r_up);
   if (s->lists_valid) lists_check_moves(s, o); /* the topology is the same */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
@@ -436,6 +461,13 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   double *sc = realloc(s->scratch, (n ? 3 * n : 1) * sizeof *sc);
   SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->scratch = sc;
+  double *rm = realloc(s->rm, (n ? 2 * n : 1) * sizeof *rm), *hx = NULL, *hv = NULL;
+  if (rm) s->rm = rm, hx = realloc(s->hx, (n ? 3 * n : 1) * sizeof *hx);
+  if (hx) s->hx = hx, hv = realloc(s->hv, (n ? 3 * n : 1) * sizeof *hv);
+  SESSILE_CHECK(rm && hx && hv, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
+  s->hv = hv;
+  for (size_t c = 0; c < n; c++) s->rm[2 * c] = dev_real(s, o->r[c]), s->rm[2 * c + 1] = dev_real(s, o->m[c]);
+  s->rm_pending = 0, s->mirror = -1;
   s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
   s->nfaces = (uint32_t)F, s->tsize = tsize, s->nsurf = (uint32_t)nsurf;
   /* hash cell size: the mean boundary side (Teschner et al.: about the mean
@@ -472,6 +504,7 @@ void sessile_sds_gpu_destroy(sessile_sds_gpu *s) {
   for (int i = 0; i < SDS_COUNT; i++) sessile_kernel_destroy(s->k[i]);
   sessile_cmd_destroy(s->cmd);
   free(s->scratch), free(s->xb), free(s->rb), free(s->r_up), free(s->topo_up), free(s->sub);
+  free(s->rm), free(s->hx), free(s->hv);
   free(s);
 }
 
@@ -480,13 +513,14 @@ sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o) {
                 "sds: downloading into an organism of %u cells, %u tets (uploaded: %u, %u)", o->ncells,
                 o->ntets, s->ncells, s->ntets);
   size_t n = s->ncells;
-  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_X0 + s->cur], 0, o->x, 3 * n));
-  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_V0 + s->cur], 0, o->v, 3 * n));
-  for (size_t c0 = 0; c0 < n; c0 += n / 2 + 1) { /* rm through the 3n scratch, in halves */
-    size_t cnt = n - c0 < n / 2 + 1 ? n - c0 : n / 2 + 1;
-    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_RM], 2 * c0, s->scratch, 2 * cnt));
-    for (size_t c = 0; c < cnt; c++) o->r[c0 + c] = s->scratch[2 * c], o->m[c0 + c] = s->scratch[2 * c + 1];
+  if (s->mirror == s->cur) { /* the step's own submission downloaded them */
+    memcpy(o->x, s->hx, 3 * n * sizeof *o->x);
+    memcpy(o->v, s->hv, 3 * n * sizeof *o->v);
+  } else {
+    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_X0 + s->cur], 0, o->x, 3 * n));
+    SESSILE_CALL(sessile_buffer_download_reals(s->b[B_V0 + s->cur], 0, o->v, 3 * n));
   }
+  for (size_t c = 0; c < n; c++) o->r[c] = s->rm[2 * c], o->m[c] = s->rm[2 * c + 1];
   return SESSILE_OK;
 }
 
@@ -540,10 +574,10 @@ static sessile_status lists_build_part(sessile_sds_gpu *s, int *ok) {
   lmax[0] = 0, lmax[1] = (uint32_t)s->nsub_surf;
   memcpy(lmax + 2, s->sub, (s->nsub + s->nsub_surf) * sizeof *lmax);
   if (s->nsub) {
-    SESSILE_CALL(sessile_cmd_begin(s->cmd));
+    SESSILE_CALL(begin(s));
     SESSILE_CALL(record_lists(s, s->cur, (uint32_t)s->nsub));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
-    SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+    SESSILE_CALL(submit(s));
   }
   s->builds++, s->partial_builds++;
   if (lmax[0] > s->lcap) return SESSILE_OK;
@@ -584,10 +618,10 @@ static sessile_status lists_ensure(sessile_sds_gpu *s) {
   SESSILE_CHECK(lmax, SESSILE_ERR_INTERNAL, "sds: the contact-list count buffer is not mapped");
   for (;;) {
     lmax[0] = 0;
-    SESSILE_CALL(sessile_cmd_begin(s->cmd));
+    SESSILE_CALL(begin(s));
     SESSILE_CALL(record_lists(s, s->cur, 0));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
-    SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+    SESSILE_CALL(submit(s));
     s->builds++;
     if (lmax[0] <= s->lcap) break;
     uint32_t cap = s->lcap;
@@ -662,13 +696,19 @@ static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
  * of its own). */
 static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
   SESSILE_CALL(lists_ensure(s));
-  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  SESSILE_CALL(begin(s));
   SESSILE_CALL(record_forces(s, s->cur, dt, damping, mode));
-  if (mode != 0 && s->ntets) SESSILE_CALL(record_inverted(s, 1 - s->cur));
+  int nx = 1 - s->cur, rec = mode != 0 && !sessile_buffer_host_ptr(s->b[B_X0 + nx]);
+  if (mode != 0 && s->ntets) SESSILE_CALL(record_inverted(s, nx));
+  if (rec) { /* the loop downloads every step's x, v: in this submission */
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_X0 + nx], 0, s->hx, 3 * (size_t)s->ncells));
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_V0 + nx], 0, s->hv, 3 * (size_t)s->ncells));
+  }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
-  s->flags_cur = -1;
-  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
-  if (mode != 0) s->flags_cur = 1 - s->cur;
+  s->flags_cur = -1, s->mirror = -1;
+  SESSILE_CALL(submit(s));
+  if (mode != 0) s->flags_cur = nx;
+  if (rec) s->mirror = nx;
   return SESSILE_OK;
 }
 
@@ -681,14 +721,14 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
   int lists = contacts_on(s);
   uint32_t *lmax = sessile_buffer_host_ptr(s->b[B_LMAX]);
   if (lmax) lmax[0] = 0;
-  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  SESSILE_CALL(begin(s));
   for (uint32_t k = 0; k < steps; k++) {
     if (lists && k > 0) SESSILE_CALL(record_lists(s, (s->cur + (int)k) & 1, 0));
     SESSILE_CALL(record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1));
   }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
-  s->flags_cur = -1;
-  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  s->flags_cur = -1, s->mirror = -1;
+  SESSILE_CALL(submit(s));
   s->cur = (s->cur + (int)steps) & 1;
   if (lists && steps > 1) {
     lists_invalidate(s); /* built inside the batch: xb is not on the host */
@@ -737,12 +777,12 @@ sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_m
 
 sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound) {
   sds_push p = push_of(s, 0.0, 1, 2);
-  SESSILE_CALL(sessile_cmd_begin(s->cmd));
+  SESSILE_CALL(begin(s));
   SESSILE_CALL(record_edge(s, s->cur, &p));
   SESSILE_CALL(record_tet(s, s->cur, &p));
   SESSILE_CALL(record_stable(s, &p));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
-  SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+  SESSILE_CALL(submit(s));
   return sessile_buffer_download_reals(s->b[B_STEP], 2, bound, 1);
 }
 
@@ -783,10 +823,10 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n) {
   *list = NULL, *n = 0;
   if (s->ntets && s->flags_cur != s->cur) { /* not flagged by the step that made this state */
-    SESSILE_CALL(sessile_cmd_begin(s->cmd));
+    SESSILE_CALL(begin(s));
     SESSILE_CALL(record_inverted(s, s->cur));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
-    SESSILE_CALL(sessile_cmd_submit_wait(s->cmd));
+    SESSILE_CALL(submit(s));
     s->flags_cur = s->cur;
   }
   const uint32_t *flag = sessile_buffer_host_ptr(s->b[B_FLAG]);
