@@ -416,6 +416,7 @@ sessile_status sessile_cmd_submit_wait(sessile_cmd *c) {
   VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                      .pCommandBuffers = &c->cb};
   SESSILE_VK(vkQueueSubmit(c->gpu->queue, 1, &si, c->fence));
+  c->gpu->submissions++;
   SESSILE_VK(vkWaitForFences(d, 1, &c->fence, VK_TRUE, UINT64_MAX));
   SESSILE_CALL(finish_reads(c));
   c->ts_valid = 0;

@@ -150,6 +150,7 @@ void sessile_gpu_destroy(sessile_gpu *g) {
 }
 
 const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g) { return &g->info; }
+uint64_t sessile_gpu_submissions(const sessile_gpu *g) { return g->submissions; }
 
 sessile_status sessile_gpu_profile(sessile_gpu *g, int on) {
   SESSILE_CHECK(!on || g->info.timestamp_period_ns > 0, SESSILE_ERR_UNSUPPORTED,
@@ -222,6 +223,7 @@ VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb,
                        .pCommandBuffers = &cb};
     r = vkQueueSubmit(q, 1, &si, g->fence);
     *what = "vkQueueSubmit";
+    g->submissions++;
   }
   if (r >= 0) {
     r = vkWaitForFences(g->device, 1, &g->fence, VK_TRUE, UINT64_MAX);

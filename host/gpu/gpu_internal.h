@@ -46,6 +46,7 @@ struct sessile_gpu {
   sessile_kernel_time *prof;
   size_t nprof, cap_prof;
   uint64_t prof_untimed;
+  uint64_t submissions; /* vkQueueSubmit calls so far (sessile_gpu_submissions) */
 };
 /* The staged-transfer buffer kept by a context (buffer.c), freed with it. */
 #define SESSILE_STAGING_KEEP_ ((size_t)64 << 20)

@@ -273,6 +273,7 @@ static sessile_status submit_wait(sessile_gfx_target *t, VkCommandBuffer cb) {
   VkSubmitInfo si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1,
                      .pCommandBuffers = &cb};
   SESSILE_VK(vkQueueSubmit(t->gpu->gfx_queue, 1, &si, t->fence));
+  t->gpu->submissions++;
   SESSILE_VK(vkWaitForFences(d, 1, &t->fence, VK_TRUE, UINT64_MAX));
   return SESSILE_OK;
 }

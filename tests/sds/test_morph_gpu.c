@@ -7,7 +7,9 @@
  * --fp32 1e-4 (float amounts, 50 steps).  Also: the GPU's total of a
  * diffusion-only morphogen is conserved (1e-12 relative), the same input
  * gives the same bytes twice and through either kernel (texel or storage
- * reads), and dt above the bound is refused. */
+ * reads), and dt above the bound is refused; the loop's morphogen step is
+ * one submission, uploads included, and uploads left without a step are run
+ * by get_phi and set_cells. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -79,11 +81,15 @@ int main(int argc, char **argv) {
   for (int c = 0; c < n; c++) rad1[c] = rad0[c] * sessile_rng_range(&s, 0.9, 1.1);
   moved.pos = pos1, moved.radius = rad1;
   double dtm1 = sessile_morph_dt_max(&moved, &co);
+  uint64_t q0 = sessile_gpu_submissions(g);
   t_must("move cells", sessile_morph_gpu_move_cells(m, &moved, &co));
   t_true("move_cells: the moved cells' step bound", sessile_morph_gpu_dt_max(m) == dtm1);
   t_must("set phi", sessile_morph_gpu_set_phi(m, phi, src));
   t_must("gpu steps", sessile_morph_gpu_step(m, 0.9 * dtm1, 20));
   t_must("get", sessile_morph_gpu_get_phi(m, gpu));
+  uint64_t nq = sessile_gpu_submissions(g) - q0;
+  printf("move_cells, set_phi, 20 steps, get_phi: %llu submission(s)\n", (unsigned long long)nq);
+  t_true("the loop's morphogen step (move_cells, set_phi, step, get_phi) is one submission", nq == 1);
   sessile_morph_gpu *m2 = NULL;
   t_must("create", sessile_morph_gpu_create(g, &m2));
   t_must("set cells", sessile_morph_gpu_set_cells(m2, &moved, &co));
@@ -92,6 +98,20 @@ int main(int argc, char **argv) {
   t_must("get", sessile_morph_gpu_get_phi(m2, gpu2));
   t_true("move_cells gives set_cells' bytes with the moved cells (20 steps)",
          !memcmp(gpu, gpu2, sizeof(double) * n * nm));
+  /* uploads without a step: get_phi runs them, and set_cells (the buffers
+   * may be replaced) too */
+  for (int k = 0; k < n * nm; k++) gpu[k] = phi[k] * 0.5;
+  t_must("set phi", sessile_morph_gpu_set_phi(m2, gpu, src));
+  t_must("get", sessile_morph_gpu_get_phi(m2, gpu2));
+  int same = 1;
+  for (int k = 0; k < n * nm; k++) same &= gpu2[k] == (fp32 ? (double)(float)gpu[k] : gpu[k]);
+  t_true("set_phi then get_phi without a step: the amounts set", same);
+  t_must("set phi", sessile_morph_gpu_set_phi(m2, phi, src));
+  t_must("set cells", sessile_morph_gpu_set_cells(m2, &moved, &co));
+  t_must("get", sessile_morph_gpu_get_phi(m2, gpu2));
+  same = 1;
+  for (int k = 0; k < n * nm; k++) same &= gpu2[k] == (fp32 ? (double)(float)phi[k] : phi[k]);
+  t_true("set_phi then set_cells: the amounts set survive", same);
   moved.ncells = n - 1;
   t_true("move_cells refuses another cell count",
          sessile_morph_gpu_move_cells(m2, &moved, &co) == SESSILE_ERR_USAGE);

@@ -236,6 +236,36 @@ int main(void) {
     free(fa), free(fb);
     sessile_sds_free(&gr);
   }
+  /* the loop's transfers ride in the step's submission (gpu.h,
+   * sessile_cmd_upload): a step, its download and a growth of the radii cost
+   * one submission, staged or not; the bytes are those of full uploads */
+  {
+    sessile_sds wa = {0}, wb = {0};
+    t_must("copy", sessile_sds_copy(&r1, &wa));
+    t_must("copy", sessile_sds_copy(&r1, &wb));
+    t_must("upload", sessile_sds_gpu_upload(s2, &wa));
+    t_must("upload", sessile_sds_gpu_upload(sg, &wb));
+    uint64_t q0 = sessile_gpu_submissions(g);
+    for (int k = 0; k < 10; k++) {
+      t_must("step", sessile_sds_gpu_step(s2, dt, NULL));
+      t_must("download", sessile_sds_gpu_download(s2, &wa));
+      for (uint32_t c = 0; c < wa.ncells; c++) wa.r[c] *= 1 + 0.001 * (c % 4), wa.m[c] *= 1.002;
+      t_must("update radii", sessile_sds_gpu_update_radii(s2, &wa));
+    }
+    uint64_t nq = sessile_gpu_submissions(g) - q0;
+    printf("10 steps, each downloaded and its radii grown: %llu submissions\n", (unsigned long long)nq);
+    t_true("10 steps, each downloaded and its radii grown: 10 submissions", nq == 10);
+    for (int k = 0; k < 10; k++) {
+      t_must("step", sessile_sds_gpu_step(sg, dt, NULL));
+      t_must("download", sessile_sds_gpu_download(sg, &wb));
+      for (uint32_t c = 0; c < wb.ncells; c++) wb.r[c] *= 1 + 0.001 * (c % 4), wb.m[c] *= 1.002;
+      t_must("full upload", sessile_sds_gpu_upload(sg, &wb));
+    }
+    t_true("... and the bytes of full uploads after each growth (x, v, r, m)",
+           !memcmp(wa.x, wb.x, n3 * 8) && !memcmp(wa.v, wb.v, n3 * 8) && !memcmp(wa.r, wb.r, n * 8) &&
+               !memcmp(wa.m, wb.m, n * 8));
+    sessile_sds_free(&wa), sessile_sds_free(&wb);
+  }
   t_check("GPU positions after 40 steps = host integrator's (rel to max)", t_relerr(r1.x, rh.x, n3),
           fp64 ? 1e-10 : 1e-4);
   double disp = 0;

@@ -70,6 +70,9 @@ typedef struct sessile_gpu_info {
 sessile_status sessile_gpu_create(const sessile_gpu_options *opt, sessile_gpu **out);
 void sessile_gpu_destroy(sessile_gpu *g);
 const sessile_gpu_info *sessile_gpu_info_of(const sessile_gpu *g);
+/* Queue submissions so far: recordings and blocking transfers (each waits,
+ * about 0.1 ms on a discrete GPU); for tests and benchmarks that count them. */
+uint64_t sessile_gpu_submissions(const sessile_gpu *g);
 
 /* Device time per kernel, from timestamps around each dispatch (for
  * benchmarks: `sessile bench sds --kernels`).  sessile_gpu_profile(g, 1)
