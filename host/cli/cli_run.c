@@ -79,6 +79,19 @@ sessile_status cli_run_open(const char *generator, int argc, char **argv, const 
   return sessile_run_open(&ro, run);
 }
 
+void cli_run_note_device(sessile_run *run, sessile_gpu *g) {
+  cJSON *m = run && g ? sessile_run_manifest(run) : NULL;
+  cJSON *d = m ? cJSON_CreateObject() : NULL;
+  if (!d) return; /* the manifest goes without it: out of host memory */
+  const sessile_gpu_info *gi = sessile_gpu_info_of(g);
+  cJSON_AddStringToObject(d, "name", gi->name);
+  cJSON_AddStringToObject(d, "type", gi->type);
+  cJSON_AddStringToObject(d, "driver", gi->driver);
+  cJSON_AddNumberToObject(d, "precision_bits", gi->precision);
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "device");
+  cJSON_AddItemToObject(m, "device", d);
+}
+
 int cli_run_exit(const char *cmd, sessile_status s, const char *dir, const volatile sig_atomic_t *stop,
                  int iterations_done) {
   if (s == SESSILE_ERR_INTERRUPTED) {

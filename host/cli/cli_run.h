@@ -31,6 +31,10 @@ sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, 
 /* Opens the run directory (new, --force or --resume) with the stop flag. */
 sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run);
+/* The manifest's "device": name, type, driver and the precision of its
+ * kernels (precision_bits, 64 or 32: the same seed gives the same bytes only
+ * on the same device and precision).  Nothing when g is NULL. */
+void cli_run_note_device(sessile_run *run, sessile_gpu *g);
 /* At the end of a completed run (before sessile_run_close), unless
  * --no-preview: preview.png in the run directory, the mesh mesh_rel (e.g.
  * "sponge/final.ply") from the oblique view (docs/render.md "Preview"), on

@@ -96,6 +96,7 @@ static int venation_main(int argc, char **argv, const cli_gpu_opts *global, cli_
   /* the device only when a kernel needs it */
   if (s == SESSILE_OK && (p.search == SESSILE_VENATION_GPU || p.geometry == SESSILE_VENATION_WELD))
     s = cli_gpu_create(&go, &g);
+  if (s == SESSILE_OK) cli_run_note_device(run, g);
   int done = 0;
   o.run = run, o.gpu = g;
   if (s == SESSILE_OK) s = sessile_venation_run(&p, &o, &done);

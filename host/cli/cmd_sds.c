@@ -252,6 +252,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     if (s == SESSILE_OK) s = sessile_run_file(run, "sds/model.sds", path, sizeof path);
     if (s == SESSILE_OK) s = sessile_write_file_atomic(path, text, strlen(text));
   }
+  if (s == SESSILE_OK) cli_run_note_device(run, g);
   if (s == SESSILE_OK) {
     cJSON *c = config_make(cfg.name, cfg.text, cfg.seed, cfg.t_end, cfg.frames, cfg.max_cells);
     s = c ? sessile_run_set_config(run, c) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");

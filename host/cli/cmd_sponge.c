@@ -92,15 +92,7 @@ static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_
   sessile_gpu *g = NULL;
   if (s == SESSILE_OK && p.collider == SESSILE_PSPONGE_COLLIDE_GPU) {
     s = cli_gpu_create(&go, &g);
-    if (s == SESSILE_OK) {
-      const sessile_gpu_info *gi = sessile_gpu_info_of(g);
-      cJSON *m = sessile_run_manifest(run);
-      cJSON *d = cJSON_CreateObject();
-      cJSON_AddStringToObject(d, "name", gi->name);
-      cJSON_AddStringToObject(d, "driver", gi->driver);
-      cJSON_DeleteItemFromObjectCaseSensitive(m, "device");
-      cJSON_AddItemToObject(m, "device", d);
-    }
+    if (s == SESSILE_OK) cli_run_note_device(run, g);
   }
   int done = 0;
   o.run = run;
