@@ -11,13 +11,22 @@
 # frame.  Measured (docs/sds_rules.md, "What the limb model grows"): L =
 # 0.17, 0.50, 0.87, 1.27, 1.60 at t = 20..100, W(100) = 0.00 (viscosity 1;
 # nearly undamped, 0.001: L(100) = 1.45, W = 0.10).
+# Usage: test_sds_limb.sh SESSILE [--precision 32|64]: the fp32 kernels of a
+# device without shaderFloat64 must grow the same limb (the manifest's device
+# is checked to have run at the precision asked).
 set -u
 S="$1"
+shift
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
+bits=any # the device's default: 64 where it has shaderFloat64
+[ "${1:-}" = "--precision" ] && bits="$2"
 
-run sds run limb --t-end 100 --frames 5 --out "$T/l" --quiet
+run "$@" sds run limb --t-end 100 --frames 5 --out "$T/l" --quiet
 check "the limb model runs to t = 100" rc_is 0
+check "the manifest names the device and its precision ($bits bits)" \
+  "$PY" -c 'import json, sys; d = json.load(open(sys.argv[1]))["device"]; print(d); sys.exit(0 if str(d["precision_bits"]) in (("32", "64") if sys.argv[2] == "any" else (sys.argv[2],)) and d["name"] else 1)' \
+  "$T/l/manifest.json" "$bits"
 check "the limb's length rises frame by frame to >= 1 body radius, its width <= a quarter of its length, the tip leads" \
   "$PY" - "$T/l/sds" "$(dirname "$0")/../.." <<'PYEOF'
 import os, sys
