@@ -53,26 +53,14 @@ PYEOF
 sed -e 's/^gravity = .*$/gravity = 10\nbox = -3 -3 -1.02 3 3 3/' "$(dirname "$0")/../../host/sds/models/limb.sds" >"$T/crush.sds"
 run sds run "$T/crush.sds" --t-end 1 --frames 1 --out "$T/j" --quiet --no-preview
 check "gravity 10 crushing the body on a floor: tets invert and are transformed and repaired; the run completes; the complex's topology valid" \
-  "$PY" - "$T/j" <<'PYEOF'
-import collections, json, sys
-import numpy as np, vtk
-from vtk.util.numpy_support import vtk_to_numpy
+  "$PY" - "$T/j" "$(dirname "$0")/../.." <<'PYEOF'
+import json, os, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.path.join(sys.argv[2], "tools", "sds"))
+import complex_check
 m = json.load(open(sys.argv[1] + "/manifest.json"))
-r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1] + "/sds/frame_0001.vtu"); r.Update(); g = r.GetOutput()
-X = vtk_to_numpy(g.GetPoints().GetData()).astype(float)
-T = vtk_to_numpy(g.GetCells().GetData()).reshape(-1, 5)[:, 1:]
-a, b, c, d = (X[T[:, k]] for k in range(4))
-vol = np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6
-faces, edges = collections.Counter(), collections.Counter()
-sides = lambda t: ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1]))
-for t in T:
-    for f in sides(t): faces[tuple(sorted(f))] += 1
-for t in T:
-    for f in sides(t):
-        if faces[tuple(sorted(f))] == 1:
-            for i in range(3): edges[(f[i], f[(i + 1) % 3])] += 1
-closed = all(n == 1 and edges.get((e[1], e[0]), 0) == 1 for e, n in edges.items())
-bad_faces = sum(n > 2 for n in faces.values())
+k = complex_check.check(sys.argv[1] + "/sds/frame_0001.vtu")
+T, vol, bad_faces, closed = k["T"], k["vol"], k["faces_over_2"], k["closed"]
 ninv = int((vol <= 0).sum())
 print("inversions", m["sds"]["inversions"], "resisted", m["sds"]["inversions_resisted"], "repairs", m["sds"]["repairs"],
       "tets", len(T), "inverted at the end", ninv, "faces in >2 tets", bad_faces, "boundary closed", closed,
@@ -81,32 +69,15 @@ sys.exit(0 if m["state"] == "completed" and m["sds"]["inversions"] > 0 and m["sd
          not bad_faces and closed and vol.sum() > 0 and ninv < len(T) / 4 else 1)
 PYEOF
 check "the final complex (frame 3's VTU) is valid: positive tets, faces in 1 or 2 tets, a closed oriented boundary" \
-  "$PY" - "$T/a/sds/frame_0003.vtu" <<'PYEOF'
-import sys, collections
-import numpy as np, vtk
-from vtk.util.numpy_support import vtk_to_numpy
-r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(sys.argv[1]); r.Update(); g = r.GetOutput()
-X = vtk_to_numpy(g.GetPoints().GetData()).astype(float)
-T = vtk_to_numpy(g.GetCells().GetData()).reshape(-1, 5)[:, 1:]
-a, b, c, d = (X[T[:, k]] for k in range(4))
-vol = np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6
-faces = collections.Counter()
-directed = collections.Counter()
-for t in T:
-    for f in ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1])):
-        faces[tuple(sorted(f))] += 1
-        directed[f] += 1
-bad_faces = [f for f, n in faces.items() if n > 2]
-# boundary faces, outward: each directed edge once, its reverse once
-edges = collections.Counter()
-for t in T:
-    for f in ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1])):
-        if faces[tuple(sorted(f))] == 1:
-            for i in range(3):
-                edges[(f[i], f[(i + 1) % 3])] += 1
-closed = all(n == 1 and edges.get((e[1], e[0]), 0) == 1 for e, n in edges.items())
-print("tets", len(T), "min volume", vol.min(), "faces in >2 tets", len(bad_faces), "boundary closed", closed)
-sys.exit(0 if vol.min() > 0 and not bad_faces and closed else 1)
+  "$PY" - "$T/a/sds/frame_0003.vtu" "$(dirname "$0")/../.." <<'PYEOF'
+import os, sys
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.path.join(sys.argv[2], "tools", "sds"))
+import complex_check
+k = complex_check.check(sys.argv[1])
+print("tets", len(k["T"]), "min volume", k["vol"].min(), "faces in >2 tets", k["faces_over_2"], "boundary closed",
+      k["closed"])
+sys.exit(0 if k["vol"].min() > 0 and not k["faces_over_2"] and k["closed"] else 1)
 PYEOF
 
 run sds run limb --t-end 30 --frames 3 --out "$T/b" --quiet

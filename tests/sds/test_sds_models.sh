@@ -19,33 +19,23 @@ for m in six_limbs_box rock attractor budded; do
   run sds run "$m" --t-end 30 --frames 2 --out "$T/$m" --quiet --no-preview
   check "$m to t = 30 completes" rc_is 0
   check "$m: cells divide and grow in number; the last complex is valid; its environment holds" \
-    "$PY" - "$T/$m" "$m" "$M/$m.sds" <<'PYEOF'
-import collections, json, re, sys
-import numpy as np, vtk
-from vtk.util.numpy_support import vtk_to_numpy
+    "$PY" - "$T/$m" "$m" "$M/$m.sds" "$(dirname "$0")/../.." <<'PYEOF'
+import json, os, re, sys
+import numpy as np
+sys.dont_write_bytecode = True  # nothing written into the source tree
+sys.path.insert(0, os.path.join(sys.argv[4], "tools", "sds"))
+import complex_check
 d, name, model = sys.argv[1:4]
 m = json.load(open(d + "/manifest.json"))
 recs = [json.loads(l) for l in open(d + "/records.jsonl")]
-r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(d + "/sds/frame_0002.vtu"); r.Update(); g = r.GetOutput()
-X = vtk_to_numpy(g.GetPoints().GetData()).astype(float)
-T = vtk_to_numpy(g.GetCells().GetData()).reshape(-1, 5)[:, 1:]
-a, b, c, e = (X[T[:, k]] for k in range(4))
-vol = np.einsum("ij,ij->i", b - a, np.cross(c - a, e - a)) / 6
-faces, edges = collections.Counter(), collections.Counter()
-sides = lambda t: ((t[1], t[2], t[3]), (t[0], t[3], t[2]), (t[0], t[1], t[3]), (t[0], t[2], t[1]))
-for t in T:
-    for f in sides(t): faces[tuple(sorted(f))] += 1
-for t in T:
-    for f in sides(t):
-        if faces[tuple(sorted(f))] == 1:
-            for i in range(3): edges[(f[i], f[(i + 1) % 3])] += 1
-closed = all(n == 1 and edges.get((q[1], q[0]), 0) == 1 for q, n in edges.items())
+k = complex_check.check(d + "/sds/frame_0002.vtu")
+X, T, vol, closed = k["X"], k["T"], k["vol"], k["closed"]
 ok = m["state"] == "completed" and m["sds"]["divisions"] > 0 and recs[-1]["cells"] > recs[0]["cells"]
-ok = ok and len(X) == recs[-1]["cells"] and closed and all(n <= 2 for n in faces.values()) and (vol > 0).all()
+ok = ok and len(X) == recs[-1]["cells"] and closed and not k["faces_over_2"] and (vol > 0).all()
 params = {}
 for line in open(model):
-    k = re.match(r"^(\w+)\s*=\s*([-0-9. ]+)", line)
-    if k: params[k.group(1)] = [float(v) for v in k.group(2).split()]
+    kv = re.match(r"^(\w+)\s*=\s*([-0-9. ]+)", line)
+    if kv: params[kv.group(1)] = [float(v) for v in kv.group(2).split()]
 env = "none"
 if "box" in params:
     lo, hi = np.array(params["box"][:3]), np.array(params["box"][3:])
