@@ -81,9 +81,17 @@ void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k,
   // Within 2^-30 of the triangle's size of it (a cell on the face, say)
   // p - q is rounding noise, whose direction a GPU's FMA contraction and the
   // host's separate roundings pick differently: the push takes the face's
-  // normal there, as at dd = 0.  2^-30 is exact as a float literal.
+  // normal there, as at dd = 0.  2^-30 is exact as a float literal.  In
+  // fp32 the noise is float's, about 2^-23 of the coordinates: the tie
+  // reaches 2^-16 of the triangle's size or of the cell's largest
+  // coordinate, whichever is larger (test_sds_collide --fp32).
   REAL ln = sqrt(dot3(n, n)), dd = sqrt(dot3(d, d)), s;
-  if (dd > REAL(9.313225746154785e-10) * sqrt(ln)) {
+#if SESSILE_F64
+  REAL tie = REAL(9.313225746154785e-10) * sqrt(ln);
+#else
+  REAL tie = REAL(1.52587890625e-05) * max(sqrt(ln), max(max(abs(p[0]), abs(p[1])), abs(p[2])));
+#endif
+  if (dd > tie) {
     REAL sg = REAL(1);
     if (has_nrm) {
       REAL pn[3] = REAL[3](nrm[3 * region], nrm[3 * region + 1], nrm[3 * region + 2]);
