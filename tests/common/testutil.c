@@ -36,6 +36,14 @@ sessile_gpu *t_gpu(int precision) {
   }
   const sessile_gpu_info *i = sessile_gpu_info_of(g);
   printf("device: %s (%s), driver %s, precision fp%d\n", i->name, i->type, i->driver, i->precision);
+  /* a test registered at a precision (SESSILE_PRECISION, the _fp32 tests)
+   * must run at it, not pass at the default */
+  const char *env = getenv("SESSILE_PRECISION");
+  int want = precision ? precision : env && *env ? atoi(env) : 0;
+  if (want && i->precision != want) {
+    printf("FAIL the context runs at fp%d, not the fp%d asked for\n", i->precision, want);
+    exit(1);
+  }
   return g;
 }
 
