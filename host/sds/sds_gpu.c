@@ -794,7 +794,10 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
     double mv, hc[2]; /* the step taken, the cap */
     SESSILE_CALL(step_mode(s, h, 2, &mv));
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], 0, hc, 2));
-    h = hc[0];
+    /* the step taken: the one asked when the device took it (an fp32 device
+     * returns it rounded to float, and a time short of a frame by that
+     * rounding would ask a step below dt_min next), else its cap */
+    if (hc[0] != dev_real(s, h)) h = hc[0];
     if (!isfinite(mv))
       return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", h);
     if (mv > p->max_move) { /* undo: the previous x, v are still in the other pair */

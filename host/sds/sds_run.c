@@ -36,7 +36,6 @@ typedef struct sim {
   double *xprev;              /* positions before the step (rewind) */
   double time, dt;
   int stalled;                /* steps in a row that were rewound to their start */
-  int fp32;                   /* the device's kernels run in float (its steps come back rounded) */
   double *retry_at;           /* per cell: a deferred division is not tried again before this time */
   uint32_t retry_cap;
   uint64_t *sliver;           /* the repairs' backoff: per failed inverted tet (FNV-1a of its cells),
@@ -483,10 +482,8 @@ static sessile_status rules(sim *s, double dt) {
       st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", a.divides[i].cell, s->time,
                              sessile_error_message());
   }
-  int changed = a.ndivides > 0;
   sessile_sds_actions_free(&a);
   SESSILE_CALL(st);
-  (void)changed;
   return refresh(s);
 }
 
@@ -829,7 +826,6 @@ static sessile_status setup(sim *s, const sessile_sds_run_options *opt) {
     measure_start(s);
     s->dt = s->p.dt;
   }
-  s->fp32 = sessile_gpu_info_of(opt->gpu)->precision != 64;
   SESSILE_CALL(sessile_sds_gpu_create(opt->gpu, &s->o, &s->p, &s->pg));
   SESSILE_CALL(sessile_morph_gpu_create(opt->gpu, &s->mg));
   return SESSILE_OK;
@@ -936,11 +932,6 @@ static sessile_status step(sim *s, double next_frame) {
     return blowup(s, "%s", why);
   }
   SESSILE_CALL(st);
-  /* a step cut short to land on a frame lands on it: an fp32 device returns
-   * the step rounded to float (6e-8 relative), which left the time a hair
-   * short of the frame and asked a step below dt_min next (a false blow-up);
-   * an fp64 device returns it exact */
-  if (s->fp32 && clamped && elapsed > 0 && fabs(elapsed - dt) <= 1e-6 * dt) elapsed = dt;
   /* step control across calls (one step per call, so that an inversion is
    * rewound over one step): the integrator proposes the next step; a step cut
    * short to land on a frame keeps the step it had, unless it was undone */

@@ -83,10 +83,10 @@ void sessile_morph_gpu_destroy(sessile_morph_gpu *m);
 sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_morph_cells *cells,
                                            const sessile_morph_coef *coef);
 /* As set_cells when the cells' neighbour lists and the coefficients are
- * those of the last set_cells (between topology changes): uploads the
- * positions and radii alone, and recomputes the step bound.  On a discrete
- * GPU each upload is a staged copy of its own, and the SDS loop sets the
- * cells every step.  Refuses another cell count. */
+ * those of the last set_cells (between topology changes): the positions and
+ * radii alone go up, with the next step's submission (as set_phi's amounts;
+ * get_phi or set_cells runs uploads left without a step), and the step
+ * bound is recomputed.  Refuses another cell count. */
 sessile_status sessile_morph_gpu_move_cells(sessile_morph_gpu *m, const sessile_morph_cells *cells,
                                             const sessile_morph_coef *coef);
 /* Uploads amounts and source rates (src NULL: zero). */
