@@ -52,6 +52,15 @@ sessile_status sessile_run_checkpoint(sessile_run *r, int iteration, int nsectio
   SESSILE_CHECK(own, SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
   cJSON_AddNumberToObject(own, "iteration", iteration);
   cJSON_AddNumberToObject(own, "records_bytes", (double)r->records_bytes);
+  run_log_len logs[RUN_MAX_LOGS];
+  int nlogs;
+  run_logs_to_keep(r, logs, &nlogs);
+  cJSON *lj = nlogs ? cJSON_AddObjectToObject(own, "logs") : NULL;
+  for (int i = 0; lj && i < nlogs; i++) cJSON_AddNumberToObject(lj, logs[i].rel, (double)logs[i].bytes);
+  if (nlogs && (!lj || cJSON_GetArraySize(lj) != nlogs)) {
+    cJSON_Delete(own);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
+  }
   char *own_text = cJSON_PrintUnformatted(own);
   cJSON_Delete(own);
   SESSILE_CHECK(own_text, SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
@@ -61,6 +70,11 @@ sessile_status sessile_run_checkpoint(sessile_run *r, int iteration, int nsectio
   for (int i = 0; i < nsections; i++) all[i + 1] = sections[i];
   int n = nsections + 1;
 
+  /* the records and logs up to here are part of the state: durable before
+   * the checkpoint that counts their lengths, so a crash never leaves a
+   * checkpoint longer than its files */
+  if (r->recfd >= 0) fdatasync(r->recfd);
+  run_logs_sync(r);
   char path[4096];
   snprintf(path, sizeof path, "%s/%s", r->dir, RUN_CHECKPOINT);
   sessile_atomic_file af;
@@ -103,8 +117,6 @@ sessile_status sessile_run_checkpoint(sessile_run *r, int iteration, int nsectio
     return sessile_error_set(SESSILE_ERR_IO, "cannot write '%s': %s", path, strerror(e));
   }
   SESSILE_CALL(sessile_atomic_commit(&af));
-  /* records up to here are part of the state: make them durable too */
-  if (r->recfd >= 0) fdatasync(r->recfd);
   cJSON *ck = cJSON_CreateObject();
   SESSILE_CHECK(ck, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
   cJSON_AddStringToObject(ck, "file", RUN_CHECKPOINT);
@@ -171,6 +183,18 @@ static sessile_status parse(const sessile_run *r, sessile_ckpt *c, size_t len) {
   if (good) {
     c->iteration = (int)it->valuedouble;
     c->records_bytes = (uint64_t)rb->valuedouble;
+  }
+  /* the logs' lengths (sessile_run_log; absent in a checkpoint without logs) */
+  const cJSON *lj = cJSON_GetObjectItemCaseSensitive(j, "logs"), *l;
+  if (good && lj) good = cJSON_IsObject(lj);
+  if (good) cJSON_ArrayForEach(l, lj) {
+    if (!(cJSON_IsNumber(l) && l->valuedouble >= 0 && l->string && strlen(l->string) < RUN_LOG_NAME &&
+          c->nlogs < RUN_MAX_LOGS)) {
+      good = 0;
+      break;
+    }
+    snprintf(c->logs[c->nlogs].rel, RUN_LOG_NAME, "%s", l->string);
+    c->logs[c->nlogs++].bytes = (uint64_t)l->valuedouble;
   }
   cJSON_Delete(j);
   return good ? SESSILE_OK : damaged(r, "run section");

@@ -10,6 +10,15 @@
 #define RUN_CHECKPOINT "checkpoint.bin"
 #define RUN_LOCK ".sessile.lock" /* who holds the folder's flock */
 
+#define RUN_MAX_LOGS 4 /* append-only logs per run (sessile_run_log) */
+#define RUN_LOG_NAME 208
+
+/* A log's name and its length: what a checkpoint keeps of it. */
+typedef struct run_log_len {
+  char rel[RUN_LOG_NAME];
+  uint64_t bytes;
+} run_log_len;
+
 typedef struct ckpt_entry {
   char *name;
   const uint8_t *data;
@@ -19,6 +28,8 @@ typedef struct ckpt_entry {
 struct sessile_ckpt {
   int iteration;
   uint64_t records_bytes;
+  int nlogs;
+  run_log_len logs[RUN_MAX_LOGS]; /* the logs' lengths at the checkpoint */
   uint8_t *blob; /* the file's bytes; entries point into it */
   int n;
   ckpt_entry *e;
@@ -33,6 +44,9 @@ struct sessile_run {
   cJSON *manifest, *config;
   uint64_t records_bytes; /* records.jsonl's length: a checkpoint keeps it */
   int start_count;        /* starts of this run before this one (resumes) */
+  int nlogs;              /* logs opened by this start: fds and lengths */
+  int log_fd[RUN_MAX_LOGS];
+  run_log_len logs[RUN_MAX_LOGS];
   sessile_ckpt *ckpt;     /* on resume: the checkpoint read at open */
 };
 
@@ -41,4 +55,9 @@ sessile_status run_read_file(int dfd, const char *name, size_t max, char **text,
 sessile_status run_ckpt_read(sessile_run *r);
 void run_ckpt_free(sessile_ckpt *c);
 void run_free(sessile_run *r);
+/* The logs' lengths to keep in a checkpoint: this start's, and the loaded
+ * checkpoint's for logs not appended to since (n set to their count). */
+void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);
+void run_logs_sync(const sessile_run *r);
+void run_logs_close(sessile_run *r);
 #endif

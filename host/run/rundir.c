@@ -426,6 +426,7 @@ sessile_status sessile_run_record(sessile_run *r, const cJSON *rec) {
 void run_free(sessile_run *r) {
   if (!r) return;
   if (r->recfd >= 0) close(r->recfd);
+  run_logs_close(r);
   if (r->dfd >= 0) close(r->dfd); /* releases the flock */
   cJSON_Delete(r->replaced);
   cJSON_Delete(r->manifest);

@@ -4,7 +4,9 @@
  * folder is refused; temporaries of a killed run are swept; a symlink
  * planted as a subfolder or at a final name never redirects a write; the
  * checkpoint round-trips and a damaged one is reported; a resume cuts the
- * records written after its checkpoint; the manifest records the states. */
+ * records and the logs (sessile_run_log) written after its checkpoint, and
+ * refuses a log cut shorter than it; a log never follows a symlink or opens
+ * a FIFO; the manifest records the states. */
 #include <cjson/cJSON.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -74,11 +76,14 @@ int main(void) {
   cJSON *rec = cJSON_CreateObject();
   cJSON_AddNumberToObject(rec, "iteration", 1);
   t_ok("a record", sessile_run_record(r, rec));
+  t_ok("a log's first rows", sessile_run_log(r, "a/log.csv", "h\nrow1\n", 7));
+  t_ok("a second log", sessile_run_log(r, "top.log", "x\n", 2));
   double blob[3] = {1.5, -2.25, 1e300};
   sessile_ckpt_section sec = {"blob", blob, sizeof blob};
   t_ok("a checkpoint", sessile_run_checkpoint(r, 1, 1, &sec));
   cJSON_ReplaceItemInObject(rec, "iteration", cJSON_CreateNumber(2));
   t_ok("a record after the checkpoint", sessile_run_record(r, rec));
+  t_ok("a log row after the checkpoint", sessile_run_log(r, "a/log.csv", "row2\n", 5));
   t_ok("set the config", sessile_run_set_config(r, cJSON_CreateString("cfg")));
   sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped");
   t_true("close interrupted", sessile_run_close(r, SESSILE_ERR_INTERRUPTED) == SESSILE_ERR_INTERRUPTED);
@@ -108,11 +113,28 @@ int main(void) {
   char *recs = slurp(path);
   t_true("records after the checkpoint are cut", recs && !strcmp(recs, "{\"iteration\":1}\n"));
   free(recs);
+  t_ok("the log continues", sessile_run_log(r, "a/log.csv", "row2b\n", 6));
+  snprintf(path, sizeof path, "%s/a/log.csv", dir);
+  char *lg = slurp(path);
+  t_true("the log's rows after the checkpoint are cut at its first append", lg && !strcmp(lg, "h\nrow1\nrow2b\n"));
+  free(lg);
+  t_ok("a checkpoint of the resumed run", sessile_run_checkpoint(r, 2, 1, &sec));
+  t_ok("close the resumed run", sessile_run_close(r, SESSILE_OK));
+  t_ok("resume it again", open_run(SESSILE_RUN_RESUME, &r));
+  snprintf(path, sizeof path, "%s/top.log", dir);
+  t_true("cut a log shorter than the checkpoint says", truncate(path, 0) == 0);
+  t_true("... a resume refuses to append to it",
+         sessile_run_log(r, "top.log", "y\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "shorter"));
+  t_ok("and appends to the log the checkpoint kept from the earlier start", sessile_run_log(r, "a/log.csv", "row3\n", 5));
+  snprintf(path, sizeof path, "%s/a/log.csv", dir);
+  lg = slurp(path);
+  t_true("... after its rows", lg && !strcmp(lg, "h\nrow1\nrow2b\nrow3\n"));
+  free(lg);
   t_ok("close completed", sessile_run_close(r, SESSILE_OK));
   t_true("state completed", !strcmp(manifest_state(), "completed"));
 
   t_ok("--force replaces the run", open_run(SESSILE_RUN_REPLACE, &r));
-  t_true("--force removed the listed files", !exists("a/one.txt") && !exists("top.txt"));
+  t_true("--force removed the listed files", !exists("a/one.txt") && !exists("top.txt") && !exists("a/log.csv"));
   t_true("--force kept a file the run never listed", exists("a/mine.txt"));
   t_true("--force removed the checkpoint", !exists("checkpoint.bin"));
 
@@ -137,6 +159,17 @@ int main(void) {
   free(v);
   struct stat st;
   t_true("the final name is now a regular file", lstat(link, &st) == 0 && S_ISREG(st.st_mode));
+  snprintf(link, sizeof link, "%s/planted.log", dir);
+  t_true("plant a symlink at a log's name", symlink(path, link) == 0);
+  t_true("a log through a symlink is refused",
+         sessile_run_log(r, "planted.log", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "symlink"));
+  v = slurp(path);
+  t_true("... and its target is untouched", v && !strcmp(v, "precious"));
+  free(v);
+  snprintf(link, sizeof link, "%s/fifo.log", dir);
+  t_true("plant a FIFO at a log's name", mkfifo(link, 0600) == 0);
+  t_true("a log on a FIFO is refused at once (no hang)",
+         sessile_run_log(r, "fifo.log", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "regular"));
   t_ok("close", sessile_run_close(r, SESSILE_OK));
 
   /* A damaged checkpoint is reported, not trusted. */

@@ -83,6 +83,12 @@ sessile_status sessile_run_remove_file(sessile_run *r, const char *rel);
 
 /* Appends one record (a line of records.jsonl); takes no ownership. */
 sessile_status sessile_run_record(sessile_run *r, const cJSON *rec);
+/* Appends n bytes to the run's log `rel` ("sds/steps.csv": a plain name, at
+ * most one folder deep; at most 4 logs a run), created and listed at its
+ * first append.  For rows too many to rewrite atomically at every frame: a
+ * checkpoint keeps each log's length and a resume cuts what was appended
+ * after it, so the log of a resumed run holds each row once. */
+sessile_status sessile_run_log(sessile_run *r, const char *rel, const void *bytes, size_t n);
 /* Nonzero once a stop was asked for (the signal number). */
 int sessile_run_stop_requested(const sessile_run *r);
 /* The iteration the run continues after (0 for a new run). */
