@@ -1,6 +1,7 @@
 /* sessile render — line plots of number series (render2d.h): axes with
  * ticks by the 1-2-5 rule, the ranges extended to whole ticks, grid lines,
- * labels (with units), markers joined by lines, a legend above the plot. */
+ * labels (with units), markers joined by lines, a legend above the plot,
+ * and optionally a right-hand y axis for series of another scale. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -12,6 +13,10 @@
 #define MARGIN_B 58
 #define MARKER_R 3.5
 #define MAX_MARKERS 200 /* more points than this: lines only */
+#define TICK_GAP 8      /* from the frame to a tick label */
+#define LABEL_GAP 10    /* from the widest tick label to the axis label */
+#define AXIS_LABEL_PT 13
+#define TICK_LABEL_PT 12
 
 /* matplotlib's "tab10" first colours: distinct, and readable on white */
 static const double series_rgb[SESSILE_PLOT_MAX_SERIES][3] = {
@@ -32,6 +37,39 @@ static void nice_range(double lo, double hi, int maxticks, double *a, double *b,
   *step = s;
 }
 
+/* An axis's range from its data's extent; no data (lo > hi): 0..1. */
+static void axis_range(double lo, double hi, int maxticks, double *a, double *b, double *step) {
+  if (lo > hi) lo = 0, hi = 1;
+  nice_range(lo, hi, maxticks, a, b, step);
+}
+
+/* The number of tick intervals from a to b (a whole number by nice_range). */
+static int axis_ticks(double a, double b, double step) { return (int)floor((b - a) / step + 0.5); }
+
+/* The right margin a right-hand axis needs: its tick labels as wide as they
+ * measure in the plot's font, then its rotated label (the left margin is
+ * fixed, but the right axis's numbers, cells by the thousand say, vary). */
+static sessile_status right_margin(const sessile_plot_layout *L, const sessile_plot *p, double *margin) {
+  d2_canvas cv;
+  SESSILE_CALL(d2_canvas_create(&cv, 1, 1, "plot"));
+  double wmax = 0;
+  char lab[32];
+  for (int k = 0; k <= axis_ticks(L->y20, L->y21, L->y2step); k++) {
+    d2_tick_label(lab, sizeof lab, L->y20 + k * L->y2step, L->y2step);
+    wmax = fmax(wmax, d2_text_width(cv.cr, TICK_LABEL_PT, lab));
+  }
+  double label = 0;
+  if (p->y2label && p->y2label[0]) {
+    cairo_font_extents_t fe;
+    cairo_set_font_size(cv.cr, AXIS_LABEL_PT);
+    cairo_font_extents(cv.cr, &fe);
+    label = LABEL_GAP + ceil(fe.ascent + fe.descent);
+  }
+  d2_canvas_destroy(&cv);
+  *margin = fmax(MARGIN_R, TICK_GAP + ceil(wmax) + label + 8);
+  return SESSILE_OK;
+}
+
 sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_render2d_opts *o,
                                           sessile_plot_layout *L) {
   sessile_render2d_opts def;
@@ -41,28 +79,82 @@ sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_r
                 "a plot of %d x %d pixels leaves no room for its axes (at least 240 x 160)", o->width, o->height);
   SESSILE_CHECK(p && p->nseries >= 1 && p->nseries <= SESSILE_PLOT_MAX_SERIES, SESSILE_ERR_USAGE,
                 "a plot needs 1..%d series (got %d)", SESSILE_PLOT_MAX_SERIES, p ? p->nseries : 0);
-  double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
+  /* y extents per axis: [0] the left, [1] the right */
+  double xlo = INFINITY, xhi = -INFINITY, ylo[2] = {INFINITY, INFINITY}, yhi[2] = {-INFINITY, -INFINITY};
+  int has_y2 = 0;
   for (int s = 0; s < p->nseries; s++) {
     const sessile_plot_series *ser = &p->series[s];
     SESSILE_CHECK(ser->n == 0 || (ser->x && ser->y), SESSILE_ERR_USAGE, "plot series %d has no values", s);
+    int a = ser->axis2 != 0;
+    has_y2 |= a;
     for (size_t i = 0; i < ser->n; i++)
       if (isfinite(ser->x[i]) && isfinite(ser->y[i])) {
         xlo = fmin(xlo, ser->x[i]), xhi = fmax(xhi, ser->x[i]);
-        ylo = fmin(ylo, ser->y[i]), yhi = fmax(yhi, ser->y[i]);
+        ylo[a] = fmin(ylo[a], ser->y[i]), yhi[a] = fmax(yhi[a], ser->y[i]);
       }
   }
   SESSILE_CHECK(xlo <= xhi, SESSILE_ERR_USAGE, "nothing to plot: no series has a finite point");
   memset(L, 0, sizeof *L);
   L->width = o->width, L->height = o->height;
-  L->px0 = MARGIN_L, L->px1 = o->width - MARGIN_R;
   L->py0 = o->height - MARGIN_B, L->py1 = MARGIN_T;
+  int yticks = (int)((L->py0 - L->py1) / 50) + 2;
+  axis_range(ylo[0], yhi[0], yticks, &L->y0, &L->y1, &L->ystep);
+  double margin_r = MARGIN_R;
+  if (has_y2) {
+    L->has_y2 = 1;
+    axis_range(ylo[1], yhi[1], yticks, &L->y20, &L->y21, &L->y2step);
+    SESSILE_CALL(right_margin(L, p, &margin_r));
+  }
+  L->px0 = MARGIN_L, L->px1 = o->width - margin_r;
+  SESSILE_CHECK(L->px1 - L->px0 >= 40, SESSILE_ERR_USAGE,
+                "a plot %d pixels wide leaves no room for its right-hand axis's labels (%.0f pixels)", o->width,
+                margin_r);
   nice_range(xlo, xhi, (int)((L->px1 - L->px0) / 80) + 2, &L->x0, &L->x1, &L->xstep);
-  nice_range(ylo, yhi, (int)((L->py0 - L->py1) / 50) + 2, &L->y0, &L->y1, &L->ystep);
   return SESSILE_OK;
 }
 
 static double map_x(const sessile_plot_layout *L, double x) { return L->px0 + (x - L->x0) / (L->x1 - L->x0) * (L->px1 - L->px0); }
 static double map_y(const sessile_plot_layout *L, double y) { return L->py0 + (y - L->y0) / (L->y1 - L->y0) * (L->py1 - L->py0); }
+static double map_y2(const sessile_plot_layout *L, double y) {
+  return L->py0 + (y - L->y20) / (L->y21 - L->y20) * (L->py1 - L->py0);
+}
+/* y of a series through its own axis */
+static double map_ys(const sessile_plot_layout *L, const sessile_plot_series *ser, double y) {
+  return L->has_y2 && ser->axis2 ? map_y2(L, y) : map_y(L, y);
+}
+
+/* An axis label's colour: with two y axes, that of the axis's first series
+ * (which line reads against which axis); else black. */
+static void axis_label_colour(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p, int axis2) {
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  if (!L->has_y2) return;
+  for (int s = 0; s < p->nseries; s++)
+    if ((p->series[s].axis2 != 0) == axis2) {
+      cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
+      return;
+    }
+}
+
+/* The right-hand axis: ticks out of the frame, labels right of them, the
+ * label rotated as the left one is. */
+static void draw_axis2(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
+  char lab[32];
+  double wmax = 0;
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1);
+  for (int k = 0; k <= axis_ticks(L->y20, L->y21, L->y2step); k++) {
+    double v = L->y20 + k * L->y2step, y = floor(map_y2(L, v)) + 0.5;
+    cairo_move_to(cr, L->px1 + 0.5, y), cairo_line_to(cr, L->px1 + 5.5, y);
+    d2_tick_label(lab, sizeof lab, v, L->y2step);
+    d2_text(cr, L->px1 + TICK_GAP, map_y2(L, v), TICK_LABEL_PT, 0, 0.5, 0, lab);
+    wmax = fmax(wmax, d2_text_width(cr, TICK_LABEL_PT, lab));
+  }
+  cairo_stroke(cr);
+  if (!p->y2label || !p->y2label[0]) return;
+  axis_label_colour(cr, L, p, 1);
+  d2_text(cr, L->px1 + TICK_GAP + ceil(wmax) + LABEL_GAP, 0.5 * (L->py0 + L->py1), AXIS_LABEL_PT, 0.5, 0,
+          -1.57079632679489662, p->y2label);
+}
 
 static void draw_axes(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
   char lab[32];
@@ -95,8 +187,13 @@ static void draw_axes(cairo_t *cr, const sessile_plot_layout *L, const sessile_p
   }
   cairo_stroke(cr);
   if (p->xlabel) d2_text(cr, 0.5 * (L->px0 + L->px1), L->py0 + 28, 13, 0.5, 0, 0, p->xlabel);
-  if (p->ylabel) d2_text(cr, 16, 0.5 * (L->py0 + L->py1), 13, 0.5, 0, -1.57079632679489662, p->ylabel);
+  if (p->ylabel) {
+    axis_label_colour(cr, L, p, 0);
+    d2_text(cr, 16, 0.5 * (L->py0 + L->py1), 13, 0.5, 0, -1.57079632679489662, p->ylabel);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+  }
   if (p->title) d2_text(cr, 0.5 * L->width, 8, 15, 0.5, 0, 0, p->title);
+  if (L->has_y2) draw_axis2(cr, L, p);
 }
 
 static void draw_series(cairo_t *cr, const sessile_plot_layout *L, const sessile_plot *p) {
@@ -114,8 +211,8 @@ static void draw_series(cairo_t *cr, const sessile_plot_layout *L, const sessile
         pen = 0;
         continue;
       }
-      if (pen) cairo_line_to(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]));
-      else cairo_move_to(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]));
+      if (pen) cairo_line_to(cr, map_x(L, ser->x[i]), map_ys(L, ser, ser->y[i]));
+      else cairo_move_to(cr, map_x(L, ser->x[i]), map_ys(L, ser, ser->y[i]));
       pen = 1;
     }
     cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
@@ -128,7 +225,7 @@ static void draw_series(cairo_t *cr, const sessile_plot_layout *L, const sessile
     for (size_t i = 0; i < ser->n; i++)
       if (isfinite(ser->x[i]) && isfinite(ser->y[i])) {
         cairo_new_sub_path(cr);
-        cairo_arc(cr, map_x(L, ser->x[i]), map_y(L, ser->y[i]), MARKER_R, 0, 6.28318530717958648);
+        cairo_arc(cr, map_x(L, ser->x[i]), map_ys(L, ser, ser->y[i]), MARKER_R, 0, 6.28318530717958648);
       }
     cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
     cairo_fill(cr);

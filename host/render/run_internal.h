@@ -2,6 +2,7 @@
  * generator's run holds and what to draw) shared with run_render.c (drawing). */
 #ifndef SESSILE_RUN_RENDER_INTERNAL_H
 #define SESSILE_RUN_RENDER_INTERNAL_H
+#include "sessile/render2d.h"
 #include "sessile/render_run.h"
 
 /* Where a generator writes its meshes (docs/render.md "Runs"). */
@@ -12,6 +13,7 @@ typedef struct rp_layout {
   const char *snap_word;   /* caption: "iteration 10", "frame 3" */
   int slices;              /* slices/iter_NNNN_PLANE.exr with FOLDER/iter_NNNN.ply as outline */
   const char *plots[2];    /* records.jsonl presets (render2d.h) */
+  const char *steps_log;   /* FOLDER/steps.csv, the per-step log drawn as plot_step_times.png, or NULL */
 } rp_layout;
 
 typedef struct rp_snap {
@@ -48,6 +50,7 @@ struct sessile_render_plan {
   rp_slice *slices;
   int nslices;
   char *records; /* records.jsonl, or NULL */
+  int has_steps_log; /* FOLDER/steps.csv is there (a regular file) */
   uint32_t width, height;
   int quiet;
   char **written; /* names written into out_dir */
@@ -57,4 +60,12 @@ struct sessile_render_plan {
 /* Reads a small regular file name in the folder dfd without following a
  * symlink: *text NULL when absent. */
 sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max, char **text, size_t *len);
+
+/* The per-step log is read whole: ~55 000 rows of ~100 bytes for a long run. */
+#define RP_STEPS_MAX ((size_t)256 << 20)
+/* sessile_render_plot_sds_steps of the log's text (text[len] = 0), which
+ * the run renderer reads through the run folder's descriptor; shown names
+ * the file in messages (quoted). */
+sessile_status rp_plot_sds_steps_text(const char *text, size_t len, const char *shown, const sessile_render2d_opts *o,
+                                      const char *png_out);
 #endif

@@ -20,12 +20,12 @@
 #include "run_internal.h"
 
 static const rp_layout layouts[] = {
-    {"grow", "sponge", "iter_", "iteration", 1, {"solver", "time"}},
-    {"sponge particles", "sponge", "iter_", "iteration", 0, {NULL, NULL}},
-    {"sphere", "sphere", "iter_", "iteration", 0, {NULL, NULL}},
-    {"coral lsystem", "coral", NULL, NULL, 0, {NULL, NULL}},
-    {"coral venation", "coral", "iter_", "iteration", 0, {NULL, NULL}},
-    {"sds", "sds", "frame_", "frame", 0, {"steps", NULL}},
+    {"grow", "sponge", "iter_", "iteration", 1, {"solver", "time"}, NULL},
+    {"sponge particles", "sponge", "iter_", "iteration", 0, {NULL, NULL}, NULL},
+    {"sphere", "sphere", "iter_", "iteration", 0, {NULL, NULL}, NULL},
+    {"coral lsystem", "coral", NULL, NULL, 0, {NULL, NULL}, NULL},
+    {"coral venation", "coral", "iter_", "iteration", 0, {NULL, NULL}, NULL},
+    {"sds", "sds", "frame_", "frame", 0, {"steps", NULL}, "steps.csv"},
 };
 
 sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max, char **text, size_t *len) {
@@ -311,6 +311,9 @@ sessile_status sessile_render_plan_make(const char *run_dir, const sessile_rende
   if (s == SESSILE_OK && p->lay->plots[0]) s = regular(p, p->dfd, NULL, "records.jsonl", &have_records);
   if (s == SESSILE_OK && have_records && !(p->records = path_join(run_dir, "records.jsonl", NULL)))
     s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  /* the per-step log: refused when planted as a link, as records.jsonl is */
+  if (s == SESSILE_OK && p->lay->steps_log && mfd >= 0)
+    s = regular(p, mfd, p->lay->folder, p->lay->steps_log, &p->has_steps_log);
   if (s == SESSILE_OK && p->lay->snap_prefix) captions(p);
   if (s == SESSILE_OK) s = place_output(p, o ? o->out_dir : NULL);
   if (mfd >= 0) close(mfd);

@@ -4,6 +4,7 @@
  *   slice_iter_NNNN_PLANE_CHANNEL.png     each slice (c, or the first channel;
  *                                         every channel of the last snapshot)
  *   plot_<preset>.png                     plots of records.jsonl
+ *   plot_step_times.png                   sds: FOLDER/steps.csv (ms per step and cells)
  * Into RUN/renders the names are added to the manifest's file list (under
  * the run folder's lock), so a later --force removes them with the run. */
 #include <cjson/cJSON.h>
@@ -13,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "run_internal.h"
 #include "sessile/io.h"
 #include "sessile/render2d.h"
@@ -154,6 +156,45 @@ static sessile_status draw_plots(sessile_render_plan *p, FILE *log) {
   return SESSILE_OK;
 }
 
+/* The per-step log's text, read through the run folder's descriptor (no
+ * symlink followed, a regular file of at most RP_STEPS_MAX bytes): *text
+ * NULL when it is gone. */
+static sessile_status read_steps_log(const sessile_render_plan *p, char *shown, size_t n, char **text, size_t *len) {
+  snprintf(shown, n, "'%.400s/%s/%s'", p->run_dir, p->lay->folder, p->lay->steps_log);
+  *text = NULL, *len = 0;
+  int fd = openat(p->dfd, p->lay->folder, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0 && errno == ENOENT) return SESSILE_OK;
+  SESSILE_CHECK(fd >= 0, SESSILE_ERR_USAGE, "cannot open '%s/%s': %s", p->run_dir, p->lay->folder, strerror(errno));
+  sessile_status s = sessile_read_small_file_at(fd, p->lay->steps_log, shown, RP_STEPS_MAX, text, len);
+  close(fd);
+  return s;
+}
+
+/* plot_step_times.png from the per-step log; a log with no steps yet (or
+ * damaged) is skipped with a note, as a plot of records is. */
+static sessile_status draw_step_times(sessile_render_plan *p, FILE *log) {
+  if (!p->lay->steps_log) return SESSILE_OK;
+  const char *name = "plot_step_times.png";
+  char shown[600], *text = NULL, *path = NULL;
+  size_t len = 0;
+  if (p->has_steps_log) SESSILE_CALL(read_steps_log(p, shown, sizeof shown, &text, &len));
+  if (!text) {
+    if (log) fprintf(log, "no %s: the run has no %s/%s\n", name, p->lay->folder, p->lay->steps_log);
+    return SESSILE_OK;
+  }
+  sessile_status s = out_path(p, name, &path);
+  if (s == SESSILE_OK) s = rp_plot_sds_steps_text(text, len, shown, NULL, path);
+  free(path), free(text);
+  if (s == SESSILE_ERR_USAGE) {
+    p->nwritten--, free(p->written[p->nwritten]);
+    if (log) fprintf(log, "no %s: %s\n", name, sessile_error_message());
+    return SESSILE_OK;
+  }
+  SESSILE_CALL(s);
+  say(log, p, name, "ms per step and cells against simulated time");
+  return SESSILE_OK;
+}
+
 /* Lists renders/NAME in the run's manifest (once each), under the lock. */
 static sessile_status list_in_manifest(sessile_render_plan *p) {
   char *text = NULL;
@@ -207,6 +248,7 @@ sessile_status sessile_render_plan_run(sessile_render_plan *p, sessile_gpu *g, F
   if (s == SESSILE_OK) s = draw_snapshots(p, g, log);
   if (s == SESSILE_OK) s = draw_slices(p, log);
   if (s == SESSILE_OK) s = draw_plots(p, log);
+  if (s == SESSILE_OK) s = draw_step_times(p, log);
   /* what was written is listed even after a failure, so --force removes it */
   if (p->listed && p->nwritten) {
     sessile_status ls = list_in_manifest(p);

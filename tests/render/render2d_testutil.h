@@ -76,4 +76,15 @@ static inline const char *t_scratch(const char *name) {
   mkdir(dir, 0777);
   return dir;
 }
+
+/* The test's scratch folder (set from t_scratch) and a path in it: 16
+ * rotating buffers, so several in one call are fine. */
+static const char *dir;
+static inline const char *P(const char *name) {
+  static char buf[16][512];
+  static int k;
+  k = (k + 1) % 16;
+  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
+  return buf[k];
+}
 #endif

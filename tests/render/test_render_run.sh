@@ -9,7 +9,9 @@
 # gives identical bytes; -o DIR writes elsewhere and leaves the run alone; a
 # locked run is refused for renders/ but read for -o DIR; the annotation
 # touches only its corner and the colour bar, which runs from viridis(1) to
-# viridis(0); bad input exits 2 with one line and writes nothing.
+# viridis(0); an sds run's sds/steps.csv gives plot_step_times.png (a note
+# when it is missing or malformed); bad input exits 2 with one line and
+# writes nothing.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -122,8 +124,27 @@ check "... a rerun: identical bytes, and the manifest unchanged" eval \
 
 run render "$T/s" --size 320x240 --quiet
 SF="final_oblique.png final_side.png final_top.png final_front.png snap_frame_0000.png snap_frame_0001.png snap_frame_0002.png snapshots.png plot_steps.png"
-check "render the sds run: views, 3 frame tiles, the sheet (3 wide), ms per step against cells" eval \
-  '(cd "$T/s/renders" && rc_is 0 && [ "$(ls | wc -l)" = 9 ] && pictures 320 240 100 final_*.png snap_frame_*.png && pictures 992 278 100 snapshots.png && pictures 800 600 10 plot_steps.png) && listed "$T/s" $SF'
+SN=9 # and plot_step_times.png where the generator wrote its per-step log
+if [ -f "$T/s/sds/steps.csv" ]; then SF="$SF plot_step_times.png" SN=10; fi
+check "render the sds run: views, 3 frame tiles, the sheet (3 wide), ms per step against cells (and against time with sds/steps.csv)" eval \
+  '(cd "$T/s/renders" && rc_is 0 && [ "$(ls | wc -l)" = $SN ] && pictures 320 240 100 final_*.png snap_frame_*.png && pictures 992 278 100 snapshots.png && pictures 800 600 10 plot_steps.png && { [ $SN = 9 ] || pictures 800 600 10 plot_step_times.png; }) && listed "$T/s" $SF'
+
+# the per-step log sds/steps.csv (written here, so this holds whatever the generator writes)
+cp -r "$T/s" "$T/st" && rm -rf "$T/st/renders"
+{ echo "step,time,dt,cells,tets,ms,divisions,inversions"
+  for k in $(seq 1 300); do echo "$k,$k.5,0.5,$((180 + k)),$((700 + 4 * k)),$((1 + k % 4)).25,0,0"; done; } >"$T/st/sds/steps.csv"
+run render "$T/st" --size 160x120
+check "an sds run with sds/steps.csv: plot_step_times.png 800x600, one line for it, listed in the manifest" eval \
+  'rc_is 0 && grep -q "^wrote .*/plot_step_times.png: " "$T/out" && pictures 800 600 10 "$T/st/renders/plot_step_times.png" && listed "$T/st" plot_step_times.png'
+echo "301,300.5,0.5,481,1904,fast,0,0" >>"$T/st/sds/steps.csv"
+rm -rf "$T/st/renders"
+run render "$T/st" --size 160x120
+check "... a malformed row: no plot_step_times.png, a note naming its line, the rest drawn, exit 0" eval \
+  'rc_is 0 && grep -q "^no plot_step_times.png: .*steps.csv.* line 302" "$T/out" && test ! -e "$T/st/renders/plot_step_times.png" && test -s "$T/st/renders/plot_steps.png"'
+rm -rf "$T/st/renders" "$T/st/sds/steps.csv"
+run render "$T/st" --size 160x120
+check "... no sds/steps.csv: a note, no plot_step_times.png, exit 0" eval \
+  'rc_is 0 && grep -q "^no plot_step_times.png: the run has no sds/steps.csv" "$T/out" && test ! -e "$T/st/renders/plot_step_times.png" && test -s "$T/st/renders/plot_steps.png"'
 
 run render "$T/p" --size 320x240 --quiet
 check "render the sphere run: 4 views, 1 tile, the sheet" eval \
@@ -150,7 +171,7 @@ mkdir "$T/elsewhere"
 cp "$T/s/manifest.json" "$T/s.manifest"
 run render "$T/s" -o "$T/elsewhere/sds" --size 320x240 --quiet
 check "-o DIR: the pictures go there (created), the run's manifest is untouched" eval \
-  'rc_is 0 && [ "$(ls "$T/elsewhere/sds" | wc -l)" = 9 ] && cmp -s "$T/s/manifest.json" "$T/s.manifest" && cmp -s "$T/elsewhere/sds/final_top.png" "$T/s/renders/final_top.png"'
+  'rc_is 0 && [ "$(ls "$T/elsewhere/sds" | wc -l)" = $SN ] && cmp -s "$T/s/manifest.json" "$T/s.manifest" && cmp -s "$T/elsewhere/sds/final_top.png" "$T/s/renders/final_top.png"'
 
 echo precious >"$T/precious"
 rm "$T/s/renders/final_top.png"
@@ -203,6 +224,8 @@ cp -r "$T/p2" "$T/bad/link"
 cp -r "$T/p2" "$T/bad/meshlink"
 ln -s "$T/p2/sphere/final.ply" "$T/bad/meshlink/sphere/iter_0009.ply"
 ln -s "$T/victim" "$T/bad/link/renders"
+cp -r "$T/st" "$T/bad/stepslink" && rm -rf "$T/bad/stepslink/renders"
+ln -s "$T/precious" "$T/bad/stepslink/sds/steps.csv"
 bad() { # description, expected words, args...
   local what="$1" words="$2"; shift 2
   local before after
@@ -218,6 +241,7 @@ bad "an unknown generator" "does not know" "$T/bad/alien"
 bad "an empty run" "nothing to draw" "$T/bad/none"
 bad "a symlink planted as renders/" "symlink" "$T/bad/link"
 bad "a symlink planted as a snapshot mesh" "symlink" "$T/bad/meshlink"
+bad "a symlink planted as sds/steps.csv" "steps.csv' is not a regular file (a symlink)" "$T/bad/stepslink"
 bad "-o X.png for a run" "folder" "$T/bad/link" -o "$T/bad.png"
 bad "a mesh option for a run" "not an option for a run" "$T/bad/none" --view top
 bad "an unknown channel" "no channel 'q'" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --channel q

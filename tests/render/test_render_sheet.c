@@ -8,14 +8,6 @@
 #include "sessile/render2d.h"
 #include "testutil.h"
 
-static const char *dir;
-static const char *P(const char *name) {
-  static char buf[16][512];
-  static int k;
-  k = (k + 1) % 16;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-  return buf[k];
-}
 
 /* An opaque test pattern that differs per tile and per pixel. */
 static unsigned char pattern(int tile, int x, int y, int c) {

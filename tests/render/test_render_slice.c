@@ -12,15 +12,6 @@
 #include "sessile/surface.h"
 #include "testutil.h"
 
-static const char *dir;
-/* a path in the scratch folder (8 rotating buffers: several per call are fine) */
-static const char *P(const char *name) {
-  static char buf[8][512];
-  static int k;
-  k = (k + 1) % 8;
-  snprintf(buf[k], sizeof buf[k], "%s/%s", dir, name);
-  return buf[k];
-}
 
 /* The test plane: u along world x, v along world z, 21 x 11 nodes of
  * 0.5 x 0.25 cm, so u in [0, 10] and v in [0, 2.5] cm. */

@@ -73,26 +73,36 @@ typedef struct sessile_plot_series {
   const char *label;
   const double *x, *y; /* n points; NaN points are skipped */
   size_t n;
+  int axis2;           /* 0: y on the left axis; 1: on the right-hand axis (y2label) */
 } sessile_plot_series;
 
 typedef struct sessile_plot {
   const char *title, *xlabel, *ylabel; /* labels carry the units, e.g. "time per step (ms)" */
   int nseries;                         /* 1..SESSILE_PLOT_MAX_SERIES */
   sessile_plot_series series[SESSILE_PLOT_MAX_SERIES];
+  const char *y2label; /* the right-hand axis's label (drawn when a series has axis2) */
 } sessile_plot;
 
 /* The data-to-pixel transform of a plot: x -> px0 + (x - x0) / (x1 - x0) * (px1 - px0),
  * y likewise (py0 is the bottom of the plot area, py1 its top); x0..x1 and
- * y0..y1 are the axes' ranges, extended to whole ticks by the 1-2-5 rule. */
+ * y0..y1 are the axes' ranges, extended to whole ticks by the 1-2-5 rule.
+ * With has_y2 (some series has axis2), those series map y through y20..y21
+ * instead (the right-hand axis, its own ticks every y2step); an axis that
+ * no series with a finite point uses is 0..1. */
 typedef struct sessile_plot_layout {
   double x0, x1, y0, y1;
   double px0, px1, py0, py1;
   double xstep, ystep; /* tick spacing */
   int width, height;
+  int has_y2;               /* 0: no right-hand axis (y20, y21, y2step 0) */
+  double y20, y21, y2step;
 } sessile_plot_layout;
 
 /* Points with markers joined by lines, one colour per series, axes with
- * ticks and labels, a legend.  o may be NULL (the defaults). */
+ * ticks and labels, a legend.  With a right-hand axis the right margin
+ * widens for its tick labels and label, the grid stays the left axis's, and
+ * each axis's label takes the colour of its first series.  o may be NULL
+ * (the defaults). */
 sessile_status sessile_render_plot(const sessile_plot *p, const sessile_render2d_opts *o, const char *png_out);
 sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_render2d_opts *o,
                                           sessile_plot_layout *lay);
@@ -106,6 +116,16 @@ sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_r
  * skipped; no record with them at all is an error. */
 sessile_status sessile_render_plot_records(const char *records_jsonl, const char *what,
                                            const sessile_render2d_opts *o, const char *png_out);
+
+/* Fig. 12 of Porter & McCormack's SDS paper from `sessile sds run`'s
+ * sds/steps.csv: against the simulated time, ms per step (left axis; steps
+ * with ms <= 0 are no point) and the number of cells (right axis).  The
+ * CSV's header names its columns (time, ms and cells needed, in any order,
+ * others ignored); one row of plain numbers per step; blank lines skipped.
+ * A missing column, a malformed row (named by its line) or no row at all is
+ * SESSILE_ERR_USAGE. */
+sessile_status sessile_render_plot_sds_steps(const char *steps_csv, const sessile_render2d_opts *o,
+                                             const char *png_out);
 
 /* --- contact sheets ------------------------------------------------------------ */
 /* n PNGs tiled in rows of `cols`, each in a cell of the largest tile's size
