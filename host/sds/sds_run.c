@@ -57,6 +57,8 @@ typedef struct sim {
   double step_t0;             /* the time at the start of the step being made */
   double t_end;               /* resolved: the option or the model's */
   int frames;
+  char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
+  size_t steplog_len, steplog_cap;
 } sim;
 
 static const double PI = 3.14159265358979323846;
@@ -761,8 +763,39 @@ static void measure_start(sim *s) {
   }
 }
 
+/* --- the per-step log: sds/steps.csv (the paper's Figure 12 per step) --- */
+#define STEPLOG "sds/steps.csv"
+static const char STEPLOG_HEADER[] = "step,time,dt,cells,tets,ms,divisions,inversions\n";
+
+/* One row: the step just made, its wall time and its events. */
+static sessile_status steplog_row(sim *s, double dt, double ms, uint64_t divisions, uint64_t inversions) {
+  if (s->steplog_cap - s->steplog_len < 160) {
+    size_t cap = s->steplog_cap ? 2 * s->steplog_cap : 1u << 16;
+    char *b = realloc(s->steplog, cap);
+    SESSILE_CHECK(b, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the step log");
+    s->steplog = b, s->steplog_cap = cap;
+  }
+  int k = snprintf(s->steplog + s->steplog_len, s->steplog_cap - s->steplog_len,
+                   "%llu,%.17g,%.17g,%u,%u,%.4f,%llu,%llu\n", (unsigned long long)s->st->steps, s->time, dt,
+                   s->o.ncells, s->o.ntets, ms, (unsigned long long)divisions, (unsigned long long)inversions);
+  SESSILE_CHECK(k > 0 && (size_t)k < s->steplog_cap - s->steplog_len, SESSILE_ERR_INTERNAL, "sds: step log row too long");
+  s->steplog_len += (size_t)k;
+  return SESSILE_OK;
+}
+
+/* Appends the rows kept so far: before every checkpoint (the checkpoint keeps
+ * the log's length, so a resume cuts nothing that it will redo twice) and at
+ * the end of the run, whatever its end. */
+static sessile_status steplog_flush(sim *s, sessile_run *run) {
+  if (!s->steplog_len) return SESSILE_OK;
+  sessile_status st = sessile_run_log(run, STEPLOG, s->steplog, s->steplog_len);
+  s->steplog_len = 0;
+  return st;
+}
+
 /* The loop's scalars to and from the checkpoint (sds_checkpoint.h). */
 static sessile_status save(sim *s, sessile_run *run) {
+  SESSILE_CALL(steplog_flush(s, run));
   const sessile_sds_run_stats *t = s->st;
   sds_ckpt_loop l = {.version = SDS_CKPT_VERSION, .key = s->key, .time = s->time, .dt = s->dt,
                      .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
@@ -837,7 +870,7 @@ static void teardown(sim *s) {
   sessile_morph_gpu_destroy(s->mg);
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
-  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver);
+  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog);
 }
 
 static sessile_status record(sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps) {
@@ -960,6 +993,7 @@ static sessile_status step(sim *s, double next_frame) {
 static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
   double frame_dt = s->t_end / s->frames;
   if (!s->resumed) {
+    SESSILE_CALL(sessile_run_log(opt->run, STEPLOG, STEPLOG_HEADER, sizeof STEPLOG_HEADER - 1));
     SESSILE_CALL(write_frame(s, opt->run, 0, "sds/frame_0000.ply"));
     SESSILE_CALL(record(s, opt->run, 0, 0, 0));
     s->st->frames = s->frame = 1;
@@ -971,7 +1005,11 @@ static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
     SESSILE_CHECK(s->o.ncells <= opt->max_cells, SESSILE_ERR_NO_MEMORY,
                   "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, opt->max_cells);
     double next_frame = s->frame * frame_dt;
+    double t0 = s->time, w0 = sessile_wall_seconds();
+    uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
     SESSILE_CALL(step(s, next_frame));
+    SESSILE_CALL(steplog_row(s, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
+                               s->st->inversions - i0));
     int saved = 0;
     if (s->time >= next_frame * (1 - 1e-12)) {
       double now = sessile_wall_seconds();
@@ -995,6 +1033,7 @@ static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
     }
   }
   SESSILE_CALL(write_pvd(opt->run, s->frame));
+  SESSILE_CALL(steplog_flush(s, opt->run));
   return write_frame(s, opt->run, -1, "sds/final.ply");
 }
 
@@ -1009,6 +1048,12 @@ sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_r
   double t0 = sessile_wall_seconds();
   sessile_status r = setup(&s, opt);
   if (r == SESSILE_OK) r = loop(&s, opt);
+  if (r != SESSILE_OK) { /* the steps up to a failure stay in the log, and the failure's message stays */
+    char why[1024];
+    snprintf(why, sizeof why, "%s", sessile_error_message());
+    if (steplog_flush(&s, opt->run) != SESSILE_OK) sessile_error_set(r, "%s (and then: %s)", why, sessile_error_message());
+    else sessile_error_set(r, "%s", why);
+  }
   st->wall_s = sessile_wall_seconds() - t0;
   st->time = s.time, st->cells = s.o.ncells, st->tets = s.o.ntets;
   st->resumed = s.resumed;

@@ -3,8 +3,9 @@
 # divide and tets invert from t = 4) run to t = 10 in 5 frames at once, and
 # again stopped by SIGINT after frame 1, resumed, killed by SIGKILL after
 # frame 4 (mid-interval, no checkpoint of its own), resumed again: every file
-# under sds/ is the same bytes, the records equal but for their timings, the
-# manifest's totals equal but for the wall time.  Refusals, one line and
+# under sds/ is the same bytes, the records and the step log (sds/steps.csv)
+# equal but for their timings, the manifest's totals equal but for the wall
+# time.  Refusals, one line and
 # exit 2: nothing to resume (an empty or missing folder), a folder of another
 # generator, another model named with --resume, an option a resume must not
 # change, and a checkpoint written by another configuration (another seed and t_end).
@@ -13,7 +14,7 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 one_line() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err"; }
-sums() { (cd "$1" && find sds -type f | LC_ALL=C sort | xargs sha256sum); }
+sums() { (cd "$1" && find sds -type f ! -name steps.csv | LC_ALL=C sort | xargs sha256sum); }
 # waits (up to 60 s) for a file, then sends a signal to a process
 signal_after() { # file signal pid
   for _ in $(seq 1 3000); do [ -e "$1" ] && break; sleep 0.02; done
@@ -39,10 +40,28 @@ signal_after "$T/b/sds/frame_0004.ply" KILL $pid
 { wait $pid; } 2>/dev/null
 echo $? >"$T/rc"
 check "the first resume, killed (SIGKILL) after frame 4, before its end" eval 'rc_is 137 && test ! -e "$T/b/sds/final.ply"'
+# rows appended after the last checkpoint (a run killed between its log's
+# append and its checkpoint) are cut by the resume, not kept twice
+echo "99999,1,1,1,1,1,0,0" >>"$T/b/sds/steps.csv"
 run sds run --resume "$T/b" --quiet
 check "the second resume completes" eval 'rc_is 0 && [ ! -s "$T/err" ]'
 check "every file under sds/ is the same bytes as the uninterrupted run's" eval \
   'sums "$T/a" >"$T/a.sum"; sums "$T/b" >"$T/b.sum"; [ "$(wc -l <"$T/a.sum")" -eq 15 ] && cmp -s "$T/a.sum" "$T/b.sum"'
+check "the step log: each step once, in order (1..steps), the same rows as the uninterrupted run's but for ms" \
+  "$PY" - "$T/a" "$T/b" <<'PYEOF'
+import csv, json, sys
+def rows(d):
+    with open(d + "/sds/steps.csv", newline="") as f:
+        r = list(csv.DictReader(f))
+    return [{k: v for k, v in x.items() if k != "ms"} for x in r], [float(x["ms"]) for x in r]
+a, b = sys.argv[1], sys.argv[2]
+(ra, ma), (rb, mb) = rows(a), rows(b)
+n = json.load(open(b + "/manifest.json"))["sds"]["steps"]
+ok = ra == rb and [int(x["step"]) for x in rb] == list(range(1, n + 1)) and all(m > 0 for m in ma + mb)
+ok = ok and sum(int(x["divisions"]) for x in rb) == json.load(open(b + "/manifest.json"))["sds"]["divisions"]
+print(len(rb), "rows; steps", n)
+sys.exit(0 if ok else 1)
+PYEOF
 check "records equal but ms_per_step; manifest: completed, 3 starts, sds totals equal but wall_s; divisions and inversions happened" \
   "$PY" - "$T/a" "$T/b" <<'PYEOF'
 import json, sys
