@@ -765,6 +765,7 @@ static void measure_start(sim *s) {
 
 /* --- the per-step log: sds/steps.csv (the paper's Figure 12 per step) --- */
 #define STEPLOG "sds/steps.csv"
+#define STEPLOG_FLUSH ((size_t)1 << 20) /* bytes of rows kept between appends at most */
 static const char STEPLOG_HEADER[] = "step,time,dt,cells,tets,ms,divisions,inversions\n";
 
 /* One row: the step just made, its wall time and its events. */
@@ -784,8 +785,9 @@ static sessile_status steplog_row(sim *s, double dt, double ms, uint64_t divisio
 }
 
 /* Appends the rows kept so far: before every checkpoint (the checkpoint keeps
- * the log's length, so a resume cuts nothing that it will redo twice) and at
- * the end of the run, whatever its end. */
+ * the log's length), when a MiB has gathered between frames (a long frame
+ * interval must not hold millions of rows; a resume cuts what lies past the
+ * checkpoint), and at the end of the run, whatever its end. */
 static sessile_status steplog_flush(sim *s, sessile_run *run) {
   if (!s->steplog_len) return SESSILE_OK;
   sessile_status st = sessile_run_log(run, STEPLOG, s->steplog, s->steplog_len);
@@ -1009,7 +1011,8 @@ static sessile_status loop(sim *s, const sessile_sds_run_options *opt) {
     uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
     SESSILE_CALL(step(s, next_frame));
     SESSILE_CALL(steplog_row(s, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
-                               s->st->inversions - i0));
+                             s->st->inversions - i0));
+    if (s->steplog_len >= STEPLOG_FLUSH) SESSILE_CALL(steplog_flush(s, opt->run));
     int saved = 0;
     if (s->time >= next_frame * (1 - 1e-12)) {
       double now = sessile_wall_seconds();
