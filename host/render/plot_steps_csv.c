@@ -91,7 +91,10 @@ static sessile_status row(char *line, const char *shown, long lineno, const int 
   return SESSILE_OK;
 }
 
-/* Every row of the text; blank lines skipped, the first other line the header. */
+/* Every row of the text; blank lines skipped, the first other line the header.
+ * A last row without its newline is a row still being appended by a running
+ * run (the log grows by whole lines, but a reader may see part of a write):
+ * it is left out, not an error. */
 static sessile_status parse(const char *text, size_t len, const char *shown, steps *s) {
   int col[NCOLS], nfields = 0, have_header = 0;
   long lineno = 0;
@@ -104,6 +107,7 @@ static sessile_status parse(const char *text, size_t len, const char *shown, ste
     memcpy(line, p, n);
     line[n] = 0;
     p = eol + 1;
+    if (!nl && have_header) break;
     SESSILE_CHECK(strlen(line) == n, SESSILE_ERR_USAGE, "%s line %ld: a NUL byte (not a text file?)", shown, lineno);
     if (n && line[n - 1] == '\r') line[--n] = 0;
     if (strspn(line, " \t") == n) continue;

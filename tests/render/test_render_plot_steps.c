@@ -185,6 +185,9 @@ static void steps_log(void) {
   }
   write_text(P("steps.csv"), text);
   write_text(P("reordered.csv"), reordered);
+  /* a running run's log read mid-append: its unterminated last row is left out */
+  sprintf(text + n, "%d,%.17g,0.5,99", NSTEP + 1, st_time(NSTEP));
+  write_text(P("growing.csv"), text);
   free(text), free(reordered);
   sessile_render2d_opts o;
   sessile_render2d_opts_default(&o);
@@ -197,6 +200,9 @@ static void steps_log(void) {
        sessile_render_plot_sds_steps(P("reordered.csv"), &o, P("reordered.png")));
   t_true("... the same picture, byte for byte (columns found by name)",
          t_same_bytes(P("steps.png"), P("reordered.png")));
+  t_ok("a last row without its newline (a log being appended): drawn",
+       sessile_render_plot_sds_steps(P("growing.csv"), &o, P("growing.png")));
+  t_true("... without that row, byte for byte", t_same_bytes(P("steps.png"), P("growing.png")));
 
   /* where the points must be: the same data laid out here, ms 0 as no point */
   double t[NSTEP], ms[NSTEP], cells[NSTEP];
