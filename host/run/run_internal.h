@@ -58,6 +58,11 @@ void run_free(sessile_run *r);
 /* The logs' lengths to keep in a checkpoint: this start's, and the loaded
  * checkpoint's for logs not appended to since (n set to their count). */
 void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);
+/* Opens dfd/name to append after its first `keep` bytes (the rest cut):
+ * created if absent, no symlink followed, a regular file only (O_NONBLOCK
+ * while checking: a planted FIFO does not hang); refuse_short: a file shorter
+ * than keep is refused rather than extended.  The fd, or -1 with *why. */
+int run_open_cut(int dfd, const char *name, uint64_t keep, int refuse_short, const char **why);
 void run_logs_sync(const sessile_run *r);
 void run_logs_close(sessile_run *r);
 #endif

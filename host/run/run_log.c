@@ -17,6 +17,31 @@ static int find(const run_log_len *logs, int n, const char *rel) {
   return -1;
 }
 
+int run_open_cut(int dfd, const char *name, uint64_t keep, int refuse_short, const char **why) {
+  int fd = openat(dfd, name, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    *why = errno == ELOOP   ? "a symlink is there: refused"
+           : errno == ENXIO ? "not a regular file: a FIFO or device is there"
+                            : strerror(errno);
+    return -1;
+  }
+  struct stat st;
+  *why = NULL;
+  if (fstat(fd, &st) != 0) *why = strerror(errno);
+  else if (!S_ISREG(st.st_mode)) *why = "not a regular file";
+  else if (refuse_short && (uint64_t)st.st_size < keep) *why = "shorter than the checkpoint says (cut or replaced since)";
+  else if (ftruncate(fd, (off_t)keep) != 0) *why = strerror(errno);
+  else {
+    int fl = fcntl(fd, F_GETFL);
+    if (fl < 0 || fcntl(fd, F_SETFL, (fl | O_APPEND) & ~O_NONBLOCK) != 0) *why = strerror(errno);
+  }
+  if (*why) {
+    close(fd);
+    return -1;
+  }
+  return fd;
+}
+
 /* Opens rel (listed, its folder made by sessile_run_file) for appending, cut
  * to `keep` bytes; no symlink is followed, in the folder or at the file, and
  * only a regular file is taken (O_NONBLOCK: a planted FIFO does not hang). */
@@ -33,27 +58,10 @@ static sessile_status open_log(sessile_run *r, const char *rel, uint64_t keep, i
     dfd = sfd;
   }
   const char *name = slash ? slash + 1 : rel;
-  int fd = openat(dfd, name, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
-  int e = errno;
-  if (sfd >= 0) close(sfd);
-  SESSILE_CHECK(fd >= 0, SESSILE_ERR_IO, "cannot open '%s': %s%s", path, strerror(e),
-                e == ELOOP    ? " (a symlink is there: refused)"
-                : e == ENXIO ? " (not a regular file: a FIFO or device is there)"
-                             : "");
-  struct stat st;
   const char *why = NULL;
-  if (fstat(fd, &st) != 0) why = strerror(errno);
-  else if (!S_ISREG(st.st_mode)) why = "not a regular file";
-  else if ((uint64_t)st.st_size < keep) why = "shorter than the checkpoint says (cut or replaced since)";
-  else if (ftruncate(fd, (off_t)keep) != 0) why = strerror(errno);
-  else {
-    int fl = fcntl(fd, F_GETFL);
-    if (fl < 0 || fcntl(fd, F_SETFL, (fl | O_APPEND) & ~O_NONBLOCK) != 0) why = strerror(errno);
-  }
-  if (why) {
-    close(fd);
-    return sessile_error_set(SESSILE_ERR_IO, "cannot append to '%s': %s", path, why);
-  }
+  int fd = run_open_cut(dfd, name, keep, 1, &why);
+  if (sfd >= 0) close(sfd);
+  SESSILE_CHECK(fd >= 0, SESSILE_ERR_IO, "cannot append to '%s': %s", path, why);
   *fd_out = fd;
   return SESSILE_OK;
 }

@@ -180,26 +180,10 @@ static sessile_status open_records(sessile_run *r, int truncate_to_ckpt) {
   if (!truncate_to_ckpt) {
     unlinkat(r->dfd, RUN_RECORDS, 0);
     r->recfd = openat(r->dfd, RUN_RECORDS, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_APPEND | O_CLOEXEC, 0666);
-  } else {
-    r->recfd = openat(r->dfd, RUN_RECORDS, O_WRONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
-    struct stat st;
-    if (r->recfd >= 0 && (fstat(r->recfd, &st) != 0 || !S_ISREG(st.st_mode))) {
-      close(r->recfd);
-      r->recfd = -1;
-      errno = EINVAL;
-    }
-    /* what was appended after the checkpoint is redone, so cut it */
-    if (r->recfd >= 0 && ftruncate(r->recfd, (off_t)r->records_bytes) != 0) {
-      close(r->recfd);
-      r->recfd = -1;
-    }
-    if (r->recfd >= 0) {
-      int fl = fcntl(r->recfd, F_GETFL);
-      if (fl < 0 || fcntl(r->recfd, F_SETFL, (fl | O_APPEND) & ~O_NONBLOCK) != 0) {
-        close(r->recfd);
-        r->recfd = -1;
-      }
-    }
+  } else { /* what was appended after the checkpoint is redone, so cut it */
+    const char *why = NULL;
+    r->recfd = run_open_cut(r->dfd, RUN_RECORDS, r->records_bytes, 0, &why);
+    SESSILE_CHECK(r->recfd >= 0, SESSILE_ERR_IO, "cannot open '%s/%s': %s", r->dir, RUN_RECORDS, why);
   }
   SESSILE_CHECK(r->recfd >= 0, SESSILE_ERR_IO, "cannot open '%s/%s': %s", r->dir, RUN_RECORDS, strerror(errno));
   return SESSILE_OK;
