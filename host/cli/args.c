@@ -16,11 +16,13 @@ int cli_usage_error(const char *cmd, const char *fmt, ...) {
   return EXIT_USAGE;
 }
 
-int cli_fail(sessile_status s) {
+int cli_fail(sessile_status s) { return cli_fail_in(NULL, s); }
+
+int cli_fail_in(const char *cmd, sessile_status s) {
   /* copy first: the message buffer is the library's */
   char msg[1100];
   snprintf(msg, sizeof msg, "%s", sessile_error_message());
-  fprintf(stderr, "sessile: error: %s\n", msg);
+  fprintf(stderr, "sessile%s%s: error: %s\n", cmd ? " " : "", cmd ? cmd : "", msg);
   return s == SESSILE_ERR_USAGE ? EXIT_USAGE : EXIT_RUNTIME;
 }
 

@@ -20,6 +20,8 @@ typedef struct {
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Prints the library's last message and returns the exit code for s. */
 int cli_fail(sessile_status s);
+/* The same, naming the command: "sessile coral venation: error: ...". */
+int cli_fail_in(const char *cmd, sessile_status s);
 /* The value of the option at argv[*i] (advancing *i), or NULL after a
  * usage error when it is missing or starts with "--" ("--out needs a
  * value": `--out --print-config` must not make a folder named so). */
@@ -61,11 +63,9 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
-int cmd_sphere(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */
 int cmd_coral(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_coral_lsystem(int argc, char **argv, const cli_gpu_opts *global);
-int cmd_coral_venation(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile sponge particles`: Coralize's particle-fed sponge. */
 int cmd_sponge(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile sds run MODEL`, `sessile sds models` (cmd_sds.c). */

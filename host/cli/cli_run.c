@@ -67,8 +67,8 @@ sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, 
   return SESSILE_OK;
 }
 
-sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
-                            const char *dir, volatile sig_atomic_t *stop, sessile_run **run) {
+sessile_status cli_run_admit(const char *generator, int argc, char **argv, const cli_run_args *a,
+                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run) {
   /* the manifest records the whole command line, global options included */
   cli_command_line(&argc, &argv);
   sessile_run_options ro = {.dir = dir, .generator = generator, .version = SESSILE_VERSION,
@@ -76,7 +76,18 @@ sessile_status cli_run_open(const char *generator, int argc, char **argv, const 
                             .mode = a->resume ? SESSILE_RUN_RESUME
                                     : a->force ? SESSILE_RUN_REPLACE : SESSILE_RUN_NEW,
                             .stop = stop};
-  return sessile_run_open(&ro, run);
+  return sessile_run_admit(&ro, run);
+}
+
+sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
+                            const char *dir, volatile sig_atomic_t *stop, sessile_run **run) {
+  SESSILE_CALL(cli_run_admit(generator, argc, argv, a, dir, stop, run));
+  sessile_status s = sessile_run_start(*run);
+  if (s != SESSILE_OK) {
+    sessile_run_close(*run, s); /* not started: writes nothing */
+    *run = NULL;
+  }
+  return s;
 }
 
 void cli_run_note_device(sessile_run *run, sessile_gpu *g) {

@@ -28,6 +28,10 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
 int cli_run_args_check(const char *cmd, const cli_run_args *a);
 /* The configs in order, then the --sets, into values (after defaults/preset). */
 sessile_status cli_run_apply_params(const sessile_param_table *t, void *values, const cli_run_args *a);
+/* Admits the run directory (new, --force or --resume) with the stop flag:
+ * reads, writes nothing (sessile_run_admit); sessile_run_start takes it. */
+sessile_status cli_run_admit(const char *generator, int argc, char **argv, const cli_run_args *a,
+                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run);
 /* Opens the run directory (new, --force or --resume) with the stop flag. */
 sessile_status cli_run_open(const char *generator, int argc, char **argv, const cli_run_args *a,
                             const char *dir, volatile sig_atomic_t *stop, sessile_run **run);

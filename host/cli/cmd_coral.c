@@ -17,6 +17,5 @@ int cmd_coral(int argc, char **argv, const cli_gpu_opts *global) {
     return EXIT_OK;
   }
   if (!strcmp(argv[1], "lsystem")) return cmd_coral_lsystem(argc - 1, argv + 1, global);
-  if (!strcmp(argv[1], "venation")) return cmd_coral_venation(argc - 1, argv + 1, global);
   return cli_usage_error("coral", "unknown generator '%.60s' (available: lsystem, venation)", argv[1]);
 }

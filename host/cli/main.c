@@ -2,7 +2,7 @@
  * One table of subcommands drives both dispatch and `sessile --help`. */
 #include <stdio.h>
 #include <string.h>
-#include "cli.h"
+#include "cli_generator.h"
 
 #ifndef SESSILE_VERSION
 #define SESSILE_VERSION "dev"
@@ -13,7 +13,6 @@ static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
 
 static const cli_command commands[] = {
     {"grow", "grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'", cmd_grow},
-    {"sphere", "the smallest generator: a seeded noisy icosphere through the run framework", cmd_sphere},
     {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
     {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
     {"sds", "SDS, a tetrahedral developmental system: 'sds run MODEL', 'sds models'", cmd_sds},
@@ -33,6 +32,9 @@ static void print_help(FILE *out) {
         "\n"
         "commands:\n", out);
   for (int i = 0; i < NCOMMANDS; i++) fprintf(out, "  %-9s %s\n", commands[i].name, commands[i].summary);
+  fputs("\ngenerators (each a run directory; 'sessile NAME --help'):\n", out);
+  for (int k = 0; cli_generators[k]; k++)
+    fprintf(out, "  %-16s %s\n", cli_generators[k]->name, cli_generators[k]->summary);
   fputs("\n"
         "options (before or after the command):\n"
         "  --device D      device index or name substring (default: discrete > integrated > CPU;\n"
@@ -79,6 +81,9 @@ static int run(int argc, char **argv) {
     if (r == 0) return cli_usage_error(NULL, "unknown option '%s'", argv[i]);
   }
   if (i >= argc) return cli_usage_error(NULL, "no command given");
+  int words = 0;
+  const sessile_generator *gen = cli_generator_find(argc - i, argv + i, &words);
+  if (gen) return cli_generator_main(gen, argc - i - (words - 1), argv + i + (words - 1), &g);
   for (int c = 0; c < NCOMMANDS; c++)
     if (strcmp(argv[i], commands[c].name) == 0) return commands[c].run(argc - i, argv + i, &g);
   char names[256] = "";

@@ -5,25 +5,24 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/io.h"
+#include "sessile/generator.h"
 #include "venation_internal.h"
 
-cJSON *sessile_venation_config(const sessile_venation_params *p, const sessile_venation_options *o) {
-  cJSON *c = sessile_run_config_make(&sessile_venation_param_table, p, o->seed, o->iterations, o->every);
-  return c;
-}
-
-sessile_status sessile_venation_config_read(const cJSON *cfg, sessile_venation_params *p,
-                                            sessile_venation_options *o) {
-  uint64_t seed = 0;
-  SESSILE_CALL(sessile_run_config_take(cfg, &sessile_venation_param_table, p, &seed, &o->iterations, &o->every));
-  o->seed = seed;
-  return SESSILE_OK;
-}
+/* The generator's state: the vein graph and what writes it. */
+typedef struct venation_gen {
+  sessile_venation_params p;
+  sessile_venation v;
+  sessile_venation_gpu *vg;
+  sessile_run *run;
+  sessile_gpu *gpu;
+  uint32_t counts[3]; /* what a checkpoint's "counts" section holds */
+} venation_gen;
 
 /* The mesh (tubes or weld) with the thickness index per vertex: PLY, and OBJ
  * at the end. */
-static sessile_status write_mesh(const sessile_venation *v, const sessile_venation_params *p,
-                                 const sessile_venation_options *o, const char *rel, int obj) {
+static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj) {
+  const sessile_venation *v = &g->v;
+  const sessile_venation_params *p = &g->p;
   sessile_skeleton sk = {0};
   sessile_surface m = {0};
   double *val = NULL;
@@ -33,13 +32,13 @@ static sessile_status write_mesh(const sessile_venation *v, const sessile_venati
   if (s == SESSILE_OK) {
     if (p->geometry == SESSILE_VENATION_WELD) {
       sessile_weld_params wp = {.cell = p->weld_cell, .blend = p->weld_blend};
-      s = o->gpu ? sessile_skeleton_weld(o->gpu, &sk, &wp, &m, &val)
+      s = g->gpu ? sessile_skeleton_weld(g->gpu, &sk, &wp, &m, &val)
                  : sessile_error_set(SESSILE_ERR_NO_DEVICE, "geometry = weld needs a device");
     } else {
       s = sessile_skeleton_tubes(&sk, p->mesh_detail, &m, &val);
     }
   }
-  if (s == SESSILE_OK) s = sessile_run_file(o->run, rel, path, sizeof path);
+  if (s == SESSILE_OK) s = sessile_run_file(g->run, rel, path, sizeof path);
   if (s == SESSILE_OK) {
     const char *names[1] = {"thickness_index"};
     const double *extra[1] = {val};
@@ -48,7 +47,7 @@ static sessile_status write_mesh(const sessile_venation *v, const sessile_venati
   if (s == SESSILE_OK && obj) {
     char orel[256];
     snprintf(orel, sizeof orel, "%.*s.obj", (int)(strlen(rel) - 4), rel);
-    s = sessile_run_file(o->run, orel, path, sizeof path);
+    s = sessile_run_file(g->run, orel, path, sizeof path);
     if (s == SESSILE_OK) s = sessile_write_obj(path, &m, NULL);
   }
   free(val);
@@ -57,31 +56,25 @@ static sessile_status write_mesh(const sessile_venation *v, const sessile_venati
   return s;
 }
 
-static sessile_status checkpoint(sessile_run *run, const sessile_venation *v) {
-  uint32_t counts[3] = {v->n, v->ne, v->na};
-  sessile_ckpt_section sec[7] = {
-      {"counts", counts, sizeof counts},
-      {"rng", &v->rng, sizeof v->rng},
-      {"positions", v->pos, (size_t)3 * v->n * sizeof *v->pos},
-      {"parents", v->parent, (size_t)v->n * sizeof *v->parent},
-      {"thickness_index", v->ti, (size_t)v->n * sizeof *v->ti},
-      {"edges", v->edge, (size_t)2 * v->ne * sizeof *v->edge},
-      {"auxins", v->aux, (size_t)3 * v->na * sizeof *v->aux},
-  };
-  return sessile_run_checkpoint(run, v->iteration, 7, sec);
-}
-
-static sessile_status section(const sessile_ckpt *ck, const char *name, void *dst, size_t bytes) {
-  size_t n = 0;
-  const void *src = sessile_ckpt_get(ck, name, &n);
-  SESSILE_CHECK(src && n == bytes, SESSILE_ERR_IO, "the checkpoint's %s section is damaged", name);
-  if (bytes) memcpy(dst, src, bytes);
+static sessile_status sections(void *state, sessile_ckpt_section *sec, int *n) {
+  venation_gen *g = state;
+  const sessile_venation *v = &g->v;
+  g->counts[0] = v->n, g->counts[1] = v->ne, g->counts[2] = v->na;
+  sec[0] = (sessile_ckpt_section){"counts", g->counts, sizeof g->counts};
+  sec[1] = (sessile_ckpt_section){"rng", &v->rng, sizeof v->rng};
+  sec[2] = (sessile_ckpt_section){"positions", v->pos, (size_t)3 * v->n * sizeof *v->pos};
+  sec[3] = (sessile_ckpt_section){"parents", v->parent, (size_t)v->n * sizeof *v->parent};
+  sec[4] = (sessile_ckpt_section){"thickness_index", v->ti, (size_t)v->n * sizeof *v->ti};
+  sec[5] = (sessile_ckpt_section){"edges", v->edge, (size_t)2 * v->ne * sizeof *v->edge};
+  sec[6] = (sessile_ckpt_section){"auxins", v->aux, (size_t)3 * v->na * sizeof *v->aux};
+  *n = 7;
   return SESSILE_OK;
 }
 
-static sessile_status restore(const sessile_ckpt *ck, sessile_venation *v) {
+static sessile_status restore(void *state, const sessile_ckpt *ck) {
+  sessile_venation *v = &((venation_gen *)state)->v;
   uint32_t c[3];
-  SESSILE_CALL(section(ck, "counts", c, sizeof c));
+  SESSILE_CALL(sessile_ckpt_take(ck, "counts", c, sizeof c));
   SESSILE_CHECK(c[0] >= 1 && c[0] < 0x40000000u && c[1] < 0x40000000u && c[2] < 0x40000000u, SESSILE_ERR_IO,
                 "the checkpoint's counts are damaged");
   uint32_t ncap = c[0] > v->cap ? c[0] : v->cap, ecap = c[1] > v->ecap ? c[1] : v->ecap;
@@ -98,12 +91,12 @@ static sessile_status restore(const sessile_ckpt *ck, sessile_venation *v) {
   SESSILE_CHECK(aux, SESSILE_ERR_NO_MEMORY, "out of host memory for the checkpoint's vein graph");
   v->aux = aux, v->acap = acap;
   v->n = c[0], v->ne = c[1], v->na = c[2];
-  SESSILE_CALL(section(ck, "rng", &v->rng, sizeof v->rng));
-  SESSILE_CALL(section(ck, "positions", v->pos, (size_t)3 * v->n * sizeof *v->pos));
-  SESSILE_CALL(section(ck, "parents", v->parent, (size_t)v->n * sizeof *v->parent));
-  SESSILE_CALL(section(ck, "thickness_index", v->ti, (size_t)v->n * sizeof *v->ti));
-  SESSILE_CALL(section(ck, "edges", v->edge, (size_t)2 * v->ne * sizeof *v->edge));
-  SESSILE_CALL(section(ck, "auxins", v->aux, (size_t)3 * v->na * sizeof *v->aux));
+  SESSILE_CALL(sessile_ckpt_take(ck, "rng", &v->rng, sizeof v->rng));
+  SESSILE_CALL(sessile_ckpt_take(ck, "positions", v->pos, (size_t)3 * v->n * sizeof *v->pos));
+  SESSILE_CALL(sessile_ckpt_take(ck, "parents", v->parent, (size_t)v->n * sizeof *v->parent));
+  SESSILE_CALL(sessile_ckpt_take(ck, "thickness_index", v->ti, (size_t)v->n * sizeof *v->ti));
+  SESSILE_CALL(sessile_ckpt_take(ck, "edges", v->edge, (size_t)2 * v->ne * sizeof *v->edge));
+  SESSILE_CALL(sessile_ckpt_take(ck, "auxins", v->aux, (size_t)3 * v->na * sizeof *v->aux));
   /* parents precede their children (what the skeleton's frames rely on) */
   for (uint32_t i = 1; i < v->n; i++)
     SESSILE_CHECK(v->parent[i] < i, SESSILE_ERR_IO, "the checkpoint's vein graph is damaged");
@@ -113,10 +106,13 @@ static sessile_status restore(const sessile_ckpt *ck, sessile_venation *v) {
   return SESSILE_OK;
 }
 
-static sessile_status record(sessile_run *run, const sessile_venation *v, double seconds) {
-  cJSON *rec = cJSON_CreateObject();
-  SESSILE_CHECK(rec, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  cJSON_AddNumberToObject(rec, "iteration", v->iteration);
+static sessile_status step(void *state, int it, cJSON *rec) {
+  venation_gen *g = state;
+  const sessile_venation *v = &g->v;
+  double t0 = sessile_wall_seconds();
+  SESSILE_CALL(sessile_venation_step(&g->v, &g->p, g->vg));
+  /* times vary between runs: records, never meshes, hold them */
+  double seconds = sessile_wall_seconds() - t0;
   cJSON_AddNumberToObject(rec, "nodes", v->n);
   cJSON_AddNumberToObject(rec, "edges", v->n - 1 + v->ne);
   cJSON_AddNumberToObject(rec, "auxins", v->na);
@@ -125,65 +121,63 @@ static sessile_status record(sessile_run *run, const sessile_venation *v, double
   cJSON_AddNumberToObject(rec, "nodes_grown", v->grown);
   cJSON_AddNumberToObject(rec, "joins", v->merged);
   cJSON_AddNumberToObject(rec, "seconds", seconds);
-  sessile_status st = sessile_run_record(run, rec);
-  cJSON_Delete(rec);
-  return st;
+  return SESSILE_OK;
 }
 
-static sessile_status loop(const sessile_venation_params *p, const sessile_venation_options *o,
-                           sessile_venation *v, sessile_venation_gpu *vg, int *done) {
-  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(o->run);
-  if (ck) {
-    int k = sessile_ckpt_iteration(ck);
-    SESSILE_CHECK(k <= o->iterations, SESSILE_ERR_USAGE,
-                  "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
-    SESSILE_CALL(restore(ck, v));
-    *done = k;
-    /* the old last iteration was a snapshot only because it was the last */
-    if (k < o->iterations && (o->every == 0 || k % o->every)) {
-      char rel[64];
-      snprintf(rel, sizeof rel, "coral/iter_%04d.ply", k);
-      SESSILE_CALL(sessile_run_remove_file(o->run, rel));
-    }
-  }
-  for (int it = v->iteration + 1; it <= o->iterations; it++) {
-    double t0 = sessile_wall_seconds();
-    SESSILE_CALL(sessile_venation_step(v, p, vg));
-    /* times vary between runs: records, never meshes, hold them */
-    SESSILE_CALL(record(o->run, v, sessile_wall_seconds() - t0));
-    int snap = (o->every > 0 && it % o->every == 0) || it == o->iterations;
-    if (snap) {
-      char rel[64];
-      snprintf(rel, sizeof rel, "coral/iter_%04d.ply", it);
-      SESSILE_CALL(write_mesh(v, p, o, rel, 0));
-    }
-    *done = it;
-    int stop = sessile_run_stop_requested(o->run);
-    if (snap || stop) SESSILE_CALL(checkpoint(o->run, v));
-    if (stop && it < o->iterations)
-      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d after iteration %d", stop, it);
-  }
-  return write_mesh(v, p, o, "coral/final.ply", 1);
+static sessile_status snapshot(void *state, const char *rel) { return write_mesh(state, rel, 0); }
+static sessile_status finish(void *state) { return write_mesh(state, "coral/final.ply", 1); }
+
+static void destroy(void *state) {
+  venation_gen *g = state;
+  if (!g) return;
+  sessile_venation_gpu_destroy(g->vg);
+  sessile_venation_free(&g->v);
+  free(g);
 }
 
-sessile_status sessile_venation_run(const sessile_venation_params *p, const sessile_venation_options *o,
-                                    int *done) {
-  *done = 0;
-  SESSILE_CHECK(o->run, SESSILE_ERR_USAGE, "sessile coral venation needs a run directory");
-  SESSILE_CALL(sessile_params_check(&sessile_venation_param_table, p));
-  cJSON *m = sessile_run_manifest(o->run);
-  cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
-  cJSON_AddItemToObject(m, "parameters", sessile_params_to_json(&sessile_venation_param_table, p));
-  sessile_venation v;
-  sessile_venation_gpu *vg = NULL;
-  SESSILE_CALL(sessile_venation_init(&v, o->seed));
-  sessile_status s = SESSILE_OK;
-  if (p->search == SESSILE_VENATION_GPU) {
-    s = o->gpu ? sessile_venation_gpu_create(o->gpu, &vg)
-               : sessile_error_set(SESSILE_ERR_NO_DEVICE, "search = gpu needs a device (or set search=host)");
+static sessile_status create(const void *params, const sessile_gen_setup *su, void **state) {
+  venation_gen *g = calloc(1, sizeof *g);
+  SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  g->p = *(const sessile_venation_params *)params, g->run = su->run, g->gpu = su->gpu;
+  sessile_status s = sessile_venation_init(&g->v, su->seed);
+  if (s != SESSILE_OK) {
+    free(g);
+    return s;
   }
-  if (s == SESSILE_OK) s = loop(p, o, &v, vg, done);
-  sessile_venation_gpu_destroy(vg);
-  sessile_venation_free(&v);
-  return s;
+  *state = g;
+  if (g->p.search != SESSILE_VENATION_GPU) return SESSILE_OK;
+  SESSILE_CHECK(g->gpu, SESSILE_ERR_NO_DEVICE, "search = gpu needs a device (or set search=host)");
+  return sessile_venation_gpu_create(g->gpu, &g->vg);
 }
+
+/* The device only when a kernel needs it. */
+static int needs_device(const void *params) {
+  const sessile_venation_params *p = params;
+  return p->search == SESSILE_VENATION_GPU || p->geometry == SESSILE_VENATION_WELD;
+}
+
+/* Refuse what cannot fit before anything is written: at most
+ * iterations x auxins_per_iteration auxins live at once (24 bytes each, and
+ * the search's 40 bytes of work per auxin). */
+static sessile_status check_size(const void *params, const sessile_gen_setup *su) {
+  const sessile_venation_params *p = params;
+  double aux = (double)su->iterations * p->auxins_per_iteration;
+  SESSILE_CHECK(aux <= 5e7, SESSILE_ERR_USAGE,
+                "%d iterations x %d auxins per iteration could hold %.3g auxins (about %.1f GB): at most 5e7",
+                su->iterations, p->auxins_per_iteration, aux, aux * 64e-9);
+  return SESSILE_OK;
+}
+
+const sessile_generator sessile_gen_coral_venation = {
+    "coral venation", "soft corals by open or closed leaf venation (Coralize 3.2)",
+    "Soft corals by leaf venation in 3-D (Coralize Section 3.2, after Runions et al. 2005):\n"
+    "auxins thrown per iteration into a leaf blade bounded by two Bezier curves that widens\n"
+    "every iteration (or into a 3-D box: planar=false) attract vein nodes, which grow toward\n"
+    "them; open venation (open=true) grows a tree, closed venation rejoins veins.  Veins\n"
+    "thicken with their thickness index (a thickness curve) and are meshed as tubes.\n"
+    "Writes coral/iter_NNNN.ply every K iterations and at the last, coral/final.ply and\n"
+    "coral/final.obj (PLY: per-vertex thickness_index), manifest.json, records.jsonl and a\n"
+    "checkpoint at each snapshot (docs/run.md).",
+    "the auxins' placement", "runs/coral-venation", "coral/iter_%04d.ply", "coral/final.ply",
+    &sessile_venation_param_table, 60, 20, NULL, 0, needs_device, check_size,
+    create, restore, step, snapshot, sections, finish, destroy};

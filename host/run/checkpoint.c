@@ -55,9 +55,16 @@ sessile_status sessile_run_checkpoint(sessile_run *r, int iteration, int nsectio
   run_log_len logs[RUN_MAX_LOGS];
   int nlogs;
   run_logs_to_keep(r, logs, &nlogs);
+  /* who the state belongs to, and which files it goes with (a resume
+   * refuses another run's checkpoint and removes files written after it) */
+  char idt[16];
+  run_config_identity(r->config, idt);
+  cJSON_AddStringToObject(own, "config", idt);
+  cJSON *files = cJSON_Duplicate(cJSON_GetObjectItemCaseSensitive(r->manifest, "files"), 1);
+  if (files) cJSON_AddItemToObject(own, "files", files);
   cJSON *lj = nlogs ? cJSON_AddObjectToObject(own, "logs") : NULL;
   for (int i = 0; lj && i < nlogs; i++) cJSON_AddNumberToObject(lj, logs[i].rel, (double)logs[i].bytes);
-  if (nlogs && (!lj || cJSON_GetArraySize(lj) != nlogs)) {
+  if (!files || (nlogs && (!lj || cJSON_GetArraySize(lj) != nlogs))) {
     cJSON_Delete(own);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
   }
@@ -129,6 +136,7 @@ sessile_status sessile_run_checkpoint(sessile_run *r, int iteration, int nsectio
 
 void run_ckpt_free(sessile_ckpt *c) {
   if (!c) return;
+  cJSON_Delete(c->files);
   for (int i = 0; i < c->n; i++) free(c->e[i].name);
   free(c->e);
   free(c->blob);
@@ -196,6 +204,14 @@ static sessile_status parse(const sessile_run *r, sessile_ckpt *c, size_t len) {
     snprintf(c->logs[c->nlogs].rel, RUN_LOG_NAME, "%s", l->string);
     c->logs[c->nlogs++].bytes = (uint64_t)l->valuedouble;
   }
+  /* the run's identity and file list (absent in checkpoints of older versions) */
+  const cJSON *id = cJSON_GetObjectItemCaseSensitive(j, "config");
+  if (good && id) good = cJSON_IsString(id) && strlen(id->valuestring) < sizeof c->config_id;
+  if (good && id) snprintf(c->config_id, sizeof c->config_id, "%s", id->valuestring);
+  cJSON *fl = cJSON_DetachItemFromObjectCaseSensitive(j, "files");
+  if (good && fl) good = cJSON_IsArray(fl);
+  if (good) c->files = fl;
+  else cJSON_Delete(fl);
   cJSON_Delete(j);
   return good ? SESSILE_OK : damaged(r, "run section");
 }
@@ -219,6 +235,46 @@ sessile_status run_ckpt_read(sessile_run *r) {
   }
   r->ckpt = c;
   r->records_bytes = c->records_bytes;
+  return SESSILE_OK;
+}
+
+void run_config_identity(const cJSON *config, char out[16]) {
+  snprintf(out, 16, "none");
+  cJSON *c = config ? cJSON_Duplicate(config, 1) : NULL;
+  if (!c) return;
+  cJSON_DeleteItemFromObjectCaseSensitive(c, "iterations"); /* a resume may raise it */
+  /* printed, parsed and printed again: a stored config holds numbers as
+   * 17-digit raw text, which cJSON prints back in its shortest form */
+  char *text = cJSON_PrintUnformatted(c);
+  cJSON_Delete(c);
+  c = text ? cJSON_Parse(text) : NULL;
+  free(text);
+  text = c ? cJSON_PrintUnformatted(c) : NULL;
+  cJSON_Delete(c);
+  if (!text) return;
+  snprintf(out, 16, "%08x", (unsigned)crc(text, strlen(text)));
+  free(text);
+}
+
+sessile_status run_ckpt_check_identity(const sessile_run *r) {
+  /* an older checkpoint, or one written before the run had a configuration */
+  if (!r->ckpt || !r->ckpt->config_id[0] || !strcmp(r->ckpt->config_id, "none")) return SESSILE_OK;
+  char idt[16];
+  run_config_identity(r->config, idt);
+  SESSILE_CHECK(!strcmp(idt, r->ckpt->config_id), SESSILE_ERR_USAGE,
+                "'%s/%s' was written by another model or configuration (not this run's, whose seed and "
+                "parameters differ): move it away to restart the run from its beginning",
+                r->dir, RUN_CHECKPOINT);
+  return SESSILE_OK;
+}
+
+sessile_status sessile_ckpt_take(const sessile_ckpt *c, const char *name, void *dst, size_t bytes) {
+  size_t n = 0;
+  const void *p = sessile_ckpt_get(c, name, &n);
+  SESSILE_CHECK(p, SESSILE_ERR_IO, "the checkpoint has no '%s' section", name);
+  SESSILE_CHECK(n == bytes, SESSILE_ERR_IO, "the checkpoint's '%s' section holds %zu bytes, not the %zu this run needs",
+                name, n, bytes);
+  if (bytes) memcpy(dst, p, bytes);
   return SESSILE_OK;
 }
 

@@ -30,6 +30,8 @@ struct sessile_ckpt {
   uint64_t records_bytes;
   int nlogs;
   run_log_len logs[RUN_MAX_LOGS]; /* the logs' lengths at the checkpoint */
+  char config_id[16]; /* run_config_identity of the run that wrote it ("": older checkpoint) */
+  cJSON *files;        /* the run's files at the checkpoint (NULL: older checkpoint) */
   uint8_t *blob; /* the file's bytes; entries point into it */
   int n;
   ckpt_entry *e;
@@ -48,13 +50,31 @@ struct sessile_run {
   int log_fd[RUN_MAX_LOGS];
   run_log_len logs[RUN_MAX_LOGS];
   sessile_ckpt *ckpt;     /* on resume: the checkpoint read at open */
+  char *version;
+  cJSON *command;         /* argv, until the start puts it in the manifest */
+  sessile_run_mode mode;
+  int absent;             /* admitted a folder that does not exist yet */
+  int started;            /* sessile_run_start succeeded: the folder is this run's */
+  int wrote_lock;         /* this start wrote the lock's owner file */
 };
 
+/* Whether rel ends in a suffix of what runs write (.ply, .csv, ...). */
+int run_output_name(const char *rel);
 sessile_status run_read_file(int dfd, const char *name, size_t max, char **text, size_t *len);
 /* Reads checkpoint.bin into r->ckpt (none: stays NULL) and r->records_bytes. */
 sessile_status run_ckpt_read(sessile_run *r);
 void run_ckpt_free(sessile_ckpt *c);
+/* A short hash of a run's configuration without "iterations" (which a
+ * resume may raise): what ties a checkpoint to its run. */
+void run_config_identity(const cJSON *config, char out[16]);
+/* SESSILE_ERR_USAGE when the loaded checkpoint belongs to another configuration. */
+sessile_status run_ckpt_check_identity(const sessile_run *r);
 void run_free(sessile_run *r);
+/* On resume, before the records open: the files the manifest lists but the
+ * checkpoint does not (written after it, or every file when there is no
+ * checkpoint) are removed, so the resumed run never mixes in later
+ * snapshots of the stopped one. */
+void run_prune_to_checkpoint(sessile_run *r);
 /* The logs' lengths to keep in a checkpoint: this start's, and the loaded
  * checkpoint's for logs not appended to since (n set to their count). */
 void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);

@@ -155,6 +155,57 @@ static sessile_status replace_old(sessile_run *r, cJSON *old) {
   return SESSILE_OK;
 }
 
+static int listed(const cJSON *files, const char *rel);
+
+/* What a run writes (sessile_run_file and sessile_run_log refuse other
+ * suffixes): a listed file with another suffix is not ours. */
+int run_output_name(const char *rel) {
+  static const char *const ours[] = {".ply", ".obj", ".mtl", ".vtu", ".pvd", ".exr", ".png",
+                                     ".csv", ".json", ".jsonl", ".bin", ".sds", ".lsys", ".glb", ".gltf"};
+  const char *dot = strrchr(rel, '.');
+  for (size_t i = 0; dot && i < sizeof ours / sizeof *ours; i++)
+    if (!strcmp(dot, ours[i])) return 1;
+  return 0;
+}
+
+/* --force removes an older run's files only when the folder proves to be a
+ * sessile run: its manifest is sessile's (program, generator, a file list),
+ * its lock's owner file is there, and every listed file is a plain run
+ * output.  Anything else is refused whole: nothing is deleted. */
+static sessile_status proven_run(const sessile_run *r, const cJSON *old) {
+  const cJSON *prog = cJSON_GetObjectItemCaseSensitive(old, "program");
+  const cJSON *gen = cJSON_GetObjectItemCaseSensitive(old, "generator");
+  const cJSON *files = cJSON_GetObjectItemCaseSensitive(old, "files");
+  struct stat st;
+  int lock = fstatat(r->dfd, RUN_LOCK, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
+  SESSILE_CHECK(cJSON_IsString(prog) && !strcmp(prog->valuestring, "sessile") && cJSON_IsString(gen) &&
+                    cJSON_IsArray(files) && lock,
+                SESSILE_ERR_USAGE,
+                "'%s' holds a %s that sessile did not write (no sessile signature or lock file): "
+                "--force replaces only sessile runs; choose another --out", r->dir, RUN_MANIFEST);
+  const cJSON *f;
+  cJSON_ArrayForEach(f, files) {
+    SESSILE_CHECK(cJSON_IsString(f) && plain_rel(f->valuestring) && run_output_name(f->valuestring),
+                  SESSILE_ERR_USAGE,
+                  "'%s/%s' lists '%.60s', which is no file a sessile run writes: --force refused, "
+                  "nothing deleted; choose another --out", r->dir, RUN_MANIFEST,
+                  cJSON_IsString(f) ? f->valuestring : "?");
+  }
+  return SESSILE_OK;
+}
+
+void run_prune_to_checkpoint(sessile_run *r) {
+  cJSON *files = cJSON_GetObjectItemCaseSensitive(r->manifest, "files");
+  const cJSON *keep = r->ckpt ? r->ckpt->files : NULL;
+  if (r->ckpt && !keep) return; /* a checkpoint of an older version: no list to go by */
+  for (int i = cJSON_GetArraySize(files) - 1; i >= 0; i--) {
+    const cJSON *f = cJSON_GetArrayItem(files, i);
+    if (!cJSON_IsString(f) || (keep && listed(keep, f->valuestring))) continue;
+    remove_rel(r->dfd, f->valuestring);
+    cJSON_DeleteItemFromArray(files, i);
+  }
+}
+
 static const char *state_of(const cJSON *m) {
   const cJSON *s = cJSON_GetObjectItemCaseSensitive(m, "state");
   return cJSON_IsString(s) ? s->valuestring : "unknown";
@@ -214,6 +265,7 @@ static sessile_status admit(sessile_run *r, const sessile_run_options *o) {
     if (cJSON_IsNumber(starts)) r->start_count = (int)starts->valuedouble;
     cJSON_Delete(old);
     if (s == SESSILE_OK) s = run_ckpt_read(r);
+    if (s == SESSILE_OK) s = run_ckpt_check_identity(r);
     return s;
   }
   if (old && o->mode != SESSILE_RUN_REPLACE) {
@@ -222,7 +274,9 @@ static sessile_status admit(sessile_run *r, const sessile_run_options *o) {
                           "'%s' holds an earlier run (state %s, started %s); add --force to replace "
                           "it, --resume to continue it, or choose another --out",
                           o->dir, state_of(old), cJSON_IsString(st) ? st->valuestring : "unknown");
-  } else if (!old && !folder_empty(r->dfd)) {
+  } else if (old) {
+    s = proven_run(r, old);
+  } else if (!folder_empty(r->dfd)) {
     s = sessile_error_set(SESSILE_ERR_USAGE,
                           "'%s' is not empty and holds no sessile run (no %s); choose an empty "
                           "or new folder for --out", o->dir, RUN_MANIFEST);
@@ -235,32 +289,58 @@ static sessile_status admit(sessile_run *r, const sessile_run_options *o) {
   return s;
 }
 
-static sessile_status setup(sessile_run *r, const sessile_run_options *o) {
+/* Opens the existing folder and takes its lock (nothing written). */
+static sessile_status open_locked(sessile_run *r, const char *dir) {
+  r->dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (r->dfd < 0 && r->mode == SESSILE_RUN_RESUME)
+    return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': %s", dir, strerror(errno));
+  SESSILE_CHECK(r->dfd >= 0, SESSILE_ERR_USAGE, "cannot open the run directory '%s': %s", dir, strerror(errno));
+  SESSILE_CHECK(faccessat(r->dfd, ".", W_OK, 0) == 0, SESSILE_ERR_USAGE,
+                "the run directory '%s' is not writable: %s", dir, strerror(errno));
+  return lock_folder(r);
+}
+
+/* Reads, never writes: whether this run may use the folder.  A folder that
+ * does not exist yet is created by sessile_run_start, not here. */
+static sessile_status admit_folder(sessile_run *r, const sessile_run_options *o) {
   SESSILE_CHECK(o->dir && *o->dir, SESSILE_ERR_USAGE, "the run directory needs a name");
   SESSILE_CHECK(strlen(o->dir) < 3500, SESSILE_ERR_USAGE, "the run directory's name is too long");
   r->dir = strdup(o->dir);
   r->generator = strdup(o->generator ? o->generator : "");
-  SESSILE_CHECK(r->dir && r->generator, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  r->version = strdup(o->version ? o->version : "dev");
+  SESSILE_CHECK(r->dir && r->generator && r->version, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  r->mode = o->mode;
   if (gethostname(r->host, sizeof r->host) != 0) snprintf(r->host, sizeof r->host, "unknown");
   r->host[sizeof r->host - 1] = 0;
-  /* A resume never creates its folder; a new run creates it (with parents). */
-  if (o->mode != SESSILE_RUN_RESUME) {
-    sessile_status s = sessile_mkdirs(o->dir);
+  struct stat st;
+  if (o->mode != SESSILE_RUN_RESUME && (stat(o->dir, &st) != 0 || !S_ISDIR(st.st_mode))) { /* start creates it, or says why not */
+    r->absent = 1; /* a new folder: nothing to admit */
+    return SESSILE_OK;
+  }
+  SESSILE_CALL(open_locked(r, o->dir));
+  return admit(r, o);
+}
+
+/* The folder becomes this run's: created when new, the lock's owner
+ * written, leftovers swept, an older run's files removed (--force) or cut
+ * back to the checkpoint (--resume), records opened. */
+static sessile_status take_folder(sessile_run *r) {
+  if (r->absent) {
+    sessile_status s = sessile_mkdirs(r->dir);
     if (s != SESSILE_OK)
       return sessile_error_set(SESSILE_ERR_USAGE, "cannot create the run directory: %s", sessile_error_message());
+    sessile_run_options o = {.dir = r->dir, .generator = r->generator, .mode = r->mode};
+    SESSILE_CALL(open_locked(r, r->dir));
+    SESSILE_CALL(admit(r, &o)); /* created meanwhile by someone else? */
+    r->absent = 0;
   }
-  r->dfd = open(o->dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (r->dfd < 0 && o->mode == SESSILE_RUN_RESUME)
-    return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': %s", o->dir, strerror(errno));
-  SESSILE_CHECK(r->dfd >= 0, SESSILE_ERR_USAGE, "cannot open the run directory '%s': %s", o->dir, strerror(errno));
-  SESSILE_CHECK(faccessat(r->dfd, ".", W_OK, 0) == 0, SESSILE_ERR_USAGE,
-                "the run directory '%s' is not writable: %s", o->dir, strerror(errno));
-  SESSILE_CALL(lock_folder(r));
-  SESSILE_CALL(admit(r, o));
-  /* Admitted: from here on the folder is this run's. */
   SESSILE_CALL(write_lock_owner(r));
+  r->wrote_lock = 1;
   sweep_all(r->dfd);
-  if (o->mode == SESSILE_RUN_RESUME) return open_records(r, 1);
+  if (r->mode == SESSILE_RUN_RESUME) {
+    run_prune_to_checkpoint(r);
+    return open_records(r, 1);
+  }
   if (r->replaced) {
     SESSILE_CALL(replace_old(r, r->replaced));
     cJSON_Delete(r->replaced);
@@ -270,7 +350,7 @@ static sessile_status setup(sessile_run *r, const sessile_run_options *o) {
   return open_records(r, 0);
 }
 
-sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out) {
+sessile_status sessile_run_admit(const sessile_run_options *o, sessile_run **out) {
   *out = NULL;
   sessile_run *r = calloc(1, sizeof *r);
   SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
@@ -280,19 +360,50 @@ sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out)
   sessile_status s = r->manifest ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   if (s == SESSILE_OK) {
     cJSON_AddArrayToObject(r->manifest, "files");
-    s = setup(r, o);
+    s = admit_folder(r, o);
   }
+  if (s == SESSILE_OK) {
+    /* the command line is copied: the caller's argv may not outlive the admit */
+    cJSON *cmd = cJSON_CreateArray();
+    for (int i = 0; cmd && i < o->argc && o->argv && o->argv[i]; i++)
+      cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    r->command = cmd;
+    if (!cmd) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  }
+  if (s != SESSILE_OK) {
+    run_free(r);
+    return s;
+  }
+  *out = r;
+  return SESSILE_OK;
+}
+
+/* Undoes what a failed start created in a folder that was not a run before
+ * (the lock's owner file, empty records), so the same --out is accepted
+ * again. */
+static void undo_start(sessile_run *r) {
+  if (r->mode == SESSILE_RUN_RESUME || r->dfd < 0) return;
+  if (r->recfd >= 0 && r->records_bytes == 0) {
+    close(r->recfd);
+    r->recfd = -1;
+    unlinkat(r->dfd, RUN_RECORDS, 0);
+  }
+  if (r->wrote_lock) unlinkat(r->dfd, RUN_LOCK, 0);
+}
+
+sessile_status sessile_run_start(sessile_run *r) {
+  SESSILE_CHECK(r && !r->started, SESSILE_ERR_INTERNAL, "sessile_run_start: the run is not admitted or already started");
+  sessile_status s = take_folder(r);
   if (s == SESSILE_OK) {
     cJSON *m = r->manifest;
     cJSON_AddStringToObject(m, "program", "sessile");
     cJSON_AddStringToObject(m, "generator", r->generator);
-    cJSON_AddStringToObject(m, "version", o->version ? o->version : "dev");
+    cJSON_AddStringToObject(m, "version", r->version);
     cJSON_AddStringToObject(m, "state", "running");
     cJSON_AddNumberToObject(m, "pid", (double)getpid());
     cJSON_AddStringToObject(m, "host", r->host);
-    cJSON *cmd = cJSON_AddArrayToObject(m, "command");
-    for (int i = 0; i < o->argc && o->argv && o->argv[i]; i++)
-      cJSON_AddItemToArray(cmd, cJSON_CreateString(o->argv[i]));
+    cJSON_AddItemToObject(m, "command", r->command);
+    r->command = NULL;
     char now[64];
     sessile_run_utc_now(now, sizeof now);
     cJSON_AddStringToObject(m, "start_time", now);
@@ -304,11 +415,21 @@ sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out)
     s = sessile_run_write_manifest(r);
   }
   if (s != SESSILE_OK) {
-    run_free(r);
+    undo_start(r);
     return s;
   }
-  *out = r;
+  r->started = 1;
   return SESSILE_OK;
+}
+
+sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out) {
+  SESSILE_CALL(sessile_run_admit(o, out));
+  sessile_status s = sessile_run_start(*out);
+  if (s != SESSILE_OK) {
+    run_free(*out);
+    *out = NULL;
+  }
+  return s;
 }
 
 cJSON *sessile_run_manifest(sessile_run *r) { return r->manifest; }
@@ -353,6 +474,7 @@ static int listed(const cJSON *files, const char *rel) {
 
 sessile_status sessile_run_file(sessile_run *r, const char *rel, char *path, size_t n) {
   SESSILE_CHECK(plain_rel(rel), SESSILE_ERR_INTERNAL, "run file name '%s' is not a plain relative name", rel);
+  SESSILE_CHECK(run_output_name(rel), SESSILE_ERR_INTERNAL, "run file name '%s' has no run output's suffix", rel);
   const char *slash = strchr(rel, '/');
   if (slash) {
     char sub[256];
@@ -416,13 +538,19 @@ void run_free(sessile_run *r) {
   cJSON_Delete(r->manifest);
   cJSON_Delete(r->config);
   run_ckpt_free(r->ckpt);
+  cJSON_Delete(r->command);
   free(r->dir);
   free(r->generator);
+  free(r->version);
   free(r);
 }
 
 sessile_status sessile_run_close(sessile_run *r, sessile_status s) {
   if (!r) return s;
+  if (!r->started) { /* refused before it began: the folder is left as it was */
+    run_free(r);
+    return s;
+  }
   char msg[1024] = "";
   if (s != SESSILE_OK) snprintf(msg, sizeof msg, "%s", sessile_error_message());
   const char *state = s == SESSILE_OK ? "completed" : s == SESSILE_ERR_INTERRUPTED ? "interrupted" : "failed";

@@ -5,39 +5,28 @@
 #include <stdlib.h>
 #include <string.h>
 #include "psponge_internal.h"
+#include "sessile/generator.h"
 #include "sessile/intersect.h"
 #include "sessile/io.h"
 
-cJSON *sessile_psponge_config(const sessile_psponge_params *p, const sessile_psponge_options *o) {
-  cJSON *c = sessile_run_config_make(&sessile_psponge_param_table, p, o->seed, o->iterations, o->every);
-  if (c && !cJSON_AddBoolToObject(c, "check", o->check)) {
-    cJSON_Delete(c);
-    return NULL;
-  }
-  return c;
-}
+/* The generator's state: the sponge and what writes it. */
+typedef struct psponge_gen {
+  sessile_psponge *ps;
+  sessile_run *run;
+  int check; /* --check: the invariants every iteration */
+} psponge_gen;
 
-sessile_status sessile_psponge_config_read(const cJSON *cfg, sessile_psponge_params *p,
-                                           sessile_psponge_options *o) {
-  uint64_t seed = 0;
-  SESSILE_CALL(sessile_run_config_take(cfg, &sessile_psponge_param_table, p, &seed, &o->iterations, &o->every));
-  o->seed = seed;
-  const cJSON *check = cJSON_GetObjectItemCaseSensitive(cfg, "check");
-  SESSILE_CHECK(cJSON_IsBool(check), SESSILE_ERR_USAGE, "the run's stored configuration is damaged");
-  o->check = cJSON_IsTrue(check);
-  return SESSILE_OK;
-}
-
-sessile_status sessile_psponge_checkpoint(sessile_psponge *ps, sessile_run *run) {
+static sessile_status sections(void *state, sessile_ckpt_section *sec, int *n) {
+  const sessile_psponge *ps = ((psponge_gen *)state)->ps;
   const sessile_surface *s = &ps->surf;
-  sessile_ckpt_section sec[6] = {
-      {"rng", &ps->rng, sizeof ps->rng},
-      {"positions", s->pos, (size_t)3 * s->nv * sizeof *s->pos},
-      {"triangles", s->tri, (size_t)3 * s->nf * sizeof *s->tri},
-      {"growth_counts", ps->counts, (size_t)s->nv * sizeof *ps->counts},
-      {"particles", ps->ppos, (size_t)3 * ps->np * sizeof *ps->ppos},
-      {"ages", ps->age, (size_t)ps->np * sizeof *ps->age}};
-  return sessile_run_checkpoint(run, ps->iteration, 6, sec);
+  sec[0] = (sessile_ckpt_section){"rng", &ps->rng, sizeof ps->rng};
+  sec[1] = (sessile_ckpt_section){"positions", s->pos, (size_t)3 * s->nv * sizeof *s->pos};
+  sec[2] = (sessile_ckpt_section){"triangles", s->tri, (size_t)3 * s->nf * sizeof *s->tri};
+  sec[3] = (sessile_ckpt_section){"growth_counts", ps->counts, (size_t)s->nv * sizeof *ps->counts};
+  sec[4] = (sessile_ckpt_section){"particles", ps->ppos, (size_t)3 * ps->np * sizeof *ps->ppos};
+  sec[5] = (sessile_ckpt_section){"ages", ps->age, (size_t)ps->np * sizeof *ps->age};
+  *n = 6;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_psponge_restore(sessile_psponge *ps, const sessile_ckpt *ck) {
@@ -77,37 +66,16 @@ sessile_status sessile_psponge_restore(sessile_psponge *ps, const sessile_ckpt *
   return SESSILE_OK;
 }
 
-sessile_status sessile_psponge_write_ply(const sessile_psponge *ps, const char *path) {
-  const sessile_surface *s = &ps->surf;
-  double *n = malloc(((size_t)s->nv + 1) * 3 * sizeof *n), *c = malloc(((size_t)s->nv + 1) * sizeof *c);
-  if (!n || !c) {
-    free(n), free(c);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
-  }
-  sessile_surface_normals(s, n);
-  for (uint32_t v = 0; v < s->nv; v++) c[v] = ps->counts[v];
+/* PLY with the per-vertex growth count, or OBJ, by rel's suffix. */
+static sessile_status write_mesh(const psponge_gen *g, const char *rel) {
+  const sessile_psponge *ps = g->ps;
+  double *c = malloc(((size_t)ps->surf.nv + 1) * sizeof *c);
+  SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t v = 0; v < ps->surf.nv; v++) c[v] = ps->counts[v];
   const char *names[1] = {"growth_count"};
   const double *extra[1] = {c};
-  sessile_status st = sessile_write_ply(path, s, n, 1, names, extra);
-  free(n), free(c);
-  return st;
-}
-
-static sessile_status write_ply(sessile_run *run, const char *rel, const sessile_psponge *ps) {
-  char path[4096];
-  SESSILE_CALL(sessile_run_file(run, rel, path, sizeof path));
-  return sessile_psponge_write_ply(ps, path);
-}
-
-static sessile_status write_obj(sessile_run *run, const char *rel, const sessile_psponge *ps) {
-  char path[4096];
-  SESSILE_CALL(sessile_run_file(run, rel, path, sizeof path));
-  const sessile_surface *s = &ps->surf;
-  double *n = malloc(((size_t)s->nv + 1) * 3 * sizeof *n);
-  SESSILE_CHECK(n, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  sessile_surface_normals(s, n);
-  sessile_status st = sessile_write_obj(path, s, n);
-  free(n);
+  sessile_status st = sessile_run_write_surface(g->run, rel, &ps->surf, 1, names, extra);
+  free(c);
   return st;
 }
 
@@ -124,77 +92,71 @@ static sessile_status check(const sessile_psponge *ps, cJSON *rec) {
   return SESSILE_OK;
 }
 
-static sessile_status record(sessile_run *run, const sessile_psponge *ps, const sessile_psponge_iter_stats *st,
-                             int do_check) {
-  cJSON *rec = cJSON_CreateObject();
-  SESSILE_CHECK(rec, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  cJSON_AddNumberToObject(rec, "iteration", ps->iteration);
-  cJSON_AddNumberToObject(rec, "vertices", st->nv);
-  cJSON_AddNumberToObject(rec, "triangles", st->nf);
-  cJSON_AddNumberToObject(rec, "particles_alive", st->alive);
-  cJSON_AddNumberToObject(rec, "spawned", st->spawned);
-  cJSON_AddNumberToObject(rec, "hits", st->hits);
-  cJSON_AddNumberToObject(rec, "fed_vertices", st->fed_vertices);
-  cJSON_AddNumberToObject(rec, "died_fed", st->died_fed);
-  cJSON_AddNumberToObject(rec, "died_age", st->died_age);
-  cJSON_AddNumberToObject(rec, "died_outside", st->died_outside);
-  cJSON_AddNumberToObject(rec, "held_back", st->held_back);
-  cJSON_AddNumberToObject(rec, "remesh_refused", st->remesh_refused);
-  cJSON_AddNumberToObject(rec, "collide_s", st->collide_s);
-  cJSON_AddNumberToObject(rec, "grow_s", st->grow_s);
-  cJSON_AddNumberToObject(rec, "remesh_s", st->remesh_s);
-  sessile_status s = do_check ? check(ps, rec) : SESSILE_OK;
-  if (s == SESSILE_OK) s = sessile_run_record(run, rec);
-  cJSON_Delete(rec);
-  return s;
+static sessile_status step(void *state, int it, cJSON *rec) {
+  psponge_gen *g = state;
+  const sessile_psponge *ps = g->ps;
+  sessile_psponge_iter_stats st;
+  SESSILE_CALL(sessile_psponge_step(g->ps, &st));
+  cJSON_AddNumberToObject(rec, "vertices", st.nv);
+  cJSON_AddNumberToObject(rec, "triangles", st.nf);
+  cJSON_AddNumberToObject(rec, "particles_alive", st.alive);
+  cJSON_AddNumberToObject(rec, "spawned", st.spawned);
+  cJSON_AddNumberToObject(rec, "hits", st.hits);
+  cJSON_AddNumberToObject(rec, "fed_vertices", st.fed_vertices);
+  cJSON_AddNumberToObject(rec, "died_fed", st.died_fed);
+  cJSON_AddNumberToObject(rec, "died_age", st.died_age);
+  cJSON_AddNumberToObject(rec, "died_outside", st.died_outside);
+  cJSON_AddNumberToObject(rec, "held_back", st.held_back);
+  cJSON_AddNumberToObject(rec, "remesh_refused", st.remesh_refused);
+  cJSON_AddNumberToObject(rec, "collide_s", st.collide_s);
+  cJSON_AddNumberToObject(rec, "grow_s", st.grow_s);
+  cJSON_AddNumberToObject(rec, "remesh_s", st.remesh_s);
+  return g->check ? check(ps, rec) : SESSILE_OK;
 }
 
-static sessile_status loop(const sessile_psponge_options *o, sessile_psponge *ps, int *done) {
-  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(o->run);
-  if (ck) {
-    int k = sessile_ckpt_iteration(ck);
-    SESSILE_CHECK(k <= o->iterations, SESSILE_ERR_USAGE,
-                  "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
-    SESSILE_CALL(sessile_psponge_restore(ps, ck));
-    *done = k;
-    /* the old last iteration was a snapshot only because it was the last */
-    if (k < o->iterations && (o->every == 0 || k % o->every)) {
-      char rel[64];
-      snprintf(rel, sizeof rel, "sponge/iter_%04d.ply", k);
-      SESSILE_CALL(sessile_run_remove_file(o->run, rel));
-    }
-  }
-  for (int it = ps->iteration + 1; it <= o->iterations; it++) {
-    sessile_psponge_iter_stats st;
-    SESSILE_CALL(sessile_psponge_step(ps, &st));
-    SESSILE_CALL(record(o->run, ps, &st, o->check));
-    int snap = (o->every > 0 && it % o->every == 0) || it == o->iterations;
-    if (snap) {
-      char rel[64];
-      snprintf(rel, sizeof rel, "sponge/iter_%04d.ply", it);
-      SESSILE_CALL(write_ply(o->run, rel, ps));
-    }
-    *done = it;
-    int stop = sessile_run_stop_requested(o->run);
-    if (snap || stop) SESSILE_CALL(sessile_psponge_checkpoint(ps, o->run));
-    if (stop && it < o->iterations)
-      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d after iteration %d", stop, it);
-  }
-  SESSILE_CALL(write_ply(o->run, "sponge/final.ply", ps));
-  return write_obj(o->run, "sponge/final.obj", ps);
+static sessile_status restore(void *state, const sessile_ckpt *ck) {
+  return sessile_psponge_restore(((psponge_gen *)state)->ps, ck);
 }
 
-sessile_status sessile_psponge_run(const sessile_psponge_params *p, const sessile_psponge_options *o,
-                                   int *done) {
-  *done = 0;
-  SESSILE_CHECK(o->run, SESSILE_ERR_USAGE, "sessile sponge particles needs a run directory");
-  SESSILE_CALL(sessile_params_check(&sessile_psponge_param_table, p));
-  cJSON *m = sessile_run_manifest(o->run);
-  cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
-  cJSON_AddItemToObject(m, "parameters", sessile_params_to_json(&sessile_psponge_param_table, p));
-  sessile_psponge *ps = NULL;
-  SESSILE_CALL(sessile_psponge_create(p, o->seed, o->gpu, &ps));
-  sessile_status s = loop(o, ps, done);
-  sessile_psponge_destroy(ps);
-  return s;
+static sessile_status snapshot(void *state, const char *rel) { return write_mesh(state, rel); }
+
+static sessile_status finish(void *state) {
+  SESSILE_CALL(write_mesh(state, "sponge/final.ply"));
+  return write_mesh(state, "sponge/final.obj");
 }
+
+static void destroy(void *state) {
+  psponge_gen *g = state;
+  if (g) sessile_psponge_destroy(g->ps);
+  free(g);
+}
+
+static sessile_status create(const void *params, const sessile_gen_setup *su, void **state) {
+  psponge_gen *g = calloc(1, sizeof *g);
+  SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  g->run = su->run, g->check = su->flags & 1u;
+  *state = g;
+  return sessile_psponge_create(params, su->seed, su->gpu, &g->ps);
+}
+
+static int needs_device(const void *params) {
+  return ((const sessile_psponge_params *)params)->collider == SESSILE_PSPONGE_COLLIDE_GPU;
+}
+
+static const sessile_gen_flag flags[] = {
+    {"--check", "check", "check every iteration: closed 2-manifold, no self-intersection"}};
+
+const sessile_generator sessile_gen_sponge_particles = {
+    "sponge particles", "Coralize's particle-fed sponge (Section 3.3)",
+    "Sponges after Liapis et al., Coralize (Section 3.3; docs/particle_sponge.md):\n"
+    "a closed hemisphere on the substratum inside a cube; every iteration\n"
+    "nutrient particles spawn on the cube's top face and fall (plus a current);\n"
+    "a vertex a particle touches grows along its normal, its neighbours by a\n"
+    "Gaussian falloff; the surface is remeshed (splitting and collapse\n"
+    "thresholds) and never crosses itself.  Collisions: a GPU kernel over a\n"
+    "uniform grid.  Writes sponge/iter_NNNN.ply every K iterations and at the\n"
+    "last, sponge/final.ply (per-vertex growth_count) and sponge/final.obj,\n"
+    "manifest.json, records.jsonl and a checkpoint at each snapshot.",
+    "the particles", "runs/sponge", "sponge/iter_%04d.ply", "sponge/final.ply",
+    &sessile_psponge_param_table, 50, 10, flags, 1, needs_device, NULL,
+    create, restore, step, snapshot, sections, finish, destroy};

@@ -71,13 +71,13 @@ int main(void) {
          open_run(SESSILE_RUN_NEW, &r2) == SESSILE_ERR_USAGE && strstr(sessile_error_message(), "in use") &&
              strstr(sessile_error_message(), "pid "));
   t_true("even with --force", open_run(SESSILE_RUN_REPLACE, &r2) == SESSILE_ERR_USAGE);
-  write_small(r, "a/one.txt", "one");
-  write_small(r, "top.txt", "top");
+  write_small(r, "a/one.json", "one");
+  write_small(r, "top.json", "top");
   cJSON *rec = cJSON_CreateObject();
   cJSON_AddNumberToObject(rec, "iteration", 1);
   t_ok("a record", sessile_run_record(r, rec));
   t_ok("a log's first rows", sessile_run_log(r, "a/log.csv", "h\nrow1\n", 7));
-  t_ok("a second log", sessile_run_log(r, "top.log", "x\n", 2));
+  t_ok("a second log", sessile_run_log(r, "top.csv", "x\n", 2));
   double blob[3] = {1.5, -2.25, 1e300};
   sessile_ckpt_section sec = {"blob", blob, sizeof blob};
   t_ok("a checkpoint", sessile_run_checkpoint(r, 1, 1, &sec));
@@ -90,7 +90,7 @@ int main(void) {
   t_true("state interrupted", !strcmp(manifest_state(), "interrupted"));
 
   /* leftovers of a killed process, and a foreign file the run never listed */
-  snprintf(path, sizeof path, "%s/a/.one.txt.sessile-tmp.0123456789abcdef", dir);
+  snprintf(path, sizeof path, "%s/a/.one.json.sessile-tmp.0123456789abcdef", dir);
   FILE *f = fopen(path, "w");
   if (f) fclose(f);
   snprintf(path, sizeof path, "%s/a/mine.txt", dir);
@@ -99,7 +99,7 @@ int main(void) {
 
   t_true("a folder holding a run is refused without --force",
          open_run(SESSILE_RUN_NEW, &r2) == SESSILE_ERR_USAGE && strstr(sessile_error_message(), "--force"));
-  t_true("the refused folder keeps its files", exists("a/one.txt") && exists("top.txt"));
+  t_true("the refused folder keeps its files", exists("a/one.json") && exists("top.json"));
 
   t_ok("resume opens it", open_run(SESSILE_RUN_RESUME, &r));
   const sessile_ckpt *ck = sessile_run_checkpoint_loaded(r);
@@ -108,7 +108,7 @@ int main(void) {
   t_true("the checkpoint round-trips", ck && sessile_ckpt_iteration(ck) == 1 && b && n == sizeof blob &&
                                          !memcmp(b, blob, sizeof blob));
   t_true("the stored config comes back", cJSON_IsString(sessile_run_config(r)));
-  t_true("temporaries were swept", !exists("a/.one.txt.sessile-tmp.0123456789abcdef"));
+  t_true("temporaries were swept", !exists("a/.one.json.sessile-tmp.0123456789abcdef"));
   snprintf(path, sizeof path, "%s/records.jsonl", dir);
   char *recs = slurp(path);
   t_true("records after the checkpoint are cut", recs && !strcmp(recs, "{\"iteration\":1}\n"));
@@ -121,10 +121,10 @@ int main(void) {
   t_ok("a checkpoint of the resumed run", sessile_run_checkpoint(r, 2, 1, &sec));
   t_ok("close the resumed run", sessile_run_close(r, SESSILE_OK));
   t_ok("resume it again", open_run(SESSILE_RUN_RESUME, &r));
-  snprintf(path, sizeof path, "%s/top.log", dir);
+  snprintf(path, sizeof path, "%s/top.csv", dir);
   t_true("cut a log shorter than the checkpoint says", truncate(path, 0) == 0);
   t_true("... a resume refuses to append to it",
-         sessile_run_log(r, "top.log", "y\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "shorter"));
+         sessile_run_log(r, "top.csv", "y\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "shorter"));
   t_ok("and appends to the log the checkpoint kept from the earlier start", sessile_run_log(r, "a/log.csv", "row3\n", 5));
   snprintf(path, sizeof path, "%s/a/log.csv", dir);
   lg = slurp(path);
@@ -134,7 +134,7 @@ int main(void) {
   t_true("state completed", !strcmp(manifest_state(), "completed"));
 
   t_ok("--force replaces the run", open_run(SESSILE_RUN_REPLACE, &r));
-  t_true("--force removed the listed files", !exists("a/one.txt") && !exists("top.txt") && !exists("a/log.csv"));
+  t_true("--force removed the listed files", !exists("a/one.json") && !exists("top.json") && !exists("a/log.csv"));
   t_true("--force kept a file the run never listed", exists("a/mine.txt"));
   t_true("--force removed the checkpoint", !exists("checkpoint.bin"));
 
@@ -150,26 +150,26 @@ int main(void) {
   t_true("plant a symlink as subfolder b", symlink(outside, link) == 0);
   char p[512];
   t_true("a write through a symlinked subfolder is refused",
-         sessile_run_file(r, "b/victim.txt", p, sizeof p) == SESSILE_ERR_IO);
-  snprintf(link, sizeof link, "%s/final.txt", dir);
+         sessile_run_file(r, "b/victim.json", p, sizeof p) == SESSILE_ERR_IO);
+  snprintf(link, sizeof link, "%s/final.json", dir);
   t_true("plant a symlink at a final name", symlink(path, link) == 0);
-  write_small(r, "final.txt", "new");
+  write_small(r, "final.json", "new");
   char *v = slurp(path);
   t_true("the symlink's target is untouched", v && !strcmp(v, "precious"));
   free(v);
   struct stat st;
   t_true("the final name is now a regular file", lstat(link, &st) == 0 && S_ISREG(st.st_mode));
-  snprintf(link, sizeof link, "%s/planted.log", dir);
+  snprintf(link, sizeof link, "%s/planted.csv", dir);
   t_true("plant a symlink at a log's name", symlink(path, link) == 0);
   t_true("a log through a symlink is refused",
-         sessile_run_log(r, "planted.log", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "symlink"));
+         sessile_run_log(r, "planted.csv", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "symlink"));
   v = slurp(path);
   t_true("... and its target is untouched", v && !strcmp(v, "precious"));
   free(v);
-  snprintf(link, sizeof link, "%s/fifo.log", dir);
+  snprintf(link, sizeof link, "%s/fifo.csv", dir);
   t_true("plant a FIFO at a log's name", mkfifo(link, 0600) == 0);
   t_true("a log on a FIFO is refused at once (no hang)",
-         sessile_run_log(r, "fifo.log", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "regular"));
+         sessile_run_log(r, "fifo.csv", "z\n", 2) == SESSILE_ERR_IO && strstr(sessile_error_message(), "regular"));
   t_ok("close", sessile_run_close(r, SESSILE_OK));
 
   /* A damaged checkpoint is reported, not trusted. */

@@ -15,6 +15,7 @@
 #include <stdint.h>
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
+#include "sessile/generator.h"
 #include "sessile/run.h"
 #include "sessile/surface.h"
 
@@ -121,27 +122,12 @@ const uint32_t *sessile_psponge_counts(const sessile_psponge *ps);
 uint32_t sessile_psponge_particles(const sessile_psponge *ps);
 int sessile_psponge_iteration(const sessile_psponge *ps);
 
-/* Checkpoint sections (state) and back. */
-sessile_status sessile_psponge_checkpoint(sessile_psponge *ps, sessile_run *run);
+/* The checkpoint's sections back into ps (what the generator wrote). */
 sessile_status sessile_psponge_restore(sessile_psponge *ps, const sessile_ckpt *ck);
 
-typedef struct sessile_psponge_options {
-  sessile_run *run; /* required */
-  sessile_gpu *gpu; /* for the GPU collider */
-  uint64_t seed;
-  int iterations, every; /* snapshots every K iterations and at the last */
-  int check;             /* 1: closed-manifold and self-intersection checks every iteration */
-} sessile_psponge_options;
-
-cJSON *sessile_psponge_config(const sessile_psponge_params *p, const sessile_psponge_options *o);
-sessile_status sessile_psponge_config_read(const cJSON *cfg, sessile_psponge_params *p,
-                                           sessile_psponge_options *o);
-/* Writes sponge/iter_NNNN.ply at snapshots, sponge/final.ply and final.obj;
- * SESSILE_ERR_INTERRUPTED when the stop flag was raised (checkpointed). */
-sessile_status sessile_psponge_run(const sessile_psponge_params *p, const sessile_psponge_options *o,
-                                   int *done);
-/* PLY (with the per-vertex property "growth_count") of the current state. */
-sessile_status sessile_psponge_write_ply(const sessile_psponge *ps, const char *path);
+/* `sessile sponge particles` (sessile/generator.h): sponge/iter_NNNN.ply
+ * every K iterations and at the last, sponge/final.ply and final.obj. */
+extern const sessile_generator sessile_gen_sponge_particles;
 
 #ifdef __cplusplus
 }

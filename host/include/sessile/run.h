@@ -51,6 +51,16 @@ typedef struct sessile_run_options {
  * NEW), is not a sessile run directory and not empty, or holds nothing to
  * resume; SESSILE_ERR_IO: it cannot be created or written. */
 sessile_status sessile_run_open(const sessile_run_options *o, sessile_run **out);
+/* sessile_run_open in two steps, so that a command can refuse after seeing
+ * the stored configuration and checkpoint without touching the folder:
+ * admit locks an existing folder and reads its manifest, configuration and
+ * checkpoint (a resume's config and checkpoint are readable at once) but
+ * writes nothing and creates no folder; start makes the folder the run's
+ * (creates it, sweeps leftovers, removes an older run's files or those a
+ * resume goes back past, opens the records, writes the manifest).  Closing
+ * an admitted run that never started leaves the folder as it was. */
+sessile_status sessile_run_admit(const sessile_run_options *o, sessile_run **out);
+sessile_status sessile_run_start(sessile_run *r);
 
 /* The manifest's root: a generator adds its own members (parameters,
  * device, ...); the run's own members (state, pid, files, ...) are set by
@@ -112,6 +122,9 @@ const sessile_ckpt *sessile_run_checkpoint_loaded(const sessile_run *r);
 int sessile_ckpt_iteration(const sessile_ckpt *c);
 /* A section's bytes, or NULL when absent (bytes set to its size). */
 const void *sessile_ckpt_get(const sessile_ckpt *c, const char *name, size_t *bytes);
+/* Copies the section `name` into dst when it holds exactly `bytes` bytes;
+ * SESSILE_ERR_IO naming the section otherwise. */
+sessile_status sessile_ckpt_take(const sessile_ckpt *c, const char *name, void *dst, size_t bytes);
 
 /* Ends the run: state completed (s == SESSILE_OK), interrupted
  * (SESSILE_ERR_INTERRUPTED) or failed (with sessile_error_message()), end

@@ -13,6 +13,7 @@
 
 #include <stdint.h>
 #include "sessile/gpu.h"
+#include "sessile/generator.h"
 #include "sessile/param_table.h"
 #include "sessile/run.h"
 
@@ -132,20 +133,9 @@ sessile_status sessile_venation_skeleton(const sessile_venation *v, const sessil
                                          struct sessile_skeleton *sk);
 
 /* --- the generator on the run framework ------------------------------------ */
-typedef struct sessile_venation_options {
-  sessile_run *run; /* required */
-  sessile_gpu *gpu; /* for search = gpu and geometry = weld */
-  uint64_t seed;
-  int iterations, every;
-} sessile_venation_options;
-
-cJSON *sessile_venation_config(const sessile_venation_params *p, const sessile_venation_options *o);
-sessile_status sessile_venation_config_read(const cJSON *cfg, sessile_venation_params *p,
-                                            sessile_venation_options *o);
-/* coral/iter_NNNN.ply every K and at the last, coral/final.ply and .obj;
- * SESSILE_ERR_INTERRUPTED when stopped (state checkpointed). */
-sessile_status sessile_venation_run(const sessile_venation_params *p, const sessile_venation_options *o,
-                                    int *done);
+/* `sessile coral venation` (sessile/generator.h): coral/iter_NNNN.ply every
+ * K iterations and at the last, coral/final.ply and .obj. */
+extern const sessile_generator sessile_gen_coral_venation;
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,144 @@
+/* The one command every registered generator runs through (cli_generator.h):
+ * parse, --help, --set/--config/--print-config, the device, admit the run
+ * directory, refuse what cannot run before anything is written, start,
+ * sessile_run_loop, preview, close, exit code. */
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+#include "cli_generator.h"
+#include "cli_run.h"
+
+static void print_help(const sessile_generator *g) {
+  int pad = (int)strlen(g->name) + 15;
+  printf("usage: sessile %s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
+         "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
+         g->name, pad, "");
+  for (int k = 0; k < g->nflags; k++) printf("%*s[%s]\n", pad, "", g->flags[k].option);
+  if (g->needs_device) printf("%*s[--device D] [--precision 32|64]\n", pad, "");
+  printf("       sessile %s --resume DIR [--iterations N]\n\n%s\n"
+         "Parameters, units and sources: --print-config.\n\n", g->name, g->about);
+  printf("  --seed N        seed of %s, 0..2^64-1 (default 1)\n"
+         "  --iterations N  iterations (default %d)      --every K  snapshot interval (default %d)\n"
+         "  --out DIR       run directory (default %s); must be new or empty\n"
+         "  --force         replace the earlier sessile run in DIR     --resume DIR  continue it\n"
+         "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
+         "  --quiet         no progress and no summary line\n",
+         g->seed_help, g->iterations, g->every, g->out_default);
+  for (int k = 0; k < g->nflags; k++) printf("  %-15s %s\n", g->flags[k].option, g->flags[k].help);
+  if (g->needs_device) printf("  --device D      the device, when the configuration needs one (sessile --help)\n");
+  printf("Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n");
+}
+
+/* Progress on a terminal only: logs and pipes get the records instead. */
+static void progress(void *user, int it, int total, double seconds) {
+  const char *name = user;
+  double left = it > 0 ? seconds / it * (total - it) : 0;
+  fprintf(stderr, "\r%s: iteration %d/%d, %.1f s, ~%.0f s left ", name, it, total, seconds, left);
+  if (it == total) fputc('\n', stderr);
+}
+
+typedef struct gen_cmd {
+  const sessile_generator *g;
+  cli_run_args a;
+  cli_gpu_opts go;
+  sessile_gen_setup su;
+  char params[4096] __attribute__((aligned(16))); /* the table's struct */
+} gen_cmd;
+
+static int parse(gen_cmd *c, int argc, char **argv) {
+  const char *name = c->g->name;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      print_help(c->g);
+      return EXIT_OK;
+    }
+    int k = 0;
+    while (k < c->g->nflags && strcmp(argv[i], c->g->flags[k].option)) k++;
+    if (k < c->g->nflags) {
+      c->su.flags |= 1u << k;
+      c->a.have_run_option = 1;
+      continue;
+    }
+    int r = cli_gpu_option(name, argc, argv, &i, &c->go);
+    if (r == 0) r = cli_run_option(name, argc, argv, &i, &c->a);
+    if (r < 0) return EXIT_USAGE;
+    if (r == 0) return cli_usage_error(name, "unknown option '%.60s'", argv[i]);
+  }
+  return cli_run_args_check(name, &c->a);
+}
+
+/* Everything that can be refused before the run directory is touched. */
+static sessile_status configure(gen_cmd *c) {
+  const sessile_generator *g = c->g;
+  SESSILE_CHECK(g->table->struct_size <= sizeof c->params, SESSILE_ERR_INTERNAL, "%s: parameters too large", g->name);
+  sessile_params_defaults(g->table, c->params);
+  c->su.seed = c->a.seed, c->su.iterations = c->a.iterations, c->su.every = c->a.every;
+  if (c->a.resume) return SESSILE_OK; /* the stored configuration, once admitted */
+  SESSILE_CALL(cli_run_apply_params(g->table, c->params, &c->a));
+  SESSILE_CALL(sessile_params_check(g->table, c->params));
+  return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
+}
+
+/* A resume: the stored configuration, --iterations, and the checkpoint's
+ * iteration, all before the folder is written. */
+static sessile_status resume_config(gen_cmd *c, sessile_run *run) {
+  const sessile_generator *g = c->g;
+  SESSILE_CALL(sessile_gen_config_read(g, sessile_run_config(run), c->params, &c->su));
+  if (c->a.have_iterations) c->su.iterations = c->a.iterations;
+  int k = sessile_ckpt_iteration(sessile_run_checkpoint_loaded(run));
+  SESSILE_CHECK(k <= c->su.iterations, SESSILE_ERR_USAGE,
+                "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
+  return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
+}
+
+static int run_generator(gen_cmd *c, int argc, char **argv) {
+  const sessile_generator *g = c->g;
+  const char *name = g->name;
+  sessile_status s = configure(c);
+  if (s != SESSILE_OK) return cli_fail_in(name, s);
+  if (c->a.print_config) {
+    s = sessile_params_print(g->table, c->params, stdout);
+    return s == SESSILE_OK ? EXIT_OK : cli_fail_in(name, s);
+  }
+  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : g->out_default;
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
+  sessile_gpu *gpu = NULL;
+  /* a new run's device first: an unknown --device writes nothing */
+  if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = cli_gpu_create(&c->go, &gpu);
+  sessile_run *run = NULL;
+  if (s == SESSILE_OK) s = cli_run_admit(name, argc, argv, &c->a, dir, stop, &run);
+  if (s == SESSILE_OK && c->a.resume) s = resume_config(c, run);
+  if (s == SESSILE_OK && c->a.resume && g->needs_device && g->needs_device(c->params))
+    s = cli_gpu_create(&c->go, &gpu);
+  if (s == SESSILE_OK) s = sessile_run_start(run);
+  if (s == SESSILE_OK) {
+    cJSON *cfg = sessile_gen_config(g, c->params, &c->su);
+    s = cfg ? sessile_run_set_config(run, cfg) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  }
+  if (s == SESSILE_OK) cli_run_note_device(run, gpu);
+  int done = 0;
+  c->su.run = run, c->su.gpu = gpu;
+  int show = !c->a.quiet && isatty(STDERR_FILENO);
+  if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
+  if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
+  s = sessile_run_close(run, s);
+  sessile_gpu_destroy(gpu);
+  if (s == SESSILE_OK && !c->a.quiet) printf("%s: %d iterations; run in %s\n", name, done, dir);
+  if (s != SESSILE_OK && s != SESSILE_ERR_INTERRUPTED) return cli_fail_in(name, s);
+  return cli_run_exit(name, s, dir, stop, done);
+}
+
+int cli_generator_main(const sessile_generator *g, int argc, char **argv, const cli_gpu_opts *global) {
+  static gen_cmd c;
+  memset(&c, 0, sizeof c);
+  c.g = g, c.go = *global;
+  if (cli_run_args_init(&c.a, argc, 1, g->iterations, g->every) != 0) {
+    cli_run_args_free(&c.a);
+    fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
+    return EXIT_RUNTIME;
+  }
+  int rc = parse(&c, argc, argv);
+  if (rc < 0) rc = run_generator(&c, argc, argv);
+  cli_run_args_free(&c.a);
+  return rc;
+}

@@ -1,0 +1,116 @@
+/* The one iteration loop every generator runs through (sessile/generator.h):
+ * what used to be copied into each generator (resume, records, snapshots,
+ * checkpoints, stop requests) lives here once. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/generator.h"
+
+cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const sessile_gen_setup *su) {
+  cJSON *c = sessile_run_config_make(g->table, params, su->seed, su->iterations, su->every);
+  for (int k = 0; c && k < g->nflags; k++) {
+    if (!cJSON_AddBoolToObject(c, g->flags[k].key, (su->flags >> k) & 1u)) {
+      cJSON_Delete(c);
+      return NULL;
+    }
+  }
+  return c;
+}
+
+sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *cfg, void *params,
+                                       sessile_gen_setup *su) {
+  uint64_t seed = 0;
+  SESSILE_CALL(sessile_run_config_take(cfg, g->table, params, &seed, &su->iterations, &su->every));
+  su->seed = seed;
+  su->flags = 0;
+  for (int k = 0; k < g->nflags; k++) {
+    const cJSON *f = cJSON_GetObjectItemCaseSensitive(cfg, g->flags[k].key);
+    SESSILE_CHECK(cJSON_IsBool(f), SESSILE_ERR_USAGE, "the run's stored configuration is damaged (no '%s')",
+                  g->flags[k].key);
+    if (cJSON_IsTrue(f)) su->flags |= 1u << k;
+  }
+  return SESSILE_OK;
+}
+
+static sessile_status snapshot_rel(const sessile_generator *g, int it, char *rel, size_t n) {
+  int k = snprintf(rel, n, g->snapshot_name, it);
+  SESSILE_CHECK(k > 0 && (size_t)k < n, SESSILE_ERR_INTERNAL, "%s: snapshot name too long", g->name);
+  return SESSILE_OK;
+}
+
+static sessile_status checkpoint(const sessile_generator *g, void *state, sessile_run *run, int it) {
+  sessile_ckpt_section sec[SESSILE_GEN_MAX_SECTIONS];
+  int n = 0;
+  SESSILE_CALL(g->sections(state, sec, &n));
+  SESSILE_CHECK(n >= 0 && n <= SESSILE_GEN_MAX_SECTIONS, SESSILE_ERR_INTERNAL, "%s: %d checkpoint sections",
+                g->name, n);
+  return sessile_run_checkpoint(run, it, n, sec);
+}
+
+static sessile_status one_iteration(const sessile_generator *g, void *state, const sessile_gen_setup *su,
+                                    int it, int *snap) {
+  cJSON *rec = cJSON_CreateObject();
+  SESSILE_CHECK(rec && cJSON_AddNumberToObject(rec, "iteration", it), SESSILE_ERR_NO_MEMORY,
+                "out of host memory for a record");
+  sessile_status s = g->step(state, it, rec);
+  if (s == SESSILE_OK) s = sessile_run_record(su->run, rec);
+  cJSON_Delete(rec);
+  SESSILE_CALL(s);
+  *snap = (su->every > 0 && it % su->every == 0) || it == su->iterations;
+  if (*snap) {
+    char rel[256];
+    SESSILE_CALL(snapshot_rel(g, it, rel, sizeof rel));
+    SESSILE_CALL(g->snapshot(state, rel));
+  }
+  return SESSILE_OK;
+}
+
+static sessile_status loop(const sessile_generator *g, void *state, const sessile_gen_setup *su,
+                           sessile_progress_fn progress, void *user, int *done) {
+  sessile_run *run = su->run;
+  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(run);
+  int first = 1;
+  if (ck) {
+    int k = sessile_ckpt_iteration(ck);
+    SESSILE_CHECK(k <= su->iterations, SESSILE_ERR_USAGE,
+                  "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
+    SESSILE_CALL(g->restore(state, ck));
+    first = k + 1;
+    *done = k;
+    /* the old last iteration was a snapshot only because it was the last */
+    if (k < su->iterations && (su->every == 0 || k % su->every)) {
+      char rel[256];
+      SESSILE_CALL(snapshot_rel(g, k, rel, sizeof rel));
+      SESSILE_CALL(sessile_run_remove_file(run, rel));
+    }
+  }
+  double t0 = sessile_wall_seconds();
+  for (int it = first; it <= su->iterations; it++) {
+    int snap = 0;
+    SESSILE_CALL(one_iteration(g, state, su, it, &snap));
+    *done = it;
+    int stop = sessile_run_stop_requested(run);
+    if (snap || stop) SESSILE_CALL(checkpoint(g, state, run, it));
+    if (progress) progress(user, it, su->iterations, sessile_wall_seconds() - t0);
+    if (stop && it < su->iterations)
+      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d after iteration %d", stop, it);
+  }
+  return g->finish(state);
+}
+
+sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
+                                sessile_progress_fn progress, void *user, int *done) {
+  *done = 0;
+  SESSILE_CHECK(su->run, SESSILE_ERR_USAGE, "sessile %s needs a run directory", g->name);
+  SESSILE_CALL(sessile_params_check(g->table, params));
+  cJSON *m = sessile_run_manifest(su->run);
+  cJSON *pj = sessile_params_to_json(g->table, params);
+  SESSILE_CHECK(pj, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
+  cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
+  cJSON_AddItemToObject(m, "parameters", pj);
+  void *state = NULL;
+  SESSILE_CALL(g->create(params, su, &state));
+  sessile_status s = loop(g, state, su, progress, user, done);
+  g->destroy(state);
+  return s;
+}
