@@ -41,8 +41,9 @@ static sessile_status vertex_line(obj *r, unsigned long long ln, const char *q, 
       if (n) SESSILE_CHECK(0, SESSILE_ERR_USAGE, "%s: line %llu: '%.*s' is not a number", path, ln, (int)(n < 40 ? n : 40), c);
       SESSILE_CHECK(0, SESSILE_ERR_USAGE, "%s: line %llu: a vertex needs x y z", path, ln);
     }
+    const char *t = skip_ws(c);
     SESSILE_CHECK(isfinite(x), SESSILE_ERR_USAGE, "%s: line %llu: coordinate %c is '%.*s' (not finite)", path, ln,
-                  'x' + k, (int)(e - c < 40 ? e - c : 40), skip_ws(c));
+                  'x' + k, (int)(e - t < 40 ? e - t : 40), t);
     m->pos[3 * (size_t)m->nv + (size_t)k] = x;
     c = e;
   }
