@@ -12,7 +12,7 @@ sessile_status io_open_regular(const char *path, const char *what, int *fd, uint
   *fd = -1, *size = 0;
   SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "no %s file given", what);
   int f = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  SESSILE_CHECK(f >= 0, SESSILE_ERR_USAGE, "cannot read the %s '%.200s': %s", what, path, strerror(errno));
+  SESSILE_CHECK(f >= 0, SESSILE_ERR_USAGE, "cannot open the %s '%.200s': %s", what, path, strerror(errno));
   struct stat st;
   if (fstat(f, &st) != 0 || !S_ISREG(st.st_mode)) {
     close(f);
@@ -79,7 +79,7 @@ static sessile_status take_line(io_in *r, char *dst, size_t room, size_t *took, 
 }
 
 sessile_status io_in_line(io_in *r, char *line, size_t cap, size_t *len, int *got) {
-  size_t k;
+  size_t k = 0;
   int ended;
   SESSILE_CALL(take_line(r, line, cap - 1, &k, &ended, got));
   if (!ended) {
@@ -94,7 +94,7 @@ sessile_status io_in_line(io_in *r, char *line, size_t cap, size_t *len, int *go
 }
 
 sessile_status io_in_skip_line(io_in *r) {
-  size_t k;
+  size_t k = 0;
   int ended, got;
   return take_line(r, NULL, 0, &k, &ended, &got);
 }
