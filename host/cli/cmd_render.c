@@ -177,9 +177,8 @@ static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_c
     }
     char *name = c->turntable ? frame_name(c->out, k, digits) : NULL;
     const char *path = c->turntable ? name : c->out;
-    char err[1200];
-    if (!path || sessile_png_write_rgba8(path, (int)c->o.width, (int)c->o.height, px, err, sizeof err)) {
-      fprintf(stderr, "sessile " CMD ": error: %s\n", path ? err : "out of host memory");
+    if (!path || sessile_png_write_rgba8(path, (int)c->o.width, (int)c->o.height, px) != SESSILE_OK) {
+      fprintf(stderr, "sessile " CMD ": error: %s\n", path ? sessile_error_message() : "out of host memory");
       rc = EXIT_RUNTIME;
     } else if (!c->quiet) {
       printf("wrote %s: %ux%u, %u samples, %s%s view", path, c->o.width, c->o.height, c->o.samples,

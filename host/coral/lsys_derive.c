@@ -67,7 +67,7 @@ sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, sess
     double *p = lsys_string_push(out, t->sym, t->np);
     SESSILE_CHECK(p, SESSILE_ERR_NO_MEMORY, "out of host memory for a string of %u modules", out->n);
     for (uint8_t a = 0; a < t->np; a++) {
-      p[a] = lsys_expr_eval(&g->exprs[t->first + a]);
+      p[a] = sessile_expr_eval(&g->exprs[t->first + a]);
       SESSILE_CHECK(isfinite(p[a]), SESSILE_ERR_NUMERIC, "module '%c' got a non-finite parameter (%g)", t->sym, p[a]);
     }
   }
@@ -200,13 +200,13 @@ static sessile_status step(const sessile_lsys *g, int set, const sessile_lsys_st
       memcpy(p->slots + p->pred_slot, in->par + in->off[i], p->pred_np * sizeof *p->slots);
       if (p->nleft && !match_left(p, in, mate, g->ignore, i)) continue;
       if (p->nright && !match_right(p, in, mate, g->ignore, i)) continue;
-      if (p->has_cond && lsys_expr_eval(&p->cond) == 0) continue;
+      if (p->has_cond && sessile_expr_eval(&p->cond) == 0) continue;
       if (!p->has_weight) {
         if (nc == 0) chosen = (int)(p - g->prods);
         if (nc == 0) break;
         continue; /* after a weighted first match only weighted ones compete */
       }
-      double wt = lsys_expr_eval(&p->weight);
+      double wt = sessile_expr_eval(&p->weight);
       if (!(wt > 0) || !isfinite(wt)) continue;
       cand[nc] = (uint32_t)(p - g->prods), w[nc++] = wt, total += wt;
     }

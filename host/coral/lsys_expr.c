@@ -1,31 +1,20 @@
-/* L-system expressions through muparser's C API: each expression compiled
- * once into its own handle whose variables point at fixed slots (the
+/* L-system expressions through the shared muparser wrapper (sessile/expr.h):
+ * each expression compiled once, its variables pointing at fixed slots (the
  * production's parameters and the grammar's defines), so a derivation only
- * writes slots and calls mupEval (bytecode, no re-parse).  Plain numbers
- * skip muparser altogether. */
+ * writes slots and evaluates.  Plain numbers skip muparser altogether. */
 #include <math.h>
-#include <muParserDLL.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "lsys_internal.h"
+#include "sessile/expr.h"
 #include "sessile/rng.h"
 
 /* uniform(a, b): a draw from the derivation's stream; a while compiling
  * (the syntax check evaluates once, outside any derivation). */
-static muFloat_t fn_uniform(void *ud, muFloat_t a, muFloat_t b) {
+static double fn_uniform(void *ud, double a, double b) {
   sessile_lsys *g = ud;
   return g->rng ? sessile_rng_range(g->rng, a, b) : a;
-}
-
-static int is_plain_number(const char *t, double *v) {
-  char *end = NULL;
-  while (*t == ' ' || *t == '\t') t++;
-  if (!((*t >= '0' && *t <= '9') || *t == '.' || *t == '-' || *t == '+')) return 0;
-  *v = strtod(t, &end);
-  if (end == t) return 0;
-  while (*end == ' ' || *end == '\t') end++;
-  return *end == 0 && isfinite(*v);
 }
 
 sessile_status lsys_expr_compile(sessile_lsys *g, const char *text, int nnames, char names[][32], double *slots,
@@ -38,43 +27,18 @@ sessile_status lsys_expr_compile(sessile_lsys *g, const char *text, int nnames, 
     snprintf(msg, msgn, "empty expression");
     return SESSILE_ERR_USAGE;
   }
-  if (is_plain_number(text, &out->c)) return SESSILE_OK;
-  muParserHandle_t h = mupCreate(muBASETYPE_FLOAT);
-  if (!h) {
+  if (sessile_expr_plain_number(text, &out->c)) return SESSILE_OK;
+  if (sessile_expr_begin(out) != SESSILE_OK) {
     snprintf(msg, msgn, "out of host memory for an expression");
     return SESSILE_ERR_NO_MEMORY;
   }
-  for (int i = 0; i < nnames; i++) mupDefineVar(h, names[i], &slots[i]);
-  for (int i = 0; i < g->ndefines; i++) mupDefineVar(h, g->dname[i], &g->dval[i]);
-  mupDefineFunUserData2(h, "uniform", fn_uniform, g, 0);
-  int bad = mupError(h);
-  if (!bad) {
-    mupSetExpr(h, text);
-    bad = mupError(h);
-  }
-  if (!bad) {
-    double v = mupEval(h);
-    (void)v;
-    bad = mupError(h);
-  }
-  if (bad) {
-    const char *m = mupGetErrorMsg(h);
-    int pos = mupGetErrorPos(h);
+  for (int i = 0; i < nnames; i++) sessile_expr_var(out, names[i], &slots[i]);
+  for (int i = 0; i < g->ndefines; i++) sessile_expr_var(out, g->dname[i], &g->dval[i]);
+  sessile_expr_fun2(out, "uniform", fn_uniform, g);
+  int pos = 0;
+  if (sessile_expr_finish(out, text, &pos, msg, msgn) != SESSILE_OK) {
     *errpos = pos < 0 ? 0 : (size_t)pos > strlen(text) ? (int)strlen(text) : pos;
-    snprintf(msg, msgn, "%s", m && *m ? m : "bad expression");
-    /* muparser's messages end with a full stop or position note: keep one line */
-    for (char *c = msg; *c; c++)
-      if (*c == '\n' || *c == '\r') *c = ' ';
-    mupRelease(h);
     return SESSILE_ERR_USAGE;
   }
-  out->h = h;
   return SESSILE_OK;
-}
-
-double lsys_expr_eval(const lsys_expr *e) { return e->h ? mupEval(e->h) : e->c; }
-
-void lsys_expr_free(lsys_expr *e) {
-  if (e->h) mupRelease(e->h);
-  e->h = NULL;
 }

@@ -4,6 +4,7 @@
 #define SESSILE_LSYS_INTERNAL_H
 
 #include <stdint.h>
+#include "sessile/expr.h"
 #include "sessile/lsystem.h"
 
 enum {
@@ -20,10 +21,7 @@ enum { LSYS_DERIVATION = 0, LSYS_HOMOMORPHISM = 1 };
 
 /* An expression: a constant, or a muparser handle whose variables point at
  * the owning production's slots and the grammar's defines. */
-typedef struct lsys_expr {
-  void *h; /* muParserHandle_t; NULL: constant c */
-  double c;
-} lsys_expr;
+typedef sessile_expr lsys_expr; /* a constant, or a compiled muparser handle */
 
 /* A module of a successor or the axiom: symbol and its argument expressions
  * exprs[first .. first + np) of the grammar. */
@@ -76,8 +74,6 @@ struct sessile_lsys {
  * message, returns SESSILE_ERR_USAGE. */
 sessile_status lsys_expr_compile(sessile_lsys *g, const char *text, int nnames, char names[][32], double *slots,
                                  lsys_expr *out, int *errpos, char *msg, size_t msgn);
-double lsys_expr_eval(const lsys_expr *e);
-void lsys_expr_free(lsys_expr *e);
 
 /* Appends one module with np parameters (values not yet written): returns
  * the parameter pointer, or NULL when out of memory. */

@@ -268,8 +268,8 @@ static sessile_status parse_production(pctx *c, const char *p, const char *end, 
 static sessile_status const_expr(pctx *c, const char *b, const char *e, double *v) {
   uint32_t idx;
   SESSILE_CALL(push_expr(c, b, e, 0, NULL, NULL, &idx));
-  *v = lsys_expr_eval(&c->g->exprs[idx]);
-  lsys_expr_free(&c->g->exprs[idx]);
+  *v = sessile_expr_eval(&c->g->exprs[idx]);
+  sessile_expr_free(&c->g->exprs[idx]);
   c->g->nexprs--;
   if (!isfinite(*v)) return perr(c, b, "the value is not finite");
   return SESSILE_OK;
@@ -448,10 +448,10 @@ sessile_status sessile_lsys_parse(const char *text, size_t len, const char *wher
 
 void sessile_lsys_destroy(sessile_lsys *g) {
   if (!g) return;
-  for (uint32_t i = 0; i < g->nexprs; i++) lsys_expr_free(&g->exprs[i]);
+  for (uint32_t i = 0; i < g->nexprs; i++) sessile_expr_free(&g->exprs[i]);
   for (int i = 0; i < g->nprods; i++) {
-    lsys_expr_free(&g->prods[i].cond);
-    lsys_expr_free(&g->prods[i].weight);
+    sessile_expr_free(&g->prods[i].cond);
+    sessile_expr_free(&g->prods[i].weight);
     free(g->prods[i].slots);
   }
   free(g->prods), free(g->exprs), free(g->tpl), free(g->by_list), free(g->dval);

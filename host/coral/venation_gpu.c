@@ -13,7 +13,6 @@ struct sessile_venation_gpu {
   sessile_kernel *k, *k_rn;
   sessile_cmd *cmd;
   sessile_buffer *b[B_COUNT];
-  size_t cap[B_COUNT]; /* bytes */
   int real_bytes;
   uint64_t passes; /* of the last search */
 };
@@ -44,22 +43,13 @@ sessile_status sessile_venation_gpu_create(sessile_gpu *g, sessile_venation_gpu 
     sessile_venation_gpu_destroy(vg);
     return s;
   }
-  vg->cap[B_GP] = NN_COUNT * 8, vg->cap[B_TODO] = 16;
   *out = vg;
   return SESSILE_OK;
 }
 
 /* Buffer i holds at least `bytes` (contents not kept). */
 static sessile_status ensure(sessile_venation_gpu *vg, int i, size_t bytes) {
-  if (bytes < 16) bytes = 16;
-  if (vg->b[i] && vg->cap[i] >= bytes) return SESSILE_OK;
-  size_t cap = vg->cap[i] ? vg->cap[i] : 16;
-  while (cap < bytes) cap *= 2;
-  sessile_buffer_destroy(vg->b[i]);
-  vg->b[i] = NULL, vg->cap[i] = 0;
-  SESSILE_CALL(sessile_buffer_create(vg->gpu, cap, SESSILE_BUFFER_DEVICE, &vg->b[i]));
-  vg->cap[i] = cap;
-  return SESSILE_OK;
+  return sessile_buffer_reserve(vg->gpu, &vg->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
 sessile_status sessile_venation_gpu_nearest(sessile_venation_gpu *vg, const sessile_venation_grid *g,

@@ -49,13 +49,10 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
 static void fluid_monitor(const sessile_fluid_params *p, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 static void fluid_monitor(const sessile_fluid_params *p, const char *fmt, ...) {
-  if (!p->monitor) return;
-  char line[320];
   va_list ap;
   va_start(ap, fmt);
-  if (vsnprintf(line, sizeof line, fmt, ap) < 0) line[0] = '\0';
+  sessile_monitor_vprintf(p->monitor, p->monitor_user, fmt, ap);
   va_end(ap);
-  p->monitor(p->monitor_user, line);
 }
 
 static int cmp_u32(const void *a, const void *b) {

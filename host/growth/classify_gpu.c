@@ -22,8 +22,8 @@ static sessile_status upload_bins(sessile_growth_gpu *g, const sessile_box *box,
   SESSILE_CALL(sessile_growth_bin_lines(box, s, axis, &off, &list));
   int u = (axis + 1) % 3, v = (axis + 2) % 3;
   size_t nl = (size_t)box->n[u] * box->n[v], entries = off[nl];
-  sessile_status st = growth_ensure(g, &g->col_off[axis], &g->col_off_bytes[axis], (nl + 1) * 4);
-  if (st == SESSILE_OK) st = growth_ensure(g, &g->col_tri[axis], &g->col_tri_bytes[axis], entries * 4);
+  sessile_status st = growth_ensure(g, &g->col_off[axis], (nl + 1) * 4);
+  if (st == SESSILE_OK) st = growth_ensure(g, &g->col_tri[axis], entries * 4);
   if (st == SESSILE_OK) st = sessile_buffer_upload(g->col_off[axis], 0, off, (nl + 1) * 4);
   if (st == SESSILE_OK && entries) st = sessile_buffer_upload(g->col_tri[axis], 0, list, entries * 4);
   free(off), free(list);
@@ -47,7 +47,7 @@ static sessile_status cut(sessile_growth_gpu *g, const sessile_box *box, sessile
   for (int a = first; a < 3 && st == SESSILE_OK; a++) st = upload_bins(g, box, &s, a);
   sessile_surface_free(&s);
   SESSILE_CALL(st);
-  if (!theta) SESSILE_CALL(growth_ensure(g, &g->theta_dummy, &g->theta_dummy_bytes, 16));
+  if (!theta) SESSILE_CALL(growth_ensure(g, &g->theta_dummy, 16));
 
   growth_set_params(g, box, NULL);
   memset(sessile_buffer_host_ptr(g->status), 0, 16);

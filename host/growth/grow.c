@@ -7,6 +7,7 @@
 #include <string.h>
 #include "grow_internal.h"
 #include "sessile/growth_ref.h"
+#include "sessile/rng.h"
 
 const char *sessile_grow_stage_name(int stage) {
   static const char *names[] = {
@@ -29,16 +30,9 @@ void sessile_grow_options_default(sessile_grow_options *o) {
   o->monitor = NULL;
 }
 
-uint64_t grow_splitmix64(uint64_t *state) {
-  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 /* Uniform in [-1, 1] from the top 53 bits. */
 static double uniform_pm1(uint64_t *state) {
-  return (double)(grow_splitmix64(state) >> 11) * (2.0 / 9007199254740992.0) - 1.0;
+  return (double)(sessile_rng_next(state) >> 11) * (2.0 / 9007199254740992.0) - 1.0;
 }
 
 static sessile_status setup(grow_run *r) {

@@ -60,9 +60,6 @@ typedef struct grow_run {
   sessile_grow_summary sum;
 } grow_run;
 
-/* 64-bit mixing generator (splitmix64): host-side random choices. */
-uint64_t grow_splitmix64(uint64_t *state);
-
 /* Parses o->slices into run->planes (SESSILE_ERR_USAGE on a bad spec). */
 sessile_status grow_parse_planes(grow_run *r);
 /* Writes sponge/iter_NNNN.ply, slices and fields for iteration it. */

@@ -77,15 +77,8 @@ growth_push growth_push_of(const sessile_growth_gpu *g, const sessile_box *box) 
   return p;
 }
 
-sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t *have, size_t bytes) {
-  if (bytes < 16) bytes = 16;
-  if (*b && *have >= bytes) return SESSILE_OK;
-  sessile_buffer_destroy(*b);
-  *b = NULL;
-  *have = 0;
-  SESSILE_CALL(sessile_buffer_create(g->gpu, bytes, SESSILE_BUFFER_DEVICE, b));
-  *have = bytes;
-  return SESSILE_OK;
+sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t bytes) {
+  return sessile_buffer_reserve(g->gpu, b, bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
 /* The uploaded surface and its per-vertex work buffers, sized exactly. */

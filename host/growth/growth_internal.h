@@ -25,15 +25,14 @@ struct sessile_growth_gpu {
   /* classify bins per line axis (grown as needed), and the placeholder
    * bound as the fraction buffer when only the mask is wanted */
   sessile_buffer *col_off[3], *col_tri[3], *theta_dummy;
-  size_t col_off_bytes[3], col_tri_bytes[3], theta_dummy_bytes;
   double classify_seconds;
 };
 
 /* growth_gpu.c */
 void growth_set_params(sessile_growth_gpu *g, const sessile_box *box, const sessile_growth_params *p);
 growth_push growth_push_of(const sessile_growth_gpu *g, const sessile_box *box);
-/* (Re)creates *b when it is missing or smaller than bytes; *have tracks its size. */
-sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t *have, size_t bytes);
+/* *b holds at least bytes (sessile_buffer_reserve; contents not kept). */
+sessile_status growth_ensure(sessile_growth_gpu *g, sessile_buffer **b, size_t bytes);
 uint32_t growth_groups(uint32_t items);
 sessile_status growth_record_normals(sessile_growth_gpu *g, const sessile_box *box);
 

@@ -4,6 +4,7 @@
 #include <stdint.h>
 #include <string.h>
 #include "sessile/io.h"
+#include "sessile/io_read.h"
 
 /* Little-endian stores, independent of the host's byte order. */
 static inline uint8_t *io_put_u32(uint8_t *p, uint32_t v) {
@@ -33,5 +34,44 @@ sessile_status io_printf(sessile_atomic_file *af, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Writes s with XML's five special characters escaped (for attribute values). */
 sessile_status io_xml_escaped(sessile_atomic_file *af, const char *s);
+
+/* --- reading (read_stream.c) ------------------------------------------------ */
+/* Opens path for reading: O_NONBLOCK (a FIFO or device cannot hang the
+ * open), then refused unless fstat says a regular file; *size its length.
+ * `what` names the kind of file in messages ("mesh", "slice"). */
+sessile_status io_open_regular(const char *path, const char *what, int *fd, uint64_t *size);
+
+/* A file read in chunks of IO_CHUNK bytes (memory bounded whatever the
+ * file's size); line counts lines for text formats. */
+enum { IO_CHUNK = 1 << 16 };
+typedef struct io_in {
+  const char *path;
+  int fd;
+  uint64_t size, off; /* off: bytes consumed */
+  uint64_t line;      /* 1-based line of the next byte */
+  size_t at, n;       /* the unread window of buf */
+  unsigned char buf[IO_CHUNK];
+} io_in;
+sessile_status io_in_open(io_in *r, const char *path, const char *what);
+void io_in_close(io_in *r);
+/* Bytes that can be read now (refilling the window); 0 at the end. */
+sessile_status io_in_more(io_in *r, size_t *avail);
+/* The next line without its "\n" (and "\r") into line (cap bytes, NUL-ended):
+ * *got 0 at the end of the file.  A line of cap bytes or more stops there
+ * with *len = cap (the rest unread: refuse it, or io_in_skip_line).  A NUL
+ * byte is refused (not text). */
+sessile_status io_in_line(io_in *r, char *line, size_t cap, size_t *len, int *got);
+/* The rest of the current line, consumed (NUL bytes refused). */
+sessile_status io_in_skip_line(io_in *r);
+
+/* --- meshes being read (mesh_in.c) ------------------------------------------ */
+/* Appends the fan (0, k, k+1) of an n-corner face (n >= 3) to m->tri, *cap
+ * triangles allocated; refuses more than max triangles. */
+sessile_status io_mesh_add_face(sessile_mesh_in *m, size_t *cap, const uint32_t *poly, uint32_t n,
+                                uint64_t max, const char *path);
+/* The options with their defaults filled in. */
+sessile_mesh_read_opts io_mesh_opts(const sessile_mesh_read_opts *o);
+/* n bytes into dst; *got 0 when the file ends first. */
+sessile_status io_in_bytes(io_in *r, void *dst, size_t n, int *got);
 
 #endif

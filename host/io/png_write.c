@@ -41,10 +41,6 @@ static void mem_write(png_structp p, png_bytep bytes, png_size_t n) {
 
 static void mem_flush(png_structp p) { (void)p; }
 
-static void set_err(char *err, size_t errlen, const char *fmt, const char *a, const char *b) {
-  if (err && errlen) snprintf(err, errlen, fmt, a, b);
-}
-
 /* libpng reports errors by longjmp; the message is kept for the caller. */
 typedef struct png_err_ctx {
   jmp_buf jb;
@@ -60,24 +56,20 @@ static void on_warning(png_structp p, png_const_charp msg) { (void)p; (void)msg;
 
 /* Encodes; everything libpng allocated is freed on every path (png and
  * info are not changed after setjmp, so they are valid after a longjmp). */
-static int encode(int w, int h, const unsigned char *rgba, membuf *m, char *err, size_t errlen) {
+static sessile_status encode(int w, int h, const unsigned char *rgba, membuf *m) {
   png_err_ctx ectx;
   ectx.msg[0] = 0;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &ectx, on_error, on_warning);
-  if (!png) {
-    set_err(err, errlen, "%s%s", "png: cannot create the libpng writer (out of memory)", "");
-    return -1;
-  }
+  SESSILE_CHECK(png, SESSILE_ERR_NO_MEMORY, "png: cannot create the libpng writer (out of memory)");
   png_infop info = png_create_info_struct(png);
   if (!info) {
     png_destroy_write_struct(&png, NULL);
-    set_err(err, errlen, "%s%s", "png: cannot create the libpng info (out of memory)", "");
-    return -1;
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "png: cannot create the libpng info (out of memory)");
   }
   if (setjmp(ectx.jb)) {
     png_destroy_write_struct(&png, &info);
-    set_err(err, errlen, "png: encoding failed: %s%s", ectx.msg, "");
-    return -1;
+    return sessile_error_set(m->failed ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_IO, "png: encoding failed: %s",
+                             ectx.msg);
   }
   png_set_write_fn(png, m, mem_write, mem_flush);
   png_set_compression_level(png, 1);
@@ -88,37 +80,32 @@ static int encode(int w, int h, const unsigned char *rgba, membuf *m, char *err,
   for (int y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(rgba + (size_t)y * 4u * (size_t)w));
   png_write_end(png, NULL);
   png_destroy_write_struct(&png, &info);
-  return 0;
+  return SESSILE_OK;
 }
 
-int sessile_png_encode_rgba8(int w, int h, const unsigned char *rgba, unsigned char **out,
-                             size_t *bytes, char *err, size_t errlen) {
+sessile_status sessile_png_encode_rgba8(int w, int h, const unsigned char *rgba, unsigned char **out,
+                                        size_t *bytes) {
   *out = NULL;
   *bytes = 0;
-  if (w <= 0 || h <= 0 || w > 1000000 || h > 1000000 || !rgba) {
-    set_err(err, errlen, "%s%s", "png: the image must be 1..1000000 pixels on each side", "");
-    return -1;
-  }
+  SESSILE_CHECK(w > 0 && h > 0 && w <= 1000000 && h <= 1000000 && rgba, SESSILE_ERR_USAGE,
+                "png: the image must be 1..1000000 pixels on each side (not %d x %d)", w, h);
   membuf m = {0};
-  if (encode(w, h, rgba, &m, err, errlen) != 0) {
+  sessile_status s = encode(w, h, rgba, &m);
+  if (s != SESSILE_OK) {
     free(m.data);
-    return -1;
+    return s;
   }
   *out = m.data;
   *bytes = m.size;
-  return 0;
+  return SESSILE_OK;
 }
 
-int sessile_png_write_rgba8(const char *path, int w, int h, const unsigned char *rgba, char *err,
-                            size_t errlen) {
+sessile_status sessile_png_write_rgba8(const char *path, int w, int h, const unsigned char *rgba) {
   unsigned char *data = NULL;
   size_t n = 0;
-  if (sessile_png_encode_rgba8(w, h, rgba, &data, &n, err, errlen) != 0) return -1;
+  SESSILE_CALL(sessile_png_encode_rgba8(w, h, rgba, &data, &n));
   sessile_status s = sessile_write_file_atomic(path, data, n);
   free(data);
-  if (s != SESSILE_OK) {
-    set_err(err, errlen, "png: %s%s", sessile_error_message(), "");
-    return -1;
-  }
-  return 0;
+  if (s != SESSILE_OK) return sessile_error_set(s, "png: %s", sessile_error_message());
+  return SESSILE_OK;
 }

@@ -10,29 +10,17 @@
 #include <string.h>
 
 #include "sessile/matrix.h"
+#include "sessile/rng.h"
 
 /* Below this many rows the thread start-up costs more than the work. */
 #define GEN_PAR_MIN_ROWS 4096
 
-/* ---- splitmix64 (Steele, Lea, Flood 2014): tiny, seedable, and its n-th
- * output is a pure function of (seed, n), which makes parallel fills exact. */
-
-#define SPLITMIX_GAMMA UINT64_C(0x9E3779B97F4A7C15)
-
-static uint64_t splitmix64_mix(uint64_t z) {
-  z = (z ^ (z >> 30)) * UINT64_C(0xBF58476D1CE4E5B9);
-  z = (z ^ (z >> 27)) * UINT64_C(0x94D049BB133111EB);
-  return z ^ (z >> 31);
-}
-
-static uint64_t splitmix64_next(uint64_t *state) {
-  *state += SPLITMIX_GAMMA;
-  return splitmix64_mix(*state);
-}
+/* ---- splitmix64 (sessile/rng.h): its n-th output is a pure function of
+ * (seed, n), which makes parallel fills exact. */
 
 /* Independent stream per row (or block row) so rows can be built in any order. */
 static uint64_t row_stream(uint64_t seed, uint64_t row) {
-  return splitmix64_mix(seed ^ splitmix64_mix((row + 1) * UINT64_C(0xD1B54A32D192ED03)));
+  return sessile_rng_mix(seed ^ sessile_rng_mix((row + 1) * UINT64_C(0xD1B54A32D192ED03)));
 }
 
 /* Top 53 bits -> [0,1). */
@@ -47,7 +35,7 @@ void sessile_fill_random(double *v, uint64_t n, double lo, double hi, uint64_t s
 #pragma omp parallel for schedule(static) if (n >= 32768)
   for (uint64_t i = 0; i < n; i++) {
     /* Output i of the sequential stream started at `seed`, computed directly. */
-    double x = lo + span * unit_double(splitmix64_mix(seed + (i + 1) * SPLITMIX_GAMMA));
+    double x = lo + span * unit_double(sessile_rng_mix(seed + (i + 1) * SESSILE_RNG_GAMMA));
     /* lo + span*u can round up to hi; keep the interval half-open. */
     if (x >= hi && hi > lo) x = nextafter(hi, lo);
     v[i] = x;
@@ -338,7 +326,7 @@ sessile_status sessile_csr_random(uint32_t n, uint32_t per_row, double dominance
      * draws, kept sorted in place (the row's own slots are the work array). */
     const uint32_t m = n - 1, kk = k - 1;
     for (uint32_t j = m - kk, len = 0; j < m; j++, len++) {
-      uint32_t t = (uint32_t)uniform_below(splitmix64_next(&state), (uint64_t)j + 1);
+      uint32_t t = (uint32_t)uniform_below(sessile_rng_next(&state), (uint64_t)j + 1);
       sorted_insert(cols, len, sorted_contains(cols, len, t) ? j : t);
     }
     /* Map [0, n-1) onto the columns other than r (monotone, so still sorted)
@@ -351,7 +339,7 @@ sessile_status sessile_csr_random(uint32_t n, uint32_t per_row, double dominance
     double off = 0.0;
     for (uint32_t i = 0; i < k; i++) {
       if (i == dpos) continue;
-      vals[i] = 2.0 * unit_double(splitmix64_next(&state)) - 1.0;
+      vals[i] = 2.0 * unit_double(sessile_rng_next(&state)) - 1.0;
       off += fabs(vals[i]);
     }
     /* Strict dominance |a_rr| = dominance·Σ|a_rj|; 1 when the row is diagonal only. */
@@ -393,7 +381,7 @@ sessile_status sessile_bcsr4_random_on(const sessile_csr *pattern, uint64_t seed
     for (uint64_t b = b0; b < b1; b++) {
       if (out->col[b] == r) bd = b;
       for (int e = 0; e < 16; e++)
-        out->val[16 * b + e] = 2.0 * unit_double(splitmix64_next(&state)) - 1.0;
+        out->val[16 * b + e] = 2.0 * unit_double(sessile_rng_next(&state)) - 1.0;
     }
     /* Scalar row 4r+i: diagonal = dominance × absolute sum of the rest of the row. */
     for (int i = 0; i < 4; i++) {

@@ -37,12 +37,16 @@ void la_solver_reset(sessile_la *la, const sessile_ksp_options *o) {
   la_scalar_set(la, S_RTOL2, o->rtol * o->rtol);
 }
 
+void sessile_monitor_vprintf(sessile_monitor_fn fn, void *user, const char *fmt, va_list ap) {
+  if (!fn) return;
+  char line[SESSILE_MONITOR_LINE];
+  if (vsnprintf(line, sizeof line, fmt, ap) < 0) line[0] = '\0';
+  fn(user, line);
+}
+
 void la_monitorf(const sessile_ksp_options *o, const char *fmt, ...) {
-  if (!o->monitor) return;
-  char line[256];
   va_list ap;
   va_start(ap, fmt);
-  if (vsnprintf(line, sizeof line, fmt, ap) < 0) line[0] = '\0';
+  sessile_monitor_vprintf(o->monitor, o->monitor_user, fmt, ap);
   va_end(ap);
-  o->monitor(o->monitor_user, line);
 }

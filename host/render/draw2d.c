@@ -78,9 +78,9 @@ sessile_status d2_canvas_write_png(d2_canvas *c, const char *path) {
       o[4 * x + 3] = (unsigned char)a;
     }
   }
-  int rc = sessile_png_write_rgba8(path, c->w, c->h, rgba, NULL, 0);
+  sessile_status s = sessile_png_write_rgba8(path, c->w, c->h, rgba);
   free(rgba);
-  return (sessile_status)rc;
+  return s;
 }
 
 double d2_text_width(cairo_t *cr, double size, const char *s) {

@@ -5,20 +5,6 @@
 #include <stdint.h>
 #include "sessile/render_mesh.h"
 
-/* A growable triangle list (polygons split into fans while reading). */
-typedef struct tri_list {
-  uint32_t *tri;
-  size_t n, cap; /* triangles */
-} tri_list;
-/* Appends the fan of an n-gon (n >= 3); 0, or -1 when out of memory. */
-int tri_list_fan(tri_list *t, const uint32_t *poly, uint32_t n);
-
-/* The two readers: fill m's pos, tri, nv, nf, props, and normal when the file
- * has them (has_file_normals).  `what` names the file in messages. */
-sessile_status mesh_read_ply_(const char *what, const unsigned char *data, size_t bytes,
-                              sessile_render_mesh *m);
-sessile_status mesh_read_obj_(const char *what, const char *text, size_t bytes,
-                              sessile_render_mesh *m);
 /* Finite coordinates, indices in range, not empty; then normals (the
  * file's normalised, else area-weighted). */
 sessile_status mesh_finish_(const char *what, sessile_render_mesh *m);

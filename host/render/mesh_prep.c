@@ -4,26 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh_internal.h"
-#include "sessile/io.h"
-
-int tri_list_fan(tri_list *t, const uint32_t *poly, uint32_t n) {
-  size_t need = t->n + (n - 2);
-  if (need > t->cap) {
-    size_t cap = t->cap ? t->cap : 4096;
-    while (cap < need) cap *= 2;
-    uint32_t *nt = realloc(t->tri, cap * 3 * sizeof(uint32_t));
-    if (!nt) return -1;
-    t->tri = nt;
-    t->cap = cap;
-  }
-  for (uint32_t k = 1; k + 1 < n; k++) {
-    uint32_t *d = t->tri + 3 * t->n++;
-    d[0] = poly[0];
-    d[1] = poly[k];
-    d[2] = poly[k + 1];
-  }
-  return 0;
-}
+#include "sessile/io_read.h"
 
 void sessile_render_mesh_destroy(sessile_render_mesh *m) {
   if (!m) return;
@@ -125,24 +106,29 @@ static int ends_with(const char *s, const char *suf) {
   return 1;
 }
 
-/* Largest mesh file read: 4 GiB (about 300 M triangles as binary PLY). */
-#define MESH_FILE_MAX ((size_t)4 << 30)
+/* A mesh read by the io readers, moved into m: positions as float. */
+static sessile_status take_mesh(const char *path, sessile_mesh_in *in, sessile_render_mesh *m) {
+  m->pos = malloc((size_t)in->nv * 3 * sizeof(float) + 1);
+  SESSILE_CHECK(m->pos, SESSILE_ERR_NO_MEMORY, "%s: out of host memory for %u vertices", path, in->nv);
+  for (size_t i = 0; i < 3 * (size_t)in->nv; i++) m->pos[i] = (float)in->pos[i];
+  m->nv = in->nv, m->nf = in->nf, m->tri = in->tri, m->normal = in->normal;
+  m->has_file_normals = in->normal != NULL;
+  m->nprops = in->nprops, m->prop_names = in->prop_names, m->props = in->props;
+  free(in->pos);
+  *in = (sessile_mesh_in){0};
+  return SESSILE_OK;
+}
 
 sessile_status sessile_render_mesh_read(const char *path, sessile_render_mesh **out) {
   *out = NULL;
   int ply = ends_with(path, ".ply"), obj = ends_with(path, ".obj");
   SESSILE_CHECK(ply || obj, SESSILE_ERR_USAGE, "%s: unknown mesh format (use .ply or .obj)", path);
-  char *text = NULL;
-  size_t len = 0;
-  SESSILE_CALL(sessile_read_small_file(path, MESH_FILE_MAX, "mesh", &text, &len));
+  const sessile_mesh_read_opts o = {.keep_props = 1};
+  sessile_mesh_in in;
+  SESSILE_CALL(ply ? sessile_read_ply(path, &o, &in) : sessile_read_obj(path, &o, &in));
   sessile_render_mesh *m = calloc(1, sizeof *m);
-  if (!m) {
-    free(text);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
-  }
-  sessile_status s = ply ? mesh_read_ply_(path, (const unsigned char *)text, len, m)
-                         : mesh_read_obj_(path, text, len, m);
-  free(text);
+  sessile_status s = m ? take_mesh(path, &in, m) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  sessile_mesh_in_free(&in);
   if (s == SESSILE_OK) s = mesh_finish_(path, m);
   if (s != SESSILE_OK) {
     sessile_render_mesh_destroy(m);

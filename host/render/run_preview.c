@@ -22,11 +22,7 @@ sessile_status sessile_render_mesh_png(sessile_gpu *g, const char *mesh_path, co
   }
   if (s == SESSILE_OK) s = sessile_mesh_renderer_draw(r, 0.0, px, &rr);
   if (s == SESSILE_OK) s = sessile_render_annotate(px, (int)o->width, (int)o->height, &rr, o->color_by);
-  if (s == SESSILE_OK) {
-    char err[1200];
-    if (sessile_png_write_rgba8(png_out, (int)o->width, (int)o->height, px, err, sizeof err))
-      s = sessile_error_set(SESSILE_ERR_IO, "%s", err);
-  }
+  if (s == SESSILE_OK) s = sessile_png_write_rgba8(png_out, (int)o->width, (int)o->height, px);
   if (s == SESSILE_OK && res) *res = rr;
   free(px);
   sessile_mesh_renderer_destroy(r);

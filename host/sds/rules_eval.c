@@ -68,7 +68,7 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
     int divided = 0;
     for (int r = 0; r < m->nrules; r++) {
       const sds_rule *R = &m->rules[r];
-      double v = sds_expr_eval(&R->cond);
+      double v = sessile_expr_eval(&R->cond);
       SESSILE_CHECK(!isnan(v), SESSILE_ERR_NUMERIC, "%s:%d: rule %s: the condition is NaN at cell %d", m->file,
                     R->line, R->name, c);
       if (v == 0) continue;
@@ -77,7 +77,7 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
         const sds_action *A = &R->act[i];
         double x = 0;
         if (A->kind != SESSILE_SDS_DIVIDE && A->kind != SESSILE_SDS_RESET) {
-          x = sds_expr_eval(&A->value);
+          x = sessile_expr_eval(&A->value);
           SESSILE_CHECK(isfinite(x), SESSILE_ERR_NUMERIC, "%s:%d: rule %s: action %d gives %g at cell %d", m->file,
                         R->line, R->name, i + 1, x, c);
         }

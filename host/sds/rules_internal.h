@@ -3,7 +3,7 @@
  * variables to the slots below for the model's lifetime. */
 #ifndef SESSILE_SDS_RULES_INTERNAL_H
 #define SESSILE_SDS_RULES_INTERNAL_H
-#include <muParserDLL.h>
+#include "sessile/expr.h"
 #include "sessile/sds_process.h"
 
 enum {
@@ -24,10 +24,7 @@ enum {
   SDS_SLOTS = SDS_SLOT_STATE + SDS_MAX_STATE
 };
 
-typedef struct sds_expr {
-  muParserHandle_t h; /* NULL: the constant c */
-  double c;
-} sds_expr;
+typedef sessile_expr sds_expr; /* a constant, or a compiled muparser handle */
 
 typedef struct sds_action {
   int kind, target, sign; /* sign: +1 toward grad, -1 away (divide) */
@@ -58,6 +55,4 @@ struct sessile_sds_model {
   double slot[SDS_SLOTS];
 };
 
-double sds_expr_eval(const sds_expr *e);
-void sds_expr_free(sds_expr *e);
 #endif

@@ -118,16 +118,6 @@ static sessile_status check_names(cur *c, int col0, const char *text) {
   return SESSILE_OK;
 }
 
-static int is_plain_number(const char *t, double *v) {
-  char *end = NULL;
-  while (*t == ' ' || *t == '\t') t++;
-  if (!*t) return 0;
-  *v = strtod(t, &end);
-  if (end == t) return 0;
-  while (*end == ' ' || *end == '\t') end++;
-  return *end == 0 && isfinite(*v);
-}
-
 /* Compiles text (columns from col0) into e, its variables bound to the model's slots. */
 static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e) {
   sessile_sds_model *m = (sessile_sds_model *)c->m;
@@ -135,45 +125,23 @@ static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e) {
   int lead = 0;
   while (text[lead] == ' ' || text[lead] == '\t') lead++;
   if (!text[lead]) return fail(c, col0, "empty expression");
-  if (is_plain_number(text, &e->c)) return SESSILE_OK;
+  if (sessile_expr_plain_number(text, &e->c)) return SESSILE_OK;
   SESSILE_CALL(check_names(c, col0, text));
-  muParserHandle_t h = mupCreate(muBASETYPE_FLOAT);
-  if (!h) return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for an expression");
-  mupDefineVar(h, "radius", &m->slot[SDS_SLOT_RADIUS]);
-  mupDefineVar(h, "volume", &m->slot[SDS_SLOT_VOLUME]);
-  mupDefineVar(h, "time", &m->slot[SDS_SLOT_TIME]);
-  mupDefineVar(h, "surface", &m->slot[SDS_SLOT_SURFACE]);
-  for (int i = 0; i < m->nmorph; i++) mupDefineVar(h, m->mname[i], &m->slot[SDS_SLOT_MORPH + i]);
-  for (int i = 0; i < m->nstate; i++) mupDefineVar(h, m->sname[i], &m->slot[SDS_SLOT_STATE + i]);
-  for (int i = 0; i < m->nconst; i++) mupDefineConst(h, m->cname[i], m->cval[i]);
-  int bad = mupError(h);
-  if (!bad) {
-    mupSetExpr(h, text);
-    bad = mupError(h);
-  }
-  if (!bad) {
-    (void)mupEval(h); /* muparser parses lazily: the first evaluation finds syntax errors */
-    bad = mupError(h);
-  }
-  if (bad) {
-    const char *msg = mupGetErrorMsg(h);
-    int pos = mupGetErrorPos(h), len = (int)strlen(text);
+  SESSILE_CALL(sessile_expr_begin(e));
+  sessile_expr_var(e, "radius", &m->slot[SDS_SLOT_RADIUS]);
+  sessile_expr_var(e, "volume", &m->slot[SDS_SLOT_VOLUME]);
+  sessile_expr_var(e, "time", &m->slot[SDS_SLOT_TIME]);
+  sessile_expr_var(e, "surface", &m->slot[SDS_SLOT_SURFACE]);
+  for (int i = 0; i < m->nmorph; i++) sessile_expr_var(e, m->mname[i], &m->slot[SDS_SLOT_MORPH + i]);
+  for (int i = 0; i < m->nstate; i++) sessile_expr_var(e, m->sname[i], &m->slot[SDS_SLOT_STATE + i]);
+  for (int i = 0; i < m->nconst; i++) sessile_expr_const(e, m->cname[i], m->cval[i]);
+  char one[256];
+  int pos = 0, len = (int)strlen(text);
+  if (sessile_expr_finish(e, text, &pos, one, sizeof one) != SESSILE_OK) {
     if (pos < 0 || pos > len) pos = len;
-    char one[256];
-    snprintf(one, sizeof one, "%s", msg && *msg ? msg : "bad expression");
-    for (char *q = one; *q; q++)
-      if (*q == '\n' || *q == '\r') *q = ' ';
-    mupRelease(h);
     return fail(c, col0 + pos, "bad expression: %s", one);
   }
-  e->h = h;
   return SESSILE_OK;
-}
-
-double sds_expr_eval(const sds_expr *e) { return e->h ? mupEval(e->h) : e->c; }
-void sds_expr_free(sds_expr *e) {
-  if (e->h) mupRelease(e->h);
-  e->h = NULL;
 }
 
 /* key=value pairs after a morphogen / timer declaration. */
@@ -450,8 +418,8 @@ sessile_status sessile_sds_model_load(const char *path, sessile_sds_model **out)
 void sessile_sds_model_destroy(sessile_sds_model *m) {
   if (!m) return;
   for (int i = 0; i < m->nrules; i++) {
-    sds_expr_free(&m->rules[i].cond);
-    for (int a = 0; a < m->rules[i].nact; a++) sds_expr_free(&m->rules[i].act[a].value);
+    sessile_expr_free(&m->rules[i].cond);
+    for (int a = 0; a < m->rules[i].nact; a++) sessile_expr_free(&m->rules[i].act[a].value);
   }
   free(m);
 }

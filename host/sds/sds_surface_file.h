@@ -4,7 +4,7 @@
 #include "sessile/status.h"
 #include "sessile/surface.h"
 
-/* Reads the triangles of an ASCII or binary little-endian PLY file
+/* Reads the triangles of an ASCII or binary PLY file (io's reader)
  * (SESSILE_ERR_USAGE naming the file and the fault). */
 sessile_status sds_read_surface_ply(const char *path, sessile_surface *out);
 #endif

@@ -14,7 +14,6 @@ struct sessile_psponge_gpu {
   sessile_kernel *k;
   sessile_cmd *cmd;
   sessile_buffer *b[NB];
-  size_t cap[NB];
 };
 
 void sessile_psponge_gpu_destroy(sessile_psponge_gpu *c) {
@@ -43,15 +42,7 @@ sessile_status sessile_psponge_gpu_create(sessile_gpu *gpu, sessile_psponge_gpu 
 
 /* Buffer i holds at least bytes (grown by half again when replaced). */
 static sessile_status ensure(sessile_psponge_gpu *c, int i, size_t bytes) {
-  if (bytes < 16) bytes = 16;
-  if (c->b[i] && c->cap[i] >= bytes) return SESSILE_OK;
-  sessile_buffer_destroy(c->b[i]);
-  c->b[i] = NULL;
-  size_t want = bytes + bytes / 2;
-  sessile_status s = sessile_buffer_create(c->gpu, want, SESSILE_BUFFER_DEVICE, &c->b[i]);
-  if (s != SESSILE_OK) s = sessile_buffer_create(c->gpu, bytes, SESSILE_BUFFER_DEVICE, &c->b[i]), want = bytes;
-  c->cap[i] = s == SESSILE_OK ? want : 0;
-  return s;
+  return sessile_buffer_reserve(c->gpu, &c->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
 sessile_status sessile_psponge_gpu_collide(sessile_psponge_gpu *c, const sessile_psponge_grid *g,

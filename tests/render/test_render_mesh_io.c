@@ -200,8 +200,7 @@ static void test_png(void) {
   const int w = 37, h = 23;
   unsigned char *px = malloc((size_t)w * h * 4);
   for (int i = 0; i < w * h * 4; i++) px[i] = (unsigned char)((i * 7919u) >> 3);
-  char err[300];
-  t_true("PNG written", sessile_png_write_rgba8(path_of("x.png"), w, h, px, err, sizeof err) == 0);
+  t_ok("PNG written", sessile_png_write_rgba8(path_of("x.png"), w, h, px));
   int rw = 0, rh = 0;
   unsigned char *back = png_decode(path_of("x.png"), &rw, &rh);
   t_true("libpng reads it back: same size, same RGBA bytes",
@@ -209,15 +208,18 @@ static void test_png(void) {
   free(back);
   unsigned char *a = NULL, *b = NULL;
   size_t na = 0, nb = 0;
-  sessile_png_encode_rgba8(w, h, px, &a, &na, err, sizeof err);
-  sessile_png_encode_rgba8(w, h, px, &b, &nb, err, sizeof err);
+  t_ok("encode", sessile_png_encode_rgba8(w, h, px, &a, &na));
+  t_ok("encode again", sessile_png_encode_rgba8(w, h, px, &b, &nb));
   t_true("two encodings are identical bytes (no time chunk)", a && b && na == nb && memcmp(a, b, na) == 0);
   free(a);
   free(b);
-  t_true("a missing folder: refused with a message",
-         sessile_png_write_rgba8(path_of("no/such/x.png"), w, h, px, err, sizeof err) == -1 && err[0]);
-  printf("  message: %s\n", err);
-  t_true("a size of 0: refused", sessile_png_write_rgba8(path_of("z.png"), 0, h, px, err, sizeof err) == -1);
+  t_true("a missing folder: refused (SESSILE_ERR_IO), the message names the file",
+         sessile_png_write_rgba8(path_of("no/such/x.png"), w, h, px) == SESSILE_ERR_IO &&
+             strstr(sessile_error_message(), "png: ") && strstr(sessile_error_message(), "x.png"));
+  printf("  message: %s\n", sessile_error_message());
+  t_true("a size of 0: refused as USAGE, the size in the message",
+         sessile_png_write_rgba8(path_of("z.png"), 0, h, px) == SESSILE_ERR_USAGE &&
+             strstr(sessile_error_message(), "0 x 23"));
   t_true("... and nothing written", access(path_of("z.png"), F_OK) != 0);
   free(px);
 }

@@ -13,6 +13,7 @@
 #ifndef SESSILE_LA_H
 #define SESSILE_LA_H
 
+#include <stdarg.h>
 #include <stdint.h>
 #include "sessile/gpu.h"
 #include "sessile/matrix.h"
@@ -151,6 +152,12 @@ typedef enum sessile_pc_type {
  * each point the solver reports; user is the options' monitor_user.  NULL
  * (the default) keeps the library silent: it prints nothing itself. */
 typedef void (*sessile_monitor_fn)(void *user, const char *line);
+/* The one formatter of monitor lines (the solvers', the fluid's, the growth
+ * loop's): fmt and ap into a line of at most SESSILE_MONITOR_LINE - 1
+ * characters, handed to fn(user, line); nothing when fn is NULL. */
+enum { SESSILE_MONITOR_LINE = 1200 };
+void sessile_monitor_vprintf(sessile_monitor_fn fn, void *user, const char *fmt, va_list ap)
+    __attribute__((format(printf, 3, 0)));
 
 typedef struct sessile_ksp_options {
   sessile_ksp_type type;

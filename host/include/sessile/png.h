@@ -8,21 +8,22 @@
 #ifndef SESSILE_PNG_H
 #define SESSILE_PNG_H
 #include <stddef.h>
+#include "sessile/status.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 /* Writes w x h pixels of 8-bit RGBA, row 0 at the top, rows packed (4 w
- * bytes each), as an 8-bit RGBA PNG.  Returns 0, or -1 with one line in
- * err (what failed and the path) when err is not NULL. */
-int sessile_png_write_rgba8(const char *path, int w, int h, const unsigned char *rgba, char *err,
-                            size_t errlen);
+ * bytes each), as an 8-bit RGBA PNG.  SESSILE_ERR_USAGE for a size outside
+ * 1..1000000 a side; the write's own status (SESSILE_ERR_IO naming the path)
+ * when the file cannot be written; the message starts "png: ". */
+sessile_status sessile_png_write_rgba8(const char *path, int w, int h, const unsigned char *rgba);
 
 /* The same PNG encoded into memory (*out malloc'ed, caller frees): what the
  * writer above writes, for benchmarks and callers with their own file. */
-int sessile_png_encode_rgba8(int w, int h, const unsigned char *rgba, unsigned char **out,
-                             size_t *bytes, char *err, size_t errlen);
+sessile_status sessile_png_encode_rgba8(int w, int h, const unsigned char *rgba, unsigned char **out,
+                                        size_t *bytes);
 
 #ifdef __cplusplus
 }

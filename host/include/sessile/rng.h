@@ -6,12 +6,16 @@
 #include <math.h>
 #include <stdint.h>
 
-static inline uint64_t sessile_rng_next(uint64_t *state) {
-  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+/* splitmix64's step (the golden-ratio increment) and its output mix: the
+ * n-th output of a stream started at s is sessile_rng_mix(s + n GAMMA), so
+ * a parallel fill can compute any output directly. */
+#define SESSILE_RNG_GAMMA 0x9E3779B97F4A7C15ull
+static inline uint64_t sessile_rng_mix(uint64_t z) {
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
   return z ^ (z >> 31);
 }
+static inline uint64_t sessile_rng_next(uint64_t *state) { return sessile_rng_mix(*state += SESSILE_RNG_GAMMA); }
 /* Uniform in [0, 1) with 53 random bits. */
 static inline double sessile_rng_uniform(uint64_t *state) {
   return (double)(sessile_rng_next(state) >> 11) * (1.0 / 9007199254740992.0);

@@ -1,0 +1,197 @@
+/* The EXR slice reader (sessile/io_read.h), through OpenEXR's C API.  The
+ * file is opened here (O_NONBLOCK, regular files only: a FIFO named as a
+ * slice is refused, never waited on) and OpenEXR reads it through pread on
+ * that descriptor; OpenEXR's messages go into ours, not to stderr. */
+#include <errno.h>
+#include <openexr.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "io_internal.h"
+
+struct sessile_exr_in {
+  const char *path;
+  int fd;
+  uint64_t size;
+  exr_context_t ctx;
+  const exr_attr_chlist_t *cl;
+  exr_attr_box2i_t dw;
+  sessile_slice_header h;
+};
+
+static _Thread_local char exr_msg[256];
+
+static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char *msg) {
+  (void)ctxt;
+  if (!exr_msg[0]) snprintf(exr_msg, sizeof exr_msg, "%s (%s)", msg ? msg : "", exr_get_error_code_as_string(code));
+}
+
+static int64_t read_fd(exr_const_context_t ctxt, void *user, void *buffer, uint64_t sz, uint64_t offset,
+                       exr_stream_error_func_ptr_t error_cb) {
+  const sessile_exr_in *x = user;
+  uint64_t done = 0;
+  while (done < sz) {
+    ssize_t k = pread(x->fd, (char *)buffer + done, sz - done, (off_t)(offset + done));
+    if (k < 0 && errno == EINTR) continue;
+    if (k < 0) {
+      error_cb(ctxt, EXR_ERR_READ_IO, "read failed: %s", strerror(errno));
+      return -1;
+    }
+    if (k == 0) break;
+    done += (uint64_t)k;
+  }
+  return (int64_t)done;
+}
+
+static int64_t size_fd(exr_const_context_t ctxt, void *user) {
+  (void)ctxt;
+  return (int64_t)((const sessile_exr_in *)user)->size;
+}
+
+/* The sessile attributes into the header (absent ones flagged). */
+static void read_attributes(sessile_exr_in *x) {
+  sessile_slice_header *h = &x->h;
+  exr_attr_v3f_t o, au, av;
+  exr_attr_v2f_t sp;
+  int32_t it = -1;
+  exr_storage_t storage;
+  h->scanline = exr_get_storage(x->ctx, 0, &storage) == EXR_ERR_SUCCESS && storage == EXR_STORAGE_SCANLINE;
+  if ((h->has_origin = exr_attr_get_v3f(x->ctx, 0, "sessile:origin", &o) == EXR_ERR_SUCCESS))
+    h->origin[0] = o.x, h->origin[1] = o.y, h->origin[2] = o.z;
+  if ((h->has_spacing = exr_attr_get_v2f(x->ctx, 0, "sessile:spacing", &sp) == EXR_ERR_SUCCESS))
+    h->spacing[0] = sp.x, h->spacing[1] = sp.y;
+  h->has_axes = exr_attr_get_v3f(x->ctx, 0, "sessile:axis_u", &au) == EXR_ERR_SUCCESS &&
+                exr_attr_get_v3f(x->ctx, 0, "sessile:axis_v", &av) == EXR_ERR_SUCCESS;
+  if (h->has_axes) {
+    h->axis_u[0] = au.x, h->axis_u[1] = au.y, h->axis_u[2] = au.z;
+    h->axis_v[0] = av.x, h->axis_v[1] = av.y, h->axis_v[2] = av.z;
+  }
+  h->iteration = exr_attr_get_int(x->ctx, 0, "sessile:iteration", &it) == EXR_ERR_SUCCESS ? it : -1;
+  if (exr_get_data_window(x->ctx, 0, &x->dw) == EXR_ERR_SUCCESS) {
+    h->width = (int64_t)x->dw.max.x - x->dw.min.x + 1;
+    h->height = (int64_t)x->dw.max.y - x->dw.min.y + 1;
+  }
+  exr_get_channels(x->ctx, 0, &x->cl);
+  h->nchannels = x->cl ? x->cl->num_channels : 0;
+}
+
+sessile_status sessile_exr_open(const char *path, sessile_exr_in **out) {
+  *out = NULL;
+  sessile_exr_in *x = calloc(1, sizeof *x);
+  SESSILE_CHECK(x, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  x->path = path;
+  sessile_status st = io_open_regular(path, "slice", &x->fd, &x->size);
+  if (st != SESSILE_OK) {
+    free(x);
+    return st;
+  }
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = on_exr_error;
+  init.user_data = x;
+  init.read_fn = read_fd;
+  init.size_fn = size_fd;
+  exr_msg[0] = 0;
+  int parts = 0;
+  const char *pname = NULL, *plane = NULL;
+  int32_t plen = 0;
+  if (exr_start_read(&x->ctx, path, &init) != EXR_ERR_SUCCESS) {
+    x->ctx = NULL;
+    st = sessile_error_set(SESSILE_ERR_USAGE, "'%s' is not an EXR file that OpenEXR can read: %s", path, exr_msg);
+  } else if (exr_get_count(x->ctx, &parts) != EXR_ERR_SUCCESS || parts != 1 ||
+             exr_get_name(x->ctx, 0, &pname) != EXR_ERR_SUCCESS || !pname || strcmp(pname, "slice") ||
+             exr_attr_get_string(x->ctx, 0, "sessile:plane", &plen, &plane) != EXR_ERR_SUCCESS) {
+    st = sessile_error_set(SESSILE_ERR_USAGE,
+                           "'%s' is not a sessile slice (one part named 'slice' with sessile:plane expected)", path);
+  } else {
+    snprintf(x->h.plane, sizeof x->h.plane, "%.*s", (int)plen, plane);
+    read_attributes(x);
+  }
+  if (st != SESSILE_OK) {
+    sessile_exr_close(x);
+    return st;
+  }
+  *out = x;
+  return SESSILE_OK;
+}
+
+const sessile_slice_header *sessile_exr_header(const sessile_exr_in *x) { return &x->h; }
+
+const char *sessile_exr_channel_name(const sessile_exr_in *x, int c) {
+  return x->cl && c >= 0 && c < x->cl->num_channels ? x->cl->entries[c].name.str : "";
+}
+
+int sessile_exr_channel_is_float(const sessile_exr_in *x, int c) {
+  if (!x->cl || c < 0 || c >= x->cl->num_channels) return 0;
+  exr_pixel_type_t t = x->cl->entries[c].pixel_type;
+  return t == EXR_PIXEL_FLOAT || t == EXR_PIXEL_HALF;
+}
+
+int sessile_exr_find_channel(const sessile_exr_in *x, const char *name) {
+  for (int c = 0; x->cl && name && c < x->cl->num_channels; c++)
+    if (!strcmp(x->cl->entries[c].name.str, name)) return c;
+  return -1;
+}
+
+void sessile_exr_channel_list(const sessile_exr_in *x, char *buf, size_t n) {
+  buf[0] = 0;
+  for (int c = 0; x->cl && c < x->cl->num_channels; c++) {
+    size_t len = strlen(buf);
+    snprintf(buf + len, n - len, "%s%s", c ? ", " : "", x->cl->entries[c].name.str);
+  }
+}
+
+/* The channel of dst that decoded channel `name` goes to, or NULL. */
+static float *target(int n, const char *const *names, float *const *dst, const char *name) {
+  for (int k = 0; k < n; k++)
+    if (names[k] && !strcmp(names[k], name)) return dst[k];
+  return NULL;
+}
+
+sessile_status sessile_exr_read_channels(sessile_exr_in *x, int n, const char *const *names, float *const *dst) {
+  const char *path = x->path;
+  int64_t w = x->h.width, h = x->h.height;
+  SESSILE_CHECK(x->h.scanline && w >= 1 && h >= 1, SESSILE_ERR_USAGE, "'%s': no scanline image to read", path);
+  for (int k = 0; k < n; k++)
+    SESSILE_CHECK(sessile_exr_channel_is_float(x, sessile_exr_find_channel(x, names[k])), SESSILE_ERR_USAGE,
+                  "'%s': channel '%s' is not a float channel", path, names[k]);
+  exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+  int dec_live = 0;
+  int32_t lines = 1;
+  exr_get_scanlines_per_chunk(x->ctx, 0, &lines);
+  exr_result_t r = EXR_ERR_SUCCESS;
+  exr_msg[0] = 0;
+  for (int64_t y = 0; y < h && r == EXR_ERR_SUCCESS; y += lines) {
+    exr_chunk_info_t ci;
+    r = exr_read_scanline_chunk_info(x->ctx, 0, x->dw.min.y + (int)y, &ci);
+    if (r == EXR_ERR_SUCCESS && !dec_live) {
+      r = exr_decoding_initialize(x->ctx, 0, &ci, &dec);
+      dec_live = r == EXR_ERR_SUCCESS;
+    } else if (r == EXR_ERR_SUCCESS)
+      r = exr_decoding_update(x->ctx, 0, &ci, &dec);
+    if (r != EXR_ERR_SUCCESS) break;
+    for (int k = 0; k < dec.channel_count; k++) {
+      exr_coding_channel_info_t *ch = &dec.channels[k];
+      float *d = target(n, names, dst, ch->channel_name);
+      /* EXR row 0 is the slice's row 0 (the low end of v) */
+      ch->decode_to_ptr = d ? (uint8_t *)(d + (size_t)(ci.start_y - x->dw.min.y) * (size_t)w) : NULL;
+      ch->user_pixel_stride = 4;
+      ch->user_line_stride = 4 * (int32_t)w;
+      ch->user_bytes_per_element = 4;
+      ch->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    r = exr_decoding_choose_default_routines(x->ctx, 0, &dec);
+    if (r == EXR_ERR_SUCCESS) r = exr_decoding_run(x->ctx, 0, &dec);
+  }
+  if (dec_live) exr_decoding_destroy(x->ctx, &dec);
+  SESSILE_CHECK(r == EXR_ERR_SUCCESS, SESSILE_ERR_USAGE, "cannot decode '%s': %s", path,
+                exr_msg[0] ? exr_msg : exr_get_error_code_as_string(r));
+  return SESSILE_OK;
+}
+
+void sessile_exr_close(sessile_exr_in *x) {
+  if (!x) return;
+  if (x->ctx) exr_finish(&x->ctx);
+  if (x->fd >= 0) close(x->fd);
+  free(x);
+}
