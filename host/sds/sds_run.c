@@ -27,6 +27,7 @@ typedef struct sim {
   sessile_sds_model *model;
   sessile_sds o;
   sessile_sds_params p;
+  sessile_sds_run_params prm; /* the parameter table's values (sds_params.c) */
   sessile_sds_gpu *pg;
   sessile_morph_gpu *mg;
   sessile_surface rock;       /* the obstacle, when the model has one */
@@ -69,30 +70,23 @@ static double param1(const sessile_sds_model *m, const char *name, double def) {
   return q && q->nvalues >= 1 ? q->values[0] : def;
 }
 
+/* The physics from the parameter table's values and the model's scene
+ * (box, rock, attractor: vectors the table does not hold). */
 static sessile_status read_physics(sim *s, const char *where) {
   const sessile_sds_model *m = s->model;
+  const sessile_sds_run_params *q = &s->prm;
   sessile_sds_params_default(&s->p);
-  s->p.k_edge = param1(m, "edge_stiffness", s->p.k_edge);
-  s->p.k_vol = param1(m, "volume_stiffness", s->p.k_vol);
-  s->p.surface_mult = param1(m, "surface_multiplier", s->p.surface_mult);
-  double damping = param1(m, "damping", s->p.damp_vol);
-  s->p.damp_vol = damping;
-  s->p.damp_visc = param1(m, "viscosity", s->p.damp_visc);
-  s->p.gravity = param1(m, "gravity", 0);
-  s->p.dt = param1(m, "dt", s->p.dt);
-  s->p.max_move = param1(m, "max_move", s->p.max_move);
-  s->p.stable_safety = param1(m, "stable_safety", s->p.stable_safety);
-  SESSILE_CHECK(s->p.max_move > 0 && s->p.max_move <= 1 && s->p.stable_safety > 0 && s->p.stable_safety <= 1,
-                SESSILE_ERR_USAGE, "%s: max_move and stable_safety must be in (0, 1] (got %g and %g)", where,
-                s->p.max_move, s->p.stable_safety);
-  s->density = param1(m, "density", 1);
-  double sc = param1(m, "self_collide", s->p.self_collide);
-  SESSILE_CHECK(sc == 0 || sc == 1, SESSILE_ERR_USAGE, "%s: self_collide must be 0 or 1", where);
-  s->p.self_collide = (int)sc;
-  SESSILE_CHECK(s->p.k_edge >= 0 && s->p.k_vol >= 0 && s->p.surface_mult >= 0 && damping >= 0 &&
-                    s->p.damp_visc >= 0 && s->density > 0 &&
-                    isfinite(s->p.gravity) && s->p.dt > 0,
-                SESSILE_ERR_USAGE, "%s: stiffnesses, damping and viscosity must be >= 0, density and dt > 0", where);
+  s->p.k_edge = q->edge_stiffness;
+  s->p.k_vol = q->volume_stiffness;
+  s->p.surface_mult = q->surface_multiplier;
+  s->p.damp_vol = q->damping;
+  s->p.damp_visc = q->viscosity;
+  s->p.gravity = q->gravity;
+  s->p.dt = q->dt;
+  s->p.max_move = q->max_move;
+  s->p.stable_safety = q->stable_safety;
+  s->density = q->density;
+  s->p.self_collide = q->self_collide;
   const sessile_sds_param *box = sessile_sds_model_param_find(m, "box");
   if (box) {
     SESSILE_CHECK(box->nvalues == 6, SESSILE_ERR_USAGE, "%s:%d: box needs 6 values: xmin ymin zmin xmax ymax zmax",
@@ -634,13 +628,17 @@ static sessile_status cells_below_tips(sim *s) {
 
 /* Everything about the model that needs no device: the text, the physics
  * keys, the starting sphere, the run's length. */
-static sessile_status check_model(sim *s, const char *where, int *level, double *radius) {
+static sessile_status check_model(sim *s, const char *where, const sessile_sds_run_params *params, int *level,
+                                  double *radius) {
   SESSILE_CALL(sessile_sds_model_parse(s->text, where, &s->model));
+  if (params) {
+    s->prm = *params;
+    SESSILE_CALL(sessile_params_check(&sessile_sds_run_param_table, &s->prm));
+  } else
+    SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &s->prm));
   SESSILE_CALL(read_physics(s, where));
-  *level = (int)param1(s->model, "sphere_subdivisions", 2) + 1;
-  *radius = param1(s->model, "sphere_radius", 1);
-  SESSILE_CHECK(*level >= 1 && *level <= 6 && *radius > 0 && isfinite(*radius), SESSILE_ERR_USAGE,
-                "%s: sphere_subdivisions must be 0..5 and sphere_radius > 0", where);
+  *level = s->prm.sphere_subdivisions + 1;
+  *radius = s->prm.sphere_radius;
   double t_end = param1(s->model, "t_end", 100), frames = param1(s->model, "frames", 20);
   SESSILE_CHECK(t_end >= 0 && t_end <= 1e9 && frames >= 1 && frames <= 100000 && frames == floor(frames),
                 SESSILE_ERR_USAGE, "%s: t_end must be in [0, 1e9] and frames an integer in 1..100000", where);
@@ -681,9 +679,7 @@ static void jitter_sphere(sessile_surface *srf, double jitter, uint64_t seed) {
 static sessile_status import_organism(sim *s, const char *where, int level, double radius) {
   uint32_t nm = (uint32_t)sessile_sds_model_nmorph(s->model), ns = (uint32_t)sessile_sds_model_nstate(s->model);
   const sessile_sds_param *sf = sessile_sds_model_param_find(s->model, "surface");
-  double jitter = param1(s->model, "start_jitter", 0);
-  SESSILE_CHECK(jitter >= 0 && jitter <= 0.2, SESSILE_ERR_USAGE, "%s: start_jitter must be in [0, 0.2] (got %g)", where,
-                jitter);
+  double jitter = s->prm.start_jitter;
   SESSILE_CHECK(!(sf && jitter > 0), SESSILE_ERR_USAGE,
                 "%s: start_jitter moves the icosphere's vertices; a model with its own surface has none to move", where);
   if (!sf) {
@@ -719,14 +715,15 @@ static sessile_status import_organism(sim *s, const char *where, int level, doub
   return st;
 }
 
-sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps) {
+sessile_status sessile_sds_model_check(const char *text, const char *name, const sessile_sds_run_params *params,
+                                       double t_end, uint64_t max_steps) {
   sim s;
   memset(&s, 0, sizeof s);
   s.text = text, s.seed = 1; /* the estimate: any realisation of the start will do */
   int level;
   double radius;
   const char *where = name ? name : "model";
-  sessile_status st = check_model(&s, where, &level, &radius);
+  sessile_status st = check_model(&s, where, params, &level, &radius);
   if (st == SESSILE_OK) {
     /* the work it would take: steps at the integrator's stable step of the
      * starting organism (growth and division only make steps smaller) */
@@ -834,12 +831,20 @@ static sessile_status setup(sim *s, const sessile_sds_run_options *opt) {
   int level;
   double radius;
   s->text = opt->model_text;
-  SESSILE_CALL(check_model(s, where, &level, &radius));
+  SESSILE_CALL(check_model(s, where, opt->params, &level, &radius));
   s->t_end = opt->t_end >= 0 ? opt->t_end : param1(s->model, "t_end", 100);
   s->frames = opt->frames >= 0 ? opt->frames : (int)param1(s->model, "frames", 20);
   SESSILE_CHECK(s->t_end >= 0 && isfinite(s->t_end) && s->frames >= 1 && s->frames <= 100000, SESSILE_ERR_USAGE,
                 "sds: t_end must be >= 0 and frames in 1..100000");
   s->key = sds_ckpt_key(s->text, opt->seed, s->t_end, s->frames, opt->max_cells);
+  if (opt->params) { /* values apart from the model's own (--set, --config) belong to the key */
+    sessile_sds_run_params own;
+    SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &own));
+    s->key = sds_ckpt_key_params(s->key, &own, &s->prm);
+  }
+  cJSON *man = sessile_run_manifest(opt->run);
+  cJSON_DeleteItemFromObjectCaseSensitive(man, "parameters");
+  cJSON_AddItemToObject(man, "parameters", sessile_params_to_json(&sessile_sds_run_param_table, &s->prm));
   int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
   s->tip_state = sessile_sds_model_state_index(s->model, "tip");
   s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
@@ -857,7 +862,7 @@ static sessile_status setup(sim *s, const sessile_sds_run_options *opt) {
       for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
     SESSILE_CALL(mark_tips(s, where));
     SESSILE_CALL(neighbours(s));
-    if (param1(s->model, "tips_below", 0) != 0 && s->tip_state >= 0) SESSILE_CALL(cells_below_tips(s));
+    if (s->prm.tips_below && s->tip_state >= 0) SESSILE_CALL(cells_below_tips(s));
     measure_start(s);
     s->dt = s->p.dt;
   }
