@@ -24,7 +24,7 @@ typedef struct sds_ckpt_loop {
   uint64_t steps, divisions, inversions, resisted, slivers, deferred, repairs; /* run totals */
   double c0[3], size0;           /* the starting organism's centroid and size (blow-up test) */
   uint64_t retry_cap;            /* entries of retry_at */
-  uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_run.c, repair) */
+  uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_inversions.c, repair) */
 } sds_ckpt_loop;
 
 #define SDS_CKPT_VERSION 5u /* 5: the step control keeps no counter (2026-11-24) */
