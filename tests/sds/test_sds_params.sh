@@ -5,10 +5,8 @@
 # --set the config); --set dt=<the model's own> gives the bytes of a run
 # without it, another dt another run, and the manifest records the values;
 # bad values (out of range, unknown, not a number, an unknown key in a
-# config) exit 2 with one line naming the parameter and write nothing; a
-# resume refuses --set, and a run made with --set stopped and resumed ends
-# in the bytes of one that never stopped (its stored parameters, not the
-# model's).
+# config) exit 2 with one line naming the parameter and write nothing (a
+# resume of a run made with --set: tests/sds/test_sds_resume.sh).
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -76,29 +74,5 @@ sed 's/^damping = .*/damping = 0.001 0.002/' "$LIMB" >"$T/two.sds"
 run sds run "$T/two.sds" --out "$T/x"
 check "a model line with two numbers for a table parameter: exit 2, model:line, nothing written" eval \
   'rc_is 2 && one_line && grep -q "two.sds:12: damping takes one number" "$T/err" && [ ! -e "$T/x" ]'
-
-# a run with --set, stopped by SIGINT after frame 1 and resumed: the bytes of
-# the uninterrupted run with the same --set (the stored parameters, not the
-# model's own dt)
-signal_after() { # file signal pid
-  for _ in $(seq 1 3000); do [ -e "$1" ] && break; sleep 0.02; done
-  kill "-$2" "$3" 2>/dev/null
-}
-sed 's/^const Delta = .*/const Delta = 0.03/' "$LIMB" >"$T/fast.sds"
-RA=(sds run "$T/fast.sds" --t-end 6 --frames 3 --quiet --no-preview --set dt=0.0005 --set viscosity=1.5)
-run "${RA[@]}" --out "$T/r1"
-check "the uninterrupted run with --set completes" rc_is 0
-"$S" "${RA[@]}" --out "$T/r2" >"$T/out" 2>"$T/err" &
-pid=$!
-signal_after "$T/r2/sds/frame_0001.ply" INT $pid
-{ wait $pid; } 2>/dev/null
-echo $? >"$T/rc"
-check "SIGINT after frame 1: exit 130" eval 'rc_is 130 && test ! -e "$T/r2/sds/final.ply"'
-run sds run --resume "$T/r2" --set dt=0.001
-check "--resume with --set: exit 2, one line, the run untouched" eval \
-  'rc_is 2 && one_line && test ! -e "$T/r2/sds/final.ply"'
-run sds run --resume "$T/r2" --quiet --no-preview
-check "the resume completes with the stored parameters: every file under sds/ the same bytes" eval \
-  'rc_is 0 && sums "$T/r1" >"$T/r1.sum" && sums "$T/r2" >"$T/r2.sum" && cmp -s "$T/r1.sum" "$T/r2.sum"'
 
 finish
