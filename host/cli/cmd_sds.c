@@ -11,7 +11,8 @@
 #define CMD "sds run"
 
 static const char *help =
-    "usage: sessile sds run MODEL [--t-end T] [--frames N] [--max-cells N] [--max-steps N] [--seed N]\n"
+    "usage: sessile sds run MODEL [--config FILE.json]... [--set KEY=VALUE]... [--print-config]\n"
+    "                           [--t-end T] [--frames N] [--max-cells N] [--max-steps N] [--seed N]\n"
     "                           [--out DIR] [--force] [--quiet] [--device D]\n"
     "       sessile sds run [MODEL] --resume DIR [--quiet] [--device D]\n"
     "       sessile sds models         list the shipped models\n"
@@ -29,6 +30,14 @@ static const char *help =
     "inversions) and sds/steps.csv (the same per physics step: the paper's\n"
     "Figure 12; `sessile render DIR` draws it as renders/plot_step_times.png).\n"
     "\n"
+    "Parameters: the model's physics and set-up numbers (dt, edge_stiffness, gravity, ...)\n"
+    "have a table with defaults, ranges, units and sources; the model file's NAME = value\n"
+    "lines override the defaults, then --config files (JSON objects) in order, then --set\n"
+    "in order.  --print-config prints the table with the model's values (docs/sds.md).\n"
+    "\n"
+    "  --config FILE   a JSON object of parameters over the model's ({\"dt\": 0.002})\n"
+    "  --set KEY=VALUE one parameter over the model's and the configs'\n"
+    "  --print-config  print every parameter (value, unit, range, source, meaning) and exit\n"
     "  --t-end T       simulated time to reach (default: the model's t_end)\n"
     "  --frames N      frames over t_end (default: the model's frames)\n"
     "  --max-cells N   stop with an error past N cells (default 200000)\n"
@@ -78,27 +87,32 @@ static int parse_double(const char *v, double lo, double hi, double *out) {
 }
 
 /* The run's configuration in its manifest: what --resume restarts from. */
-static cJSON *config_make(const char *name, const char *text, unsigned long long seed, double t_end, int frames,
-                          unsigned max_cells) {
-  cJSON *c = cJSON_CreateObject();
-  char sd[32];
-  snprintf(sd, sizeof sd, "%llu", seed);
-  if (!c || !cJSON_AddStringToObject(c, "seed", sd) || !cJSON_AddStringToObject(c, "model", name) ||
-      !cJSON_AddStringToObject(c, "model_text", text) || !cJSON_AddNumberToObject(c, "t_end", t_end) ||
-      !cJSON_AddNumberToObject(c, "frames", frames) || !cJSON_AddNumberToObject(c, "max_cells", max_cells)) {
-    cJSON_Delete(c);
-    return NULL;
-  }
-  return c;
-}
-
 typedef struct stored {
   char *name, *text;
   unsigned long long seed;
   double t_end;
   int frames;
   unsigned max_cells;
+  sessile_sds_run_params p; /* the parameter table's values */
 } stored;
+
+/* The run's configuration in its manifest: what --resume restarts from
+ * (the parameters bit for bit: sessile_params_to_config). */
+static cJSON *config_make(const stored *o) {
+  cJSON *c = cJSON_CreateObject();
+  char sd[32];
+  snprintf(sd, sizeof sd, "%llu", o->seed);
+  cJSON *pj = sessile_params_to_config(&sessile_sds_run_param_table, &o->p);
+  if (!c || !pj || !cJSON_AddStringToObject(c, "seed", sd) || !cJSON_AddStringToObject(c, "model", o->name) ||
+      !cJSON_AddStringToObject(c, "model_text", o->text) || !cJSON_AddNumberToObject(c, "t_end", o->t_end) ||
+      !cJSON_AddNumberToObject(c, "frames", o->frames) || !cJSON_AddNumberToObject(c, "max_cells", o->max_cells) ||
+      !cJSON_AddItemToObject(c, "parameters", pj)) {
+    if (pj && !cJSON_GetObjectItemCaseSensitive(c, "parameters")) cJSON_Delete(pj);
+    cJSON_Delete(c);
+    return NULL;
+  }
+  return c;
+}
 
 static sessile_status config_take(const cJSON *c, const char *dir, stored *o) {
   const cJSON *sd = cJSON_GetObjectItemCaseSensitive(c, "seed"), *nm = cJSON_GetObjectItemCaseSensitive(c, "model");
@@ -114,7 +128,12 @@ static sessile_status config_take(const cJSON *c, const char *dir, stored *o) {
   o->name = strdup(nm->valuestring), o->text = strdup(tx->valuestring);
   SESSILE_CHECK(o->name && o->text, SESSILE_ERR_NO_MEMORY, "out of host memory");
   o->t_end = te->valuedouble, o->frames = (int)fr->valuedouble, o->max_cells = (unsigned)mc->valuedouble;
-  return SESSILE_OK;
+  /* a run from before the parameter table stored none: the model text's own */
+  const cJSON *pj = cJSON_GetObjectItemCaseSensitive(c, "parameters");
+  if (!pj) return sessile_sds_run_params_of_model(o->text, o->name, &o->p);
+  sessile_params_defaults(&sessile_sds_run_param_table, &o->p);
+  SESSILE_CALL(sessile_params_apply_json(&sessile_sds_run_param_table, &o->p, pj, "the run's stored configuration"));
+  return sessile_params_check(&sessile_sds_run_param_table, &o->p);
 }
 
 static int read_model(const char *model, char **text) {
@@ -206,22 +225,32 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     if (o[0] == '-' || model) return cli_usage_error(CMD, "unknown option or second model '%.60s'", o);
     model = o;
   }
-  if (a->have_iterations || a->every != 1 || a->nsets || a->nconfigs || a->print_config)
-    return cli_usage_error(CMD, "--iterations, --every, --set, --config and --print-config do not apply: "
-                                "the model file holds every parameter (docs/sds_rules.md)");
+  if (a->have_iterations || a->every != 1)
+    return cli_usage_error(CMD, "--iterations and --every do not apply: the model runs to its t_end (--t-end), "
+                                "in frames (--frames)");
   if (a->resume && (a->have_run_option || have_shape))
-    return cli_usage_error(CMD, "--resume continues a run with its own model and options: only a MODEL (its own), "
-                                "--quiet and device options go with it");
+    return cli_usage_error(CMD, "--resume continues a run with its own model, parameters and options: only a MODEL "
+                                "(its own), --quiet and device options go with it");
   if (!model && !a->resume) return cli_usage_error(CMD, "name a model: a shipped one (sessile sds models) or FILE.sds");
   char *text = NULL;
   if (model) {
     int rc = read_model(model, &text);
     if (rc >= 0) return rc;
   }
+  stored cfg = {.seed = a->seed, .t_end = t_end, .frames = have_frames ? (int)frames : -1, .max_cells = max_cells};
   sessile_status s = SESSILE_OK;
   if (!a->resume) {
+    /* the parameters: the table's defaults, the model's lines, --config, --set */
+    s = sessile_sds_run_params_of_model(text, model, &cfg.p);
+    if (s == SESSILE_OK) s = cli_run_apply_params(&sessile_sds_run_param_table, &cfg.p, a);
+    if (s == SESSILE_OK) s = sessile_params_check(&sessile_sds_run_param_table, &cfg.p);
+    if (s == SESSILE_OK && a->print_config) {
+      s = sessile_params_print(&sessile_sds_run_param_table, &cfg.p, stdout);
+      free(text);
+      return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
+    }
     /* everything about the model that needs no device, before the run directory */
-    s = sessile_sds_model_check(text, model, t_end, max_steps);
+    if (s == SESSILE_OK) s = sessile_sds_model_check(text, model, &cfg.p, t_end, max_steps);
     if (s != SESSILE_OK) {
       free(text);
       return cli_fail(s);
@@ -239,7 +268,6 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   }
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_run *run = NULL;
-  stored cfg = {NULL, NULL, a->seed, t_end, have_frames ? (int)frames : -1, max_cells};
   s = cli_run_open("sds", argc, argv, a, dir, stop, &run);
   if (s == SESSILE_OK && a->resume) {
     s = config_take(sessile_run_config(run), dir, &cfg);
@@ -255,7 +283,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   }
   if (s == SESSILE_OK) cli_run_note_device(run, g);
   if (s == SESSILE_OK) {
-    cJSON *c = config_make(cfg.name, cfg.text, cfg.seed, cfg.t_end, cfg.frames, cfg.max_cells);
+    cJSON *c = config_make(&cfg);
     s = c ? sessile_run_set_config(run, c) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   sessile_sds_run_stats st;
@@ -263,6 +291,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   const char *name = cfg.name ? cfg.name : model ? model : "?";
   if (s == SESSILE_OK) {
     sessile_sds_run_options o = {.run = run, .gpu = g, .seed = cfg.seed, .model_text = cfg.text, .model_name = cfg.name,
+                                 .params = &cfg.p,
                                  .t_end = cfg.t_end, .frames = cfg.frames, .max_cells = cfg.max_cells};
     s = sessile_sds_run(&o, &st);
     manifest_sds(run, name, &st, s);

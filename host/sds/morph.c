@@ -1,5 +1,5 @@
 /* Morphogen diffusion and decay, §3.3: the paper's capped discrete Laplacian
- * with explicit Euler.  Plain-C reference of shaders/sdsproc/morph_step.comp:
+ * with explicit Euler.  Plain-C reference of shaders/sds/morph_step.comp:
  * the operations are written in the kernel's order so both give the same
  * doubles (docs/sds_morphogens.md). */
 #include <math.h>

@@ -1,4 +1,4 @@
-/* The morphogen step on the GPU (shaders/sdsproc/morph_step.comp): buffers
+/* The morphogen step on the GPU (shaders/sds/morph_step.comp): buffers
  * kept between calls, nsteps ping-pong dispatches in one submission.  The
  * loop's per-step transfers ride in that submission (gpu.h,
  * sessile_cmd_upload): move_cells and set_phi open the recording with their
@@ -8,7 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sdsproc_kernels.h"
+#include "sds_kernels.h"
 #include "sessile/sds_process.h"
 
 enum { B_POS, B_RADIUS, B_OFF, B_NBR, B_COEF, B_SRC, B_PHI0, B_PHI1, B_COUNT };
@@ -60,9 +60,9 @@ sessile_status sessile_morph_gpu_create(sessile_gpu *g, sessile_morph_gpu **out)
   SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory for the morphogen kernel");
   m->gpu = g;
   m->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
-  sessile_status st = sessile_kernel_create_decl(g, &sessile_sdsproc_kernels[SPK_MORPH_STEP], m->real_bytes, 0, &m->k);
+  sessile_status st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP], m->real_bytes, 0, &m->k);
   if (st == SESSILE_OK)
-    st = sessile_kernel_create_decl(g, &sessile_sdsproc_kernels[SPK_MORPH_STEP_TEX], m->real_bytes, 0, &m->k_tex);
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_TEX], m->real_bytes, 0, &m->k_tex);
   if (st == SESSILE_OK) st = sessile_cmd_create(g, &m->cmd);
   if (st != SESSILE_OK) {
     sessile_morph_gpu_destroy(m);
@@ -84,9 +84,9 @@ void sessile_morph_gpu_destroy(sessile_morph_gpu *m) {
 
 sessile_status sessile_morph_gpu_set_cells(sessile_morph_gpu *m, const sessile_morph_cells *cl,
                                            const sessile_morph_coef *co) {
-  SESSILE_CHECK(cl->ncells > 0 && co->nmorph > 0 && co->nmorph <= SDSPROC_MAX_MORPH, SESSILE_ERR_USAGE,
+  SESSILE_CHECK(cl->ncells > 0 && co->nmorph > 0 && co->nmorph <= SDS_MORPH_MAX, SESSILE_ERR_USAGE,
                 "morphogen kernel: %d cells and %d morphogens (cells > 0, 1 to %d morphogens)", cl->ncells,
-                co->nmorph, SDSPROC_MAX_MORPH);
+                co->nmorph, SDS_MORPH_MAX);
   /* uploads of the old cells not yet run (a set_phi without a step): run
    * them, before the buffers may be replaced */
   if (sessile_cmd_recording(m->cmd)) SESSILE_CALL(close_rec(m));
@@ -175,7 +175,7 @@ sessile_status sessile_morph_gpu_step(sessile_morph_gpu *m, double dt, int nstep
   if (nsteps == 0) return sessile_cmd_recording(m->cmd) ? close_rec(m) : SESSILE_OK;
   uint32_t local = sessile_kernel_local_size(m->k);
   uint32_t groups = ((uint32_t)m->ncells + local - 1) / local;
-  sdsproc_push p = {0};
+  sds_morph_push p = {0};
   p.ncells = (uint32_t)m->ncells;
   p.nmorph = (uint32_t)m->nmorph;
   p.dt = sessile_push_real_of(dt, m->real_bytes);

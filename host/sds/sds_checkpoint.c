@@ -17,6 +17,17 @@ uint64_t sds_ckpt_key(const char *model_text, uint64_t seed, double t_end, int f
   return h;
 }
 
+uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, const sessile_sds_run_params *p) {
+  const sessile_param_table *t = &sessile_sds_run_param_table;
+  for (int i = 0; i < t->count; i++) {
+    double a = sessile_params_value(t, own, i), b = sessile_params_value(t, p, i);
+    if (memcmp(&a, &b, sizeof a) == 0) continue;
+    key = fnv(key, t->params[i].name, strlen(t->params[i].name) + 1);
+    key = fnv(key, &b, sizeof b);
+  }
+  return key;
+}
+
 /* The organism's sizes, then one section per array (name, where, bytes). */
 enum { NSEC = 20 };
 typedef struct counts {

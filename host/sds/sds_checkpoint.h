@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include "sessile/run.h"
 #include "sessile/sds.h"
+#include "sessile/sds_run.h"
 
 /* Everything the loop carries from one step to the next besides the
  * organism.  Only 8-byte members: no padding, the same layout everywhere. */
@@ -23,7 +24,7 @@ typedef struct sds_ckpt_loop {
   uint64_t steps, divisions, inversions, resisted, slivers, deferred, repairs; /* run totals */
   double c0[3], size0;           /* the starting organism's centroid and size (blow-up test) */
   uint64_t retry_cap;            /* entries of retry_at */
-  uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_run.c, repair) */
+  uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_inversions.c, repair) */
 } sds_ckpt_loop;
 
 #define SDS_CKPT_VERSION 5u /* 5: the step control keeps no counter (2026-11-24) */
@@ -31,6 +32,11 @@ typedef struct sds_ckpt_loop {
 /* A 64-bit FNV-1a over the model text and the options that shape the
  * outputs (seed, t_end, frames, cell limit). */
 uint64_t sds_ckpt_key(const char *model_text, uint64_t seed, double t_end, int frames, uint32_t max_cells);
+
+/* The key continued over the parameters whose values differ from the model
+ * text's own (own): names and values.  None differ: the key as it was, so a
+ * run without --set or --config keeps its checkpoint bytes. */
+uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, const sessile_sds_run_params *p);
 
 /* Writes the checkpoint (atomically, through the run) after `frames`
  * frames were written. */

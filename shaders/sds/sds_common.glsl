@@ -4,7 +4,7 @@
 #define SDS_COMMON_GLSL
 #include "sds_kernels.glsl"
 
-// Offsets into topo (kernels.def); the host's are in sds_gpu.c.
+// Offsets into topo (kernels.def); the host's are in sds_gpu_buffers.c.
 uint o_tet() { return 0u; }
 uint o_edge() { return 4u * pc.ntets; }
 uint o_ceo() { return o_edge() + 2u * pc.nedges; }

@@ -1,4 +1,4 @@
-/* The morphogen kernel (shaders/sdsproc/morph_step.comp) against its plain-C
+/* The morphogen kernel (shaders/sds/morph_step.comp) against its plain-C
  * reference (sessile_morph_step) on a jittered 12x10x8 lattice with three
  * morphogens (diffusing, diffusing + decaying with sources, an uncapped
  * timer), with caps binding in part of the lattice.

@@ -15,7 +15,7 @@
 #include "collide_scenes.h"
 #include "sessile/sds_topo.h"
 
-/* Divides cell c of o toward d as the loop does (sds_run.c): the complex
+/* Divides cell c of o toward d as the loop does (sds_divide.c): the complex
  * through TetGen, daughter b appended with c's radius, mass and velocity,
  * new tets and edges at unit multipliers.  Returns 0 when TetGen declines. */
 static int divide(sessile_sds *o, uint32_t c, const double d[3]) {

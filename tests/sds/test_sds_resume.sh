@@ -8,7 +8,10 @@
 # time.  Refusals, one line and
 # exit 2: nothing to resume (an empty or missing folder), a folder of another
 # generator, another model named with --resume, an option a resume must not
-# change, and a checkpoint written by another configuration (another seed and t_end).
+# change, and a checkpoint written by another configuration (another seed and t_end,
+# or other parameters: --set).  A run made with --set, stopped and resumed,
+# ends in the bytes of one that never stopped: the resume takes the stored
+# parameters, not the model's own, and refuses --set.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -97,5 +100,37 @@ run sds run "$T/fast.sds" --t-end 0.5 --frames 1 --seed 2 --out "$T/d" --quiet
 cp "$T/d/checkpoint.bin" "$T/c/checkpoint.bin"
 run sds run --resume "$T/c"
 check "a checkpoint of another configuration (seed 2, t_end 0.5): exit 2, one line" eval \
+  'rc_is 2 && one_line && grep -q "another model or configuration" "$T/err"'
+
+# a run with --set, stopped by SIGINT after frame 1 and resumed: the bytes of
+# the uninterrupted run with the same --set (the stored parameters, not the
+# model's own dt and viscosity)
+RA=(sds run "$T/fast.sds" --t-end 6 --frames 3 --quiet --no-preview --set dt=0.0005 --set viscosity=1.5)
+run "${RA[@]}" --out "$T/r1"
+check "the uninterrupted run with --set completes" rc_is 0
+"$S" "${RA[@]}" --out "$T/r2" >"$T/out" 2>"$T/err" &
+pid=$!
+signal_after "$T/r2/sds/frame_0001.ply" INT $pid
+{ wait $pid; } 2>/dev/null
+echo $? >"$T/rc"
+check "with --set, SIGINT after frame 1: exit 130" eval 'rc_is 130 && test ! -e "$T/r2/sds/final.ply"'
+run sds run --resume "$T/r2" --set dt=0.001
+check "--resume with --set: exit 2, one line, the run untouched" eval \
+  'rc_is 2 && one_line && test ! -e "$T/r2/sds/final.ply"'
+run sds run --resume "$T/r2" --quiet --no-preview
+check "the resume completes with the stored parameters: every file under sds/ the same bytes" eval \
+  'rc_is 0 && sums "$T/r1" >"$T/r1.sum" && sums "$T/r2" >"$T/r2.sum" && cmp -s "$T/r1.sum" "$T/r2.sum"'
+# the same run with another viscosity, stopped after its first checkpoint:
+# its checkpoint does not fit the run above (the key holds the parameters
+# that differ from the model's)
+"$S" sds run "$T/fast.sds" --t-end 6 --frames 3 --quiet --no-preview --set dt=0.0005 --set viscosity=2 \
+  --out "$T/r3" >"$T/out" 2>"$T/err" &
+pid=$!
+signal_after "$T/r3/checkpoint.bin" INT $pid
+{ wait $pid; } 2>/dev/null
+cp -r "$T/r1" "$T/r4"
+cp "$T/r3/checkpoint.bin" "$T/r4/checkpoint.bin"
+run sds run --resume "$T/r4"
+check "a checkpoint of other parameters (viscosity 2 for 1.5): exit 2, one line" eval \
   'rc_is 2 && one_line && grep -q "another model or configuration" "$T/err"'
 finish

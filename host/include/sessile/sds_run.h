@@ -8,6 +8,7 @@
 #define SESSILE_SDS_RUN_H
 #include <stdint.h>
 #include "sessile/gpu.h"
+#include "sessile/param_table.h"
 #include "sessile/run.h"
 #include "sessile/status.h"
 
@@ -15,12 +16,41 @@
 extern "C" {
 #endif
 
+/* The model's scalar physics and set-up parameters (docs/sds.md, "Parameters"):
+ * the table gives each its default, range, unit and source; a model file's
+ * `NAME = value` line overrides the default, --config and --set override
+ * the model.  Vectors and files of the scene (box, rock, attractor,
+ * surface) and the run's length (t_end, frames) stay the model text's. */
+typedef struct sessile_sds_run_params {
+  double sphere_radius;       /* u */
+  int sphere_subdivisions;
+  double start_jitter;
+  int tips_below;             /* bool */
+  double density;
+  double edge_stiffness, volume_stiffness, surface_multiplier; /* u/s^2 */
+  double damping;             /* the tets' damping on dV/dt */
+  double viscosity;           /* 1/s */
+  double gravity;             /* u/s^2 along -z */
+  int self_collide;           /* bool */
+  double dt;                  /* s: the first step */
+  double max_move, stable_safety;
+} sessile_sds_run_params;
+
+extern const sessile_param_table sessile_sds_run_param_table;
+
+/* The table's defaults overridden by the model text's `NAME = value` lines
+ * (text parsed as model `name`); a value outside its range, or not one
+ * number, is SESSILE_ERR_USAGE naming name:line and the parameter. */
+sessile_status sessile_sds_run_params_of_model(const char *text, const char *name, sessile_sds_run_params *p);
+
 typedef struct sessile_sds_run_options {
   sessile_run *run;        /* required */
   sessile_gpu *gpu;        /* required */
   uint64_t seed;           /* division directions where the gradient vanishes */
   const char *model_text;  /* the model (docs/sds_rules.md) */
   const char *model_name;  /* names it in messages */
+  /* the parameters (checked against the table); NULL: the model text's own */
+  const sessile_sds_run_params *params;
   double t_end;            /* < 0: the model's t_end */
   int frames;              /* < 0: the model's frames */
   uint32_t max_cells;      /* a run that would pass this many cells stops with an error */
@@ -46,17 +76,19 @@ typedef struct sessile_sds_run_stats {
 } sessile_sds_run_stats;
 
 /* Checks a model without a device (its text, physics keys, sphere, run
- * length): SESSILE_ERR_USAGE with file:line:column where it can, and when
- * reaching t_end (< 0: the model's) would take more than max_steps steps at
- * the starting organism's stable step (the estimate in the message). */
-sessile_status sessile_sds_model_check(const char *text, const char *name, double t_end, uint64_t max_steps);
+ * length) with the parameters params (NULL: the model text's own):
+ * SESSILE_ERR_USAGE with file:line:column where it can, and when reaching
+ * t_end (< 0: the model's) would take more than max_steps steps at the
+ * starting organism's stable step (the estimate in the message). */
+sessile_status sessile_sds_model_check(const char *text, const char *name, const sessile_sds_run_params *params,
+                                       double t_end, uint64_t max_steps);
 
 /* Runs the model to t_end, writing sds/frame_NNNN.ply, sds/frame_NNNN.vtu,
  * sds/series.pvd, sds/final.ply and records, and a checkpoint after every
  * frame and when a stop is requested (then SESSILE_ERR_INTERRUPTED).  When
  * the run holds a checkpoint (a resume), the organism and the loop continue
  * from it, to the same bytes as a run that never stopped; a checkpoint of
- * another model or options (seed, t_end, frames, max_cells) is
+ * another model, parameters or options (seed, t_end, frames, max_cells) is
  * SESSILE_ERR_USAGE.  On a failure mid-run (a blow-up: st->blowup set; a
  * topology change that cannot be made) the frames written so far stay and
  * the error names the time and the cause.  A model's `surface = "FILE.ply"`

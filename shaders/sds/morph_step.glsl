@@ -3,7 +3,7 @@
 //   out = clamp(phi + dt (D lap - C phi + src), 0, vol(c) or +inf)
 // Operation for operation as sessile_morph_step (host/sds/morph.c); the
 // neighbour sum runs in CSR order so every run gives the same bytes.
-#include "sdsproc_kernels.glsl"
+#include "sds_kernels.glsl"
 // Reads through uniform texel buffers (MORPH_TEXEL = 1: vector loads on
 // lavapipe, as shaders/sds/sds_load.glsl) or storage buffers; the same bits.
 #if MORPH_TEXEL

@@ -1,0 +1,90 @@
+/* The SDS physics on the GPU, shared by its files (sessile/sds.h;
+ * sds_gpu_buffers.c: the buffers, their uploads and the kernels' choice;
+ * sds_gpu_contacts.c: the contact lists; sds_gpu_step.c: forces, steps and
+ * their control, the inverted flags). */
+#ifndef SESSILE_SDS_GPU_INTERNAL_H
+#define SESSILE_SDS_GPU_INTERNAL_H
+#include <stdint.h>
+#include "sds/sds_internal.h"
+#include "sds_kernels.h"
+
+enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_COUNT };
+
+/* The contact lists' skin, a fraction of contact_scale x the mean cell
+ * radius: a larger skin rebuilds less often but lists more triangles, which
+ * every step then visits (docs/sds.md, "Collisions": 1 measured best). */
+#define SDS_SKIN_FRAC 1.0
+#define SDS_LIST_MIN 16 /* the first capacity per cell */
+/* Step control (docs/sds.md, "Integrator"): the next step aims the largest
+ * move at this fraction of max_move, so that few steps are undone, and grows
+ * by at most SDS_GROW a step. */
+#define SDS_MOVE_AIM 0.8
+#define SDS_GROW 1.25
+
+struct sessile_sds_gpu {
+  sessile_gpu *gpu;
+  uint32_t real_bytes;
+  sessile_kernel *k[SDS_MORPH_STEP]; /* the physics' kernels (kernels.def: the morphogens' come after) */
+  sessile_cmd *cmd;
+  sessile_buffer *b[B_COUNT];
+  uint32_t ncells, nedges, ntets, nobs, nattract;
+  uint32_t nfaces, tsize, tsize_obs, nobs_v; /* boundary faces; surface and obstacle hash table sizes */
+  uint32_t nsurf;                    /* surface cells (contact_self's invocations) */
+  double h_self;                     /* surface hash cell size (mean boundary side at upload) */
+  int no_contact;                    /* the benchmark's switch: contacts left out */
+  int cur; /* x, v live in B_X0 + cur, B_V0 + cur */
+  sessile_sds_params p;
+  double *scratch; /* 3 ncells (host side of downloads) */
+  /* the contact lists */
+  uint32_t lcap;    /* entries per cell */
+  int lists_valid;  /* every triangle within delta of a cell is in its list */
+  double skin;      /* of the last build, u */
+  double grown;     /* largest r - rb at the last upload (radii do not change on the device) */
+  double *xb, *rb;  /* host copies: positions and radii at the last build */
+  double *r_up;     /* radii of the last upload */
+  /* One submission a step on a discrete GPU (gpu.h, sessile_cmd_upload):
+   * rm holds r, m as the device holds them (it never writes them), and goes
+   * up with the next recording when rm_pending; a step of the loop downloads
+   * its x, v into hx, hv inside its own submission (pair `mirror`, -1: none)
+   * when the buffers are not mapped. */
+  double *rm, *hx, *hv;
+  int rm_pending, rm_in_rec, mirror;
+  uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
+  size_t ntopo_up;
+  uint64_t builds;  /* list builds so far (partial ones included) */
+  uint64_t partial_builds; /* of which partial: the cells a topology change touched */
+  uint32_t lbase;   /* cells the list buffer has room for (B_LIST, B_XB) */
+  int lists_part;   /* the next build may be partial: only the cells in sub */
+  uint32_t *sub;    /* a partial build's cells, then its surface cells */
+  size_t nsub, nsub_surf, sub_cap;
+  int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
+  int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
+};
+
+/* A real as the device stores it (r, m kept on the host: rm). */
+static inline double dev_real(const sessile_sds_gpu *s, double v) { return s->real_bytes == 8 ? v : (double)(float)v; }
+
+/* The contact lists must be built again, every cell's. */
+static inline void lists_invalidate(sessile_sds_gpu *s) { s->lists_valid = 0, s->lists_part = 0; }
+
+/* sds_gpu_buffers.c: buffer i with room for bytes; a recording begun (r, m
+ * first when pending) and submitted; kernel k or its _tex variant; the
+ * workgroups for items; the push constants of a dispatch. */
+sessile_status sds_gpu_ensure(sessile_sds_gpu *s, int i, size_t bytes);
+sessile_status sds_gpu_begin(sessile_sds_gpu *s);
+sessile_status sds_gpu_submit(sessile_sds_gpu *s);
+sessile_kernel *sds_gpu_kern(const sessile_sds_gpu *s, int k);
+uint32_t sds_gpu_groups(const sessile_sds_gpu *s, int k, uint32_t items);
+sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int mode);
+
+/* sds_gpu_contacts.c: the lists' staleness after moves, checks at an upload
+ * of radii or of a new complex, a build recorded, and the lists made
+ * complete before an evaluation. */
+int sds_gpu_lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf);
+void sds_gpu_lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o);
+sessile_status sds_gpu_lists_check_upload(sessile_sds_gpu *s, const sessile_sds *o, uint32_t *topo, size_t ntopo);
+sessile_status sds_gpu_record_lists(sessile_sds_gpu *s, int c, uint32_t lsub);
+int sds_gpu_contacts_on(const sessile_sds_gpu *s);
+sessile_status sds_gpu_lists_ensure(sessile_sds_gpu *s);
+#endif

@@ -1,0 +1,277 @@
+/* The SDS loop (sessile/sds_run.h, docs/sds.md "The loop").  One step:
+ *   1. physics: one integrator step on the GPU (step control inside);
+ *   2. inversions: tets with volume <= 0 after the step are found on the GPU;
+ *      the first inversion time among them (linear motion over the step,
+ *      §3.1.2) rewinds every cell to that time, the tet's case-1 or case-2
+ *      transformation is applied (host, TetGen) and the step goes on;
+ *   3. morphogens: explicit Euler on the GPU, sub-stepped below its bound;
+ *   4. rules: evaluated on the host in cell order, then sets, growth (r, m)
+ *      and divisions (host, TetGen) in cell order.
+ * Same model, seed and device: the same bytes. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/io.h"
+#include "sessile/rng.h"
+#include "sds/sds_checkpoint.h"
+#include "sds/sds_sim.h"
+
+/* The loop's scalars to and from the checkpoint (sds_checkpoint.h). */
+static sessile_status save(sds_sim *s, sessile_run *run) {
+  SESSILE_CALL(sds_steplog_flush(s, run));
+  const sessile_sds_run_stats *t = s->st;
+  sds_ckpt_loop l = {.version = SDS_CKPT_VERSION, .key = s->key, .time = s->time, .dt = s->dt,
+                     .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
+                     .steps_frame = s->steps_frame, .div_interval = s->div_interval,
+                     .inv_interval = s->inv_interval, .steps = t->steps, .divisions = t->divisions,
+                     .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
+                     .deferred = t->deferred, .repairs = t->repairs, .c0 = {s->c0[0], s->c0[1], s->c0[2]}, .size0 = s->size0,
+                     .retry_cap = s->retry_at ? s->retry_cap : 0, .nsliver = s->nsliver};
+  return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at, s->sliver);
+}
+
+static sessile_status restore(sds_sim *s, const sessile_ckpt *ck) {
+  sds_ckpt_loop l;
+  SESSILE_CALL(sds_ckpt_read(ck, s->key, (uint32_t)sessile_sds_model_nmorph(s->model),
+                             (uint32_t)sessile_sds_model_nstate(s->model), &s->o, &l, &s->retry_at, &s->sliver));
+  sessile_sds_run_stats *t = s->st;
+  s->time = l.time, s->dt = l.dt, s->stalled = (int)l.stalled, s->rng = l.rng;
+  s->frame = (int)l.frame, s->steps_frame = l.steps_frame;
+  s->div_interval = l.div_interval, s->inv_interval = l.inv_interval;
+  t->steps = l.steps, t->divisions = l.divisions, t->inversions = l.inversions, t->resisted = l.resisted;
+  t->slivers = l.slivers, t->deferred = l.deferred, t->repairs = l.repairs, t->frames = s->frame;
+  memcpy(s->c0, l.c0, sizeof s->c0);
+  s->size0 = l.size0, s->retry_cap = (uint32_t)l.retry_cap;
+  s->nsliver = s->sliver_cap = (uint32_t)l.nsliver;
+  if (!s->retry_cap) free(s->retry_at), s->retry_at = NULL;
+  SESSILE_CHECK(s->frame >= 1 && s->frame <= s->frames + 1 && isfinite(s->time) && s->dt > 0 && s->size0 > 0,
+                SESSILE_ERR_IO, "the checkpoint's loop section does not fit this run (damaged?)");
+  s->resumed = 1;
+  return SESSILE_OK;
+}
+
+static sessile_status setup(sds_sim *s, const sessile_sds_run_options *opt) {
+  const char *where = opt->model_name ? opt->model_name : "model";
+  int level;
+  double radius;
+  s->text = opt->model_text;
+  SESSILE_CALL(sds_check_model(s, where, opt->params, &level, &radius));
+  s->t_end = opt->t_end >= 0 ? opt->t_end : sds_param1(s->model, "t_end", 100);
+  s->frames = opt->frames >= 0 ? opt->frames : (int)sds_param1(s->model, "frames", 20);
+  SESSILE_CHECK(s->t_end >= 0 && isfinite(s->t_end) && s->frames >= 1 && s->frames <= 100000, SESSILE_ERR_USAGE,
+                "sds: t_end must be >= 0 and frames in 1..100000");
+  s->key = sds_ckpt_key(s->text, opt->seed, s->t_end, s->frames, opt->max_cells);
+  if (opt->params) { /* values apart from the model's own (--set, --config) belong to the key */
+    sessile_sds_run_params own;
+    SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &own));
+    s->key = sds_ckpt_key_params(s->key, &own, &s->prm);
+  }
+  cJSON *man = sessile_run_manifest(opt->run);
+  cJSON_DeleteItemFromObjectCaseSensitive(man, "parameters");
+  cJSON_AddItemToObject(man, "parameters", sessile_params_to_json(&sessile_sds_run_param_table, &s->prm));
+  int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
+  s->tip_state = sessile_sds_model_state_index(s->model, "tip");
+  s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
+  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(opt->run);
+  if (ck) {
+    SESSILE_CALL(restore(s, ck));
+    SESSILE_CALL(sds_neighbours(s));
+  } else {
+    SESSILE_CALL(sds_import_organism(s, where, level, radius));
+    for (uint32_t c = 0; c < s->o.ncells; c++) {
+      for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
+      for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
+    }
+    if (s->birth_state >= 0)
+      for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
+    SESSILE_CALL(sds_mark_tips(s, where));
+    SESSILE_CALL(sds_neighbours(s));
+    if (s->prm.tips_below && s->tip_state >= 0) SESSILE_CALL(sds_cells_below_tips(s));
+    sds_measure_start(s);
+    s->dt = s->p.dt;
+  }
+  SESSILE_CALL(sessile_sds_gpu_create(opt->gpu, &s->o, &s->p, &s->pg));
+  SESSILE_CALL(sessile_morph_gpu_create(opt->gpu, &s->mg));
+  return SESSILE_OK;
+}
+
+static void teardown(sds_sim *s) {
+  sessile_sds_model_destroy(s->model);
+  sessile_sds_gpu_destroy(s->pg);
+  sessile_morph_gpu_destroy(s->mg);
+  sessile_sds_free(&s->o);
+  sessile_surface_free(&s->rock);
+  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog);
+}
+
+/* --- the loop --------------------------------------------------------------- */
+/* A blow-up (docs/sds.md, "Blow-ups"): the step from t = s->time (step
+ * steps + 1) left no usable state.  Nothing of the step is written; the
+ * message says what happened, when, and what to try. */
+sessile_status sds_blowup(sds_sim *s, const char *fmt, ...) {
+  sessile_sds_run_stats *t = s->st;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(t->blowup_cause, sizeof t->blowup_cause, fmt, ap);
+  va_end(ap);
+  t->blowup = 1, t->blowup_time = s->step_t0, t->blowup_step = t->steps + 1;
+  return sessile_error_set(SESSILE_ERR_NUMERIC,
+                           "sds: blow-up in step %llu from t = %.9g: %s; the last good frame is frame_%04d; try "
+                           "weaker forces (gravity, attractor), more damping, stiffer volume springs "
+                           "(volume_stiffness) or slower growth",
+                           (unsigned long long)t->blowup_step, s->step_t0, t->blowup_cause, s->frame - 1);
+}
+
+/* The state after the physics: every position and velocity finite, every
+ * cell within 1e6 starting sizes of the starting centroid. */
+static sessile_status check_motion(sds_sim *s) {
+  const sessile_sds *o = &s->o;
+  double far2 = 1e12 * s->size0 * s->size0;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    const double *x = o->x + 3 * (size_t)c, *v = o->v + 3 * (size_t)c;
+    if (!isfinite(x[0] + x[1] + x[2]) || !isfinite(v[0] + v[1] + v[2]))
+      return sds_blowup(s, "cell %u's position or velocity is not finite", c);
+    double d2 = 0;
+    for (int k = 0; k < 3; k++) d2 += (x[k] - s->c0[k]) * (x[k] - s->c0[k]);
+    if (d2 > far2)
+      return sds_blowup(s, "cell %u is %.3g u from the start's centre, more than 1e6 times the starting size %.3g u", c,
+                    sqrt(d2), s->size0);
+  }
+  return SESSILE_OK;
+}
+
+/* The state after the rules: radii positive and finite, morphogens and
+ * state variables finite (a runaway growth or production). */
+static sessile_status check_cells(sds_sim *s) {
+  const sessile_sds *o = &s->o;
+  for (uint32_t c = 0; c < o->ncells; c++) {
+    if (!(o->r[c] > 0 && isfinite(o->r[c]) && isfinite(o->m[c])))
+      return sds_blowup(s, "cell %u's radius %g or mass %g is not positive and finite (a runaway growth rule?)", c,
+                    o->r[c], o->m[c]);
+    for (uint32_t k = 0; k < o->nmorph; k++)
+      if (!isfinite(o->phi[(size_t)c * o->nmorph + k]))
+        return sds_blowup(s, "cell %u's morphogen %s is not finite", c, sessile_sds_model_morph_name(s->model, (int)k));
+    for (uint32_t k = 0; k < o->nstate; k++)
+      if (!isfinite(o->state[(size_t)c * o->nstate + k]))
+        return sds_blowup(s, "cell %u's state %s is not finite", c, sessile_sds_model_state_name(s->model, (int)k));
+  }
+  return SESSILE_OK;
+}
+
+/* One step (docs/sds.md, "The loop"). */
+static sessile_status step(sds_sim *s, double next_frame) {
+  free(s->xprev);
+  s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  double dt = s->dt, elapsed = 0;
+  s->step_t0 = s->time;
+  int clamped = s->time + dt > next_frame;
+  if (clamped) dt = fmax(next_frame - s->time, 1e-12);
+  double try_dt = dt;
+  sessile_status st = sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed);
+  if (st == SESSILE_ERR_NUMERIC) {
+    /* a non-finite state or a step below dt_min: the integrator's verdict */
+    char why[512];
+    const char *m = sessile_error_message();
+    snprintf(why, sizeof why, "%s", strncmp(m, "sds: ", 5) ? m : m + 5);
+    return sds_blowup(s, "%s", why);
+  }
+  SESSILE_CALL(st);
+  /* step control across calls (one step per call, so that an inversion is
+   * rewound over one step): the integrator proposes the next step; a step cut
+   * short to land on a frame keeps the step it had, unless it was undone */
+  if (!clamped || elapsed < dt * (1 - 1e-12)) s->dt = try_dt;
+  SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
+  SESSILE_CALL(check_motion(s));
+  int handled = 0;
+  double frac = 1;
+  SESSILE_CALL(sds_inversions(s, &handled, &frac));
+  if (handled) {
+    /* rewound to the inversion: the elapsed time shrinks with it */
+    elapsed *= frac;
+    SESSILE_CALL(sds_refresh(s));
+  }
+  if (elapsed > 0) {
+    s->time += elapsed;
+    SESSILE_CALL(sds_rules(s, elapsed));
+    SESSILE_CALL(check_cells(s));
+    s->stalled = 0;
+  } else if (++s->stalled >= 1000)
+    return sds_blowup(s, "time stands still: tets keep inverting at the start of the step for 1000 steps");
+  s->st->steps++, s->steps_frame++;
+  return SESSILE_OK;
+}
+
+static sessile_status loop(sds_sim *s, const sessile_sds_run_options *opt) {
+  double frame_dt = s->t_end / s->frames;
+  if (!s->resumed) {
+    SESSILE_CALL(sds_steplog_start(opt->run));
+    SESSILE_CALL(sds_write_frame(s, opt->run, 0, "sds/frame_0000.ply"));
+    SESSILE_CALL(sds_record(s, opt->run, 0, 0, 0));
+    s->st->frames = s->frame = 1;
+    SESSILE_CALL(sds_write_pvd(opt->run, 1));
+    SESSILE_CALL(save(s, opt->run));
+  }
+  double tf = sessile_wall_seconds();
+  while (s->time < s->t_end * (1 - 1e-12)) {
+    SESSILE_CHECK(s->o.ncells <= opt->max_cells, SESSILE_ERR_NO_MEMORY,
+                  "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, opt->max_cells);
+    double next_frame = s->frame * frame_dt;
+    double t0 = s->time, w0 = sessile_wall_seconds();
+    uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
+    SESSILE_CALL(step(s, next_frame));
+    SESSILE_CALL(sds_steplog_row(s, opt->run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
+                                 s->st->inversions - i0));
+    int saved = 0;
+    if (s->time >= next_frame * (1 - 1e-12)) {
+      double now = sessile_wall_seconds();
+      char rel[64];
+      snprintf(rel, sizeof rel, "sds/frame_%04d.ply", s->frame);
+      SESSILE_CALL(sds_write_frame(s, opt->run, s->frame, rel));
+      uint64_t n = s->steps_frame;
+      SESSILE_CALL(sds_record(s, opt->run, s->frame, 1e3 * (now - tf) / (double)(n ? n : 1), n));
+      s->st->frames = ++s->frame;
+      tf = now, s->steps_frame = 0;
+      SESSILE_CALL(sds_write_pvd(opt->run, s->frame));
+      SESSILE_CALL(save(s, opt->run));
+      saved = 1;
+    }
+    int stop = sessile_run_stop_requested(opt->run);
+    if (stop) {
+      /* the state after any step resumes exactly (the device holds nothing
+       * the host has not: every step ends with an upload) */
+      if (!saved) SESSILE_CALL(save(s, opt->run));
+      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
+    }
+  }
+  SESSILE_CALL(sds_write_pvd(opt->run, s->frame));
+  SESSILE_CALL(sds_steplog_flush(s, opt->run));
+  return sds_write_frame(s, opt->run, -1, "sds/final.ply");
+}
+
+sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_run_stats *st) {
+  memset(st, 0, sizeof *st);
+  SESSILE_CHECK(opt->run && opt->gpu && opt->model_text, SESSILE_ERR_USAGE, "sessile sds run needs a run, a device and a model");
+  sds_sim s;
+  memset(&s, 0, sizeof s);
+  s.st = st;
+  s.rng = sessile_rng_stream(opt->seed, 1);
+  s.seed = opt->seed;
+  double t0 = sessile_wall_seconds();
+  sessile_status r = setup(&s, opt);
+  if (r == SESSILE_OK) r = loop(&s, opt);
+  if (r != SESSILE_OK) { /* the steps up to a failure stay in the log, and the failure's message stays */
+    char why[1024];
+    snprintf(why, sizeof why, "%s", sessile_error_message());
+    if (sds_steplog_flush(&s, opt->run) != SESSILE_OK) sessile_error_set(r, "%s (and then: %s)", why, sessile_error_message());
+    else sessile_error_set(r, "%s", why);
+  }
+  st->wall_s = sessile_wall_seconds() - t0;
+  st->time = s.time, st->cells = s.o.ncells, st->tets = s.o.ntets;
+  st->resumed = s.resumed;
+  teardown(&s);
+  return r;
+}

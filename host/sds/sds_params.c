@@ -1,0 +1,81 @@
+/* The SDS model's scalar parameters as a table (sessile/sds_run.h,
+ * docs/sds.md "Parameters"): the model text's `NAME = value` lines over the
+ * table's defaults, then --config and --set over both (the CLI).  Units:
+ * lengths in model units u, time in model seconds s (docs/sds.md "Units").
+ * "Paper" is Porter & McCormack, "prototype" the authors' code (read for
+ * facts), "ours" our choice.  The defaults are those the loop used before
+ * the table (sessile_sds_params_default, and 0 gravity for a model that
+ * sets none), so a model gives the same bytes as before. */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+#include "sessile/sds_process.h"
+#include "sessile/sds_run.h"
+
+#define OFF(f) offsetof(sessile_sds_run_params, f)
+#define OPEN_BOTH (SESSILE_PARAM_LO_OPEN | SESSILE_PARAM_HI_OPEN)
+
+static const sessile_param_desc descs[] = {
+    {"sphere_radius", SESSILE_PT_REAL, OFF(sphere_radius), 1, 0, INFINITY, OPEN_BOTH, "u", "ours",
+     "radius of the starting icosphere (a model with `surface` has none)", NULL},
+    {"sphere_subdivisions", SESSILE_PT_INT, OFF(sphere_subdivisions), 2, 0, 5, 0, "", "ours",
+     "subdivisions of the starting icosphere (2: 162 surface cells)", NULL},
+    {"start_jitter", SESSILE_PT_REAL, OFF(start_jitter), 0, 0, 0.2, 0, "edges", "ours",
+     "each icosphere vertex moved along its radius by this x the mean edge x a normal deviate (--seed)", NULL},
+    {"tips_below", SESSILE_PT_BOOL, OFF(tips_below), 0, 0, 1, 0, "", "paper 3.6",
+     "make sure an interior cell lies below each growing tip at the start", NULL},
+    {"density", SESSILE_PT_REAL, OFF(density), 1, 0, INFINITY, OPEN_BOTH, "m/u^3", "paper 3.1.1",
+     "uniform density: a cell's mass is density 4/3 pi r^3", NULL},
+    {"edge_stiffness", SESSILE_PT_REAL, OFF(edge_stiffness), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "u/s^2",
+     "prototype", "edge spring stiffness k_edge (paper 3.2), scaled per edge by R'(m_a + m_b)", NULL},
+    {"volume_stiffness", SESSILE_PT_REAL, OFF(volume_stiffness), 2, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "u/s^2",
+     "prototype", "tet (volume) spring stiffness k_vol (paper 3.2)", NULL},
+    {"surface_multiplier", SESSILE_PT_REAL, OFF(surface_multiplier), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "",
+     "prototype", "stiffness of surface springs over internal ones (paper 3.2)", NULL},
+    {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
+     "the tets' damping on dV/dt (paper 3.2; the prototype's kDamp)", NULL},
+    {"viscosity", SESSILE_PT_REAL, OFF(viscosity), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
+     "viscous damping -c m v (paper 3.2; the prototype's 1 % per step at dt 0.01 as a rate)", NULL},
+    {"gravity", SESSILE_PT_REAL, OFF(gravity), 0, -INFINITY, INFINITY, OPEN_BOTH, "u/s^2", "ours",
+     "gravity along -z (paper 3.2 names it; the prototype's 10 crushes a body here)", NULL},
+    {"self_collide", SESSILE_PT_BOOL, OFF(self_collide), 1, 0, 1, 0, "", "paper 3.2",
+     "surface self-collision by spatial hashing (Teschner et al.)", NULL},
+    {"dt", SESSILE_PT_REAL, OFF(dt), 1e-3, 0, INFINITY, OPEN_BOTH, "s", "ours",
+     "the first physics step; the step control adapts it (paper 3.2: adaptive Verlet)", NULL},
+    {"max_move", SESSILE_PT_REAL, OFF(max_move), 0.05, 0, 1, SESSILE_PARAM_LO_OPEN, "radii", "ours",
+     "a step moving a cell further than this x its radius is undone and halved", NULL},
+    {"stable_safety", SESSILE_PT_REAL, OFF(stable_safety), 0.8, 0, 1, SESSILE_PARAM_LO_OPEN, "", "ours",
+     "steps stay below this fraction of the stable-step bound", NULL},
+};
+
+const sessile_param_table sessile_sds_run_param_table = {
+    "sds run MODEL", sizeof(sessile_sds_run_params), (int)(sizeof descs / sizeof descs[0]), descs, NULL};
+
+/* A model line that sets a table parameter: one number, checked as --set
+ * would check it ("%.17g" gives the parsed double back bit for bit). */
+static sessile_status take_line(const sessile_param_desc *d, const sessile_sds_param *q, const char *where,
+                                sessile_sds_run_params *p) {
+  SESSILE_CHECK(q->nvalues == 1, SESSILE_ERR_USAGE, "%s:%d: %s takes one number", where, q->line, d->name);
+  char text[40];
+  snprintf(text, sizeof text, "%.17g", q->values[0]);
+  /* the model's 0 and 1 are a flag's false and true */
+  sessile_status st = sessile_params_set_text(&sessile_sds_run_param_table, p, d->name, text);
+  if (st != SESSILE_OK) return sessile_error_set(st, "%s:%d: %s", where, q->line, sessile_error_message());
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_run_params_of_model(const char *text, const char *name, sessile_sds_run_params *p) {
+  const char *where = name ? name : "model";
+  sessile_sds_model *m = NULL;
+  SESSILE_CALL(sessile_sds_model_parse(text, where, &m));
+  const sessile_param_table *t = &sessile_sds_run_param_table;
+  sessile_params_defaults(t, p);
+  sessile_status st = SESSILE_OK;
+  for (int i = 0; st == SESSILE_OK && i < t->count; i++) {
+    const sessile_sds_param *q = sessile_sds_model_param_find(m, t->params[i].name);
+    if (q) st = take_line(&t->params[i], q, where, p);
+  }
+  sessile_sds_model_destroy(m);
+  return st;
+}

@@ -1,0 +1,103 @@
+/* The rules' half of an SDS step (sds_sim.h): the neighbour lists, the
+ * morphogens on the device (§3.3), the rules on the host, growth and the
+ * divisions they ask for, and the device's copy brought up to date. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "sessile/rng.h"
+#include "sds/sds_internal.h"
+#include "sds/sds_sim.h"
+
+sessile_status sds_neighbours(sds_sim *s) {
+  const sessile_sds *o = &s->o;
+  s->morph_lists_set = 0;
+  free(s->nbr_off), free(s->nbr);
+  s->nbr_off = malloc(((size_t)o->ncells + 1) * sizeof *s->nbr_off);
+  s->nbr = malloc(((size_t)o->nedges * 2 + 1) * sizeof *s->nbr);
+  SESSILE_CHECK(s->nbr_off && s->nbr, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u cells", o->ncells);
+  for (uint32_t c = 0; c <= o->ncells; c++) s->nbr_off[c] = o->cell_edge_off[c];
+  for (uint32_t c = 0; c < o->ncells; c++)
+    for (uint32_t k = o->cell_edge_off[c]; k < o->cell_edge_off[c + 1]; k++) {
+      uint32_t e = o->cell_edge[k];
+      s->nbr[k] = o->edge[2 * e] == c ? o->edge[2 * e + 1] : o->edge[2 * e];
+    }
+  return SESSILE_OK;
+}
+
+sessile_morph_cells sds_cells_of(const sds_sim *s) {
+  sessile_morph_cells c = {(int)s->o.ncells, s->o.x, s->o.r, s->nbr_off, s->nbr, s->o.surface};
+  return c;
+}
+
+/* After any topology change or growth: derived data, neighbours, the GPU.
+ * Without a topology change since the last upload only the radii and masses
+ * have changed (the device's x and v are the host's: every step downloads
+ * them), and only they go up. */
+sessile_status sds_refresh(sds_sim *s) {
+  if (!s->topo_changed) return sessile_sds_gpu_update_radii(s->pg, &s->o);
+  SESSILE_CALL(sds_neighbours(s));
+  SESSILE_CALL(sessile_sds_gpu_upload(s->pg, &s->o));
+  s->topo_changed = 0;
+  return SESSILE_OK;
+}
+
+static sessile_status morphogens(sds_sim *s, const double *src, double dt) {
+  if (s->o.nmorph == 0) return SESSILE_OK;
+  sessile_morph_cells cells = sds_cells_of(s);
+  sessile_morph_coef coef = sessile_sds_model_coef(s->model);
+  /* both compute the step bound; the lists go up after a topology change only */
+  sessile_status st = s->morph_lists_set ? sessile_morph_gpu_move_cells(s->mg, &cells, &coef)
+                                         : sessile_morph_gpu_set_cells(s->mg, &cells, &coef);
+  if (st == SESSILE_OK) s->morph_lists_set = 1;
+  double bound = sessile_morph_gpu_dt_max(s->mg);
+  if (st == SESSILE_ERR_NUMERIC || (st == SESSILE_OK && !(bound > 0)))
+    return sds_blowup(s, "two adjacent cells coincide (the morphogens' step bound is 0)");
+  SESSILE_CALL(st);
+  double n = isfinite(bound) && dt > bound ? ceil(dt / bound * (1 + 1e-9)) : 1;
+  if (n > 10000) return sds_blowup(s, "the morphogen step needs %.3g sub-steps (cells too close)", n);
+  SESSILE_CALL(sessile_morph_gpu_set_phi(s->mg, s->o.phi, src));
+  SESSILE_CALL(sessile_morph_gpu_step(s->mg, dt / n, (int)n));
+  return sessile_morph_gpu_get_phi(s->mg, s->o.phi);
+}
+
+static void set_mass(sds_sim *s, uint32_t c) { s->o.m[c] = s->density * 4.0 / 3.0 * SDS_PI * pow(s->o.r[c], 3); }
+
+sessile_status sds_rules(sds_sim *s, double dt) {
+  sessile_sds *o = &s->o;
+  sessile_morph_cells cells = sds_cells_of(s);
+  sessile_sds_actions a;
+  memset(&a, 0, sizeof a);
+  sessile_status st = sessile_sds_rules_eval(s->model, &cells, o->phi, o->state, s->time, &a);
+  if (st == SESSILE_OK) st = morphogens(s, a.produce, dt);
+  if (st == SESSILE_OK) {
+    sessile_sds_actions_apply(s->model, &a, dt, o->r, o->phi, o->state);
+    for (uint32_t c = 0; c < o->ncells; c++) set_mass(s, c);
+  }
+  /* divisions in cell order; a division appends its daughter b, so the
+   * requests' cell indices stay valid */
+  if (st == SESSILE_OK && s->retry_cap < o->ncells + a.ndivides) {
+    uint32_t cap = (uint32_t)(2 * (o->ncells + a.ndivides));
+    double *r = realloc(s->retry_at, (size_t)cap * sizeof *r);
+    if (!r) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    else {
+      for (uint32_t c = s->retry_cap; c < cap; c++) r[c] = -INFINITY;
+      s->retry_at = r, s->retry_cap = cap;
+    }
+  }
+  for (size_t i = 0; st == SESSILE_OK && i < a.ndivides; i++) {
+    if (s->time < s->retry_at[a.divides[i].cell]) continue;
+    double d[3] = {a.divides[i].dir[0], a.divides[i].dir[1], a.divides[i].dir[2]};
+    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
+      /* the gradient vanished: a seeded random direction */
+      double z = sessile_rng_range(&s->rng, -1, 1), phi = sessile_rng_range(&s->rng, 0, 2 * SDS_PI), q = sqrt(1 - z * z);
+      d[0] = q * cos(phi), d[1] = q * sin(phi), d[2] = z;
+    }
+    st = sds_divide(s, (uint32_t)a.divides[i].cell, d);
+    if (st != SESSILE_OK)
+      st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", a.divides[i].cell, s->time,
+                             sessile_error_message());
+  }
+  sessile_sds_actions_free(&a);
+  SESSILE_CALL(st);
+  return sds_refresh(s);
+}

@@ -1,0 +1,103 @@
+/* The SDS loop's state and its parts, shared by the files of the loop
+ * (sessile/sds_run.h; docs/sds.md "The loop"): sds_setup.c (the model, the
+ * starting organism), sds_rules_step.c (neighbours, morphogens, rules),
+ * sds_divide.c (division through the complex), sds_inversions.c (§3.1.2
+ * and the repairs), sds_frames.c (frames and records), sds_steplog.c
+ * (sds/steps.csv) and sds_loop.c (one step, the loop, checkpoints). */
+#ifndef SESSILE_SDS_SIM_H
+#define SESSILE_SDS_SIM_H
+#include <stdint.h>
+#include "sessile/run.h"
+#include "sessile/sds.h"
+#include "sessile/sds_process.h"
+#include "sessile/sds_run.h"
+#include "sessile/sds_topo.h"
+
+typedef struct sds_sim {
+  const char *text;           /* the model */
+  sessile_sds_model *model;
+  sessile_sds o;
+  sessile_sds_params p;
+  sessile_sds_run_params prm; /* the parameter table's values (sds_params.c) */
+  sessile_sds_gpu *pg;
+  sessile_morph_gpu *mg;
+  sessile_surface rock;       /* the obstacle, when the model has one */
+  double attractor[3];
+  double density;
+  uint32_t *nbr_off, *nbr;    /* cell neighbours (from the edges) */
+  double *xprev;              /* positions before the step (rewind) */
+  double time, dt;
+  int stalled;                /* steps in a row that were rewound to their start */
+  double *retry_at;           /* per cell: a deferred division is not tried again before this time */
+  uint32_t retry_cap;
+  uint64_t *sliver;           /* the repairs' backoff: per failed inverted tet (FNV-1a of its cells),
+                                 failures in a row, the step before which it is not tried again */
+  uint32_t nsliver, sliver_cap;
+  int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
+  int morph_lists_set;        /* the morphogen kernel has the current neighbour lists (neighbours() clears) */
+  uint64_t rng;
+  int tip_state;              /* state index of `tip`, -1 none */
+  int birth_state;            /* state index of `birth_radius` (the loop keeps it), -1 none */
+  sessile_sds_run_stats *st;
+  uint64_t div_interval, inv_interval; /* counts since the last record */
+  uint64_t key;               /* sds_ckpt_key of the model and options */
+  uint64_t seed;              /* the run's seed (division directions, the start's jitter) */
+  double c0[3], size0;        /* the starting organism's centroid and size */
+  int frame;                  /* the next frame to write */
+  uint64_t steps_frame;       /* steps since the last frame */
+  int resumed;                /* restored from a checkpoint */
+  double step_t0;             /* the time at the start of the step being made */
+  double t_end;               /* resolved: the option or the model's */
+  int frames;
+  char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
+  size_t steplog_len, steplog_cap;
+} sds_sim;
+
+/* The model line NAME's first number, or def (t_end, frames). */
+double sds_param1(const sessile_sds_model *m, const char *name, double def);
+
+/* sds_setup.c: the model without a device (text, parameters, physics,
+ * sphere, run length); the starting organism; its tips; a cell below each
+ * tip (§3.6); the start's centroid and size (the blow-up test's yardstick). */
+sessile_status sds_check_model(sds_sim *s, const char *where, const sessile_sds_run_params *params, int *level,
+                               double *radius);
+sessile_status sds_import_organism(sds_sim *s, const char *where, int level, double radius);
+sessile_status sds_mark_tips(sds_sim *s, const char *where);
+sessile_status sds_cells_below_tips(sds_sim *s);
+void sds_measure_start(sds_sim *s);
+
+/* sds_rules_step.c: the cell neighbour lists (from the edges), the cells as
+ * the morphogens and rules see them, the device's copy after a change, and
+ * one step of morphogens and rules (growth, divisions). */
+sessile_status sds_neighbours(sds_sim *s);
+sessile_morph_cells sds_cells_of(const sds_sim *s);
+sessile_status sds_refresh(sds_sim *s);
+sessile_status sds_rules(sds_sim *s, double dt);
+
+/* sds_divide.c: the organism as a growable complex and back; one division. */
+sessile_status sds_complex_of(const sessile_sds *o, sessile_sds_topo_complex *cx);
+sessile_status sds_take_complex(sds_sim *s, const sessile_sds_topo_complex *cx, const uint32_t *tet_from);
+sessile_status sds_divide(sds_sim *s, uint32_t c, const double dir[3]);
+
+/* sds_inversions.c: the tets the last step inverted (§3.1.2), and repairs
+ * of lasting ones. */
+sessile_status sds_inversions(sds_sim *s, int *handled, double *frac);
+
+/* sds_frames.c: a frame's surface (PLY) and complex (VTU), the PVD series,
+ * one record per frame interval. */
+sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const char *ply_rel);
+sessile_status sds_write_pvd(sessile_run *run, int nframes);
+sessile_status sds_record(sds_sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps);
+
+/* sds_steplog.c: sds/steps.csv, the paper's Figure 12 per step: its header
+ * (a new run), one row per step (appended once a MiB has gathered), and
+ * the rows kept so far appended. */
+sessile_status sds_steplog_start(sessile_run *run);
+sessile_status sds_steplog_row(sds_sim *s, sessile_run *run, double dt, double ms, uint64_t divisions,
+                               uint64_t inversions);
+sessile_status sds_steplog_flush(sds_sim *s, sessile_run *run);
+
+/* sds_loop.c: a blow-up (docs/sds.md, "Blow-ups"): the message, and the
+ * run's stats say what happened when. */
+sessile_status sds_blowup(sds_sim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+#endif
