@@ -1,8 +1,8 @@
 /* The stationary Navier-Stokes solver (O'Hagan et al. §4.2): parameters,
  * creation and destruction.  The pieces: the block pattern (ns_graph.c),
  * the tet colouring (ns_colour.c), the assembly (ns_assemble.c, element
- * ns_element.c), the boundary rows (ns_bc.c), the linear solve
- * (ns_linear.c) and the Newton loop (ns_newton.c);
+ * ns_element.c), the boundary rows (ns_bc.c), the linear solve with la's
+ * preconditioners (ns_linear.c) and the Newton loop (ns_newton.c);
  * decisions and measurements are in docs/fluid.md. */
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +26,6 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->ksp = SESSILE_KSP_GMRES;
   p->pc = SESSILE_PC_ILU0; /* 47-100 GMRES iterations per Newton step on the default box */
   p->restart = 50;
-  p->block_jacobi = 0;
 }
 
 void sessile_fluid_destroy(sessile_fluid *fl) {
