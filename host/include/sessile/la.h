@@ -158,7 +158,8 @@ typedef void (*sessile_monitor_fn)(void *user, const char *line);
 
 typedef struct sessile_ksp_options {
   sessile_ksp_type type;
-  sessile_pc_type pc;
+  sessile_pc_type pc; /* built and set up by sessile_ksp_solve (default jacobi);
+                         sessile_ksp_solve_pc with a pc object ignores it */
   double rtol;      /* on the true relative residual ‖b−Ax‖/‖b‖; default 1e-6 */
   int max_it;       /* default 1000 */
   int restart;      /* GMRES(m): m, default 30 */
