@@ -8,10 +8,11 @@
 #include "cli.h"
 #include "sessile/fluid.h"
 #include "sessile/growth_ref.h"
+#include "sessile/pc.h"
 #include "sessile/tetmesh.h"
 
 static const char *help =
-    "usage: sessile bench fluid [--resolution R] [--pc jacobi|ilu0] [--ksp gmres|bicgstab] [--block-scale]\n"
+    "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"
     "                           [--picard K] [--restart M] [--no-lsic]\n"
     "                           [--set KEY=VALUE]... [--device D]\n"
     "\n"
@@ -21,10 +22,11 @@ static const char *help =
     "rest, then warm-started after the sponge grew by 0.3 cm (a growth\n"
     "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
     "true linear residual, assembly and solve time.  Figures are for the record\n"
-    "(docs/performance.md), never pass/fail.  --pc: ILU(0) by default (Jacobi where the\n"
-    "matrix exceeds maxStorageBufferRange and is stored in chunks; the pc column says\n"
-    "which ran).  --block-scale multiplies each block row by\n"
-    "the inverse of its 4x4 diagonal block before the Krylov solve; --picard K takes\n"
+    "(docs/performance.md), never pass/fail.  --pc: la's preconditioner by its\n"
+    "registered name (none, jacobi, ilu0, block_jacobi; docs/la.md), ILU(0) by default\n"
+    "(Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
+    "the pc column says which ran).  --block-scale is --pc block_jacobi (the inverse of\n"
+    "each node's 4x4 diagonal block); --picard K takes\n"
     "K Picard (Oseen) steps before Newton; --restart M is GMRES(M); --no-lsic drops the\n"
     "grad-div term.  --verbose prints each step to stderr as it goes.\n";
 
@@ -40,11 +42,11 @@ static void print_result(const char *what, const sessile_fluid_result *r) {
          what, r->converged ? "converged" : "NOT converged", r->nsteps, r->residual0, r->residual,
          r->residual_rest,
          r->lin_iterations, r->seconds, r->assembly_s, r->solve_s);
-  printf("  %4s %-7s %12s %8s %12s %-14s %-6s %6s %10s %10s\n", "step", "kind", "residual", "lin its",
+  printf("  %4s %-7s %12s %8s %12s %-14s %-12s %6s %10s %10s\n", "step", "kind", "residual", "lin its",
          "lin relres", "lin status", "pc", "chunks", "assembly s", "solve s");
   for (int k = 0; k < r->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *s = &r->step[k];
-    printf("  %4d %-7s %12.4e %8d %12.3e %-14s %-6s %6u %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
+    printf("  %4d %-7s %12.4e %8d %12.3e %-14s %-12s %6u %10.3f %10.3f\n", k + 1, s->picard ? "picard" : "newton",
            s->residual, s->lin_iterations, s->lin_relres, sessile_solve_status_name(s->lin_status),
            sessile_pc_type_name(s->lin_pc), s->lin_chunks,
            s->assembly_s, s->solve_s);
@@ -72,7 +74,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int pc = -1, ksp = -1, block_scale = -1, picard = -1, restart = -1, lsic = -1, verbose = 0;
+  int pc = -1, ksp = -1, picard = -1, restart = -1, lsic = -1, verbose = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -84,7 +86,8 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       return EXIT_OK;
     }
     if (!strcmp(a, "--block-scale") || !strcmp(a, "--no-block-scale")) {
-      block_scale = !strcmp(a, "--block-scale");
+      if (!strcmp(a, "--block-scale")) pc = SESSILE_PC_BLOCK_JACOBI;
+      else if (pc == SESSILE_PC_BLOCK_JACOBI) pc = -1; /* back to the default */
       continue;
     }
     if (!strcmp(a, "--no-lsic")) {
@@ -108,9 +111,12 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       if (cli_parse_uint("bench fluid", a, v, 1, 64, &u)) return EXIT_USAGE; /* GMRES(m), m <= 64 */
       restart = (int)u;
     } else if (!strcmp(a, "--pc")) {
-      if (!strcmp(v, "jacobi")) pc = SESSILE_PC_JACOBI;
-      else if (!strcmp(v, "ilu0")) pc = SESSILE_PC_ILU0;
-      else return cli_usage_error("bench fluid", "--pc: '%s' is not jacobi or ilu0", v);
+      sessile_pc_type t = SESSILE_PC_NONE;
+      if (sessile_pc_type_from_name(v, &t) != SESSILE_OK)
+        return cli_usage_error("bench fluid", "--pc: %s", sessile_error_message());
+      if (t == SESSILE_PC_MG)
+        return cli_usage_error("bench fluid", "--pc: mg needs a grid hierarchy, the fluid mesh has none");
+      pc = (int)t;
     } else if (!strcmp(a, "--ksp")) {
       if (!strcmp(v, "gmres")) ksp = SESSILE_KSP_GMRES;
       else if (!strcmp(v, "bicgstab")) ksp = SESSILE_KSP_BICGSTAB;
@@ -152,7 +158,6 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.newton_rtol = p.nvs_rtol;
   if (pc >= 0) fp.pc = (sessile_pc_type)pc;
   if (ksp >= 0) fp.ksp = (sessile_ksp_type)ksp;
-  if (block_scale >= 0) fp.block_jacobi = block_scale;
   if (picard >= 0) fp.picard_steps = picard;
   if (restart >= 0) fp.restart = restart;
   if (lsic >= 0) fp.lsic = lsic;

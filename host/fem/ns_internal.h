@@ -3,6 +3,7 @@
 #define SESSILE_NS_INTERNAL_H
 
 #include <stdint.h>
+#include "sessile/fluid.h"
 
 /* Coefficients of one assembly: newton = 1 for the full Jacobian, 0 for the
  * Picard (Oseen) linearisation. */
@@ -23,5 +24,40 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
  * point q are NS_QA at vertex q and NS_QB at the other three. */
 #define NS_QA 0.5854101966249685
 #define NS_QB 0.1381966011250105
+
+/* The solver object (sessile/fluid.h). */
+struct sessile_fluid {
+  sessile_la *la;
+  uint32_t nnodes, ntets;
+  double *x;          /* 3 nnodes, metres */
+  uint32_t *tet;      /* 4 ntets */
+  uint32_t *tags;     /* nnodes */
+  sessile_bcsr4 a;    /* the pattern (node graph), values rewritten each assembly */
+  uint32_t *pos;      /* 16 ntets: block index of (a, b) of each tet */
+  uint32_t ncolours;
+  uint32_t *corder;   /* ntets, tets sorted by colour */
+  uint32_t *cstart;   /* ncolours + 1 */
+};
+
+/* Pieces of the solver, one file each (ns_fluid.c has the overview). */
+sessile_status ns_build_graph(sessile_fluid *fl);   /* fl->a's pattern and fl->pos */
+sessile_status ns_build_colours(sessile_fluid *fl); /* fl->ncolours, corder, cstart */
+/* Residual r (4 per node) and, when jac, the Jacobian into fl->a.val. */
+void ns_assemble(sessile_fluid *fl, const sessile_fluid_params *p, const double *up, double newton,
+                 int jac, double *r);
+/* Dirichlet flags per node: bit 0 velocity, bit 1 pressure. */
+uint8_t ns_node_bc(const sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
+                   uint32_t i);
+/* Writes the Dirichlet values into up. */
+void ns_impose_bc(const sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
+                  const uint8_t *bc, double *up);
+/* Zeroes the residual's Dirichlet rows and, when jac, makes them identity
+ * rows; returns ||r|| of the rest. */
+double ns_apply_bc_rows(sessile_fluid *fl, const uint8_t *bc, int jac, double *r);
+/* du = J⁻¹(-r) for the assembled fl->a on the GPU; fills st's linear fields. */
+sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p, const double *r,
+                               double *du, sessile_vec *b, sessile_vec *x, sessile_fluid_step *st);
+/* One line to the caller's monitor (nothing when it is NULL). */
+void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 #endif

@@ -1,9 +1,9 @@
-/* BiCGSTAB on the device with right preconditioning M (Jacobi or ILU(0)) (van der Vorst):
+/* BiCGSTAB on the device with right preconditioning by any pc object (van der Vorst):
  *   β = (ρ'/ρ)(α/ω); p = r + β(p − ω v); p̂ = M p; v = A p̂; α = ρ/(r̂0·v);
  *   s = r − α v; ŝ = M s; t = A ŝ; ω = (t·s)/(t·t); x += α p̂ + ω ŝ; r = s − ω t
  * Converged on ‖r‖ (or already on ‖s‖, the half step). */
 #include <math.h>
-#include "la_internal.h"
+#include "pc_internal.h"
 
 typedef struct { sessile_vec *r, *r0, *p, *v, *ph, *sv, *sh, *t; } bi_work;
 
@@ -34,7 +34,7 @@ static sessile_status record_start(sessile_la *la, sessile_cmd *c, const sessile
 }
 
 static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const sessile_mat *a,
-                                        const sessile_vec *x, const la_pc *pc,
+                                        const sessile_vec *x, const sessile_pc *pc,
                                         bi_work *w, int k) {
   uint32_t n = a->nrows, n4 = w->r->n4, cnt;
   vref none = {0};
@@ -44,7 +44,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
     SESSILE_CALL(scalar_op(la, c, 1));
     sessile_buffer *pb[4] = {la->scalars, w->r->buf, w->v->buf, w->p->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_BICG_P], la_groups(la, K_BICG_P, n4), pb, &vp));
-    SESSILE_CALL(rec_pc(la, c, pc, n, vref_of(w->p), vref_of(w->ph), S_STOP));
+    SESSILE_CALL(rec_pc(pc, c, vref_of(w->p), vref_of(w->ph), S_STOP));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->ph), vref_of(w->v), S_STOP));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->r0), vref_of(w->v), 0, S_STOP, &cnt));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, BI_R0V, 0, S_STOP));
@@ -52,7 +52,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
     sessile_buffer *sbuf[5] = {la->scalars, w->r->buf, w->v->buf, w->sv->buf, la->partials};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_BICG_S], cnt, sbuf, &vp));
     SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, BI_SS, 0, S_STOP));
-    SESSILE_CALL(rec_pc(la, c, pc, n, vref_of(w->sv), vref_of(w->sh), S_STOP));
+    SESSILE_CALL(rec_pc(pc, c, vref_of(w->sv), vref_of(w->sh), S_STOP));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->sh), vref_of(w->t), S_STOP));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->t), vref_of(w->sv), 0, S_STOP, &cnt));
     SESSILE_CALL(rec_dot(la, c, n, vref_of(w->t), vref_of(w->t), 1, S_STOP, &cnt));
@@ -69,7 +69,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
 }
 
 static sessile_status bi_run(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                             const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                             const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                              bi_work *w, sessile_cmd *iter, sessile_solve_result *res) {
   sessile_kernel *k;
   static const la_kernel_id ids[] = {K_BICG_SCALAR, K_BICG_P, K_BICG_S, K_BICG_XR, K_DOT,
@@ -86,7 +86,7 @@ static sessile_status bi_run(sessile_la *la, const sessile_ksp_options *o, const
 }
 
 sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                           const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                           const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                            sessile_solve_result *res) {
   bi_work w = {0};
   sessile_vec **v[] = {&w.r, &w.r0, &w.p, &w.v, &w.ph, &w.sv, &w.sh, &w.t};

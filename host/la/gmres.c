@@ -1,12 +1,11 @@
-/* Restarted GMRES(m) on the device with right preconditioning (Jacobi or
- * ILU(0)) and
- * modified Gram-Schmidt.  The basis lives in one buffer (m+1 vectors), the
+/* Restarted GMRES(m) on the device with right preconditioning by any pc
+ * object and modified Gram-Schmidt.  The basis lives in one buffer (m+1 vectors), the
  * Hessenberg matrix, Givens rotations and the small triangular solve in the
  * scalar slots; one recording holds a whole restart cycle, submitted until
  * the device stops, so the host looks once per cycle. */
 #include <math.h>
 #include <stdio.h>
-#include "la_internal.h"
+#include "pc_internal.h"
 
 static sessile_status gm_op(sessile_la *la, sessile_cmd *c, uint32_t op, uint32_t j, uint32_t m) {
   gmres_op_push pc = {.op = op, .j = j, .m = m};
@@ -18,8 +17,8 @@ static int hslot(uint32_t i, uint32_t j, uint32_t m) { return GM_BASE + (int)(i 
 
 static sessile_status record_cycle(sessile_la *la, sessile_cmd *c, const sessile_mat *a,
                                    const sessile_vec *b, const sessile_vec *x,
-                                   const la_pc *pc, sessile_buffer *V, sessile_vec *z,
-                                   uint32_t m) {
+                                   const sessile_pc *pc, sessile_buffer *V, sessile_vec *z,
+                                   const sessile_vec *ones, uint32_t m) {
   uint32_t n = a->nrows, n4 = (n + 3) / 4, cnt;
   vref none = {0};
 #define VJ(j) ((vref){V, (uint32_t)(j) * n4})
@@ -31,7 +30,7 @@ static sessile_status record_cycle(sessile_la *la, sessile_cmd *c, const sessile
   SESSILE_CALL(gm_op(la, c, 0, 0, m));
   SESSILE_CALL(rec_vec(la, c, K_SCALE, n, VJ(0), none, none, GM_INV, 0, GM_DONE));
   for (uint32_t j = 0; j < m; j++) {
-    SESSILE_CALL(rec_pc(la, c, pc, n, VJ(j), vref_of(z), GM_DONE));
+    SESSILE_CALL(rec_pc(pc, c, VJ(j), vref_of(z), GM_DONE));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(z), VJ(j + 1), GM_DONE));
     for (uint32_t i = 0; i <= j; i++) { /* modified Gram-Schmidt */
       SESSILE_CALL(rec_dot(la, c, n, VJ(j + 1), VJ(i), 0, GM_DONE, &cnt));
@@ -45,14 +44,14 @@ static sessile_status record_cycle(sessile_la *la, sessile_cmd *c, const sessile
   }
   SESSILE_CALL(gm_op(la, c, 2, 0, m));
   vec_push p = {.n4 = n4, .n = n, .off0 = n4, .off1 = m, .a_slot = -1, .guard = S_STOP};
-  if (pc->type != SESSILE_PC_ILU0) { /* x += D⁻¹ V y in one pass */
-    sessile_buffer *ub[4] = {la->scalars, V, pc->dinv->buf, x->buf};
+  if (pc->diag) { /* x += D⁻¹ V y in one pass */
+    sessile_buffer *ub[4] = {la->scalars, V, pc->diag->buf, x->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_GMRES_UPDATE], la_groups(la, K_GMRES_UPDATE, n4), ub, &p));
-  } else { /* z = V y (dinv holds ones), v_m = M z (v_m is free now), x += v_m */
+  } else { /* z = V y (with D⁻¹ = ones), v_m = M⁻¹ z (v_m is free now), x += v_m */
     SESSILE_CALL(rec_vec(la, c, K_FILL, n, vref_of(z), none, none, GM_ZERO, 0, S_STOP));
-    sessile_buffer *ub[4] = {la->scalars, V, pc->dinv->buf, z->buf};
+    sessile_buffer *ub[4] = {la->scalars, V, ones->buf, z->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_GMRES_UPDATE], la_groups(la, K_GMRES_UPDATE, n4), ub, &p));
-    SESSILE_CALL(rec_pc(la, c, pc, n, vref_of(z), VJ(m), S_STOP));
+    SESSILE_CALL(rec_pc(pc, c, vref_of(z), VJ(m), S_STOP));
     SESSILE_CALL(rec_vec(la, c, K_AXPY, n, VJ(m), vref_of(x), none, -1, 0, S_STOP));
   }
   SESSILE_CALL(gm_op(la, c, 3, 0, m));
@@ -61,9 +60,9 @@ static sessile_status record_cycle(sessile_la *la, sessile_cmd *c, const sessile
 }
 
 static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                             const sessile_vec *b, sessile_vec *x, const la_pc *pc,
-                             sessile_buffer *V, sessile_vec *z, uint32_t m, sessile_cmd *iter,
-                             sessile_solve_result *res) {
+                             const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
+                             sessile_buffer *V, sessile_vec *z, const sessile_vec *ones, uint32_t m,
+                             sessile_cmd *iter, sessile_solve_result *res) {
   sessile_kernel *k;
   static const la_kernel_id ids[] = {K_GMRES_SCALAR, K_GMRES_UPDATE, K_DOT, K_REDUCE, K_WAXPY,
                                      K_PMUL, K_AXPY, K_SCALE};
@@ -79,14 +78,14 @@ static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const
   SESSILE_CALL(sessile_cmd_submit_wait(la->cmd));
   la_scalar_set(la, S_TOL2, o->rtol * o->rtol * la_scalar_read(la, S_BB));
   la_scalar_set(la, GM_ZERO, 0.0);
-  SESSILE_CALL(record_cycle(la, iter, a, b, x, pc, V, z, m));
+  SESSILE_CALL(record_cycle(la, iter, a, b, x, pc, V, z, ones, m));
   SESSILE_CALL(la_solver_loop(la, iter, 1, o->max_it, o, "gmres", GM_EST, 0));
   la_solver_outcome(la, res, la_scalar_read(la, GM_EST) / sqrt(la_scalar_read(la, S_BB)));
   return SESSILE_OK;
 }
 
 sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                        const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                        const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                         sessile_solve_result *res) {
   uint32_t n4 = (a->nrows + 3) / 4;
   uint32_t m = (uint32_t)o->restart;
@@ -103,13 +102,15 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
     la_monitorf(o, "gmres: restart reduced to %u to fit maxStorageBufferRange", m);
   }
   sessile_buffer *V = NULL;
-  sessile_vec *z = NULL;
+  sessile_vec *z = NULL, *ones = NULL;
   sessile_cmd *iter = NULL;
   sessile_status s = sessile_buffer_create(la->gpu, (size_t)(m + 1) * per, SESSILE_BUFFER_DEVICE, &V);
   if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &z);
+  if (s == SESSILE_OK && !pc->diag) s = la_ones(la, a->nrows, &ones);
   if (s == SESSILE_OK) s = sessile_cmd_create(la->gpu, &iter);
-  if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, V, z, m, iter, res);
+  if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, V, z, ones, m, iter, res);
   sessile_cmd_destroy(iter);
+  sessile_vec_destroy(ones);
   sessile_vec_destroy(z);
   sessile_buffer_destroy(V);
   return s;

@@ -207,12 +207,6 @@ sessile_status rec_ilu(sessile_la *la, sessile_cmd *c, const la_ilu *f, vref r, 
   return SESSILE_OK;
 }
 
-sessile_status rec_pc(sessile_la *la, sessile_cmd *c, const la_pc *pc, uint32_t n, vref r, vref z,
-                      int guard) {
-  if (pc->type == SESSILE_PC_ILU0) return rec_ilu(la, c, pc->ilu, r, z, guard);
-  return rec_vec(la, c, K_PMUL, n, vref_of(pc->dinv), r, z, -1, 0, guard);
-}
-
 sessile_status sessile_mat_ilu0(sessile_la *la, const sessile_mat *a, sessile_ilu0_info *info) {
   const la_ilu *f;
   SESSILE_CALL(la_ilu_get(la, a, &f));

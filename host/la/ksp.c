@@ -1,11 +1,12 @@
-/* Krylov solve driver: options, the zero right-hand side, the Jacobi and
- * ILU(0) preconditioners, restarts when the true residual lags the recursive one,
- * and mixed-precision iterative refinement on fp32 devices. */
+/* Krylov solve driver: options, the zero right-hand side, the preconditioner
+ * object (the options' enum builds one when the caller gives none),
+ * restarts when the true residual lags the recursive one, and
+ * mixed-precision iterative refinement on fp32 devices. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "la_internal.h"
+#include "pc_internal.h"
 #include "sessile/la_ref.h"
 
 void sessile_ksp_options_default(sessile_ksp_options *o) {
@@ -23,15 +24,6 @@ const char *sessile_ksp_type_name(sessile_ksp_type t) {
   case SESSILE_KSP_CG: return "cg";
   case SESSILE_KSP_BICGSTAB: return "bicgstab";
   case SESSILE_KSP_GMRES: return "gmres";
-  }
-  return "?";
-}
-
-const char *sessile_pc_type_name(sessile_pc_type t) {
-  switch (t) {
-  case SESSILE_PC_NONE: return "none";
-  case SESSILE_PC_JACOBI: return "jacobi";
-  case SESSILE_PC_ILU0: return "ilu0";
   }
   return "?";
 }
@@ -92,10 +84,10 @@ static sessile_status true_residual(sessile_la *la, const sessile_mat *a, const 
 }
 
 static sessile_status run_type(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                               const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                               const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                                sessile_solve_result *res) {
   switch (o->type) {
-  case SESSILE_KSP_CG: return la_cg(la, o, a, b, x, pc->dinv, res);
+  case SESSILE_KSP_CG: return la_cg(la, o, a, b, x, pc, res);
   case SESSILE_KSP_BICGSTAB: return la_bicgstab(la, o, a, b, x, pc, res);
   case SESSILE_KSP_GMRES: return la_gmres(la, o, a, b, x, pc, res);
   }
@@ -106,7 +98,7 @@ static sessile_status run_type(sessile_la *la, const sessile_ksp_options *o, con
  * recursive residual drifts from it in finite precision). */
 static sessile_status solve_device(sessile_la *la, const sessile_ksp_options *o,
                                    const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
-                                   const la_pc *pc, sessile_vec *q, double bnorm,
+                                   const sessile_pc *pc, sessile_vec *q, double bnorm,
                                    sessile_solve_result *res) {
   sessile_ksp_options oo = *o;
   for (int attempt = 0; attempt < 4; attempt++) {
@@ -211,7 +203,7 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
   return s;
 }
 
-typedef struct { sessile_la *la; const sessile_mat *a; const la_pc *pc; } ksp_inner_ctx;
+typedef struct { sessile_la *la; const sessile_mat *a; const sessile_pc *pc; } ksp_inner_ctx;
 static sessile_status ksp_inner(void *ctx, const sessile_ksp_options *o, const sessile_vec *r,
                                 sessile_vec *d, sessile_solve_result *res) {
   ksp_inner_ctx *c = ctx;
@@ -221,56 +213,89 @@ static sessile_status ksp_inner(void *ctx, const sessile_ksp_options *o, const s
 sessile_status sessile_ksp_solve(sessile_la *la, const sessile_ksp_options *opt,
                                  const sessile_mat *a, const sessile_vec *b, sessile_vec *x,
                                  sessile_solve_result *res) {
-  sessile_ksp_options o;
-  if (opt) o = *opt;
-  else sessile_ksp_options_default(&o);
-  memset(res, 0, sizeof *res);
+  return sessile_ksp_solve_pc(la, opt, a, NULL, b, x, res);
+}
+
+/* The options, and that the pc fits them (its type when the options' enum
+ * is to build it: checked before any setup work). */
+static sessile_status check_options(const sessile_ksp_options *o, const sessile_mat *a,
+                                    const sessile_pc *pc, const sessile_vec *b,
+                                    const sessile_vec *x) {
   SESSILE_CHECK(b->n == a->nrows && x->n == a->nrows, SESSILE_ERR_USAGE,
                 "solve: matrix has %u rows, b %u and x %u entries", a->nrows, b->n, x->n);
-  SESSILE_CHECK(o.rtol > 0 && o.rtol < 1, SESSILE_ERR_USAGE, "rtol must be in (0, 1), got %g", o.rtol);
-  SESSILE_CHECK(o.max_it > 0, SESSILE_ERR_USAGE, "max_it must be positive, got %d", o.max_it);
-  SESSILE_CHECK(o.restart >= 1 && o.restart <= 64, SESSILE_ERR_USAGE,
-                "GMRES restart must be in 1..64, got %d", o.restart);
-  SESSILE_CHECK(o.pc == SESSILE_PC_NONE || o.pc == SESSILE_PC_JACOBI || o.pc == SESSILE_PC_ILU0,
-                SESSILE_ERR_USAGE, "unknown preconditioner %d", (int)o.pc);
-  SESSILE_CHECK(o.pc != SESSILE_PC_ILU0 || o.type != SESSILE_KSP_CG, SESSILE_ERR_USAGE,
-                "ILU0 is a nonsymmetric preconditioner and CG needs a symmetric one: use "
-                "bicgstab or gmres with ILU0, or CG with Jacobi");
-  if (o.check_every < 1) o.check_every = 1;
-  double t0 = sessile_wall_seconds();
-  double bnorm;
-  SESSILE_CALL(sessile_vec_nrm2(la, b, &bnorm));
+  SESSILE_CHECK(o->rtol > 0 && o->rtol < 1, SESSILE_ERR_USAGE, "rtol must be in (0, 1), got %g", o->rtol);
+  SESSILE_CHECK(o->max_it > 0, SESSILE_ERR_USAGE, "max_it must be positive, got %d", o->max_it);
+  SESSILE_CHECK(o->restart >= 1 && o->restart <= 64, SESSILE_ERR_USAGE,
+                "GMRES restart must be in 1..64, got %d", o->restart);
+  const la_pc_ops *ops = pc ? pc->ops : la_pc_ops_of(o->pc);
+  SESSILE_CHECK(ops, SESSILE_ERR_USAGE, "unknown preconditioner %d", (int)o->pc);
+  SESSILE_CHECK(ops->symmetric || o->type != SESSILE_KSP_CG, SESSILE_ERR_USAGE,
+                "%s is a nonsymmetric preconditioner and CG needs a symmetric one: use "
+                "bicgstab or gmres with %s, or CG with a symmetric one (jacobi, block_jacobi, mg)",
+                ops->name, ops->name);
+  if (pc) {
+    SESSILE_CHECK(pc->la == a->la, SESSILE_ERR_USAGE, "solve: the pc belongs to another la");
+    SESSILE_CHECK(pc->n == a->nrows, SESSILE_ERR_USAGE,
+                  "solve: pc %s is %s (the matrix has %u rows)", ops->name,
+                  pc->n ? "set up for another size" : "not set up", a->nrows);
+  }
+  return SESSILE_OK;
+}
+
+/* The zero or non-finite right-hand side: answered without iterating
+ * (*done = 1), or *done = 0. */
+static sessile_status trivial_rhs(sessile_la *la, double bnorm, sessile_vec *x,
+                                  sessile_solve_result *res, int *done) {
+  *done = 1;
   if (!isfinite(bnorm)) {
     res->status = SESSILE_SOLVE_BREAKDOWN;
     res->true_relres = NAN;
     snprintf(res->reason, sizeof res->reason, "the right-hand side contains NaN or Inf");
-    res->seconds = sessile_wall_seconds() - t0;
     return SESSILE_OK;
   }
   if (bnorm == 0) { /* the solution of A x = 0 is x = 0: no iteration needed */
-    SESSILE_CALL(sessile_vec_fill(la, 0.0, x));
     res->status = SESSILE_SOLVE_CONVERGED;
     snprintf(res->reason, sizeof res->reason, "zero right-hand side: x = 0");
-    res->seconds = sessile_wall_seconds() - t0;
-    return SESSILE_OK;
+    return sessile_vec_fill(la, 0.0, x);
   }
-  sessile_vec *dinv = NULL, *q = NULL, *d = NULL;
-  la_pc pc = {o.pc, NULL, NULL};
-  sessile_status s = SESSILE_OK;
-  if (o.pc == SESSILE_PC_ILU0) s = la_ilu_get(la, a, &pc.ilu); /* once per matrix */
-  if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &dinv);
+  *done = 0;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_ksp_solve_pc(sessile_la *la, const sessile_ksp_options *opt,
+                                    const sessile_mat *a, sessile_pc *pc, const sessile_vec *b,
+                                    sessile_vec *x, sessile_solve_result *res) {
+  sessile_ksp_options o;
+  if (opt) o = *opt;
+  else sessile_ksp_options_default(&o);
+  memset(res, 0, sizeof *res);
+  SESSILE_CALL(check_options(&o, a, pc, b, x));
+  if (o.check_every < 1) o.check_every = 1;
+  double t0 = sessile_wall_seconds();
+  double bnorm;
+  int done;
+  SESSILE_CALL(sessile_vec_nrm2(la, b, &bnorm));
+  sessile_status s = trivial_rhs(la, bnorm, x, res, &done);
+  if (s != SESSILE_OK || done) {
+    res->seconds = sessile_wall_seconds() - t0;
+    return s;
+  }
+  sessile_pc *own = NULL; /* the options' pc, built here */
+  sessile_vec *q = NULL, *d = NULL;
+  if (!pc) {
+    s = sessile_pc_create_type(la, o.pc, &own);
+    if (s == SESSILE_OK) s = sessile_pc_setup(own, a);
+    pc = own;
+  }
   if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &q);
   if (s == SESSILE_OK && la->real_bytes != 8) s = sessile_vec_create(la, a->nrows, &d);
+  ksp_inner_ctx ctx = {la, a, pc};
   if (s == SESSILE_OK)
-    s = o.pc == SESSILE_PC_JACOBI ? sessile_mat_jacobi(la, a, dinv) : sessile_vec_fill(la, 1.0, dinv);
-  pc.dinv = dinv;
-  ksp_inner_ctx ctx = {la, a, &pc};
-  if (s == SESSILE_OK)
-    s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, &pc, q, bnorm, res)
+    s = la->real_bytes == 8 ? solve_device(la, &o, a, b, x, pc, q, bnorm, res)
                             : la_solve_refined(la, &o, a, b, x, q, d, ksp_inner, &ctx, res);
   sessile_vec_destroy(d);
   sessile_vec_destroy(q);
-  sessile_vec_destroy(dinv);
+  sessile_pc_destroy(own);
   res->seconds = sessile_wall_seconds() - t0;
   if (s == SESSILE_OK)
     la_monitorf(&o, "%s: %s after %d iterations, true relative residual %.3e (%.3f s)",

@@ -3,6 +3,7 @@
 #define SESSILE_LA_INTERNAL_H
 
 #include "sessile/la.h"
+#include "sessile/pc.h"
 
 /* The kernels (la_kernel_id, sessile_la_kernels[]), their push structs
  * (vec_push, spmv_push, ...) and the scalar slots (S_*, CG_*, BI_*, GM_*),
@@ -126,27 +127,19 @@ sessile_status rec_ilu(sessile_la *la, sessile_cmd *c, const la_ilu *f, vref r, 
  * pivoting; 0 when singular to working precision or not finite (ref_ilu.c). */
 int la_block_inverse(int bs, const double *a, double *inv);
 
-/* The preconditioner a solver applies: z = M r.  Jacobi and none are the
- * element-wise product with dinv (ones for none); ILU0 the level-scheduled
- * triangular solves. */
-typedef struct {
-  sessile_pc_type type;
-  const sessile_vec *dinv;
-  const la_ilu *ilu;
-} la_pc;
-sessile_status rec_pc(sessile_la *la, sessile_cmd *c, const la_pc *pc, uint32_t n, vref r, vref z,
-                      int guard);
-
-/* Solvers (one file each); run on the device in the context precision. */
+/* Solvers (one file each); run on the device in the context precision with
+ * a set-up preconditioner object (pc_internal.h). */
 sessile_status la_cg(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                     const sessile_vec *b, sessile_vec *x, const sessile_vec *dinv,
+                     const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                      sessile_solve_result *res);
 sessile_status la_bicgstab(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                           const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                           const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                            sessile_solve_result *res);
 sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
-                        const sessile_vec *b, sessile_vec *x, const la_pc *pc,
+                        const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
                         sessile_solve_result *res);
+/* A vector of n ones (the fused solver kernels' D⁻¹ when the pc is not diagonal). */
+sessile_status la_ones(sessile_la *la, uint32_t n, sessile_vec **out);
 /* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
                               const sessile_ksp_options *o, const char *name, int est_slot,

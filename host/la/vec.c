@@ -106,3 +106,13 @@ sessile_status sessile_vec_dot(sessile_la *la, const sessile_vec *x, const sessi
 sessile_status sessile_vec_nrm2(sessile_la *la, const sessile_vec *x, double *out) {
   return run_dot(la, x, x, 1, out);
 }
+
+sessile_status la_ones(sessile_la *la, uint32_t n, sessile_vec **out) {
+  SESSILE_CALL(sessile_vec_create(la, n, out));
+  sessile_status s = sessile_vec_fill(la, 1.0, *out);
+  if (s != SESSILE_OK) {
+    sessile_vec_destroy(*out);
+    *out = NULL;
+  }
+  return s;
+}

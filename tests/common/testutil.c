@@ -1,6 +1,7 @@
 #include "testutil.h"
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 int t_failed, t_passed;
 
@@ -44,6 +45,21 @@ sessile_gpu *t_gpu(int precision) {
     printf("FAIL the context runs at fp%d, not the fp%d asked for\n", i->precision, want);
     exit(1);
   }
+  return g;
+}
+
+sessile_gpu *t_gpu_args(int argc, char **argv, int *fp32) {
+  int want32 = 0;
+  for (int i = 1; i < argc; i++) {
+    if (strcmp(argv[i], "--fp32") == 0) want32 = 1;
+    else {
+      printf("usage: %s [--fp32]\n", argv[0]);
+      exit(2);
+    }
+  }
+  sessile_gpu *g = t_gpu(want32 ? 32 : 0);
+  *fp32 = sessile_gpu_info_of(g)->precision == 32;
+  if (want32) t_true("--fp32: the context precision is 32", *fp32);
   return g;
 }
 

@@ -17,6 +17,9 @@ void t_true(const char *what, int cond);
 void t_ok(const char *what, sessile_status s);
 /* Creates the context with validation on; exits 1 (after printing why) on failure. */
 sessile_gpu *t_gpu(int precision);
+/* t_gpu for a test whose only argument is an optional --fp32 (any other
+ * prints the usage and exits 2); *fp32: the context runs in fp32. */
+sessile_gpu *t_gpu_args(int argc, char **argv, int *fp32);
 /* Destroys g, adds a failed check if validation reported anything, prints the
  * summary line and returns the exit code. */
 int t_finish(sessile_gpu *g);

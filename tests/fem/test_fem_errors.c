@@ -89,7 +89,7 @@ static void test_fluid(void) {
   t_must("fluid create (orphan node)", sessile_fluid_create(la, &mo, &fl));
   fluid_run r = {.fl = fl};
   sessile_fluid_params_default(&r.p);
-  r.p.block_jacobi = 1;
+  r.p.pc = SESSILE_PC_BLOCK_JACOBI;
   r.p.newton_max = 3;
   r.up = t_dalloc(4 * (size_t)(n + 1));
   omp_set_dynamic(0);
@@ -97,7 +97,7 @@ static void test_fluid(void) {
   sessile_error_clear();
   run_fluid(&r);
   char want[96];
-  snprintf(want, sizeof want, "singular diagonal block at node %u", n);
+  snprintf(want, sizeof want, "singular diagonal block at block row %u", n);
   printf("  orphan node, 2 threads: %s: %s\n", sessile_status_name(r.st), sessile_error_message());
   t_true("worker failure: SESSILE_ERR_NUMERIC", r.st == SESSILE_ERR_NUMERIC);
   t_true("worker failure: its message reaches the calling thread", strstr(sessile_error_message(), want) != NULL);

@@ -72,7 +72,7 @@ static sessile_fluid_params test_params(void) {
   if (getenv("SESSILE_NS_VERBOSE")) p.monitor = print_line;
   if (getenv("SESSILE_NS_BICGSTAB")) p.ksp = SESSILE_KSP_BICGSTAB;
   if (getenv("SESSILE_NS_NOLSIC")) p.lsic = 0;
-  if (getenv("SESSILE_NS_BJ")) p.block_jacobi = 1;
+  if (getenv("SESSILE_NS_BJ")) p.pc = SESSILE_PC_BLOCK_JACOBI;
   return p;
 }
 

@@ -64,12 +64,11 @@ typedef struct sessile_fluid_params {
   double linear_rtol;  /* default 1e-6 */
   int linear_max;      /* default 100 */
   sessile_ksp_type ksp;/* default GMRES */
-  sessile_pc_type pc;  /* default ILU(0); Jacobi is used instead on a matrix
-                          stored in several chunks (la's ILU(0) needs one) */
+  sessile_pc_type pc;  /* la's preconditioner (sessile/pc.h), default ILU(0);
+                          Jacobi is used instead on a matrix stored in several
+                          chunks (la's ILU(0) needs one); BLOCK_JACOBI inverts
+                          each node's 4x4 diagonal block (couples u and p) */
   int restart;         /* GMRES(m), default 50 */
-  int block_jacobi;    /* scale each block row by its inverse 4x4 diagonal block
-                          before the solve (default 0; for comparisons:
-                          `sessile bench fluid --block-scale`) */
   /* Progress: one line per Newton/Picard step and one at the end (and the
    * check_linear lines) to monitor(monitor_user, line); NULL (default):
    * silent.  The library itself never prints. */

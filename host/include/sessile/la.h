@@ -140,12 +140,16 @@ sessile_status sessile_mat_ilu0_apply(sessile_la *la, const sessile_mat *a, cons
 
 /* --- Krylov solvers --------------------------------------------------------- */
 typedef enum sessile_ksp_type { SESSILE_KSP_CG = 0, SESSILE_KSP_BICGSTAB = 1, SESSILE_KSP_GMRES = 2 } sessile_ksp_type;
-/* ILU0: right preconditioning for BiCGSTAB and GMRES only (CG needs a
- * symmetric preconditioner and refuses it); CSR and BCSR4 matrices only. */
+/* The registered preconditioners (sessile/pc.h has the objects and the
+ * registry by name).  Right preconditioning for BiCGSTAB and GMRES; CG takes
+ * the symmetric ones only (not ILU0).  ILU0: CSR and BCSR4 matrices only;
+ * MG: only as an object (sessile_pc_mg_set gives it its hierarchy). */
 typedef enum sessile_pc_type {
   SESSILE_PC_NONE = 0,
   SESSILE_PC_JACOBI = 1,
-  SESSILE_PC_ILU0 = 2
+  SESSILE_PC_ILU0 = 2,
+  SESSILE_PC_BLOCK_JACOBI = 3,
+  SESSILE_PC_MG = 4
 } sessile_pc_type;
 
 /* A progress monitor: called with one line of text (no trailing newline) at
@@ -161,7 +165,8 @@ void sessile_monitor_vprintf(sessile_monitor_fn fn, void *user, const char *fmt,
 
 typedef struct sessile_ksp_options {
   sessile_ksp_type type;
-  sessile_pc_type pc;
+  sessile_pc_type pc; /* built and set up by sessile_ksp_solve (default jacobi);
+                         sessile_ksp_solve_pc with a pc object ignores it */
   double rtol;      /* on the true relative residual ‖b−Ax‖/‖b‖; default 1e-6 */
   int max_it;       /* default 1000 */
   int restart;      /* GMRES(m): m, default 30 */
@@ -173,7 +178,8 @@ typedef struct sessile_ksp_options {
 
 void sessile_ksp_options_default(sessile_ksp_options *o);
 const char *sessile_ksp_type_name(sessile_ksp_type t);
-const char *sessile_pc_type_name(sessile_pc_type t); /* "none", "jacobi", "ilu0" */
+/* The registered name: "none", "jacobi", "ilu0", "block_jacobi", "mg" ("?" otherwise). */
+const char *sessile_pc_type_name(sessile_pc_type t);
 
 typedef enum sessile_solve_status {
   SESSILE_SOLVE_CONVERGED = 0,

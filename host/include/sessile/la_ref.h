@@ -59,6 +59,14 @@ void sessile_ref_ilu0_solve_csr(const sessile_csr *a, const double *lu, const do
 void sessile_ref_ilu0_solve_bcsr4(const sessile_bcsr4 *a, const double *lu, const double *r,
                                   double *z);
 
+/* Block Jacobi of a 4x4 block CSR matrix: dinv receives the inverse of every
+ * diagonal block (16 per block row, row-major).  Fails with
+ * SESSILE_ERR_NUMERIC naming the lowest block row whose diagonal block is
+ * missing, not finite or singular.  Threaded (OpenMP). */
+sessile_status sessile_ref_bjacobi_bcsr4(const sessile_bcsr4 *a, double *dinv);
+/* z = blockdiag(dinv) r (4 reals per block row). */
+void sessile_ref_bjacobi_apply(uint32_t nbrows, const double *dinv, const double *r, double *z);
+
 /* ‖b − A x‖ / ‖b‖ (‖r‖ when b = 0). */
 double sessile_ref_true_relres(const sessile_csr *a, const double *b, const double *x);
 
