@@ -72,7 +72,7 @@ static sessile_status element_line(ply *r, const char *line, int nw, const char 
   elem *e = &r->el[r->nel++];
   memset(e, 0, sizeof *e);
   snprintf(e->name, sizeof e->name, "%s", w1);
-  snprintf(e->count_text, sizeof e->count_text, "%s", w2);
+  snprintf(e->count_text, sizeof e->count_text, "%.*s", (int)sizeof e->count_text - 1, w2);
   e->count = errno == ERANGE ? UINT64_MAX : c;
   e->line = ln;
   return SESSILE_OK;
