@@ -41,3 +41,16 @@ sessile_status sessile_error_set(sessile_status s, const char *fmt, ...) {
 const char *sessile_error_message(void) { return error_message; }
 
 void sessile_error_clear(void) { error_message[0] = '\0'; }
+
+sessile_status sessile_error_pass(sessile_status s, const char *fmt, ...) {
+  char where[256], scratch[SESSILE_ERROR_MESSAGE_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  if (vsnprintf(where, sizeof where, fmt, ap) < 0) where[0] = '\0';
+  va_end(ap);
+  /* an interruption is no failure: its message is the stop, unprefixed */
+  if (s == SESSILE_ERR_INTERRUPTED || !where[0]) return s;
+  snprintf(scratch, sizeof scratch, "%.200s: %.800s", where, error_message);
+  memcpy(error_message, scratch, sizeof error_message);
+  return s;
+}

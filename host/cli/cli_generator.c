@@ -3,6 +3,7 @@
  * directory, refuse what cannot run before anything is written, start,
  * sessile_run_loop, preview, close, exit code. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 #include "cli_generator.h"
@@ -22,7 +23,9 @@ static void print_help(const sessile_generator *g) {
          "  --out DIR       run directory (default %s); must be new or empty\n"
          "  --force         replace the earlier sessile run in DIR     --resume DIR  continue it\n"
          "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
-         "  --quiet         no progress and no summary line\n",
+         "  --quiet         no progress and no summary line\n"
+         "  --max-memory G  stop with the state saved once the process holds more than G GiB\n"
+         "                  after an iteration (default: half the machine's memory; also with --resume)\n",
          g->seed_help, g->iterations, g->every, g->out_default);
   for (int k = 0; k < g->nflags; k++) printf("  %-15s %s\n", g->flags[k].option, g->flags[k].help);
   if (g->needs_device) printf("  --device D      the device, when the configuration needs one (sessile --help)\n");
@@ -42,6 +45,7 @@ typedef struct gen_cmd {
   cli_run_args a;
   cli_gpu_opts go;
   sessile_gen_setup su;
+  int have_max_memory;
   char params[4096] __attribute__((aligned(16))); /* the table's struct */
 } gen_cmd;
 
@@ -57,6 +61,17 @@ static int parse(gen_cmd *c, int argc, char **argv) {
     if (k < c->g->nflags) {
       c->su.flags |= 1u << k;
       c->a.have_run_option = 1;
+      continue;
+    }
+    if (!strcmp(argv[i], "--max-memory")) {
+      const char *v = cli_value(name, argc, argv, &i);
+      char *end = NULL;
+      double gib = v ? strtod(v, &end) : 0;
+      if (!v) return EXIT_USAGE;
+      if (c->have_max_memory) return cli_usage_error(name, "--max-memory given twice");
+      if (end == v || *end || !(gib > 0 && gib <= 1e6) || strpbrk(v, "xXnNiI"))
+        return cli_usage_error(name, "--max-memory takes GiB, a number above 0 (not '%.40s')", v);
+      c->su.max_memory = gib * 1073741824.0, c->have_max_memory = 1;
       continue;
     }
     int r = cli_gpu_option(name, argc, argv, &i, &c->go);
@@ -132,6 +147,7 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   static gen_cmd c;
   memset(&c, 0, sizeof c);
   c.g = g, c.go = *global;
+  c.su.max_memory = 0.5 * sessile_physical_memory();
   if (cli_run_args_init(&c.a, argc, 1, g->iterations, g->every) != 0) {
     cli_run_args_free(&c.a);
     fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);

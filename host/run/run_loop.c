@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "sessile/generator.h"
 
 cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const sessile_gen_setup *su) {
@@ -55,12 +56,12 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
   sessile_status s = g->step(state, it, rec);
   if (s == SESSILE_OK) s = sessile_run_record(su->run, rec);
   cJSON_Delete(rec);
-  SESSILE_CALL(s);
+  SESSILE_CALL_AT(s, "iteration %d", it);
   *snap = (su->every > 0 && it % su->every == 0) || it == su->iterations;
   if (*snap) {
     char rel[256];
     SESSILE_CALL(snapshot_rel(g, it, rel, sizeof rel));
-    SESSILE_CALL(g->snapshot(state, rel));
+    SESSILE_CALL_AT(g->snapshot(state, rel), "iteration %d: snapshot %s", it, rel);
   }
   return SESSILE_OK;
 }
@@ -74,7 +75,7 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
     int k = sessile_ckpt_iteration(ck);
     SESSILE_CHECK(k <= su->iterations, SESSILE_ERR_USAGE,
                   "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
-    SESSILE_CALL(g->restore(state, ck));
+    SESSILE_CALL_AT(g->restore(state, ck), "resuming from the checkpoint of iteration %d", k);
     first = k + 1;
     *done = k;
     /* the old last iteration was a snapshot only because it was the last */
@@ -90,12 +91,21 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
     SESSILE_CALL(one_iteration(g, state, su, it, &snap));
     *done = it;
     int stop = sessile_run_stop_requested(run);
-    if (snap || stop) SESSILE_CALL(checkpoint(g, state, run, it));
+    /* the memory budget is checked between iterations: over it, the run
+     * stops with its state saved, before the machine's OOM killer ends it */
+    double rss = su->max_memory > 0 ? sessile_process_memory() : 0;
+    int over = rss > su->max_memory && su->max_memory > 0 && it < su->iterations;
+    if (snap || stop || over) SESSILE_CALL_AT(checkpoint(g, state, run, it), "checkpoint at iteration %d", it);
     if (progress) progress(user, it, su->iterations, sessile_wall_seconds() - t0);
     if (stop && it < su->iterations)
       return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d after iteration %d", stop, it);
+    SESSILE_CHECK(!over, SESSILE_ERR_TOO_LARGE,
+                  "after iteration %d the run holds %.2f GiB, over its memory budget of %.2f GiB "
+                  "(--max-memory): its state is saved; resume it with a larger --max-memory, or "
+                  "change the parameters that make it grow", it, rss / 1073741824.0, su->max_memory / 1073741824.0);
   }
-  return g->finish(state);
+  SESSILE_CALL_AT(g->finish(state), "final outputs");
+  return SESSILE_OK;
 }
 
 sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
@@ -109,8 +119,27 @@ sessile_status sessile_run_loop(const sessile_generator *g, const void *params, 
   cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
   cJSON_AddItemToObject(m, "parameters", pj);
   void *state = NULL;
-  SESSILE_CALL(g->create(params, su, &state));
-  sessile_status s = loop(g, state, su, progress, user, done);
+  sessile_status s = g->create(params, su, &state);
+  if (s != SESSILE_OK) {
+    g->destroy(state);
+    return sessile_error_pass(s, "setting up");
+  }
+  s = loop(g, state, su, progress, user, done);
   g->destroy(state);
   return s;
+}
+
+double sessile_process_memory(void) {
+  /* resident set size: the second field of /proc/self/statm, in pages */
+  FILE *f = fopen("/proc/self/statm", "r");
+  unsigned long long size = 0, resident = 0;
+  int ok = f && fscanf(f, "%llu %llu", &size, &resident) == 2;
+  if (f) fclose(f);
+  long page = sysconf(_SC_PAGESIZE);
+  return ok && page > 0 ? (double)resident * (double)page : 0;
+}
+
+double sessile_physical_memory(void) {
+  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? (double)pages * (double)page : 0;
 }

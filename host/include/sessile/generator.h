@@ -26,6 +26,7 @@ typedef struct sessile_gen_setup {
   uint64_t seed;
   int iterations, every; /* snapshots every K iterations (0: none) and at the last */
   unsigned flags;        /* bit k: the generator's flags[k] was given */
+  double max_memory;     /* bytes the process may hold after an iteration (0: no budget) */
 } sessile_gen_setup;
 
 /* A boolean option of one generator ("--check"), kept in the run's
@@ -76,10 +77,17 @@ typedef void (*sessile_progress_fn)(void *user, int iteration, int iterations, d
 /* Runs the generator in su->run from its checkpoint (if any) to
  * su->iterations: the manifest's parameters, records, snapshots,
  * checkpoints at each snapshot and when a stop is asked
- * (SESSILE_ERR_INTERRUPTED then), the final outputs.  *done: iterations
+ * (SESSILE_ERR_INTERRUPTED then), the final outputs.  Over su->max_memory
+ * after an iteration it checkpoints and fails with SESSILE_ERR_TOO_LARGE.
+ * A failure's message names where it passed ("iteration 12: ...").  *done: iterations
  * complete. */
 sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
                                 sessile_progress_fn progress, void *user, int *done);
+
+/* The process's resident memory and the machine's physical memory, in
+ * bytes (0 when unknown). */
+double sessile_process_memory(void);
+double sessile_physical_memory(void);
 
 /* The configuration a resume restarts from (sessile_run_config_make plus
  * the flags as booleans), and back (SESSILE_ERR_USAGE when damaged). */

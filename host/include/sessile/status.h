@@ -35,6 +35,11 @@ const char *sessile_status_name(sessile_status s);
 sessile_status sessile_error_set(sessile_status s, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* Hands a failure upward with where it passed: the recorded message becomes
+ * "<where>: <message>" (PETSc's traceback, one line), e.g. "iteration 12:
+ * remesh: out of host memory".  Returns s. */
+sessile_status sessile_error_pass(sessile_status s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* The last recorded message of this thread ("" if none). */
 const char *sessile_error_message(void);
 
@@ -46,6 +51,14 @@ void sessile_error_clear(void);
   do {                                                                         \
     sessile_status sessile_call_s_ = (expr);                                   \
     if (sessile_call_s_ != SESSILE_OK) return sessile_call_s_;                 \
+  } while (0)
+
+/* Propagate a failure upward, naming where it passed (sessile_error_pass). */
+#define SESSILE_CALL_AT(expr, ...)                                             \
+  do {                                                                         \
+    sessile_status sessile_call_s_ = (expr);                                   \
+    if (sessile_call_s_ != SESSILE_OK)                                         \
+      return sessile_error_pass(sessile_call_s_, __VA_ARGS__);                 \
   } while (0)
 
 /* Check a condition where it is detected; message in words a user can act on. */
