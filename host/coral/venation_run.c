@@ -35,6 +35,8 @@ static sessile_status write_mesh(const sessile_venation *v, const sessile_venati
       sessile_weld_params wp = {.cell = p->weld_cell, .blend = p->weld_blend};
       s = o->gpu ? sessile_skeleton_weld(o->gpu, &sk, &wp, &m, &val)
                  : sessile_error_set(SESSILE_ERR_NO_DEVICE, "geometry = weld needs a device");
+      if (s == SESSILE_ERR_NO_MEMORY) /* the mesh layer's message names no parameter of ours */
+        s = sessile_error_set(s, "%s (raise weld_cell)", sessile_error_message());
     } else {
       s = sessile_skeleton_tubes(&sk, p->mesh_detail, &m, &val);
     }
