@@ -43,6 +43,7 @@ static int fail(sessile_status s) {
  * iterations x auxins_per_iteration auxins live at once (24 bytes each, and
  * the search's 40 bytes of work per auxin). */
 static sessile_status check_size(const sessile_venation_params *p, int iterations) {
+  SESSILE_CHECK(iterations >= 1, SESSILE_ERR_USAGE, "--iterations 0: a venation run grows its veins in iterations (1 or more)");
   double aux = (double)iterations * p->auxins_per_iteration;
   SESSILE_CHECK(aux <= 5e7, SESSILE_ERR_USAGE,
                 "%d iterations x %d auxins per iteration could hold %.3g auxins (about %.1f GB): at most 5e7",
@@ -78,6 +79,7 @@ static int venation_main(int argc, char **argv, const cli_gpu_opts *global, cli_
       return s == SESSILE_OK ? EXIT_OK : fail(s);
     }
   }
+  if ((s = cli_gpu_check(&go)) != SESSILE_OK) return fail(s); /* an unknown --device: before any file */
   const char *dir = a->resume ? a->resume : a->out ? a->out : "runs/coral-venation";
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_run *run = NULL;

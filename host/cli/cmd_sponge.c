@@ -76,6 +76,7 @@ static int particles_main(int argc, char **argv, cli_run_args *a, const cli_gpu_
       return s == SESSILE_OK ? EXIT_OK : fail(s);
     }
   }
+  if ((s = cli_gpu_check(&go)) != SESSILE_OK) return fail(s); /* an unknown --device: before any file */
   const char *dir = a->resume ? a->resume : a->out ? a->out : "runs/sponge";
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_run *run = NULL;
