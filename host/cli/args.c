@@ -1,5 +1,6 @@
 /* Shared option parsing: one-line errors and exit code 2 for bad usage. */
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -65,9 +66,60 @@ int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned l
   errno = 0;
   unsigned long v = strtoul(val, &end, 10);
   if (*end || val[0] < '0' || val[0] > '9' || errno == ERANGE || v < lo || v > hi)
-    return cli_usage_error(cmd, "%s: '%s' is not an integer in %u..%u", opt, val, lo, hi);
+    return cli_usage_error(cmd, "%s: '%.40s' is not an integer in %u..%u", opt, val, lo, hi);
   *out = (unsigned)v;
   return 0;
+}
+
+int cli_is_decimal(const char *v) {
+  /* [sign] digits [. digits] [e [sign] digits], at least one digit before the exponent */
+  const char *c = v;
+  int digits = 0;
+  if (!c) return 0;
+  if (*c == '-' || *c == '+') c++;
+  for (; *c >= '0' && *c <= '9'; c++) digits++;
+  if (*c == '.')
+    for (c++; *c >= '0' && *c <= '9'; c++) digits++;
+  if (!digits) return 0;
+  if (*c == 'e' || *c == 'E') {
+    c++;
+    if (*c == '-' || *c == '+') c++;
+    if (*c < '0' || *c > '9') return 0;
+    while (*c >= '0' && *c <= '9') c++;
+  }
+  return *c == 0;
+}
+
+int cli_parse_double(const char *cmd, const char *opt, const char *val, double lo, double hi, double *out) {
+  if (!val || !*val) return cli_usage_error(cmd, "%s needs a value", opt);
+  double x = cli_is_decimal(val) ? strtod(val, NULL) : NAN;
+  if (!isfinite(x) || x < lo || x > hi)
+    return cli_usage_error(cmd, "%s: '%.40s' is not a decimal number in [%g, %g]", opt, val, lo, hi);
+  *out = x;
+  return 0;
+}
+
+/* The valued options given so far on this command line (one per process):
+ * global options and the command's share it, so that `sessile --device 0
+ * grow --device 1` is refused too. */
+static const char *seen_opts[64];
+static int nseen_opts;
+
+int cli_once(const char *cmd, const char *key, const char *typed) {
+  for (int k = 0; k < nseen_opts; k++)
+    if (!strcmp(seen_opts[k], key)) {
+      cli_usage_error(cmd, "%s given twice", typed ? typed : key);
+      return -1;
+    }
+  if (nseen_opts < (int)(sizeof seen_opts / sizeof seen_opts[0])) seen_opts[nseen_opts++] = key;
+  return 0;
+}
+
+const char *cli_short(const char *name, char buf[CLI_SHORT_BUF]) {
+  size_t n = name ? strlen(name) : 0;
+  if (n <= 60) return name ? name : "";
+  snprintf(buf, CLI_SHORT_BUF, "%.60s...", name);
+  return buf;
 }
 
 int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts *o) {
@@ -78,7 +130,7 @@ int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts 
   }
   if (strcmp(a, "--device") != 0 && strcmp(a, "--precision") != 0) return 0;
   const char *v = cli_value(cmd, argc, argv, i);
-  if (!v) return -1;
+  if (!v || cli_once(cmd, a, a)) return -1;
   if (strcmp(a, "--device") == 0) {
     if (!*v) {
       cli_usage_error(cmd, "--device needs an index or a name substring");
@@ -103,6 +155,10 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   go.precision = o->precision;
   if (o->validation) go.validation = 1;
   return sessile_gpu_create(&go, g);
+}
+
+sessile_status cli_gpu_check(const cli_gpu_opts *o) {
+  return sessile_gpu_check_device(o->device);
 }
 
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {

@@ -31,10 +31,29 @@ int cli_parse_seed(const char *cmd, const char *val, unsigned long long *out);
 /* Parses an unsigned integer in [lo, hi]; returns 0 on success. */
 int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned lo, unsigned hi,
                    unsigned *out);
+/* Whether v is a plain decimal number: [sign] digits [. digits] [e [sign]
+ * digits], the whole string (no blanks, hex, inf or nan). */
+int cli_is_decimal(const char *v);
+/* Parses a decimal number (cli_is_decimal) that is finite and in [lo, hi];
+ * returns 0 on success, else prints a usage error and returns EXIT_USAGE. */
+int cli_parse_double(const char *cmd, const char *opt, const char *val, double lo, double hi, double *out);
+/* A valued option that may be given once: records key (the option's
+ * canonical name, e.g. "--out" for -o too); the second time prints "TYPED
+ * given twice" and returns -1.  Repeatable options (--set, --config,
+ * --define, --caption) do not call it.  One command line per process. */
+int cli_once(const char *cmd, const char *key, const char *typed);
+/* A name for a message: itself up to 60 characters, else its first 60 and
+ * "..." (in buf), so that the reason after it is never cut. */
+enum { CLI_SHORT_BUF = 64 };
+const char *cli_short(const char *name, char buf[CLI_SHORT_BUF]);
 /* Consumes a device option at argv[*i] (--device X, --precision P,
  * --validation); returns 1 if consumed, 0 if not one, -1 on a usage error. */
 int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts *o);
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
+/* The device the options (or $SESSILE_DEVICE) name exists: cheap (lists the
+ * devices, creates none), so that a command refuses an unknown device
+ * before it writes anything.  SESSILE_OK when none is named. */
+sessile_status cli_gpu_check(const cli_gpu_opts *o);
 /* Applies one --set KEY=VALUE to p (SESSILE_ERR_USAGE with a message on bad input). */
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv);
 /* Writes stdout's pending output and reports a failure (a full disk, a

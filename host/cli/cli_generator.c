@@ -116,6 +116,9 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
     return s == SESSILE_OK ? EXIT_OK : cli_fail_in(name, s);
   }
   const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : g->out_default;
+  /* an unknown --device is refused before any file, even where only the
+   * preview would use it */
+  if ((s = cli_gpu_check(&c->go)) != SESSILE_OK) return cli_fail_in(name, s);
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_gpu *gpu = NULL;
   /* a new run's device first: an unknown --device writes nothing */

@@ -34,6 +34,7 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
   if (k == 7) return 0;
   const char *v = cli_value(cmd, argc, argv, i);
   if (!v) return -1;
+  if (k >= 2 && cli_once(cmd, opt, opt)) return -1; /* --config and --set repeat */
   if (k != 3 && k != 4) a->have_run_option = 1;
   switch (k) {
   case 0: a->configs[a->nconfigs++] = v; break;

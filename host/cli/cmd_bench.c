@@ -45,6 +45,7 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
     int r = cli_gpu_option("bench la", argc, argv, &i, &o);
     if (r < 0) return EXIT_USAGE;
     if (r > 0) continue;
+    if (strcmp(a, "--no-solvers") && cli_once("bench la", a, a)) return EXIT_USAGE;
     if (strcmp(a, "--no-solvers") == 0) bo.solvers = 0;
     else if (strcmp(a, "--size") == 0) {
       if (cli_parse_uint("bench la", a, i + 1 < argc ? argv[++i] : NULL, 2, 400, &bo.size)) return EXIT_USAGE;

@@ -98,8 +98,12 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       verbose = 1;
       continue;
     }
+    static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp", "--set"};
+    int k = 0;
+    while (k < 6 && strcmp(a, valued[k])) k++;
+    if (k == 6) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v) return EXIT_USAGE;
+    if (!v || (k < 5 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
     if (!strcmp(a, "--resolution")) {
       if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
     } else if (!strcmp(a, "--picard")) {
@@ -124,7 +128,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     } else if (!strcmp(a, "--set")) {
       s = cli_params_set_kv(&p, v);
       if (s != SESSILE_OK) return cli_fail(s);
-    } else return cli_usage_error("bench fluid", "unknown option '%s'", a);
+    }
   }
   if (!res) res = (unsigned)p.fluid_resolution;
   sessile_box box;

@@ -49,10 +49,10 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
     }
     if (strcmp(a, "--preset") && strcmp(a, "--set") && strcmp(a, "--iterations") && strcmp(a, "--seed")) {
       free(sets);
-      return cli_usage_error("bench grow", "unknown option '%s'", a);
+      return cli_usage_error("bench grow", "unknown option '%.60s'", a);
     }
     const char *v = cli_value("bench grow", argc, argv, &i);
-    if (!v) { free(sets); return EXIT_USAGE; }
+    if (!v || (strcmp(a, "--set") && cli_once("bench grow", a, a))) { free(sets); return EXIT_USAGE; }
     if (!strcmp(a, "--preset")) preset = v;
     else if (!strcmp(a, "--set")) sets[nsets++] = v;
     else {

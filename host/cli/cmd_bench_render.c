@@ -152,7 +152,8 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
     }
     if (!strcmp(argv[i], "--quick")) { quick = 1; continue; }
     if (!strcmp(argv[i], "--runs")) {
-      if (cli_parse_uint(CMD, "--runs", i + 1 < argc ? argv[++i] : NULL, 1, 20, &runs)) return EXIT_USAGE;
+      if (cli_once(CMD, "--runs", "--runs") || cli_parse_uint(CMD, "--runs", i + 1 < argc ? argv[++i] : NULL, 1, 20, &runs))
+        return EXIT_USAGE;
       continue;
     }
     int r = cli_gpu_option(CMD, argc, argv, &i, &go);
@@ -165,6 +166,8 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
   o.width = quick ? 320 : 1920;
   o.height = quick ? 240 : 1080;
   o.samples = 4;
+  /* SIGINT/SIGTERM: stop after the current run and remove the temporary folder */
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
   const char *tmp = getenv("TMPDIR");
   char dir[512];
   snprintf(dir, sizeof dir, "%s/sessile-bench-render-XXXXXX", tmp && *tmp ? tmp : "/tmp");
@@ -195,7 +198,7 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
            2 * nu * nvr, o.width, o.height, o.samples);
     printf("%4s %8s %8s %8s %8s %8s %8s %8s %8s %8s  (seconds; cpu: all threads)\n", "run", "read",
            "setup", "upload", "draw", "readback", "png", "total", "cpu", "draw cpu");
-    for (unsigned k = 0; k < runs && s == SESSILE_OK; k++) {
+    for (unsigned k = 0; k < runs && s == SESSILE_OK && !*stop; k++) {
       s = one_run(g, ply, png, &o, &t[k], &png_bytes);
       if (s == SESSILE_OK)
         printf("%4u %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f\n", k + 1, t[k].read,
@@ -203,7 +206,10 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
                t[k].draw_cpu);
     }
   }
-  if (rc == EXIT_OK && s == SESSILE_OK) {
+  if (rc == EXIT_OK && *stop) {
+    fprintf(stderr, "sessile " CMD ": interrupted (signal %d)\n", (int)*stop);
+    rc = cli_signal_exit_code((int)*stop);
+  } else if (rc == EXIT_OK && s == SESSILE_OK) {
     qsort(t, runs, sizeof t[0], cmp_total);
     const stage_times *md = &t[runs / 2];
     printf("median: %.3f s (read %.3f, setup %.3f, upload %.3f, draw %.3f, readback %.3f, png %.3f); "

@@ -80,11 +80,9 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
       continue;
     }
     if (!strcmp(argv[i], "--rock-t")) {
-      char *end = NULL;
-      if (i + 1 >= argc) return cli_usage_error("bench sds", "--rock-t needs a value");
-      rock_t = strtod(argv[++i], &end);
-      if (!end || *end || !(rock_t >= 0 && rock_t <= 400))
-        return cli_usage_error("bench sds", "--rock-t must be a number in 0..400 (got '%.60s')", argv[i]);
+      const char *v = cli_value("bench sds", argc, argv, &i);
+      if (!v || cli_once("bench sds", "--rock-t", "--rock-t") || cli_parse_double("bench sds", "--rock-t", v, 0, 400, &rock_t))
+        return EXIT_USAGE;
       continue;
     }
     int r = cli_gpu_option("bench sds", argc, argv, &i, &go);
@@ -101,8 +99,14 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   if (s == SESSILE_OK && physics) s = sessile_sds_bench_physics(g, stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) s = sessile_gpu_profile(g, 1);
   double t0 = sessile_wall_seconds();
-  if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, stdout);
+  /* SIGINT/SIGTERM: the rock run stops at its next step and its temporary folder goes */
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
+  if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, stop, stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) print_kernels(g, sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
+  if (s == SESSILE_ERR_INTERRUPTED) {
+    fprintf(stderr, "sessile bench sds: interrupted (signal %d)\n", (int)*stop);
+    return cli_signal_exit_code((int)*stop);
+  }
   return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
 }

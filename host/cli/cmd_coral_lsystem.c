@@ -2,8 +2,8 @@
  * L-system (sessile/lsystem.h, docs/lsystem.md).  Everything is computed
  * before the run directory opens, so bad input, a malformed grammar or a
  * derivation too large writes nothing. */
-#include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,11 +53,8 @@ static int parse_define(const char *v, lsys_cli *c) {
   if (!eq || eq == v || eq - v > 31)
     return cli_usage_error(CMD, "--define '%.60s': expected NAME=VALUE with a name of 1..31 characters", v);
   if (c->ndef == MAX_DEFINES) return cli_usage_error(CMD, "more than %d --define options", MAX_DEFINES);
-  char *end = NULL;
-  errno = 0;
-  double x = strtod(eq + 1, &end);
-  if (end == eq + 1 || *end || errno == ERANGE || !(x == x) || x - x != 0)
-    return cli_usage_error(CMD, "--define '%.60s': the value is not a finite number", v);
+  double x = cli_is_decimal(eq + 1) ? strtod(eq + 1, NULL) : NAN;
+  if (!isfinite(x)) return cli_usage_error(CMD, "--define '%.60s': the value is not a finite decimal number", v);
   c->dname[c->ndef] = strndup(v, (size_t)(eq - v));
   if (!c->dname[c->ndef]) return cli_usage_error(CMD, "out of host memory");
   c->dval[c->ndef++] = x;
@@ -84,7 +81,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     if (!strcmp(argv[i], "--grammar") || !strcmp(argv[i], "--define")) {
       int is_g = argv[i][2] == 'g';
       const char *v = cli_value(CMD, argc, argv, &i);
-      if (!v) return EXIT_USAGE;
+      if (!v || (is_g && cli_once(CMD, "--grammar", "--grammar"))) return EXIT_USAGE; /* --define repeats */
       if (is_g) c->grammar_opt = v;
       else if (parse_define(v, c)) return EXIT_USAGE;
       continue;
@@ -147,20 +144,28 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
     free(owned);
     return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
   }
+  /* from here on SIGINT/SIGTERM stop the derivation, the mesh or the writing
+   * within a second: nothing is written before the run folder opens */
+  volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_gpu *gpu = NULL;
-  if (p.geometry == 1) s = cli_gpu_create(&go, &gpu);
+  s = cli_gpu_check(&go); /* an unknown --device (the preview's too): refused before anything is written */
+  if (s == SESSILE_OK && p.geometry == 1) s = cli_gpu_create(&go, &gpu);
   sessile_coral_lsystem_result r = {0};
-  if (s == SESSILE_OK) s = sessile_coral_lsystem_build(&p, g, a->have_iterations ? a->iterations : -1, a->seed, gpu, &r);
+  if (s == SESSILE_OK)
+    s = sessile_coral_lsystem_build(&p, g, a->have_iterations ? a->iterations : -1, a->seed, gpu, stop, &r);
   if (s != SESSILE_OK) {
     sessile_gpu_destroy(gpu);
     sessile_lsys_destroy(g);
     free(owned);
+    if (s == SESSILE_ERR_INTERRUPTED) {
+      fprintf(stderr, "sessile %s: interrupted (signal %d) before anything was written\n", CMD, (int)*stop);
+      return cli_signal_exit_code((int)*stop);
+    }
     /* refused before starting (max_modules, a grammar that draws nothing): bad input */
     int rc = cli_fail(s);
     return s == SESSILE_ERR_TOO_LARGE ? EXIT_USAGE : rc;
   }
   const char *dir = a->out ? a->out : "runs/coral-lsystem";
-  volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_run *run = NULL;
   s = cli_run_open("coral lsystem", argc, argv, a, dir, stop, &run);
   if (s == SESSILE_OK) {
@@ -177,8 +182,9 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     }
   }
-  if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r, gpu);
-  if (s == SESSILE_OK) cli_run_preview(CMD, a, run, "coral/final.ply", gpu, &go);
+  if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r, gpu, stop);
+  if (s == SESSILE_OK && !*stop) cli_run_preview(CMD, a, run, "coral/final.ply", gpu, &go);
+  if (s == SESSILE_OK && *stop) s = sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d", (int)*stop);
   sessile_gpu_destroy(gpu);
   s = sessile_run_close(run, s);
   if (s == SESSILE_OK && !a->quiet)
@@ -187,6 +193,11 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
   sessile_coral_lsystem_result_free(&r);
   sessile_lsys_destroy(g);
   free(owned);
+  if (s == SESSILE_ERR_INTERRUPTED) { /* no resume: say what is left */
+    fprintf(stderr, "sessile %s: interrupted (signal %d); '%s' holds an incomplete run (its manifest says "
+                    "interrupted; every file in it is whole): run again with --force\n", CMD, (int)*stop, dir);
+    return cli_signal_exit_code((int)*stop);
+  }
   return cli_run_exit(CMD, s, dir, stop, 0);
 }
 

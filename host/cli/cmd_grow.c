@@ -90,9 +90,10 @@ static int parse(int argc, char **argv, grow_args *a) {
       /* --slices '' is a value (no slices) */
       if (i + 1 < argc && argv[i + 1][0] == 0) a->o.slices = argv[++i];
       else if (!(a->o.slices = cli_value("grow", argc, argv, &i))) return EXIT_USAGE;
+      if (cli_once("grow", opt, opt)) return EXIT_USAGE;
       a->ra.have_run_option = 1;
     } else if (!strcmp(opt, "--preset")) {
-      if (!(a->preset = cli_value("grow", argc, argv, &i))) return EXIT_USAGE;
+      if (!(a->preset = cli_value("grow", argc, argv, &i)) || cli_once("grow", opt, opt)) return EXIT_USAGE;
       a->ra.have_run_option = 1;
     } else return cli_usage_error("grow", "unknown option '%.60s'", opt);
   }
@@ -118,6 +119,8 @@ static int grow_main(int argc, char **argv, grow_args *a) {
       return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
     }
   }
+  s = cli_gpu_check(&a->go); /* an unknown --device: refused before anything is written */
+  if (s != SESSILE_OK) return cli_fail(s);
   char outbuf[512];
   snprintf(outbuf, sizeof outbuf, "runs/%s", a->preset);
   const char *dir = a->ra.resume ? a->ra.resume : a->ra.out ? a->ra.out : outbuf;

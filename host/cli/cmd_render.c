@@ -3,11 +3,13 @@
  * (sessile/render_run.h); EXR slices by the 2-D renderer (sessile/render2d.h);
  * run directories by both (host/render/run_*.c). */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include "cli.h"
 #include "sessile/png.h"
 #include "sessile/render2d.h"
@@ -15,6 +17,8 @@
 #include "sessile/render_run.h"
 
 #define CMD "render"
+/* A name in a message: at most 60 characters and "...", the reason after it whole. */
+#define SHORT(name) cli_short((name), (char[CLI_SHORT_BUF]){0})
 
 static const char *help =
     "usage: sessile render FILE.ply|FILE.obj -o OUT.png [options]\n"
@@ -75,12 +79,14 @@ static const char *help =
 
 static int parse_size(const char *v, uint32_t *w, uint32_t *h) {
   char *end = NULL;
+  if (v[0] < '0' || v[0] > '9') return -1; /* decimal digits only: no sign, blank or hex */
   errno = 0;
   unsigned long a = strtoul(v, &end, 10);
-  if (end == v || (*end != 'x' && *end != 'X') || v[0] == '-' || errno) return -1;
+  if ((*end != 'x' && *end != 'X') || errno) return -1;
   const char *b0 = end + 1;
+  if (b0[0] < '0' || b0[0] > '9') return -1;
   unsigned long b = strtoul(b0, &end, 10);
-  if (end == b0 || *end || b0[0] == '-' || errno) return -1;
+  if (*end || errno) return -1;
   if (a < 1 || a > 16384 || b < 1 || b > 16384) return -1;
   *w = (uint32_t)a;
   *h = (uint32_t)b;
@@ -202,19 +208,22 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     const char *v = NULL;
-#define VALUE() do { if (!(v = cli_value(CMD, argc, argv, &i))) return EXIT_USAGE; } while (0)
+    /* every valued option but none repeats: the second is refused */
+#define VALUE() do { if (!(v = cli_value(CMD, argc, argv, &i)) || cli_once(CMD, a[1] == 'o' ? "--out" : a, a)) \
+                       return EXIT_USAGE; } while (0)
     if (!strcmp(a, "-o") || !strcmp(a, "--out")) { VALUE(); c->out = v; }
     else if (!strcmp(a, "--view")) { VALUE(); c->o.view = v; c->mesh_only = a; }
     else if (!strcmp(a, "--channel")) { VALUE(); c->channel = v; c->slice_only = a; }
     else if (!strcmp(a, "--outline")) { VALUE(); c->outline = v; c->slice_only = a; }
     else if (!strcmp(a, "--range")) {
-      const char *v2 = NULL;
-      VALUE();
-      if (!(v2 = cli_value(CMD, argc, argv, &i))) return EXIT_USAGE;
-      char *e1 = NULL, *e2 = NULL;
-      c->lo = strtod(v, &e1), c->hi = strtod(v2, &e2);
-      if (e1 == v || *e1 || e2 == v2 || *e2 || !isfinite(c->lo) || !isfinite(c->hi) || !(c->lo < c->hi))
-        return cli_usage_error(CMD, "--range: '%.40s %.40s' is not two finite numbers LO < HI", v, v2);
+      /* two values: a missing second one is --range's, not the first's */
+      if (i + 2 >= argc || !strncmp(argv[i + 1], "--", 2) || !strncmp(argv[i + 2], "--", 2))
+        return cli_usage_error(CMD, "--range needs two values: LO HI, decimal numbers with LO < HI");
+      if (cli_once(CMD, a, a)) return EXIT_USAGE;
+      const char *v1 = argv[++i], *v2 = argv[++i];
+      if (!cli_is_decimal(v1) || !cli_is_decimal(v2) || !isfinite(c->lo = strtod(v1, NULL)) ||
+          !isfinite(c->hi = strtod(v2, NULL)) || !(c->lo < c->hi))
+        return cli_usage_error(CMD, "--range: '%.40s %.40s' is not two decimal numbers LO < HI", v1, v2);
       c->have_range = 1, c->slice_only = a;
     } else if (!strcmp(a, "--no-annotate")) { c->no_annotate = 1; c->mesh_only = a; }
     else if (!strcmp(a, "--turntable")) {
@@ -242,10 +251,8 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
     else if (!strcmp(a, "--units")) {
       c->mesh_only = a;
       VALUE();
-      char *end = NULL;
-      c->o.units_cm = strtod(v, &end);
-      if (end == v || *end || !(c->o.units_cm > 0 && c->o.units_cm <= 1e6))
-        return cli_usage_error(CMD, "--units: '%.40s' is not a number in (0, 1e6]", v);
+      if (cli_parse_double(CMD, a, v, 0, 1e6, &c->o.units_cm)) return EXIT_USAGE;
+      if (!(c->o.units_cm > 0)) return cli_usage_error(CMD, "--units: '%.40s' is not a number in (0, 1e6]", v);
     } else if (!strcmp(a, "--ortho")) c->o.ortho = 1, c->mesh_only = a;
     else if (!strcmp(a, "--no-grid")) c->o.grid = 0, c->mesh_only = a;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
@@ -254,7 +261,7 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
       if (r < 0) return EXIT_USAGE;
       if (r > 0) continue;
       if (a[0] == '-' && a[1]) return cli_usage_error(CMD, "unknown option '%.60s'", a);
-      if (c->in) return cli_usage_error(CMD, "one input only ('%.200s' and '%.200s')", c->in, a);
+      if (c->in) return cli_usage_error(CMD, "one input only ('%s' and '%s')", SHORT(c->in), SHORT(a));
       c->in = a;
     }
 #undef VALUE
@@ -262,18 +269,40 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
   return EXIT_OK;
 }
 
-/* The output's folder must exist and the output must not be a folder:
- * checked before any work so that bad input writes nothing. */
-static int check_out(const char *out) {
+/* An input must be a regular file: opened without blocking (a FIFO has no
+ * writer) and refused otherwise, before any work; its identity in *st. */
+static int check_input(const char *what, const char *path, struct stat *st) {
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return cli_usage_error(CMD, "cannot read %s'%s': %s", what, SHORT(path), strerror(errno));
+  int ok = fstat(fd, st) == 0 && S_ISREG(st->st_mode);
+  close(fd);
+  if (!ok) return cli_usage_error(CMD, "%s'%s' is not a regular file", what, SHORT(path));
+  return EXIT_OK;
+}
+
+/* The output's folder must exist, its name must be usable, the output must
+ * not be a folder nor one of the nin inputs (same device and inode, through
+ * any link): checked before any work so that bad input writes nothing. */
+static int check_out(const char *out, const char *const *ins, int nin) {
   struct stat st;
-  if (stat(out, &st) == 0 && S_ISDIR(st.st_mode))
-    return cli_usage_error(CMD, "-o '%.200s' is a folder: name the PNG file", out);
+  errno = 0;
+  if (stat(out, &st) != 0 && errno != ENOENT)
+    return cli_usage_error(CMD, "cannot write -o '%s': %s", SHORT(out), strerror(errno));
+  if (errno == 0) {
+    if (S_ISDIR(st.st_mode)) return cli_usage_error(CMD, "-o '%s' is a folder: name the PNG file", SHORT(out));
+    for (int k = 0; k < nin; k++) {
+      struct stat si;
+      if (ins[k] && stat(ins[k], &si) == 0 && si.st_dev == st.st_dev && si.st_ino == st.st_ino)
+        return cli_usage_error(CMD, "-o '%s' is the input '%s': write the picture elsewhere", SHORT(out),
+                               SHORT(ins[k]));
+    }
+  }
   const char *slash = strrchr(out, '/');
   if (slash && slash != out) {
     char dir[4096];
     snprintf(dir, sizeof dir, "%.*s", (int)(slash - out), out);
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-      return cli_usage_error(CMD, "the folder of -o '%.200s' does not exist", out);
+      return cli_usage_error(CMD, "the folder of -o '%s' does not exist", SHORT(out));
   }
   return EXIT_OK;
 }
@@ -282,8 +311,12 @@ static int check_out(const char *out) {
 static int render_slice(const render_cli *c) {
   if (c->mesh_only) return cli_usage_error(CMD, "%s is for meshes, not EXR slices", c->mesh_only);
   if (!c->out) return cli_usage_error(CMD, "name the PNG to write with -o OUT.png");
-  if (!ends_with(c->out, ".png")) return cli_usage_error(CMD, "-o '%.200s': the output must end in .png", c->out);
-  int rc = check_out(c->out);
+  if (!ends_with(c->out, ".png")) return cli_usage_error(CMD, "-o '%s': the output must end in .png", SHORT(c->out));
+  struct stat st;
+  int rc = check_input("", c->in, &st);
+  if (rc == EXIT_OK && c->outline) rc = check_input("--outline ", c->outline, &st);
+  const char *ins[2] = {c->in, c->outline};
+  if (rc == EXIT_OK) rc = check_out(c->out, ins, 2);
   if (rc != EXIT_OK) return rc;
   char names[1024];
   sessile_status s = sessile_render_slice_channels(c->in, names, sizeof names);
@@ -311,7 +344,7 @@ static int render_run(const render_cli *c, const cli_gpu_opts *go) {
     return cli_usage_error(CMD, "%s is not an option for a run directory (-o DIR, --size, --quiet)",
                            c->mesh_only ? c->mesh_only : c->slice_only);
   if (c->out && ends_with(c->out, ".png"))
-    return cli_usage_error(CMD, "-o '%.200s': a run directory's pictures go into a folder", c->out);
+    return cli_usage_error(CMD, "-o '%s': a run directory's pictures go into a folder", SHORT(c->out));
   sessile_render_run_opts o = {.out_dir = c->out, .quiet = c->quiet};
   if (c->have_size) o.width = c->o.width, o.height = c->o.height;
   sessile_render_plan *p = NULL;
@@ -345,14 +378,15 @@ static int render_sheet(int argc, char **argv) {
   for (int i = 1; i < argc && rc == EXIT_OK; i++) {
     const char *a = argv[i], *v = NULL;
     if (!strcmp(a, "--sheet")) {
-      if (!(v = cli_value(CMD, argc, argv, &i)) || cli_parse_uint(CMD, a, v, 1, 1000, &cols)) rc = EXIT_USAGE;
+      if (!(v = cli_value(CMD, argc, argv, &i)) || cli_once(CMD, a, a) || cli_parse_uint(CMD, a, v, 1, 1000, &cols))
+        rc = EXIT_USAGE;
     } else if (!strcmp(a, "-o") || !strcmp(a, "--out")) {
-      if (!(v = cli_value(CMD, argc, argv, &i))) rc = EXIT_USAGE;
+      if (!(v = cli_value(CMD, argc, argv, &i)) || cli_once(CMD, "--out", a)) rc = EXIT_USAGE;
       else out = v;
     } else if (!strcmp(a, "--caption")) {
       if (!(v = cli_value(CMD, argc, argv, &i))) rc = EXIT_USAGE;
       else if (n == 0) rc = cli_usage_error(CMD, "--caption '%.60s' before any picture: it follows its picture", v);
-      else if (caps[n - 1]) rc = cli_usage_error(CMD, "two captions for '%.200s'", paths[n - 1]);
+      else if (caps[n - 1]) rc = cli_usage_error(CMD, "two captions for '%s'", SHORT(paths[n - 1]));
       else caps[n - 1] = v;
     } else if (!strcmp(a, "--quiet")) quiet = 1;
     else if (a[0] == '-' && a[1])
@@ -361,9 +395,13 @@ static int render_sheet(int argc, char **argv) {
   }
   if (rc == EXIT_OK && !out) rc = cli_usage_error(CMD, "name the sheet to write with -o OUT.png");
   if (rc == EXIT_OK && !ends_with(out, ".png"))
-    rc = cli_usage_error(CMD, "-o '%.200s': the output must end in .png", out);
+    rc = cli_usage_error(CMD, "-o '%s': the output must end in .png", SHORT(out));
   if (rc == EXIT_OK && n == 0) rc = cli_usage_error(CMD, "--sheet: name the PNGs to tile");
-  if (rc == EXIT_OK) rc = check_out(out);
+  for (int k = 0; k < n && rc == EXIT_OK; k++) {
+    struct stat st;
+    rc = check_input("", paths[k], &st);
+  }
+  if (rc == EXIT_OK) rc = check_out(out, paths, n);
   if (rc == EXIT_OK) {
     sessile_status s = sessile_render_contact_sheet(paths, caps, n, (int)cols, out);
     if (s != SESSILE_OK) rc = fail(s);
@@ -392,16 +430,20 @@ int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
   int rc = parse_args(argc, argv, &c, &go);
   if (rc != EXIT_OK) return rc;
   if (!c.in) return cli_usage_error(CMD, "name a mesh (.ply, .obj), an EXR slice or a run directory");
+  sessile_status s = cli_gpu_check(&go); /* an unknown --device: refused before anything is written */
+  if (s != SESSILE_OK) return fail(s);
   struct stat st;
   if (stat(c.in, &st) != 0)
-    return cli_usage_error(CMD, "cannot read '%.200s': %s", c.in, strerror(errno));
+    return cli_usage_error(CMD, "cannot read '%s': %s", SHORT(c.in), strerror(errno));
   if (S_ISDIR(st.st_mode)) return render_run(&c, &go);
   if (ends_with(c.in, ".exr")) return render_slice(&c);
   if (c.slice_only) return cli_usage_error(CMD, "%s is for EXR slices, not meshes", c.slice_only);
   if (!c.out) return cli_usage_error(CMD, "name the PNG to write with -o OUT.png");
-  if (!ends_with(c.out, ".png")) return cli_usage_error(CMD, "-o '%.200s': the output must end in .png", c.out);
-  if ((rc = check_out(c.out)) != EXIT_OK) return rc;
-  sessile_status s = sessile_render_options_check(&c.o, NULL);
+  if (!ends_with(c.out, ".png")) return cli_usage_error(CMD, "-o '%s': the output must end in .png", SHORT(c.out));
+  if ((rc = check_input("", c.in, &st)) != EXIT_OK) return rc;
+  const char *ins[1] = {c.in};
+  if ((rc = check_out(c.out, ins, 1)) != EXIT_OK) return rc;
+  s = sessile_render_options_check(&c.o, NULL);
   if (s != SESSILE_OK) return fail(s);
   sessile_render_mesh *m = NULL;
   s = sessile_render_mesh_read(c.in, &m);

@@ -78,14 +78,6 @@ static int list_models(void) {
   return EXIT_OK;
 }
 
-static int parse_double(const char *v, double lo, double hi, double *out) {
-  char *end = NULL;
-  double x = v ? strtod(v, &end) : 0;
-  if (!v || !*v || *end || !(x >= lo && x <= hi)) return -1;
-  *out = x;
-  return 0;
-}
-
 /* The run's configuration in its manifest: what --resume restarts from. */
 typedef struct stored {
   char *name, *text;
@@ -196,10 +188,12 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       fputs(help, stdout);
       return EXIT_OK;
     }
+    int shape_opt = !strcmp(o, "--t-end") || !strcmp(o, "--frames") || !strcmp(o, "--max-steps") ||
+                    !strcmp(o, "--max-cells");
+    if (shape_opt && cli_once(CMD, o, o)) return EXIT_USAGE;
     if (!strcmp(o, "--t-end")) {
       const char *v = cli_value(CMD, argc, argv, &i);
-      if (!v) return EXIT_USAGE;
-      if (parse_double(v, 0, 1e9, &t_end)) return cli_usage_error(CMD, "--t-end needs a time in [0, 1e9] (got '%.40s')", v);
+      if (!v || cli_parse_double(CMD, o, v, 0, 1e9, &t_end)) return EXIT_USAGE;
       have_shape = 1;
       continue;
     }
@@ -255,6 +249,11 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       free(text);
       return cli_fail(s);
     }
+  }
+  s = cli_gpu_check(&go); /* an unknown --device: refused before anything is written */
+  if (s != SESSILE_OK) {
+    free(text);
+    return cli_fail(s);
   }
   char dir_buf[256];
   const char *base = model ? (strrchr(model, '/') ? strrchr(model, '/') + 1 : model) : "";

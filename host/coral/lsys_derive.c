@@ -59,7 +59,7 @@ static sessile_status too_long(const sessile_lsys_string *out, uint64_t max_modu
                            (unsigned long long)max_modules, out->n, estimate, estimate * per * 1e-6);
 }
 
-sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, sessile_lsys_string *out,
+sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, int line, sessile_lsys_string *out,
                          uint64_t max_modules) {
   for (uint32_t k = 0; k < n; k++) {
     const lsys_tpl *t = &g->tpl[first + k];
@@ -68,7 +68,8 @@ sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, sess
     SESSILE_CHECK(p, SESSILE_ERR_NO_MEMORY, "out of host memory for a string of %u modules", out->n);
     for (uint8_t a = 0; a < t->np; a++) {
       p[a] = sessile_expr_eval(&g->exprs[t->first + a]);
-      SESSILE_CHECK(isfinite(p[a]), SESSILE_ERR_NUMERIC, "module '%c' got a non-finite parameter (%g)", t->sym, p[a]);
+      SESSILE_CHECK(isfinite(p[a]), SESSILE_ERR_USAGE, "%s:%d: module '%c' got a non-finite parameter (%g)", g->where,
+                    line, t->sym, p[a]);
     }
   }
   return SESSILE_OK;
@@ -200,16 +201,28 @@ static sessile_status step(const sessile_lsys *g, int set, const sessile_lsys_st
       memcpy(p->slots + p->pred_slot, in->par + in->off[i], p->pred_np * sizeof *p->slots);
       if (p->nleft && !match_left(p, in, mate, g->ignore, i)) continue;
       if (p->nright && !match_right(p, in, mate, g->ignore, i)) continue;
-      if (p->has_cond && sessile_expr_eval(&p->cond) == 0) continue;
+      if (p->has_cond) {
+        double cv = sessile_expr_eval(&p->cond);
+        if (isnan(cv)) { /* neither true nor false: refused, not taken as true */
+          st = sessile_error_set(SESSILE_ERR_USAGE, "%s:%d: the condition came out NaN", g->where, p->line);
+          break;
+        }
+        if (cv == 0) continue;
+      }
       if (!p->has_weight) {
         if (nc == 0) chosen = (int)(p - g->prods);
         if (nc == 0) break;
         continue; /* after a weighted first match only weighted ones compete */
       }
       double wt = sessile_expr_eval(&p->weight);
-      if (!(wt > 0) || !isfinite(wt)) continue;
+      if (!isfinite(wt)) {
+        st = sessile_error_set(SESSILE_ERR_USAGE, "%s:%d: the weight came out %g", g->where, p->line, wt);
+        break;
+      }
+      if (!(wt > 0)) continue;
       cand[nc] = (uint32_t)(p - g->prods), w[nc++] = wt, total += wt;
     }
+    if (st != SESSILE_OK) break;
     if (chosen < 0 && nc == 1) chosen = (int)cand[0];
     else if (chosen < 0 && nc > 1) {
       double u = sessile_rng_uniform(g->rng) * total, acc = 0;
@@ -236,11 +249,9 @@ static sessile_status step(const sessile_lsys *g, int set, const sessile_lsys_st
     const lsys_prod *p = &g->prods[chosen];
     /* the chosen production's slots may have been overwritten by no later
      * candidate: each production owns its slots */
-    st = lsys_emit(g, p->succ_first, p->nsucc, out, max_modules);
+    st = lsys_emit(g, p->succ_first, p->nsucc, p->line, out, max_modules);
     if (st == SESSILE_ERR_TOO_LARGE)
       st = too_long(out, max_modules, (double)out->n * in->n / (i + 1));
-    else if (st == SESSILE_ERR_NUMERIC)
-      st = sessile_error_set(st, "%s (production at line %d)", sessile_error_message(), p->line);
   }
   free(mate);
   if (st == SESSILE_OK && g->has_cut) cut(out);
@@ -270,7 +281,7 @@ sessile_status sessile_lsys_derive(const sessile_lsys *g, int iterations, uint64
   sessile_lsys *gm = (sessile_lsys *)g;
   sessile_lsys_string a = {0}, b = {0};
   gm->rng = rng;
-  sessile_status s = lsys_emit(g, g->axiom_first, g->naxiom, &a, max_modules);
+  sessile_status s = lsys_emit(g, g->axiom_first, g->naxiom, g->axiom_line, &a, max_modules);
   if (s == SESSILE_OK && g->has_cut) cut(&a);
   for (int it = 0; it < iterations && s == SESSILE_OK; it++) {
     s = step(g, LSYS_DERIVATION, &a, max_modules, &b);

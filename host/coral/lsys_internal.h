@@ -66,6 +66,8 @@ struct sessile_lsys {
   lsys_expr *exprs;
   uint32_t nexprs, capexprs;
   uint32_t axiom_first, naxiom; /* tpl[axiom_first ..) */
+  int axiom_line;
+  char where[128];              /* the grammar's name in messages ("FILE:LINE: ...") */
   uint64_t *rng;                /* the stream uniform() draws from during a derivation */
 };
 
@@ -78,7 +80,9 @@ sessile_status lsys_expr_compile(sessile_lsys *g, const char *text, int nnames, 
 /* Appends one module with np parameters (values not yet written): returns
  * the parameter pointer, or NULL when out of memory. */
 double *lsys_string_push(sessile_lsys_string *s, uint8_t sym, uint8_t np);
-/* Evaluates tpl[first .. first + n) and appends the modules. */
-sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, sessile_lsys_string *out,
+/* Evaluates tpl[first .. first + n) and appends the modules; a parameter
+ * that comes out NaN or infinite is refused (SESSILE_ERR_USAGE) as
+ * "WHERE:line: ..." (line: the production's or the axiom's). */
+sessile_status lsys_emit(const sessile_lsys *g, uint32_t first, uint32_t n, int line, sessile_lsys_string *out,
                          uint64_t max_modules);
 #endif

@@ -321,6 +321,7 @@ static sessile_status parse_line(pctx *c, const char *p, const char *end, int *h
   if (directive_is(p, end, "axiom", &rest)) {
     if (*have_axiom) return perr(c, p, "a second 'axiom:'");
     *have_axiom = 1;
+    g->axiom_line = c->line;
     return parse_modules(c, rest, end, 0, NULL, NULL, &g->axiom_first, &g->naxiom);
   }
   if (directive_is(p, end, "homomorphism", &rest)) {
@@ -436,6 +437,7 @@ sessile_status sessile_lsys_parse(const char *text, size_t len, const char *wher
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   g->angle = 30, g->width_factor = 0.8, g->iterations = 4;
+  snprintf(g->where, sizeof g->where, "%s", where);
   sessile_status s = parse_all(&c, text, len);
   free(c.oused);
   if (s != SESSILE_OK) {

@@ -82,8 +82,15 @@ static double now_s(void) {
 
 enum { STREAM_DERIVE = 1, STREAM_TURTLE = 2 };
 
+/* A raised stop flag ends the build where it is (nothing is written yet). */
+static sessile_status stopped(const volatile sig_atomic_t *stop) {
+  if (!stop || !*stop) return SESSILE_OK;
+  return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d", (int)*stop);
+}
+
 static sessile_status build(const sessile_coral_lsystem_params *p, const sessile_lsys *g, int iterations,
-                            uint64_t seed, sessile_gpu *gpu, sessile_coral_lsystem_result *r) {
+                            uint64_t seed, sessile_gpu *gpu, const volatile sig_atomic_t *stop,
+                            sessile_coral_lsystem_result *r) {
   r->iterations = iterations < 0 ? sessile_lsys_iterations(g) : iterations;
   r->modules_per_step = calloc((size_t)r->iterations + 1, sizeof *r->modules_per_step);
   SESSILE_CHECK(r->modules_per_step, SESSILE_ERR_NO_MEMORY, "out of host memory");
@@ -93,7 +100,8 @@ static sessile_status build(const sessile_coral_lsystem_params *p, const sessile
   r->modules_per_step[0] = r->str.n;
   sessile_lsys_string next = {0};
   for (int it = 1; it <= r->iterations; it++) {
-    sessile_status s = sessile_lsys_step(g, &r->str, &rng, (uint64_t)p->max_modules, &next);
+    sessile_status s = stopped(stop);
+    if (s == SESSILE_OK) s = sessile_lsys_step(g, &r->str, &rng, (uint64_t)p->max_modules, &next);
     if (s != SESSILE_OK) {
       sessile_lsys_string_free(&next);
       return sessile_error_set(s, "iteration %d: %s", it, sessile_error_message());
@@ -126,45 +134,57 @@ static sessile_status build(const sessile_coral_lsystem_params *p, const sessile
   uint64_t trng = sessile_rng_stream(seed, STREAM_TURTLE);
   r->skel = calloc(1, sizeof *r->skel);
   SESSILE_CHECK(r->skel, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  SESSILE_CALL(stopped(stop));
   SESSILE_CALL(sessile_turtle_interpret(&r->str, &tp, &trng, r->skel, &r->turtle));
+  SESSILE_CALL(stopped(stop));
   double t2 = now_s();
   r->turtle_s = t2 - t1;
   SESSILE_CHECK(r->skel->n > 0, SESSILE_ERR_USAGE,
                 "the derived string (%u modules) draws nothing: it has no F with a positive length", r->str.n);
   if (p->geometry == 0) {
-    SESSILE_CALL(sessile_skeleton_tubes(r->skel, p->mesh_detail, &r->mesh, &r->vertex_value));
+    SESSILE_CALL(sessile_skeleton_tubes_stop(r->skel, p->mesh_detail, stop, &r->mesh, &r->vertex_value));
   } else {
     SESSILE_CHECK(gpu, SESSILE_ERR_USAGE, "geometry=weld needs a device");
     sessile_weld_params wp = {.cell = p->weld_cell, .max_cells = (uint32_t)p->weld_cells, .blend = p->weld_blend};
-    SESSILE_CALL(sessile_skeleton_weld(gpu, r->skel, &wp, &r->mesh, &r->vertex_value));
+    sessile_status s = sessile_skeleton_weld(gpu, r->skel, &wp, &r->mesh, &r->vertex_value);
+    if (s == SESSILE_ERR_NO_MEMORY) /* the mesh layer's message names no parameter of ours */
+      return sessile_error_set(s, "%s (raise weld_cell, or with weld_cell = 0 lower weld_cells)", sessile_error_message());
+    SESSILE_CALL(s);
   }
   r->mesh_s = now_s() - t2;
-  return SESSILE_OK;
+  return stopped(stop);
 }
 
 sessile_status sessile_coral_lsystem_build(const sessile_coral_lsystem_params *p, const sessile_lsys *g,
                                            int iterations, uint64_t seed, sessile_gpu *gpu,
-                                           sessile_coral_lsystem_result *out) {
+                                           const volatile sig_atomic_t *stop, sessile_coral_lsystem_result *out) {
   memset(out, 0, sizeof *out);
   SESSILE_CALL(sessile_params_check(&sessile_coral_lsystem_param_table, p));
   SESSILE_CHECK(iterations <= 1000, SESSILE_ERR_USAGE, "iterations %d: at most 1000", iterations);
-  sessile_status s = build(p, g, iterations, seed, gpu, out);
+  sessile_status s = build(p, g, iterations, seed, gpu, stop, out);
   if (s != SESSILE_OK) sessile_coral_lsystem_result_free(out);
   return s;
 }
 
-static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem_result *r) {
+static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem_result *r,
+                                   const volatile sig_atomic_t *stop) {
   char path[4096];
   const sessile_surface *m = &r->mesh;
   double *n = malloc((size_t)(m->nv ? m->nv : 1) * 3 * sizeof *n);
   SESSILE_CHECK(n, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", m->nv);
   sessile_surface_normals(m, n);
+  sessile_status s0 = stopped(stop);
+  if (s0 != SESSILE_OK) {
+    free(n);
+    return s0;
+  }
   const char *names[1] = {"value"};
   const double *extra[1] = {r->vertex_value};
   sessile_status s = sessile_run_file(run, "coral/final.ply", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_ply(path, m, n, r->vertex_value ? 1 : 0, names, extra);
+  if (s == SESSILE_OK) s = sessile_write_ply_stop(path, m, n, r->vertex_value ? 1 : 0, names, extra, stop);
+  if (s == SESSILE_OK) s = stopped(stop);
   if (s == SESSILE_OK) s = sessile_run_file(run, "coral/final.obj", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_obj(path, m, n);
+  if (s == SESSILE_OK) s = sessile_write_obj_stop(path, m, n, stop);
   free(n);
   return s;
 }
@@ -172,8 +192,9 @@ static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem
 sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral_lsystem_params *p,
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
                                            size_t len, const sessile_coral_lsystem_result *r,
-                                           const sessile_gpu *gpu) {
+                                           const sessile_gpu *gpu, const volatile sig_atomic_t *stop) {
   char path[4096];
+  SESSILE_CALL(stopped(stop));
   SESSILE_CALL(sessile_run_file(run, "coral/grammar.lsys", path, sizeof path));
   SESSILE_CALL(sessile_write_file_atomic(path, text, len));
   for (int it = 0; it <= r->iterations; it++) {
@@ -185,7 +206,7 @@ sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral
     cJSON_Delete(rec);
     SESSILE_CALL(s);
   }
-  SESSILE_CALL(write_meshes(run, r));
+  SESSILE_CALL(write_meshes(run, r, stop));
   cJSON *m = sessile_run_manifest(run);
   cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
   cJSON_AddItemToObject(m, "parameters", sessile_params_to_json(&sessile_coral_lsystem_param_table, p));

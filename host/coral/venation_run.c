@@ -34,6 +34,8 @@ static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj
       sessile_weld_params wp = {.cell = p->weld_cell, .blend = p->weld_blend};
       s = g->gpu ? sessile_skeleton_weld(g->gpu, &sk, &wp, &m, &val)
                  : sessile_error_set(SESSILE_ERR_NO_DEVICE, "geometry = weld needs a device");
+      if (s == SESSILE_ERR_NO_MEMORY) /* the mesh layer's message names no parameter of ours */
+        s = sessile_error_set(s, "%s (raise weld_cell)", sessile_error_message());
     } else {
       s = sessile_skeleton_tubes(&sk, p->mesh_detail, &m, &val);
     }
@@ -161,6 +163,8 @@ static int needs_device(const void *params) {
  * the search's 40 bytes of work per auxin). */
 static sessile_status check_size(const void *params, const sessile_gen_setup *su) {
   const sessile_venation_params *p = params;
+  SESSILE_CHECK(su->iterations >= 1, SESSILE_ERR_USAGE,
+                "--iterations 0: a venation run grows its veins in iterations (1 or more)");
   double aux = (double)su->iterations * p->auxins_per_iteration;
   SESSILE_CHECK(aux <= 5e7, SESSILE_ERR_USAGE,
                 "%d iterations x %d auxins per iteration could hold %.3g auxins (about %.1f GB): at most 5e7",

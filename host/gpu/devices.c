@@ -55,3 +55,17 @@ sessile_status sessile_gpu_print_devices(FILE *out, const char *device_choice) {
   if (r < 0) return sessile_vk_fail_(r, "vkEnumeratePhysicalDevices", __func__);
   return s;
 }
+
+sessile_status sessile_gpu_check_device(const char *device_choice) {
+  VkInstance inst;
+  VkDebugUtilsMessengerEXT m;
+  sessile_validation_sink_ sink = {0, NULL, NULL}; /* validation off: unused */
+  if (sessile_instance_create_(0, &sink, &inst, &m) != SESSILE_OK) return SESSILE_OK; /* said at use */
+  VkPhysicalDevice chosen = VK_NULL_HANDLE;
+  uint32_t index = 0;
+  sessile_status s = sessile_choose_device_(inst, device_choice, &chosen, &index);
+  sessile_instance_destroy_(inst, m);
+  /* only a choice that names no device is refused here; no Vulkan device at
+   * all is the caller's to report when it needs one */
+  return s == SESSILE_ERR_USAGE ? s : SESSILE_OK;
+}

@@ -86,11 +86,18 @@ static sessile_status check_parts(const char *path, int nparts, const sessile_me
   return SESSILE_OK;
 }
 
+/* A raised stop flag (NULL: none), looked at when k is a multiple of 64 Ki
+ * (lines or blocks: a few ms apart). */
+static sessile_status stopped(const char *path, const volatile sig_atomic_t *stop, uint64_t k) {
+  if (!stop || (k & 0xffff) || !*stop) return SESSILE_OK;
+  return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d while writing '%s'", (int)*stop, path);
+}
+
 /* The PLY of a union: comment is the header's first comment line; with
  * part_comments, one more comment per part. */
 static sessile_status write_ply_union(const char *path, const char *comment, int part_comments,
                                       int nparts, const sessile_mesh_part *parts, int nextra,
-                                      const char *const *extra_names) {
+                                      const char *const *extra_names, const volatile sig_atomic_t *stop) {
   uint32_t tv, tf;
   int normals;
   SESSILE_CALL(check_parts(path, nparts, parts, nextra, extra_names, &tv, &tf, &normals));
@@ -100,9 +107,10 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
   SESSILE_CHECK(buf, SESSILE_ERR_NO_MEMORY, "out of memory writing '%s' (%zu bytes)", path,
                 vbytes + fbytes);
   uint8_t *w = buf;
-  for (int k = 0; k < nparts; k++) {
+  sessile_status st = SESSILE_OK;
+  for (int k = 0; k < nparts && st == SESSILE_OK; k++) {
     const sessile_mesh_part *m = &parts[k];
-    for (uint32_t v = 0; v < m->nv; v++) {
+    for (uint32_t v = 0; v < m->nv && (st = stopped(path, stop, v)) == SESSILE_OK; v++) {
       for (int a = 0; a < 3; a++) w = io_put_f32(w, m->pos[3 * (size_t)v + a]);
       if (normals)
         for (int a = 0; a < 3; a++) w = io_put_f32(w, m->normals[3 * (size_t)v + a]);
@@ -110,9 +118,9 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
     }
   }
   uint32_t base = 0;
-  for (int k = 0; k < nparts; k++) {
+  for (int k = 0; k < nparts && st == SESSILE_OK; k++) {
     const sessile_mesh_part *m = &parts[k];
-    for (uint32_t f = 0; f < m->nf; f++) {
+    for (uint32_t f = 0; f < m->nf && (st = stopped(path, stop, f)) == SESSILE_OK; f++) {
       *w++ = 3;
       for (int c = 0; c < 3; c++) w = io_put_u32(w, base + m->tri[3 * (size_t)f + c]);
     }
@@ -120,7 +128,7 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
   }
 
   sessile_atomic_file af;
-  sessile_status st = sessile_atomic_open(path, &af);
+  if (st == SESSILE_OK) st = sessile_atomic_open(path, &af);
   if (st != SESSILE_OK) {
     free(buf);
     return st;
@@ -142,7 +150,12 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
     st = io_printf(&af, "property float %s\n", extra_names[p]);
   if (st == SESSILE_OK)
     st = io_printf(&af, "element face %u\nproperty list uchar uint vertex_indices\nend_header\n", tf);
-  if (st == SESSILE_OK) st = io_write(&af, buf, (size_t)(w - buf));
+  /* in 1 MiB blocks, so that a stop is seen within one; and before the fsync */
+  for (size_t at = 0, n = (size_t)(w - buf); st == SESSILE_OK && at < n; at += (size_t)1 << 20) {
+    st = stopped(path, stop, 0);
+    if (st == SESSILE_OK) st = io_write(&af, buf + at, n - at < ((size_t)1 << 20) ? n - at : (size_t)1 << 20);
+  }
+  if (st == SESSILE_OK) st = stopped(path, stop, 0);
   free(buf);
   if (st != SESSILE_OK) {
     sessile_atomic_abort(&af);
@@ -165,6 +178,12 @@ static sessile_status surface_part(const char *path, const sessile_surface *s, c
 sessile_status sessile_write_ply(const char *path, const sessile_surface *s, const double *normals,
                                  int nextra, const char *const *extra_names,
                                  const double *const *extra) {
+  return sessile_write_ply_stop(path, s, normals, nextra, extra_names, extra, NULL);
+}
+
+sessile_status sessile_write_ply_stop(const char *path, const sessile_surface *s, const double *normals,
+                                      int nextra, const char *const *extra_names, const double *const *extra,
+                                      const volatile sig_atomic_t *stop) {
   sessile_mesh_part part;
   SESSILE_CALL(surface_part(path, s, normals, extra, &part));
   SESSILE_CHECK(nextra >= 0 && nextra <= 64 && (nextra == 0 || (extra_names && extra)),
@@ -173,14 +192,14 @@ sessile_status sessile_write_ply(const char *path, const sessile_surface *s, con
   for (int p = 0; p < nextra; p++)
     SESSILE_CHECK(ply_name_ok(extra_names[p]) && extra[p], SESSILE_ERR_USAGE,
                   "cannot write '%s': extra property %d needs a name without spaces and values", path, p);
-  return write_ply_union(path, "sessile sponge surface", 0, 1, &part, nextra, extra_names);
+  return write_ply_union(path, "sessile sponge surface", 0, 1, &part, nextra, extra_names, stop);
 }
 
 sessile_status sessile_write_ply_parts(const char *path, int nparts, const sessile_mesh_part *parts,
                                        int nfields, const char *const *field_names) {
   char comment[64];
   snprintf(comment, sizeof comment, "sessile surface: %d parts", nparts);
-  return write_ply_union(path, comment, 1, nparts, parts, nfields, field_names);
+  return write_ply_union(path, comment, 1, nparts, parts, nfields, field_names, NULL);
 }
 
 /* The shortest of %.15g..%.17g that reads back as the same double, so OBJ
@@ -194,10 +213,10 @@ static void fmt_exact(char *out, size_t n, double v) {
 
 /* One part's v, vn and f lines; base: vertices written before it. */
 static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part *m, int normals,
-                               uint64_t base) {
+                               uint64_t base, const volatile sig_atomic_t *stop) {
   sessile_status st = SESSILE_OK;
   char x[3][32];
-  for (uint32_t v = 0; v < m->nv && st == SESSILE_OK; v++) {
+  for (uint32_t v = 0; v < m->nv && st == SESSILE_OK && (st = stopped(af->path, stop, v)) == SESSILE_OK; v++) {
     for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->pos[3 * (size_t)v + a]);
     st = io_printf(af, "v %s %s %s\n", x[0], x[1], x[2]);
   }
@@ -205,7 +224,7 @@ static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part 
     for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->normals[3 * (size_t)v + a]);
     st = io_printf(af, "vn %s %s %s\n", x[0], x[1], x[2]);
   }
-  for (uint32_t f = 0; f < m->nf && st == SESSILE_OK; f++) {
+  for (uint32_t f = 0; f < m->nf && st == SESSILE_OK && (st = stopped(af->path, stop, f)) == SESSILE_OK; f++) {
     const uint32_t *t = m->tri + 3 * (size_t)f;
     unsigned long long a = base + t[0] + 1, b = base + t[1] + 1, c = base + t[2] + 1;
     if (normals) st = io_printf(af, "f %llu//%llu %llu//%llu %llu//%llu\n", a, a, b, b, c, c);
@@ -215,6 +234,11 @@ static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part 
 }
 
 sessile_status sessile_write_obj(const char *path, const sessile_surface *s, const double *normals) {
+  return sessile_write_obj_stop(path, s, normals, NULL);
+}
+
+sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
+                                      const volatile sig_atomic_t *stop) {
   sessile_mesh_part part;
   SESSILE_CALL(surface_part(path, s, normals, NULL, &part));
   uint32_t tv, tf;
@@ -223,7 +247,8 @@ sessile_status sessile_write_obj(const char *path, const sessile_surface *s, con
   sessile_atomic_file af;
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "# sessile sponge surface: %u vertices, %u triangles\n", s->nv, s->nf);
-  if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, 0);
+  if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, 0, stop);
+  if (st == SESSILE_OK) st = stopped(path, stop, 0); /* before the fsync */
   if (st != SESSILE_OK) {
     sessile_atomic_abort(&af);
     return st;
@@ -243,7 +268,7 @@ sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessi
     char nb[32];
     const char *name = part_name(&parts[k], k, nb);
     st = io_printf(&af, "o %s\ng %s\n", name, name);
-    if (st == SESSILE_OK) st = obj_part(&af, &parts[k], normals, base);
+    if (st == SESSILE_OK) st = obj_part(&af, &parts[k], normals, base, NULL);
     base += parts[k].nv;
   }
   if (st != SESSILE_OK) {

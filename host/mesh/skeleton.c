@@ -79,6 +79,11 @@ void sessile_skeleton_bounds(const sessile_skeleton *s, double lo[3], double hi[
 
 sessile_status sessile_skeleton_tubes(const sessile_skeleton *s, int sides, sessile_surface *out,
                                       double **vertex_value) {
+  return sessile_skeleton_tubes_stop(s, sides, NULL, out, vertex_value);
+}
+
+sessile_status sessile_skeleton_tubes_stop(const sessile_skeleton *s, int sides, const volatile sig_atomic_t *stop,
+                                           sessile_surface *out, double **vertex_value) {
   if (vertex_value) *vertex_value = NULL;
   SESSILE_CHECK(sides >= 3 && sides <= 256, SESSILE_ERR_USAGE, "tube sides must be in 3..256 (got %d)", sides);
   /* per tube: two rings and two cap centres; 2 sides wall triangles and
@@ -105,6 +110,10 @@ sessile_status sessile_skeleton_tubes(const sessile_skeleton *s, int sides, sess
   }
   uint32_t v = 0, f = 0;
   for (uint32_t i = 0; i < s->n; i++) {
+    if (stop && (i & 4095) == 0 && *stop) {
+      free(cs), free(val);
+      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d while meshing tubes", (int)*stop);
+    }
     const double *a = s->a + 3 * i, *b = s->b + 3 * i, *u = s->up + 3 * i;
     double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3];
     double l = sqrt(dot3(d, d));

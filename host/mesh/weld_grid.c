@@ -39,7 +39,7 @@ void weld_grid_free(weld_grid *g) {
 sessile_status weld_refuse(const weld_grid *g, double bytes, double limit, const char *what) {
   return sessile_error_set(SESSILE_ERR_NO_MEMORY,
                            "welded surface: a grid of %ux%ux%u nodes needs about %.0f MB of %s, more than the "
-                           "%.0f MB allowed; use a larger cell or fewer max_cells",
+                           "%.0f MB allowed: a coarser grid is needed",
                            g->n[0], g->n[1], g->n[2], bytes / 1e6, what, limit / 1e6);
 }
 

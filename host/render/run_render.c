@@ -18,6 +18,7 @@
 #include "run_internal.h"
 #include "sessile/io.h"
 #include "sessile/render2d.h"
+#include "sessile/render_mesh.h"
 
 static const char *const views[4] = {"oblique", "side", "top", "front"};
 
@@ -62,15 +63,21 @@ static sessile_status draw_final(sessile_render_plan *p, sessile_gpu *g, FILE *l
   return SESSILE_OK;
 }
 
+/* The tiles of the contact sheet: n snapshots evenly spaced over them, the
+ * first and the last included; tile k shows snapshot tile_snap(p, k, n). */
+static int tile_count(const sessile_render_plan *p) { return p->nsnaps < RP_MAX_TILES ? p->nsnaps : RP_MAX_TILES; }
+static int tile_snap(const sessile_render_plan *p, int k, int n) {
+  return n == p->nsnaps ? k : (int)((long long)k * (p->nsnaps - 1) / (n - 1));
+}
+
 static sessile_status draw_snapshots(sessile_render_plan *p, sessile_gpu *g, FILE *log) {
-  int n = p->nsnaps < RP_MAX_TILES ? p->nsnaps : RP_MAX_TILES;
+  int n = tile_count(p);
   if (n == 0) return SESSILE_OK;
   char **tiles = calloc((size_t)n, sizeof *tiles);
   const char **caps = calloc((size_t)n, sizeof *caps);
   sessile_status s = tiles && caps ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   for (int k = 0; s == SESSILE_OK && k < n; k++) {
-    /* evenly spaced over the snapshots, the first and the last included */
-    int i = n == p->nsnaps ? k : (int)((long long)k * (p->nsnaps - 1) / (n - 1));
+    int i = tile_snap(p, k, n);
     sessile_render_options o;
     sessile_render_options_default(&o);
     o.width = RP_TILE_W, o.height = RP_TILE_H;
@@ -95,9 +102,15 @@ static sessile_status draw_snapshots(sessile_render_plan *p, sessile_gpu *g, FIL
   return s;
 }
 
-static sessile_status draw_slice(sessile_render_plan *p, const rp_slice *sl, const char *channel, FILE *log) {
+/* One slice's picture; with check, only reads it (check_inputs). */
+static sessile_status draw_slice(sessile_render_plan *p, const rp_slice *sl, const char *channel, FILE *log,
+                                 int check) {
   sessile_render2d_opts o;
   sessile_render2d_opts_default(&o);
+  if (check) {
+    sessile_slice_layout lay;
+    return sessile_render_slice_layout(sl->exr, channel, &o, &lay);
+  }
   o.outline_ply = sl->outline;
   char name[256], *path = NULL;
   snprintf(name, sizeof name, "slice_%s_%s.png", sl->base, channel);
@@ -111,7 +124,7 @@ static sessile_status draw_slice(sessile_render_plan *p, const rp_slice *sl, con
   return SESSILE_OK;
 }
 
-static sessile_status draw_slices(sessile_render_plan *p, FILE *log) {
+static sessile_status draw_slices(sessile_render_plan *p, FILE *log, int check) {
   for (int i = 0; i < p->nslices; i++) {
     const rp_slice *sl = &p->slices[i];
     char names[1024];
@@ -121,14 +134,15 @@ static sessile_status draw_slices(sessile_render_plan *p, FILE *log) {
     for (char *t = names, *save = NULL; (t = strtok_r(t, ", ", &save)); t = NULL) has_c |= !strcmp(t, "c");
     SESSILE_CALL(sessile_render_slice_channels(sl->exr, names, sizeof names));
     if (!sl->all_channels) {
-      if (has_c) SESSILE_CALL(draw_slice(p, sl, "c", log));
+      if (has_c) SESSILE_CALL(draw_slice(p, sl, "c", log, check));
       else {
         names[strcspn(names, ",")] = 0;
-        SESSILE_CALL(draw_slice(p, sl, names, log));
+        SESSILE_CALL(draw_slice(p, sl, names, log, check));
       }
       continue;
     }
-    for (char *t = names, *save = NULL; (t = strtok_r(t, ", ", &save)); t = NULL) SESSILE_CALL(draw_slice(p, sl, t, log));
+    for (char *t = names, *save = NULL; (t = strtok_r(t, ", ", &save)); t = NULL)
+      SESSILE_CALL(draw_slice(p, sl, t, log, check));
   }
   return SESSILE_OK;
 }
@@ -231,8 +245,28 @@ static sessile_status list_in_manifest(sessile_render_plan *p) {
   return s;
 }
 
+static sessile_status check_mesh(const char *path) {
+  sessile_render_mesh *m = NULL;
+  sessile_status s = sessile_render_mesh_read(path, &m);
+  sessile_render_mesh_destroy(m);
+  return s;
+}
+
+/* Every input read once before anything is written (docs/render.md "Runs"):
+ * a truncated mesh or a damaged EXR refuses the render with nothing
+ * written, not half a folder of pictures; the price is a second read. */
+static sessile_status check_inputs(sessile_render_plan *p) {
+  SESSILE_CALL(check_mesh(p->final_mesh));
+  int n = tile_count(p);
+  for (int k = 0; k < n; k++) SESSILE_CALL(check_mesh(p->snaps[tile_snap(p, k, n)].mesh));
+  for (int i = 0; i < p->nslices; i++)
+    if (p->slices[i].outline) SESSILE_CALL(check_mesh(p->slices[i].outline));
+  return draw_slices(p, NULL, 1);
+}
+
 sessile_status sessile_render_plan_run(sessile_render_plan *p, sessile_gpu *g, FILE *log) {
   if (p->quiet) log = NULL;
+  SESSILE_CALL(check_inputs(p));
   if (log && p->running)
     fprintf(log, "note: a run is still writing '%s': drawing what it holds now\n", p->run_dir);
   if (p->listed) {
@@ -246,7 +280,7 @@ sessile_status sessile_render_plan_run(sessile_render_plan *p, sessile_gpu *g, F
   }
   sessile_status s = draw_final(p, g, log);
   if (s == SESSILE_OK) s = draw_snapshots(p, g, log);
-  if (s == SESSILE_OK) s = draw_slices(p, log);
+  if (s == SESSILE_OK) s = draw_slices(p, log, 0);
   if (s == SESSILE_OK) s = draw_plots(p, log);
   if (s == SESSILE_OK) s = draw_step_times(p, log);
   /* what was written is listed even after a failure, so --force removes it */

@@ -21,7 +21,9 @@
 #   SETUP prepares the case folder: - (nothing), nonrun (other/ holding a
 #   user's file), prevrun (prev/ holding a completed `sessile sphere` run),
 #   emptydir (e/), file (a regular file 'file'), full (stdout is /dev/full),
-#   cpudev (skipped unless the default device is a CPU one, e.g. lavapipe);
+#   cpudev (skipped unless the default device is a CPU one, e.g. lavapipe),
+#   png (in.png and other.png, pictures, and link.png -> in.png), truncrun
+#   (prev/ as prevrun with its final.ply cut to 300 bytes);
 #   ARGS are shell words (quotes work; $F is the folder of fixture files).
 # Usage: test_bad_input.sh path/to/sessile
 set -u
@@ -39,7 +41,14 @@ echo '{"t_give": 0.1, "l_max": 3}' >"$F/a.json"
 echo '{"t_give": 0.3}' >"$F/b.json"
 echo '{"noise": 0.1, "level": 2}' >"$F/sa.json"
 echo '{"noise": 0.3}' >"$F/sb.json"
-mkfifo "$F/fifo"
+mkfifo "$F/fifo" "$F/fifo.png" "$F/fifo.exr" "$F/fifo.ply"
+# L-system grammars whose numbers come out NaN at derivation (line 4 each)
+printf 'iterations: 2\nangle: 20\naxiom: F(1)\nF(x) -> F(x) [ +(20) F(sqrt(-x)) ]\n' >"$F/nan_param.lsys"
+printf 'iterations: 2\nangle: 20\naxiom: F(1)\nF(x) : sqrt(-x) -> F(x) [ +(20) F(1) ]\n' >"$F/nan_cond.lsys"
+printf 'iterations: 2\nangle: 20\naxiom: F(1)\nF(x) -(sqrt(-x))-> F(x) F(1)\nF(x) -(1)-> F(x)\n' >"$F/nan_weight.lsys"
+printf 'iterations: 2\nangle: 20\n\naxiom: F(1e308 * 10)\n' >"$F/inf_axiom.lsys"
+long=$(printf 'n%.0s' $(seq 5000)) # a 5000-character file name
+echo 'not an EXR' >"$F/garbage.exr"
 : >"$F/empty.json"
 echo '   ' >"$F/blank.json"
 echo '[1, 2]' >"$F/array.json"
@@ -307,7 +316,76 @@ cases=$(cat <<'CASES'
 1 | cannot write | full | sphere --help
 1 | cannot write | full | grow --print-config
 1 | cannot write | full | sphere --print-config
+# a valued option given twice is refused (the last one does not silently win);
+# --set and --config repeat
+2 | grow: error: --seed given twice | - | grow --seed 1 --seed 2 --print-config
+2 | grow: error: --out given twice | - | grow --out a --out b --print-config
+2 | --iterations given twice | - | grow --iterations 1 --iterations 2 --print-config
+2 | --every given twice | - | sphere --every 1 --every 2 --print-config
+2 | --resume given twice | - | sphere --resume a --resume b
+2 | --preset given twice | - | grow --preset crella --preset radiate --print-config
+2 | --slices given twice | - | grow --slices x --slices '' --print-config
+2 | --device given twice | - | grow --device 0 --device 0 --print-config
+2 | --device given twice | - | --device 0 grow --device 0 --print-config
+2 | --precision given twice | - | --precision 32 grow --precision 64 --print-config
+2 | render: error: -o given twice | - | render $F/prevrun/sphere/final.ply -o a.png -o b.png
+2 | render: error: --out given twice | - | render $F/prevrun/sphere/final.ply -o a.png --out b.png
+2 | render: error: --size given twice | - | render $F/prevrun/sphere/final.ply -o a.png --size 8x8 --size 9x9
+2 | render: error: --range given twice | - | render x.exr -o a.png --range 0 1 --range 0 2
+2 | render: error: -o given twice | - | render --sheet 1 -o a.png -o b.png $F/prevrun/preview.png
+2 | render: error: --sheet given twice | - | render --sheet 1 --sheet 2 -o a.png $F/prevrun/preview.png
+2 | sds run: error: --t-end given twice | - | sds run limb --t-end 1 --t-end 2
+2 | sds run: error: --frames given twice | - | sds run limb --frames 1 --frames 2
+2 | coral lsystem: error: --grammar given twice | - | coral lsystem --grammar flat --grammar flat
+2 | coral lsystem: error: --seed given twice | - | coral lsystem --seed 1 --seed 1
+2 | bench fluid: error: --picard given twice | - | bench fluid --picard 1 --picard 2
+0 | ^t_give +0\.2  | - | grow --set t_give=0.1 --set t_give=0.2 --print-config
+# numbers are decimal, finite and the whole word, on every command
+2 | --t-end: '0x10' is not a decimal number in \[0, 1e\+09\] | - | sds run limb --t-end 0x10
+2 | --t-end: 'inf' is not a decimal number | - | sds run limb --t-end inf
+2 | --t-end: 'nan' is not a decimal number | - | sds run limb --t-end nan
+2 | --t-end: ' 1' is not a decimal number | - | sds run limb --t-end ' 1'
+2 | --t-end: '1e' is not a decimal number | - | sds run limb --t-end 1e
+2 | --units: '0x1p3' is not a decimal number | - | render $F/prevrun/sphere/final.ply -o a.png --units 0x1p3
+2 | --range: '0x1 2' is not two decimal numbers | - | render x.exr -o a.png --range 0x1 2
+2 | --range: '0 infinity' is not two decimal numbers | - | render x.exr -o a.png --range 0 infinity
+2 | --size: ' 8x8' is not WxH | - | render $F/prevrun/sphere/final.ply -o a.png --size ' 8x8'
+2 | --size: '8x\+8' is not WxH | - | render $F/prevrun/sphere/final.ply -o a.png --size 8x+8
+2 | --define 'len=0x10': the value is not a finite decimal number | - | coral lsystem --define len=0x10
+2 | --define 'len=inf': the value is not a finite decimal number | - | coral lsystem --define len=inf
+2 | --rock-t: 'nan' is not a decimal number | - | bench sds --rock-t nan
+2 | --rock-t: '0x1' is not a decimal number | - | bench sds --rock-t 0x1
+# messages name the culprit and keep the reason
+2 | bench fluid: error: unknown option '--bogus' | - | bench fluid --bogus
+2 | bench fluid: error: unknown option '--bogus' | - | bench fluid --bogus 3
+2 | --range needs two values: LO HI | - | render x.exr -o a.png --range 1
+2 | --range: '1 -o' is not two decimal numbers LO < HI | - | render x.exr --range 1 -o a.png
+2 | -o 'n{60}\.\.\.': File name too long | - | render $F/prevrun/sphere/final.ply -o $long.png
+2 | -o 'n{60}\.\.\.': File name too long | - | render --sheet 1 -o $long.png $F/prevrun/preview.png
+2 | cannot read 'n{60}\.\.\.': File name too long | - | render $long.ply -o a.png
+2 | --iterations 0: a venation run grows its veins in iterations \(1 or more\) | - | coral venation --iterations 0 --out v
+2 | nan_param\.lsys:4: module 'F' got a non-finite parameter | - | coral lsystem --grammar $F/nan_param.lsys --out l
+2 | nan_cond\.lsys:4: the condition came out NaN | - | coral lsystem --grammar $F/nan_cond.lsys --out l
+2 | nan_weight\.lsys:4: the weight came out | - | coral lsystem --grammar $F/nan_weight.lsys --out l
+2 | inf_axiom\.lsys:4: module 'F' got a non-finite parameter \(inf\) | - | coral lsystem --grammar $F/inf_axiom.lsys --out l
+# render's inputs: regular files only (a FIFO must not hang), never the output
+2 | fifo\.png' is not a regular file | - | render --sheet 1 -o a.png $F/fifo.png
+2 | fifo\.exr' is not a regular file | - | render $F/fifo.exr -o a.png
+2 | fifo\.ply' is not a regular file | - | render $F/fifo.ply -o a.png
+2 | --outline '.*fifo\.ply' is not a regular file | - | render $F/garbage.exr -o a.png --outline $F/fifo.ply
+2 | -o 'in\.png' is the input 'in\.png' | png | render --sheet 1 -o in.png in.png
+2 | -o 'link\.png' is the input 'in\.png' | png | render --sheet 2 -o link.png other.png in.png
+# render RUN reads every input before it writes: a damaged one leaves no renders/
+2 | final\.ply: .*bytes follow | truncrun | render prev
 # device options
+2 | no device name contains "nosuchdevice" | - | coral venation --device nosuchdevice --out v
+2 | no device name contains "nosuchdevice" | - | sponge particles --device nosuchdevice --out p
+2 | no device name contains "nosuchdevice" | - | coral lsystem --device nosuchdevice --out l
+2 | no device name contains "nosuchdevice" | - | --device nosuchdevice coral lsystem --out l
+2 | device index 99 does not exist | - | coral lsystem --device 99 --out l
+2 | no device name contains "nosuchdevice" | - | sds run limb --device nosuchdevice --out s
+2 | no device name contains "nosuchdevice" | - | render $F/prevrun/sphere/final.ply -o a.png --device nosuchdevice
+2 | no device name contains "nosuchdevice" | prevrun | render prev --device nosuchdevice
 2 | --precision: '16' must be 32 or 64 | - | --precision 16 grow
 2 | grow: error: --precision: '16' must be 32 or 64 | - | grow --precision 16
 2 | --precision: '64\.0' must be 32 or 64 | - | grow --precision 64.0 --print-config
@@ -346,6 +424,8 @@ while IFS= read -r line; do
   prevrun) cp -a "$F/prevrun" "$d/prev" ;;
   emptydir) mkdir "$d/e" ;;
   file) echo "not a folder" >"$d/file" ;;
+  png) cp "$F/prevrun/preview.png" "$d/in.png" && cp "$d/in.png" "$d/other.png" && ln -s in.png "$d/link.png" ;;
+  truncrun) cp -a "$F/prevrun" "$d/prev" && truncate -s 300 "$d/prev/sphere/final.ply" ;;
   esac
   before=$(listing "$d")
   eval "set -- $args"

@@ -47,4 +47,18 @@ check "bench sds --kernels under the validation layer is silent" no_validation
 run --precision 32 bench la --size 8 --repeat 1 --no-solvers
 check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
 
+# a benchmark stopped by a signal removes its temporary folder and exits 143
+for b in "render --runs 20" "sds --no-physics --rock-t 400"; do
+  mkdir -p "$T/tmp"
+  TMPDIR="$T/tmp" "$S" bench $b >"$T/out" 2>"$T/err" &
+  pid=$!
+  sleep 3
+  kill -TERM "$pid"
+  wait "$pid"
+  echo $? >"$T/rc"
+  check "'bench $b' stopped by SIGTERM: exit 143, no temporary folder left" eval \
+    'rc_is 143 && [ -z "$(ls -A "$T/tmp")" ]'
+  rm -rf "$T/tmp"
+done
+
 finish

@@ -89,4 +89,22 @@ check "a derivation beyond max_modules: exit 2 with the estimate, nothing writte
 run coral lsystem --set geometry=weld --out "$T/x9"
 check "geometry=weld exits cleanly (0, or one line and nothing written)" eval \
   'rc_is 0 || { { rc_is 1 || rc_is 2; } && one_line && nothing_at "$T/x9"; }'
+
+# SIGINT and SIGTERM stop a long run (a 200 000-module axiom: a minute of
+# meshing and writing) at once: exit 130/143, nothing half-written (no
+# temporary left), the folder absent or an interrupted run.  Started in the
+# background, as a script does, where SIGINT arrives ignored.
+python3 -c 'print("iterations: 0\naxiom:" + " F" * 200000)' >"$T/long.lsys"
+for sig in INT TERM; do
+  "$S" coral lsystem --grammar "$T/long.lsys" --out "$T/sig$sig" --no-preview >"$T/out" 2>"$T/err" &
+  pid=$!
+  sleep 2
+  kill -"$sig" "$pid"
+  wait "$pid"
+  echo $? >"$T/rc"
+  want=$([ "$sig" = INT ] && echo 130 || echo 143)
+  check "SIG$sig during a long run: exit $want, no temporary file, nothing or an interrupted run" eval \
+    'rc_is $want && [ -z "$(find "$T/sig$sig" -name "*sessile-tmp*" 2>/dev/null)" ] &&
+     { [ ! -e "$T/sig$sig" ] || grep -Eq "\"state\":[[:space:]]*\"interrupted\"" "$T/sig$sig/manifest.json"; }'
+done
 finish

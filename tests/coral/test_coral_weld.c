@@ -92,7 +92,7 @@ static void lsystem(sessile_gpu *g, const char *grammar) {
   t_must("parse", sessile_lsys_parse(text, len, grammar, 0, NULL, NULL, &gr));
   sessile_coral_lsystem_result r;
   memset(&r, 0, sizeof r);
-  t_must("build", sessile_coral_lsystem_build(&p, gr, -1, 1, g, &r));
+  t_must("build", sessile_coral_lsystem_build(&p, gr, -1, 1, g, NULL, &r));
   char name[64];
   snprintf(name, sizeof name, "lsystem %s", grammar);
   /* branches of a Lophelia colony touch and fuse (handles): connected, any genus */

@@ -246,7 +246,7 @@ bad "-o X.png for a run" "folder" "$T/bad/link" -o "$T/bad.png"
 bad "a mesh option for a run" "not an option for a run" "$T/bad/none" --view top
 bad "an unknown channel" "no channel 'q'" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --channel q
 bad "a slice of 10x10 pixels" "outside" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --size 10x10
-bad "a missing outline mesh" "the outline mesh: cannot open" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --outline "$T/none.ply"
+bad "a missing outline mesh" "cannot read --outline .*none.ply.: No such file" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --outline "$T/none.ply"
 bad "--range with LO >= HI" "range" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --range 2 1
 bad "a mesh option for a slice" "for meshes" "$T/g/slices/iter_0002_y.exr" -o "$T/bad.png" --view top
 bad "a slice option for a mesh" "for EXR slices" "$M" -o "$T/bad.png" --channel c

@@ -97,6 +97,12 @@ uint64_t sessile_gpu_validation_count(const sessile_gpu *g);
 /* Prints every Vulkan device with type, driver, heaps, subgroup size, fp64 and
  * the limits that matter; marks the one that would be chosen. */
 sessile_status sessile_gpu_print_devices(FILE *out, const char *device_choice);
+/* Whether device_choice (NULL or "": $SESSILE_DEVICE) names an existing
+ * device, without creating one: SESSILE_ERR_USAGE ("no device name contains
+ * ...", "device index 7 does not exist ...") when it names none, else
+ * SESSILE_OK (also with no Vulkan at all: that is reported where a device is
+ * made).  For a command to refuse a bad choice before it writes anything. */
+sessile_status sessile_gpu_check_device(const char *device_choice);
 
 /* --- buffers ----------------------------------------------------------- */
 typedef enum sessile_buffer_kind {

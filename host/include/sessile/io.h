@@ -12,6 +12,7 @@
 #ifndef SESSILE_IO_H
 #define SESSILE_IO_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -63,6 +64,16 @@ sessile_status sessile_write_ply(const char *path, const sessile_surface *s, con
                                  int nextra, const char *const *extra_names,
                                  const double *const *extra);
 sessile_status sessile_write_obj(const char *path, const sessile_surface *s, const double *normals);
+/* The same two, abandoned (the temporary removed, SESSILE_ERR_INTERRUPTED)
+ * when *stop (may be NULL) turns nonzero: a mesh of millions of triangles
+ * takes seconds (PLY) to tens of seconds (OBJ), and a signal must stop it
+ * within a fraction of one (the flag is looked at every MiB or 64 Ki lines
+ * and before the final fsync). */
+sessile_status sessile_write_ply_stop(const char *path, const sessile_surface *s, const double *normals,
+                                      int nextra, const char *const *extra_names, const double *const *extra,
+                                      const volatile sig_atomic_t *stop);
+sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
+                                      const volatile sig_atomic_t *stop);
 
 /* A surface made of several parts (e.g. the tubes of a branching coral),
  * written as one file: the parts' vertices are concatenated in order, and

@@ -9,6 +9,7 @@
 #ifndef SESSILE_LSYSTEM_H
 #define SESSILE_LSYSTEM_H
 
+#include <signal.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -148,18 +149,22 @@ void sessile_coral_lsystem_result_free(sessile_coral_lsystem_result *r);
 
 /* Derives (iterations < 0: the grammar's), interprets and meshes (weld: on
  * gpu, which may be NULL for tubes).  Streams: derivation and turtle from
- * seed, each its own (sessile_rng_stream). */
+ * seed, each its own (sessile_rng_stream).  stop (may be NULL): a signal's
+ * flag, looked at between derivation steps and stages; once raised the
+ * build ends with SESSILE_ERR_INTERRUPTED. */
 sessile_status sessile_coral_lsystem_build(const sessile_coral_lsystem_params *p, const sessile_lsys *g,
                                            int iterations, uint64_t seed, sessile_gpu *gpu,
-                                           sessile_coral_lsystem_result *out);
+                                           const volatile sig_atomic_t *stop, sessile_coral_lsystem_result *out);
 /* Writes coral/final.ply (per-vertex property "value": the branch order),
  * coral/final.obj, coral/grammar.lsys (the text used), one record per
  * derivation step and the manifest's parameters, grammar, device (gpu may
- * be NULL: tubes are host code) and statistics. */
+ * be NULL: tubes are host code) and statistics.  stop (may be NULL): a
+ * raised flag ends it between files, and within the OBJ, with
+ * SESSILE_ERR_INTERRUPTED: every file written is whole. */
 sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral_lsystem_params *p,
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
                                            size_t len, const sessile_coral_lsystem_result *r,
-                                           const sessile_gpu *gpu);
+                                           const sessile_gpu *gpu, const volatile sig_atomic_t *stop);
 
 /* The benchmark: a lophelia-like grammar derived until it holds at least
  * target modules, interpreted and meshed as tubes; stage times to out. */

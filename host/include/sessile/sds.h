@@ -16,6 +16,7 @@
 #ifndef SESSILE_SDS_H
 #define SESSILE_SDS_H
 
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include "sessile/gpu.h"
@@ -303,7 +304,10 @@ sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
  * (< 0: the model's) in a temporary run directory (removed after) and prints
  * wall time, cells, tets, steps and the ratio to the paper's 5.7 minutes
  * (extrapolated, and labelled so, when t_end is short of the model's). */
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, FILE *out);
+/* stop (may be NULL): a signal's flag, polled by the run; when it is raised
+ * the run ends early with SESSILE_ERR_INTERRUPTED and the folder is removed
+ * all the same. */
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const volatile sig_atomic_t *stop, FILE *out);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,7 @@
 #ifndef SESSILE_SKELETON_H
 #define SESSILE_SKELETON_H
 
+#include <signal.h>
 #include <stdint.h>
 #include "sessile/gpu.h"
 #include "sessile/status.h"
@@ -42,6 +43,10 @@ void sessile_skeleton_bounds(const sessile_skeleton *s, double lo[3], double hi[
  * value.  Host code: linear in segments. */
 sessile_status sessile_skeleton_tubes(const sessile_skeleton *s, int sides, sessile_surface *out,
                                       double **vertex_value);
+/* The same, ended with SESSILE_ERR_INTERRUPTED (out left to the caller to
+ * free) once *stop (may be NULL) turns nonzero: looked at every 4096 tubes. */
+sessile_status sessile_skeleton_tubes_stop(const sessile_skeleton *s, int sides, const volatile sig_atomic_t *stop,
+                                           sessile_surface *out, double **vertex_value);
 
 typedef struct sessile_weld_params {
   double cell;         /* grid spacing, cm; 0: from max_cells */
