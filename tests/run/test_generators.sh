@@ -8,7 +8,9 @@
 #   run's files as they were, and the right resume then gives the bytes of
 #   the uninterrupted run; a resume without its checkpoint restarts and keeps
 #   none of the stopped run's later snapshots; --force never touches a folder
-#   whose manifest sessile did not write.
+#   whose manifest sessile did not write; an unknown --device creates
+#   nothing; over its --max-memory a run stops with its state saved and
+#   resumes to the same bytes.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -35,6 +37,8 @@ while IFS= read -r g; do
   run "${G[@]}" --set nosuch=1 --out "$T/$n-x"
   check "$g: an unknown --set exits 2, one line, nothing created" eval 'rc_is 2 && one_line && [ ! -e "$T/$n-x" ]'
 
+  run "${G[@]}" $R --device nosuchdevice --out "$T/$n-dev"
+  check "$g: an unknown --device exits 2, one line, nothing created" eval 'rc_is 2 && one_line && [ ! -e "$T/$n-dev" ]'
   run "${G[@]}" --seed 3 $R --out "$T/$n-a"
   check "$g: a 4-iteration run completes" rc_is 0
   run "${G[@]}" --seed 3 $R --out "$T/$n-a2"
@@ -63,6 +67,13 @@ while IFS= read -r g; do
   run "${G[@]}" --seed 3 --iterations 2 --every 1 --quiet --no-preview --out "$T/$n-e"
   check "$g: a resume without its checkpoint restarts; no later snapshot of the old run stays" eval \
     'rc_is 0 && cmp -s <(sums "$T/$n-e") <(sums "$T/$n-d")'
+
+  run "${G[@]}" --seed 3 $R --max-memory 0.000001 --out "$T/$n-m"
+  check "$g: over --max-memory the run stops after iteration 1 with its state saved (exit 1, one line)" eval \
+    'rc_is 1 && one_line && grep -q "memory budget" "$T/err" && grep -q "\"iteration\":[[:space:]]*1" "$T/$n-m/manifest.json"'
+  run "${G[@]}" --resume "$T/$n-m" --quiet
+  check "$g: ... and its resume gives the bytes of the uninterrupted run" eval \
+    'rc_is 0 && cmp -s <(sums "$T/$n-a") <(sums "$T/$n-m")'
 
   mkdir -p "$T/$n-f"
   echo '{"files": ["index.html", "notes.txt"]}' >"$T/$n-f/manifest.json"
