@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include "cli.h"
 
 int cli_usage_error(const char *cmd, const char *fmt, ...) {
@@ -148,7 +149,18 @@ int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts 
   return 1;
 }
 
+/* Below this address space a Vulkan driver can die inside device or
+ * pipeline creation (lavapipe: SIGSEGV or a double free under ulimit -v
+ * 400000, measured) instead of failing: refuse before creating it. */
+#define CLI_MIN_ADDRESS_SPACE (1024.0 * 1048576.0)
+
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
+  struct rlimit rl;
+  if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur < CLI_MIN_ADDRESS_SPACE)
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY,
+                             "the address-space limit (ulimit -v) is %.0f MiB: a Vulkan device needs at least "
+                             "%.0f MiB of address space (its driver's code, threads and heaps); raise the limit",
+                             (double)rl.rlim_cur / 1048576.0, CLI_MIN_ADDRESS_SPACE / 1048576.0);
   sessile_gpu_options go;
   sessile_gpu_options_default(&go);
   go.device = o->device;
