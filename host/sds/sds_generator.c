@@ -169,7 +169,7 @@ static sessile_status sds_config_read(void *extra, const cJSON *c) {
     SESSILE_CALL(read_model(a->model, &given));
     int same = !strcmp(given, tx->valuestring);
     free(given);
-    SESSILE_CHECK(same, SESSILE_ERR_USAGE, "the run holds a run of another model ('%.60s'), not '%.60s'",
+    SESSILE_CHECK(same, SESSILE_ERR_USAGE, "the run to resume is of another model ('%.60s'), not '%.60s'",
                   nm->valuestring, a->model);
   }
   a->name = strdup(nm->valuestring), a->text = strdup(tx->valuestring);
