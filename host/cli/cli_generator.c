@@ -10,6 +10,10 @@
 #include "cli_run.h"
 
 static void print_help(const sessile_generator *g) {
+  if (g->help) {
+    fputs(g->help, stdout);
+    return;
+  }
   int pad = (int)strlen(g->name) + 15;
   printf("usage: sessile %s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
          "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
@@ -46,6 +50,7 @@ typedef struct gen_cmd {
   cli_gpu_opts go;
   sessile_gen_setup su;
   int have_max_memory;
+  sessile_gen_result result;
   char params[4096] __attribute__((aligned(16))); /* the table's struct */
 } gen_cmd;
 
@@ -55,6 +60,13 @@ static int parse(gen_cmd *c, int argc, char **argv) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       print_help(c->g);
       return EXIT_OK;
+    }
+    if (c->g->arg) {
+      int taken = 0;
+      sessile_status s = c->g->arg(c->su.extra, argc, argv, &i, &taken);
+      if (s != SESSILE_OK) return cli_fail_in(name, s);
+      if (taken == 1) c->a.have_run_option = 1;
+      if (taken) continue;
     }
     int k = 0;
     while (k < c->g->nflags && strcmp(argv[i], c->g->flags[k].option)) k++;
@@ -79,6 +91,8 @@ static int parse(gen_cmd *c, int argc, char **argv) {
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error(name, "unknown option '%.60s'", argv[i]);
   }
+  if (c->g->no_iterations && (c->a.have_iterations || c->a.every != c->g->every))
+    return cli_usage_error(name, "%s", c->g->no_iterations);
   return cli_run_args_check(name, &c->a);
 }
 
@@ -86,12 +100,14 @@ static int parse(gen_cmd *c, int argc, char **argv) {
 static sessile_status configure(gen_cmd *c) {
   const sessile_generator *g = c->g;
   SESSILE_CHECK(g->table->struct_size <= sizeof c->params, SESSILE_ERR_INTERNAL, "%s: parameters too large", g->name);
-  sessile_params_defaults(g->table, c->params);
+  if (g->defaults && !c->a.resume) SESSILE_CALL(g->defaults(c->params, c->su.extra));
+  else sessile_params_defaults(g->table, c->params);
   c->su.seed = c->a.seed, c->su.iterations = c->a.iterations, c->su.every = c->a.every;
   if (c->a.resume) return SESSILE_OK; /* the stored configuration, once admitted */
   SESSILE_CALL(cli_run_apply_params(g->table, c->params, &c->a));
   SESSILE_CALL(sessile_params_check(g->table, c->params));
-  return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
+  if (g->check) SESSILE_CALL(g->check(c->params, &c->su));
+  return g->schedule && !c->a.print_config ? g->schedule(c->params, &c->su) : SESSILE_OK;
 }
 
 /* A resume: the stored configuration, --iterations, and the checkpoint's
@@ -115,7 +131,10 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
     s = sessile_params_print(g->table, c->params, stdout);
     return s == SESSILE_OK ? EXIT_OK : cli_fail_in(name, s);
   }
-  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : g->out_default;
+  char out[256];
+  if (g->out_dir) g->out_dir(c->su.extra, out, sizeof out);
+  else snprintf(out, sizeof out, "%s", g->out_default);
+  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : out;
   /* an unknown --device is refused before any file, even where only the
    * preview would use it */
   if ((s = cli_gpu_check(&c->go)) != SESSILE_OK) return cli_fail_in(name, s);
@@ -124,7 +143,7 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   /* a new run's device first: an unknown --device writes nothing */
   if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = cli_gpu_create(&c->go, &gpu);
   sessile_run *run = NULL;
-  if (s == SESSILE_OK) s = cli_run_admit(name, argc, argv, &c->a, dir, stop, &run);
+  if (s == SESSILE_OK) s = cli_run_admit(g->generator ? g->generator : name, argc, argv, &c->a, dir, stop, &run);
   if (s == SESSILE_OK && c->a.resume) s = resume_config(c, run);
   if (s == SESSILE_OK && c->a.resume && g->needs_device && g->needs_device(c->params))
     s = cli_gpu_create(&c->go, &gpu);
@@ -135,14 +154,18 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   }
   if (s == SESSILE_OK) cli_run_note_device(run, gpu);
   int done = 0;
-  c->su.run = run, c->su.gpu = gpu;
+  c->su.run = run, c->su.gpu = gpu, c->su.result = &c->result;
   int show = !c->a.quiet && isatty(STDERR_FILENO);
   if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
   if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(gpu);
-  if (s == SESSILE_OK && !c->a.quiet) printf("%s: %d iterations; run in %s\n", name, done, dir);
-  if (s != SESSILE_OK && s != SESSILE_ERR_INTERRUPTED) return cli_fail_in(name, s);
+  if (s == SESSILE_OK && !c->a.quiet && c->result.summary[0]) printf("%s; run in %s\n", c->result.summary, dir);
+  else if (s == SESSILE_OK && !c->a.quiet) printf("%s: %d iterations; run in %s\n", name, done, dir);
+  if (s != SESSILE_OK && s != SESSILE_ERR_INTERRUPTED) {
+    int rc = cli_fail_in(name, s);
+    return c->result.exit_code ? c->result.exit_code : rc;
+  }
   return cli_run_exit(name, s, dir, stop, done);
 }
 
@@ -151,6 +174,10 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   memset(&c, 0, sizeof c);
   c.g = g, c.go = *global;
   c.su.max_memory = 0.5 * sessile_physical_memory();
+  if (g->extra_size && !(c.su.extra = calloc(1, g->extra_size))) {
+    fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
+    return EXIT_RUNTIME;
+  }
   if (cli_run_args_init(&c.a, argc, 1, g->iterations, g->every) != 0) {
     cli_run_args_free(&c.a);
     fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
@@ -159,5 +186,7 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   int rc = parse(&c, argc, argv);
   if (rc < 0) rc = run_generator(&c, argc, argv);
   cli_run_args_free(&c.a);
+  if (g->extra_free && c.su.extra) g->extra_free(c.su.extra);
+  free(c.su.extra);
   return rc;
 }

@@ -173,8 +173,9 @@ static sessile_status check_size(const void *params, const sessile_gen_setup *su
 }
 
 const sessile_generator sessile_gen_coral_venation = {
-    "coral venation", "soft corals by open or closed leaf venation (Coralize 3.2)",
-    "Soft corals by leaf venation in 3-D (Coralize Section 3.2, after Runions et al. 2005):\n"
+    .name = "coral venation",
+    .summary = "soft corals by open or closed leaf venation (Coralize 3.2)",
+    .about = "Soft corals by leaf venation in 3-D (Coralize Section 3.2, after Runions et al. 2005):\n"
     "auxins thrown per iteration into a leaf blade bounded by two Bezier curves that widens\n"
     "every iteration (or into a 3-D box: planar=false) attract vein nodes, which grow toward\n"
     "them; open venation (open=true) grows a tree, closed venation rejoins veins.  Veins\n"
@@ -182,6 +183,20 @@ const sessile_generator sessile_gen_coral_venation = {
     "Writes coral/iter_NNNN.ply every K iterations and at the last, coral/final.ply and\n"
     "coral/final.obj (PLY: per-vertex thickness_index), manifest.json, records.jsonl and a\n"
     "checkpoint at each snapshot (docs/run.md).",
-    "the auxins' placement", "runs/coral-venation", "coral/iter_%04d.ply", "coral/final.ply",
-    &sessile_venation_param_table, 60, 20, NULL, 0, needs_device, check_size,
-    create, restore, step, snapshot, sections, finish, destroy};
+    .seed_help = "the auxins' placement",
+    .out_default = "runs/coral-venation",
+    .snapshot_name = "coral/iter_%04d.ply",
+    .preview = "coral/final.ply",
+    .table = &sessile_venation_param_table,
+    .iterations = 60,
+    .every = 20,
+    .needs_device = needs_device,
+    .check = check_size,
+    .create = create,
+    .restore = restore,
+    .step = step,
+    .snapshot = snapshot,
+    .sections = sections,
+    .finish = finish,
+    .destroy = destroy,
+};

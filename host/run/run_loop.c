@@ -15,6 +15,10 @@ cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const 
       return NULL;
     }
   }
+  if (c && g->config_write && g->config_write(su->extra, c) != SESSILE_OK) {
+    cJSON_Delete(c);
+    return NULL;
+  }
   return c;
 }
 
@@ -30,7 +34,7 @@ sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *
                   g->flags[k].key);
     if (cJSON_IsTrue(f)) su->flags |= 1u << k;
   }
-  return SESSILE_OK;
+  return g->config_read ? g->config_read(su->extra, cfg) : SESSILE_OK;
 }
 
 static sessile_status snapshot_rel(const sessile_generator *g, int it, char *rel, size_t n) {
@@ -54,6 +58,13 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
   SESSILE_CHECK(rec && cJSON_AddNumberToObject(rec, "iteration", it), SESSILE_ERR_NO_MEMORY,
                 "out of host memory for a record");
   sessile_status s = g->step(state, it, rec);
+  if (s == SESSILE_ERR_INTERRUPTED) { /* stopped part way: the state so far, as iteration it - 1 */
+    char why[512];
+    snprintf(why, sizeof why, "%s", sessile_error_message());
+    cJSON_Delete(rec);
+    SESSILE_CALL(checkpoint(g, state, su->run, it - 1));
+    return sessile_error_set(SESSILE_ERR_INTERRUPTED, "%s", why);
+  }
   if (s == SESSILE_OK) s = sessile_run_record(su->run, rec);
   cJSON_Delete(rec);
   SESSILE_CALL_AT(s, "iteration %d", it);
@@ -125,6 +136,7 @@ sessile_status sessile_run_loop(const sessile_generator *g, const void *params, 
     return sessile_error_pass(s, "setting up");
   }
   s = loop(g, state, su, progress, user, done);
+  if (g->end) s = g->end(state, s, su->result);
   g->destroy(state);
   return s;
 }

@@ -30,9 +30,11 @@ uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, co
 
 /* The organism's sizes, then one section per array (name, where, bytes). */
 enum { NSEC = 20 };
+_Static_assert(NSEC + 3 == SDS_CKPT_NSECTIONS, "sds_checkpoint.h");
 typedef struct counts {
   uint64_t ncells, ntets, nedges, nfaces, nmorph, nstate;
 } counts;
+_Static_assert(sizeof(counts) == 6 * sizeof(uint64_t), "sds_ckpt_sections' counts_store");
 
 static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *s, void **dst[NSEC]) {
   size_t n = c->ncells, t = c->ntets, e = c->nedges, f = c->nfaces, d = sizeof(double), u = sizeof(uint32_t);
@@ -61,16 +63,16 @@ static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *
   }
 }
 
-sessile_status sds_ckpt_write(sessile_run *run, int frames, const sessile_sds *o, const sds_ckpt_loop *l,
-                              const double *retry_at, const uint64_t *sliver) {
+int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double *retry_at, const uint64_t *sliver,
+                      uint64_t counts_store[6], sessile_ckpt_section *s) {
   counts c = {o->ncells, o->ntets, o->nedges, o->nfaces, o->nmorph, o->nstate};
-  sessile_ckpt_section s[NSEC + 3];
+  memcpy(counts_store, &c, sizeof c);
   layout(o, &c, s, NULL);
-  s[NSEC - 1] = (sessile_ckpt_section){"sds_counts", &c, sizeof c};
+  s[NSEC - 1] = (sessile_ckpt_section){"sds_counts", counts_store, sizeof c};
   s[NSEC] = (sessile_ckpt_section){"sds_loop", l, sizeof *l};
   s[NSEC + 1] = (sessile_ckpt_section){"retry_at", retry_at, l->retry_cap * sizeof(double)};
   s[NSEC + 2] = (sessile_ckpt_section){"slivers", sliver, 3 * l->nsliver * sizeof(uint64_t)};
-  return sessile_run_checkpoint(run, frames, NSEC + 3, s);
+  return NSEC + 3;
 }
 
 static sessile_status damaged(const char *what) {

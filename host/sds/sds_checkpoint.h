@@ -38,10 +38,13 @@ uint64_t sds_ckpt_key(const char *model_text, uint64_t seed, double t_end, int f
  * run without --set or --config keeps its checkpoint bytes. */
 uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, const sessile_sds_run_params *p);
 
-/* Writes the checkpoint (atomically, through the run) after `frames`
- * frames were written. */
-sessile_status sds_ckpt_write(sessile_run *run, int frames, const sessile_sds *o, const sds_ckpt_loop *l,
-                              const double *retry_at, const uint64_t *sliver);
+/* The state as checkpoint sections (SDS_CKPT_NSECTIONS of them, into s):
+ * the organism's arrays, counts (kept in counts_store), the loop's
+ * scalars, the deferred divisions and the repairs' backoff.  Returns how
+ * many. */
+#define SDS_CKPT_NSECTIONS 23
+int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double *retry_at, const uint64_t *sliver,
+                      uint64_t counts_store[6], sessile_ckpt_section *s);
 
 /* Reads it back: o (freed first) gets every array, l the scalars, *retry_at
  * a new array of l->retry_cap entries and *sliver one of 3 l->nsliver words

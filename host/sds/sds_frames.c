@@ -93,20 +93,23 @@ sessile_status sds_write_pvd(sessile_run *run, int nframes) {
   return st;
 }
 
+sessile_status sds_record_fill(sds_sim *s, cJSON *r, int frame, double ms_per_step, uint64_t steps) {
+  int ok = cJSON_AddNumberToObject(r, "frame", frame) && cJSON_AddNumberToObject(r, "time", s->time) &&
+           cJSON_AddNumberToObject(r, "cells", s->o.ncells) && cJSON_AddNumberToObject(r, "tets", s->o.ntets) &&
+           cJSON_AddNumberToObject(r, "steps", (double)steps) &&
+           cJSON_AddNumberToObject(r, "ms_per_step", ms_per_step) && cJSON_AddNumberToObject(r, "dt", s->dt) &&
+           cJSON_AddNumberToObject(r, "divisions", (double)s->div_interval) &&
+           cJSON_AddNumberToObject(r, "inversions", (double)s->inv_interval);
+  s->div_interval = s->inv_interval = 0;
+  SESSILE_CHECK(ok, SESSILE_ERR_NO_MEMORY, "out of host memory for a record");
+  return SESSILE_OK;
+}
+
 sessile_status sds_record(sds_sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps) {
   cJSON *r = cJSON_CreateObject();
   SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  cJSON_AddNumberToObject(r, "frame", frame);
-  cJSON_AddNumberToObject(r, "time", s->time);
-  cJSON_AddNumberToObject(r, "cells", s->o.ncells);
-  cJSON_AddNumberToObject(r, "tets", s->o.ntets);
-  cJSON_AddNumberToObject(r, "steps", (double)steps);
-  cJSON_AddNumberToObject(r, "ms_per_step", ms_per_step);
-  cJSON_AddNumberToObject(r, "dt", s->dt);
-  cJSON_AddNumberToObject(r, "divisions", (double)s->div_interval);
-  cJSON_AddNumberToObject(r, "inversions", (double)s->inv_interval);
-  s->div_interval = s->inv_interval = 0;
-  sessile_status st = sessile_run_record(run, r);
+  sessile_status st = sds_record_fill(s, r, frame, ms_per_step, steps);
+  if (st == SESSILE_OK) st = sessile_run_record(run, r);
   cJSON_Delete(r);
   return st;
 }

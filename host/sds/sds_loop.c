@@ -19,8 +19,7 @@
 #include "sds/sds_sim.h"
 
 /* The loop's scalars to and from the checkpoint (sds_checkpoint.h). */
-static sessile_status save(sds_sim *s, sessile_run *run) {
-  SESSILE_CALL(sds_steplog_flush(s, run));
+static void loop_scalars(const sds_sim *s, sds_ckpt_loop *out) {
   const sessile_sds_run_stats *t = s->st;
   sds_ckpt_loop l = {.version = SDS_CKPT_VERSION, .key = s->key, .time = s->time, .dt = s->dt,
                      .stalled = s->stalled, .rng = s->rng, .frame = s->frame,
@@ -29,7 +28,7 @@ static sessile_status save(sds_sim *s, sessile_run *run) {
                      .inversions = t->inversions, .resisted = t->resisted, .slivers = t->slivers,
                      .deferred = t->deferred, .repairs = t->repairs, .c0 = {s->c0[0], s->c0[1], s->c0[2]}, .size0 = s->size0,
                      .retry_cap = s->retry_at ? s->retry_cap : 0, .nsliver = s->nsliver};
-  return sds_ckpt_write(run, s->frame, &s->o, &l, s->retry_at, s->sliver);
+  *out = l;
 }
 
 static sessile_status restore(sds_sim *s, const sessile_ckpt *ck) {
@@ -52,52 +51,42 @@ static sessile_status restore(sds_sim *s, const sessile_ckpt *ck) {
   return SESSILE_OK;
 }
 
-static sessile_status setup(sds_sim *s, const sessile_sds_run_options *opt) {
-  const char *where = opt->model_name ? opt->model_name : "model";
+/* The model, its key and the parameters; then a new run's organism (a
+ * resume's comes from the checkpoint: gen_restore). */
+static sessile_status setup(sds_gen_state *g, const sessile_sds_run_params *params) {
+  sds_sim *s = &g->s;
+  const sds_gen_args *a = g->su->extra;
+  const char *where = a->name ? a->name : "model";
   int level;
   double radius;
-  s->text = opt->model_text;
-  SESSILE_CALL(sds_check_model(s, where, opt->params, &level, &radius));
-  s->t_end = opt->t_end >= 0 ? opt->t_end : sds_param1(s->model, "t_end", 100);
-  s->frames = opt->frames >= 0 ? opt->frames : (int)sds_param1(s->model, "frames", 20);
-  SESSILE_CHECK(s->t_end >= 0 && isfinite(s->t_end) && s->frames >= 1 && s->frames <= 100000, SESSILE_ERR_USAGE,
-                "sds: t_end must be >= 0 and frames in 1..100000");
-  s->key = sds_ckpt_key(s->text, opt->seed, s->t_end, s->frames, opt->max_cells);
-  if (opt->params) { /* values apart from the model's own (--set, --config) belong to the key */
-    sessile_sds_run_params own;
-    SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &own));
-    s->key = sds_ckpt_key_params(s->key, &own, &s->prm);
-  }
-  cJSON *man = sessile_run_manifest(opt->run);
-  cJSON_DeleteItemFromObjectCaseSensitive(man, "parameters");
-  cJSON_AddItemToObject(man, "parameters", sessile_params_to_json(&sessile_sds_run_param_table, &s->prm));
+  s->text = a->text;
+  SESSILE_CALL(sds_check_model(s, where, params, &level, &radius));
+  SESSILE_CALL(sds_run_length(s->model, a->have_t_end ? a->t_end : -1, a->frames, &s->t_end, &s->frames));
+  s->key = sds_ckpt_key(s->text, g->su->seed, s->t_end, s->frames, a->max_cells);
+  /* values apart from the model's own (--set, --config) belong to the key */
+  sessile_sds_run_params own;
+  SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &own));
+  s->key = sds_ckpt_key_params(s->key, &own, &s->prm);
   int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
   s->tip_state = sessile_sds_model_state_index(s->model, "tip");
   s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
-  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(opt->run);
-  if (ck) {
-    SESSILE_CALL(restore(s, ck));
-    SESSILE_CALL(sds_neighbours(s));
-  } else {
-    SESSILE_CALL(sds_import_organism(s, where, level, radius));
-    for (uint32_t c = 0; c < s->o.ncells; c++) {
-      for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
-      for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
-    }
-    if (s->birth_state >= 0)
-      for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
-    SESSILE_CALL(sds_mark_tips(s, where));
-    SESSILE_CALL(sds_neighbours(s));
-    if (s->prm.tips_below && s->tip_state >= 0) SESSILE_CALL(sds_cells_below_tips(s));
-    sds_measure_start(s);
-    s->dt = s->p.dt;
+  if (sessile_run_checkpoint_loaded(g->su->run)) return SESSILE_OK;
+  SESSILE_CALL(sds_import_organism(s, where, level, radius));
+  for (uint32_t c = 0; c < s->o.ncells; c++) {
+    for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
+    for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
   }
-  SESSILE_CALL(sessile_sds_gpu_create(opt->gpu, &s->o, &s->p, &s->pg));
-  SESSILE_CALL(sessile_morph_gpu_create(opt->gpu, &s->mg));
-  return SESSILE_OK;
+  if (s->birth_state >= 0)
+    for (uint32_t c = 0; c < s->o.ncells; c++) s->o.state[(size_t)c * ns + (uint32_t)s->birth_state] = s->o.r[c];
+  SESSILE_CALL(sds_mark_tips(s, where));
+  SESSILE_CALL(sds_neighbours(s));
+  if (s->prm.tips_below && s->tip_state >= 0) SESSILE_CALL(sds_cells_below_tips(s));
+  sds_measure_start(s);
+  s->dt = s->p.dt;
+  return sds_gpu_create(g);
 }
 
-static void teardown(sds_sim *s) {
+void sds_teardown(sds_sim *s) {
   sessile_sds_model_destroy(s->model);
   sessile_sds_gpu_destroy(s->pg);
   sessile_morph_gpu_destroy(s->mg);
@@ -205,73 +194,59 @@ static sessile_status step(sds_sim *s, double next_frame) {
   return SESSILE_OK;
 }
 
-static sessile_status loop(sds_sim *s, const sessile_sds_run_options *opt) {
-  double frame_dt = s->t_end / s->frames;
-  if (!s->resumed) {
-    SESSILE_CALL(sds_steplog_start(opt->run));
-    SESSILE_CALL(sds_write_frame(s, opt->run, 0, "sds/frame_0000.ply"));
-    SESSILE_CALL(sds_record(s, opt->run, 0, 0, 0));
-    s->st->frames = s->frame = 1;
-    SESSILE_CALL(sds_write_pvd(opt->run, 1));
-    SESSILE_CALL(save(s, opt->run));
-  }
-  double tf = sessile_wall_seconds();
+/* Steps up to the end of frame s->frame (the same step boundaries as one
+ * loop over the whole run: a step cut short lands on the frame), or
+ * SESSILE_ERR_INTERRUPTED after a step when a stop is asked; the state
+ * after any step resumes exactly (every step ends with an upload). */
+sessile_status sds_frame_steps(sds_gen_state *g) {
+  sds_sim *s = &g->s;
+  sessile_run *run = g->su->run;
+  const sds_gen_args *a = g->su->extra;
+  double next_frame = s->frame * (s->t_end / s->frames);
   while (s->time < s->t_end * (1 - 1e-12)) {
-    SESSILE_CHECK(s->o.ncells <= opt->max_cells, SESSILE_ERR_NO_MEMORY,
-                  "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, opt->max_cells);
-    double next_frame = s->frame * frame_dt;
+    SESSILE_CHECK(s->o.ncells <= a->max_cells, SESSILE_ERR_NO_MEMORY,
+                  "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, a->max_cells);
     double t0 = s->time, w0 = sessile_wall_seconds();
     uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
     SESSILE_CALL(step(s, next_frame));
-    SESSILE_CALL(sds_steplog_row(s, opt->run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
+    SESSILE_CALL(sds_steplog_row(s, run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
                                  s->st->inversions - i0));
-    int saved = 0;
-    if (s->time >= next_frame * (1 - 1e-12)) {
-      double now = sessile_wall_seconds();
-      char rel[64];
-      snprintf(rel, sizeof rel, "sds/frame_%04d.ply", s->frame);
-      SESSILE_CALL(sds_write_frame(s, opt->run, s->frame, rel));
-      uint64_t n = s->steps_frame;
-      SESSILE_CALL(sds_record(s, opt->run, s->frame, 1e3 * (now - tf) / (double)(n ? n : 1), n));
-      s->st->frames = ++s->frame;
-      tf = now, s->steps_frame = 0;
-      SESSILE_CALL(sds_write_pvd(opt->run, s->frame));
-      SESSILE_CALL(save(s, opt->run));
-      saved = 1;
-    }
-    int stop = sessile_run_stop_requested(opt->run);
-    if (stop) {
-      /* the state after any step resumes exactly (the device holds nothing
-       * the host has not: every step ends with an upload) */
-      if (!saved) SESSILE_CALL(save(s, opt->run));
-      return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
-    }
+    if (s->time >= next_frame * (1 - 1e-12)) break;
+    int stop = sessile_run_stop_requested(run);
+    if (stop) return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
   }
-  SESSILE_CALL(sds_write_pvd(opt->run, s->frame));
-  SESSILE_CALL(sds_steplog_flush(s, opt->run));
-  return sds_write_frame(s, opt->run, -1, "sds/final.ply");
+  return SESSILE_OK;
 }
 
-sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_run_stats *st) {
-  memset(st, 0, sizeof *st);
-  SESSILE_CHECK(opt->run && opt->gpu && opt->model_text, SESSILE_ERR_USAGE, "sessile sds run needs a run, a device and a model");
-  sds_sim s;
-  memset(&s, 0, sizeof s);
-  s.st = st;
-  s.rng = sessile_rng_stream(opt->seed, 1);
-  s.seed = opt->seed;
-  double t0 = sessile_wall_seconds();
-  sessile_status r = setup(&s, opt);
-  if (r == SESSILE_OK) r = loop(&s, opt);
-  if (r != SESSILE_OK) { /* the steps up to a failure stay in the log, and the failure's message stays */
-    char why[1024];
-    snprintf(why, sizeof why, "%s", sessile_error_message());
-    if (sds_steplog_flush(&s, opt->run) != SESSILE_OK) sessile_error_set(r, "%s (and then: %s)", why, sessile_error_message());
-    else sessile_error_set(r, "%s", why);
-  }
-  st->wall_s = sessile_wall_seconds() - t0;
-  st->time = s.time, st->cells = s.o.ncells, st->tets = s.o.ntets;
-  st->resumed = s.resumed;
-  teardown(&s);
-  return r;
+/* The checkpoint's sections: the step log appended first (the checkpoint
+ * keeps its length). */
+sessile_status sds_sections(sds_gen_state *g, sessile_ckpt_section *sec, int *n) {
+  sds_sim *s = &g->s;
+  SESSILE_CALL(sds_steplog_flush(s, g->su->run));
+  loop_scalars(s, &g->loop);
+  *n = sds_ckpt_sections(&s->o, &g->loop, s->retry_at, s->sliver, g->counts, sec);
+  return SESSILE_OK;
+}
+
+sessile_status sds_gen_setup(sds_gen_state *g, const sessile_sds_run_params *params) {
+  sds_sim *s = &g->s;
+  s->st = &g->st;
+  s->rng = sessile_rng_stream(g->su->seed, 1);
+  s->seed = g->su->seed;
+  g->t0 = g->tf = sessile_wall_seconds();
+  return setup(g, params);
+}
+
+sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck) {
+  sds_sim *s = &g->s;
+  SESSILE_CALL(restore(s, ck));
+  SESSILE_CHECK(s->frame == sessile_ckpt_iteration(ck) + 1, SESSILE_ERR_IO,
+                "the checkpoint's loop section does not fit this run (damaged?)");
+  SESSILE_CALL(sds_neighbours(s));
+  return sds_gpu_create(g);
+}
+
+sessile_status sds_gpu_create(sds_gen_state *g) {
+  SESSILE_CALL(sessile_sds_gpu_create(g->su->gpu, &g->s.o, &g->s.p, &g->s.pg));
+  return sessile_morph_gpu_create(g->su->gpu, &g->s.mg);
 }

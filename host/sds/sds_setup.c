@@ -134,6 +134,14 @@ sessile_status sds_check_model(sds_sim *s, const char *where, const sessile_sds_
   return SESSILE_OK;
 }
 
+sessile_status sds_run_length(const sessile_sds_model *m, double t_end_in, int frames_in, double *t_end, int *frames) {
+  *t_end = t_end_in >= 0 ? t_end_in : sds_param1(m, "t_end", 100);
+  *frames = frames_in > 0 ? frames_in : (int)sds_param1(m, "frames", 20);
+  SESSILE_CHECK(*t_end >= 0 && isfinite(*t_end) && *frames >= 1 && *frames <= 100000, SESSILE_ERR_USAGE,
+                "sds: t_end must be >= 0 and frames in 1..100000");
+  return SESSILE_OK;
+}
+
 /* A realisation of the starting sphere (the model's start_jitter J, docs/
  * sds_rules.md): each vertex moved along its radius by J x the mean edge
  * length x a normal deviate clipped to +-3, drawn from the seed's own stream

@@ -7,7 +7,9 @@
 #ifndef SESSILE_SDS_SIM_H
 #define SESSILE_SDS_SIM_H
 #include <stdint.h>
+#include "sessile/generator.h"
 #include "sessile/run.h"
+#include "sds/sds_checkpoint.h"
 #include "sessile/sds.h"
 #include "sessile/sds_process.h"
 #include "sessile/sds_run.h"
@@ -88,6 +90,7 @@ sessile_status sds_inversions(sds_sim *s, int *handled, double *frac);
 sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const char *ply_rel);
 sessile_status sds_write_pvd(sessile_run *run, int nframes);
 sessile_status sds_record(sds_sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps);
+sessile_status sds_record_fill(sds_sim *s, cJSON *r, int frame, double ms_per_step, uint64_t steps);
 
 /* sds_steplog.c: sds/steps.csv, the paper's Figure 12 per step: its header
  * (a new run), one row per step (appended once a MiB has gathered), and
@@ -100,4 +103,38 @@ sessile_status sds_steplog_flush(sds_sim *s, sessile_run *run);
 /* sds_loop.c: a blow-up (docs/sds.md, "Blow-ups"): the message, and the
  * run's stats say what happened when. */
 sessile_status sds_blowup(sds_sim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* `sds run` on the generator framework (sds_generator.c): the command's own
+ * arguments (the generator's extra), stored in the run's configuration. */
+typedef struct sds_gen_args {
+  const char *model;       /* MODEL as given, NULL: none */
+  char *name, *text;       /* the run's model: its name and text (owned unless borrowed) */
+  int borrowed;            /* name and text belong to the caller (sessile_sds_run) */
+  double t_end;            /* < 0: the model's */
+  int frames;              /* <= 0: the model's */
+  int have_t_end;
+  unsigned max_cells, max_steps; /* 0: the defaults */
+  sessile_sds_run_stats stats;   /* the run's, after end() */
+  unsigned given;                /* bit per option seen: a repeated one is refused */
+} sds_gen_args;
+
+/* The generator's state: the simulation, its stats and the run around it. */
+typedef struct sds_gen_state {
+  sds_sim s;
+  sessile_sds_run_stats st;
+  const sessile_gen_setup *su;
+  double t0, tf;           /* wall seconds at the start and at the last frame */
+  sds_ckpt_loop loop;      /* the checkpoint's loop section and counts (sds_sections) */
+  uint64_t counts[6];
+} sds_gen_state;
+
+/* sds_setup.c: the run's length, the option's or the model's. */
+sessile_status sds_run_length(const sessile_sds_model *m, double t_end_in, int frames_in, double *t_end, int *frames);
+/* sds_loop.c: the pieces of the generator's callbacks. */
+sessile_status sds_gen_setup(sds_gen_state *g, const sessile_sds_run_params *params);
+sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck);
+sessile_status sds_gpu_create(sds_gen_state *g);
+sessile_status sds_frame_steps(sds_gen_state *g);
+sessile_status sds_sections(sds_gen_state *g, sessile_ckpt_section *sec, int *n);
+void sds_teardown(sds_sim *s);
 #endif

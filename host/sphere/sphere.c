@@ -79,12 +79,15 @@ static void destroy(void *state) {
 }
 
 const sessile_generator sessile_gen_sphere = {
-    "sphere", "the smallest generator: a seeded noisy icosphere through the run framework",
-    "The smallest generator, and the run framework's own test: an icosphere (level,\n"
+    .name = "sphere",
+    .summary = "the smallest generator: a seeded noisy icosphere through the run framework",
+    .about = "The smallest generator, and the run framework's own test: an icosphere (level,\n"
     "radius) whose vertices take a seeded radial random walk (noise) for N\n"
     "iterations.  Writes sphere/iter_NNNN.ply every K iterations and at the last,\n"
     "sphere/final.ply, manifest.json, records.jsonl and a checkpoint at each snapshot,\n"
     "exactly as every generator does (docs/run.md).",
-    "the random walk", "runs/sphere", "sphere/iter_%04d.ply", "sphere/final.ply",
-    &sessile_sphere_param_table, 10, 5, NULL, 0, NULL, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    .seed_help = "the random walk", .out_default = "runs/sphere", .table = &sessile_sphere_param_table,
+    .snapshot_name = "sphere/iter_%04d.ply", .preview = "sphere/final.ply", .iterations = 10, .every = 5,
+    .create = create, .restore = restore, .step = step, .snapshot = snapshot, .sections = sections,
+    .finish = finish, .destroy = destroy,
+};

@@ -147,8 +147,9 @@ static const sessile_gen_flag flags[] = {
     {"--check", "check", "check every iteration: closed 2-manifold, no self-intersection"}};
 
 const sessile_generator sessile_gen_sponge_particles = {
-    "sponge particles", "Coralize's particle-fed sponge (Section 3.3)",
-    "Sponges after Liapis et al., Coralize (Section 3.3; docs/particle_sponge.md):\n"
+    .name = "sponge particles",
+    .summary = "Coralize's particle-fed sponge (Section 3.3)",
+    .about = "Sponges after Liapis et al., Coralize (Section 3.3; docs/particle_sponge.md):\n"
     "a closed hemisphere on the substratum inside a cube; every iteration\n"
     "nutrient particles spawn on the cube's top face and fall (plus a current);\n"
     "a vertex a particle touches grows along its normal, its neighbours by a\n"
@@ -157,6 +158,21 @@ const sessile_generator sessile_gen_sponge_particles = {
     "uniform grid.  Writes sponge/iter_NNNN.ply every K iterations and at the\n"
     "last, sponge/final.ply (per-vertex growth_count) and sponge/final.obj,\n"
     "manifest.json, records.jsonl and a checkpoint at each snapshot.",
-    "the particles", "runs/sponge", "sponge/iter_%04d.ply", "sponge/final.ply",
-    &sessile_psponge_param_table, 50, 10, flags, 1, needs_device, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    .seed_help = "the particles",
+    .out_default = "runs/sponge",
+    .snapshot_name = "sponge/iter_%04d.ply",
+    .preview = "sponge/final.ply",
+    .table = &sessile_psponge_param_table,
+    .iterations = 50,
+    .every = 10,
+    .flags = flags,
+    .nflags = 1,
+    .needs_device = needs_device,
+    .create = create,
+    .restore = restore,
+    .step = step,
+    .snapshot = snapshot,
+    .sections = sections,
+    .finish = finish,
+    .destroy = destroy,
+};

@@ -9,6 +9,7 @@
 #ifndef SESSILE_GENERATOR_H
 #define SESSILE_GENERATOR_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
@@ -27,7 +28,15 @@ typedef struct sessile_gen_setup {
   int iterations, every; /* snapshots every K iterations (0: none) and at the last */
   unsigned flags;        /* bit k: the generator's flags[k] was given */
   double max_memory;     /* bytes the process may hold after an iteration (0: no budget) */
+  void *extra;           /* the generator's own options (extra_size bytes; NULL: none) */
+  struct sessile_gen_result *result; /* where end() reports (NULL: nowhere) */
 } sessile_gen_setup;
+
+/* What a generator's end() reports to the command around it. */
+typedef struct sessile_gen_result {
+  int exit_code;         /* a generator-specific exit code for this failure (0: the usual one) */
+  char summary[512];     /* the summary line of a completed run ("" : "N iterations") */
+} sessile_gen_result;
 
 /* A boolean option of one generator ("--check"), kept in the run's
  * configuration under `key` so that a resume runs the same way. */
@@ -35,7 +44,7 @@ typedef struct sessile_gen_flag {
   const char *option, *key, *help;
 } sessile_gen_flag;
 
-#define SESSILE_GEN_MAX_SECTIONS 16
+#define SESSILE_GEN_MAX_SECTIONS 32
 
 typedef struct sessile_generator {
   const char *name;        /* the command ("coral venation") and the manifest's generator */
@@ -59,7 +68,10 @@ typedef struct sessile_generator {
   /* The state of a checkpoint written after `iteration` iterations. */
   sessile_status (*restore)(void *state, const sessile_ckpt *ck);
   /* Iteration it (1, 2, ...): adds its members to the record, which holds
-   * "iteration" already. */
+   * "iteration" already.  SESSILE_ERR_INTERRUPTED: it saw a stop request
+   * part way (sessile_run_stop_requested); the loop checkpoints its
+   * sections as iteration it - 1 and a resume reruns iteration it from
+   * there (the generator keeps where it stood in its sections). */
   sessile_status (*step)(void *state, int it, cJSON *record);
   /* Writes the snapshot file `rel` (the generator's snapshot pattern). */
   sessile_status (*snapshot)(void *state, const char *rel);
@@ -69,6 +81,35 @@ typedef struct sessile_generator {
   /* The final outputs after the last iteration. */
   sessile_status (*finish)(void *state);
   void (*destroy)(void *state); /* NULL-safe */
+
+  /* --- optional: a generator with arguments of its own (sds run MODEL
+   * --t-end T ...); NULL / 0 for one that has none. */
+  const char *generator;   /* the manifest's generator (NULL: name) */
+  const char *help;        /* the whole --help (NULL: composed from the members above) */
+  /* Set: --iterations and --every are refused with this message, and
+   * schedule() sets the counts. */
+  const char *no_iterations;
+  size_t extra_size;       /* bytes of su->extra (zeroed before parsing) */
+  /* One argument of its own at argv[*i] (*i advanced over its values):
+   * *taken 0 not its own, 1 an option a resume must not change, 2 one a
+   * resume may repeat (config_read compares it); SESSILE_ERR_USAGE refuses. */
+  sessile_status (*arg)(void *extra, int argc, char **argv, int *i, int *taken);
+  /* The parameters before --config and --set (NULL: the table's defaults). */
+  sessile_status (*defaults)(void *params, void *extra);
+  /* A new run only, after check: further refusals and su->iterations and
+   * su->every from the generator's own options. */
+  sessile_status (*schedule)(const void *params, sessile_gen_setup *su);
+  /* Extra members of the run's configuration, and back on a resume (extra
+   * still holds what the command line gave, to compare with the run's). */
+  sessile_status (*config_write)(const void *extra, cJSON *cfg);
+  sessile_status (*config_read)(void *extra, const cJSON *cfg);
+  void (*extra_free)(void *extra); /* what arg, defaults and config_read allocated */
+  /* The run directory when --out is not given (NULL: out_default). */
+  void (*out_dir)(const void *extra, char *buf, size_t n);
+  /* Once after the loop whatever its outcome s, before destroy: the
+   * generator's last words (its manifest member, logs flushed); returns the
+   * run's status (s, or a later failure) and fills r when not NULL. */
+  sessile_status (*end)(void *state, sessile_status s, sessile_gen_result *r);
 } sessile_generator;
 
 /* Progress after each iteration (the CLI prints it; NULL: silent). */

@@ -7,6 +7,7 @@
 #ifndef SESSILE_SDS_RUN_H
 #define SESSILE_SDS_RUN_H
 #include <stdint.h>
+#include "sessile/generator.h"
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
 #include "sessile/run.h"
@@ -94,6 +95,13 @@ sessile_status sessile_sds_model_check(const char *text, const char *name, const
  * the error names the time and the cause.  A model's `surface = "FILE.ply"`
  * is read relative to the folder of model_name. */
 sessile_status sessile_sds_run(const sessile_sds_run_options *o, sessile_sds_run_stats *st);
+
+/* `sds run MODEL` as a generator (sds_generator.c): one iteration per frame
+ * interval, a snapshot every frame, its own arguments (MODEL, --t-end,
+ * --frames, --max-cells, --max-steps) kept in the run's configuration, exit
+ * code 3 on a blow-up.  Not in generators.def: `sds` also has `sds models`,
+ * and its MODEL argument does not fit the generic contract test. */
+extern const sessile_generator sessile_gen_sds;
 
 #ifdef __cplusplus
 }

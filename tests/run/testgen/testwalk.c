@@ -74,8 +74,21 @@ static sessile_status finish(void *state) { return snapshot(state, "walk/final.c
 static void destroy(void *state) { free(state); }
 
 const sessile_generator sessile_gen_testwalk = {
-    "testwalk", "a test-only generator: seeded walkers on a line (tests/run/testgen)",
-    "Walkers on a line take seeded uniform steps.  Writes walk/iter_NNNN.csv every K\n"
+    .name = "testwalk",
+    .summary = "a test-only generator: seeded walkers on a line (tests/run/testgen)",
+    .about = "Walkers on a line take seeded uniform steps.  Writes walk/iter_NNNN.csv every K\n"
     "iterations and at the last, and walk/final.csv.",
-    "the steps", "runs/testwalk", "walk/iter_%04d.csv", NULL, &table, 6, 2, NULL, 0, NULL, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    .seed_help = "the steps",
+    .out_default = "runs/testwalk",
+    .snapshot_name = "walk/iter_%04d.csv",
+    .table = &table,
+    .iterations = 6,
+    .every = 2,
+    .create = create,
+    .restore = restore,
+    .step = step,
+    .snapshot = snapshot,
+    .sections = sections,
+    .finish = finish,
+    .destroy = destroy,
+};
