@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "cli_gpu_env.h"
 
 int cli_usage_error(const char *cmd, const char *fmt, ...) {
   va_list ap;
@@ -102,6 +103,8 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   go.device = o->device;
   go.precision = o->precision;
   if (o->validation) go.validation = 1;
+  cli_gpu_env_store st;
+  SESSILE_CALL(cli_gpu_env(&go, &st));
   return sessile_gpu_create(&go, g);
 }
 

@@ -125,7 +125,6 @@ sessile_status sessile_choose_device_(VkInstance inst, const char *choice, VkPhy
   r = vkEnumeratePhysicalDevices(inst, &n, devs);
   if (r < 0) return sessile_vk_fail_(r, "vkEnumeratePhysicalDevices", __func__);
 
-  if (!choice || !*choice) choice = getenv("SESSILE_DEVICE");
   int pick = -1;
   if (choice && *choice) {
     char *end = NULL;

@@ -98,7 +98,7 @@ sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb);
 VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb, const char **what);
 
 /* Pipeline cache persistence (pipeline_cache.c). */
-sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir);
+sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir, const char *default_dir);
 void sessile_pipeline_cache_close_(sessile_gpu *g);
 
 #endif
