@@ -101,7 +101,8 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   if (s == SESSILE_OK && physics) s = sessile_sds_bench_physics(g, stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) s = sessile_gpu_profile(g, 1);
   double t0 = sessile_wall_seconds();
-  if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, stdout);
+  const char *tmp = getenv("TMPDIR"); /* the rock run's scratch folder */
+  if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, tmp && *tmp ? tmp : "/tmp", stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) print_kernels(g, sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
   return s == SESSILE_OK ? EXIT_OK : cli_fail(s);

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli_run.h"
-#include "sds/sds_builtin.h"
+#include "sessile/sds_builtin.h"
 #include "sessile/io.h"
 #include "sessile/sds_run.h"
 
