@@ -7,30 +7,21 @@
 # stops relative escapes ("../Y/...") that no include path can.  Prints each
 # offending line; exit 1 when there is one.
 # usage: tools/check_layers.sh [SOURCE_ROOT]
-root=${1:-$(dirname "$0")/..}
-cd "$root" || exit 2
-bad=0
-for f in $(find host -name '*.c' -o -name '*.h' -o -name '*.cpp' -o -name '*.def' | sort); do
-  case $f in
-  host/include/*) layer=include ;;
-  host/*/*) layer=${f#host/}; layer=${layer%%/*} ;;
-  *) layer=base ;;
-  esac
-  grep -n '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' "$f" | while IFS= read -r line; do
-    inc=$(printf '%s\n' "$line" | sed 's/^[^"]*"\([^"]*\)".*/\1/')
-    ok=0
-    case $inc in
-    ../*|*/../*) ok=0 ;;
-    sessile/*) ok=1 ;;
-    */*)
-      top=${inc%%/*}
-      [ "$top" = "$layer" ] && ok=1
-      [ "$layer" = bench ] && { [ "$top" = la ] || [ "$top" = mesh ]; } && ok=1 ;;
-    *) [ "$layer" != include ] && ok=1 ;; # a header of the file's own folder
-    esac
-    if [ $ok = 0 ]; then
-      echo "$f:$line: '$inc' is not $layer's to include"
-      echo bad
-    fi
-  done
-done | { out=$(cat); printf '%s\n' "$out" | grep -v '^bad$' | grep . ; ! printf '%s\n' "$out" | grep -q '^bad$'; }
+cd "${1:-$(dirname "$0")/..}" || exit 2
+grep -rn --include='*.c' --include='*.h' --include='*.cpp' --include='*.def' \
+  '^[[:space:]]*#[[:space:]]*include[[:space:]]*"' host |
+  awk -F: '
+    {
+      file = $1; n = split(file, part, "/")
+      layer = n == 2 ? "base" : part[2]
+      inc = $0; sub(/^[^"]*"/, "", inc); sub(/".*$/, "", inc)
+      top = index(inc, "/") ? substr(inc, 1, index(inc, "/") - 1) : ""
+      ok = 0
+      if (inc ~ /(^|\/)\.\.\//) ok = 0
+      else if (top == "sessile") ok = 1
+      else if (top == "") ok = layer != "include"
+      else if (top == layer) ok = 1
+      else if (layer == "bench" && (top == "la" || top == "mesh")) ok = 1
+      if (!ok) { print file ":" $2 ": \"" inc "\" is not " layer "'"'"'s to include"; bad = 1 }
+    }
+    END { exit bad }'
