@@ -1,5 +1,6 @@
 /* Device description and choice: discrete > integrated > virtual > CPU, with
- * --device INDEX|NAME-SUBSTRING and $SESSILE_DEVICE as overrides. */
+ * the options' device as override (the CLI's --device INDEX|NAME-SUBSTRING
+ * or $SESSILE_DEVICE). */
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>

@@ -34,7 +34,7 @@ struct sessile_gpu {
    * A context is used by one host thread at a time, so one of each serves. */
   struct sessile_buffer *staging;
   VkFence fence;
-  int staged_only; /* $SESSILE_STAGED: device buffers are never mapped (context.c) */
+  int staged_only; /* options.staged (the CLI's $SESSILE_STAGED): device buffers are never mapped (context.c) */
   VkPipelineCache pipeline_cache;
   char cache_path[1024]; /* "" when the on-disk cache is off */
   VkPhysicalDeviceMemoryProperties mem;
