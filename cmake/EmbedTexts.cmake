@@ -6,7 +6,7 @@
 # only when its content changed.
 #   sessile_embed_texts(OUT_VAR DIR EXT HEADER TYPE TABLE OUTFILE)
 # e.g. (SRC host/coral/grammars lsys coral/lsys_builtin.h embedded_text lsys_builtins lsys_grammars.c);
-# TYPE is host/embedded_text.h's struct.
+# TYPE is sessile/embedded_text.h's struct.
 function(sessile_embed_texts out_var dir ext header type table_name outfile)
   file(GLOB files CONFIGURE_DEPENDS ${dir}/*.${ext})
   list(SORT files)

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include "cli.h"
+#include "cli_gpu_env.h"
 
 int cli_usage_error(const char *cmd, const char *fmt, ...) {
   va_list ap;
@@ -166,11 +167,13 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   go.device = o->device;
   go.precision = o->precision;
   if (o->validation) go.validation = 1;
+  cli_gpu_env_store st;
+  SESSILE_CALL(cli_gpu_env(&go, &st));
   return sessile_gpu_create(&go, g);
 }
 
 sessile_status cli_gpu_check(const cli_gpu_opts *o) {
-  return sessile_gpu_check_device(o->device);
+  return sessile_gpu_check_device(cli_env_device(o->device));
 }
 
 sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {

@@ -1,7 +1,7 @@
 /* `sessile bench coral lsystem`: 1 M turtle modules (100 k with --quick)
  * derived, interpreted and meshed as tubes (host/coral/lsystem_bench.c). */
 #include "cli.h"
-#include "sessile/lsystem.h"
+#include "sessile/bench.h"
 
 sessile_status bench_coral_lsystem(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
   (void)g; /* every stage is host code */

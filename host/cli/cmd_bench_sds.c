@@ -101,7 +101,9 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   double t0 = sessile_wall_seconds();
   /* SIGINT/SIGTERM: the rock run stops at its next step and its temporary folder goes */
   volatile sig_atomic_t *stop = cli_stop_flag_install();
-  if (s == SESSILE_OK && rock_t > 0) s = sessile_sds_bench_rock(g, rock_t, stop, stdout);
+  const char *tmp = getenv("TMPDIR"); /* the rock run's scratch folder */
+  if (s == SESSILE_OK && rock_t > 0)
+    s = sessile_sds_bench_rock(g, rock_t, tmp && *tmp ? tmp : "/tmp", stop, stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) print_kernels(g, sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
   if (s == SESSILE_ERR_INTERRUPTED) {

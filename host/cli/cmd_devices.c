@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "cli.h"
+#include "cli_gpu_env.h"
 
 static const char *help =
     "usage: sessile devices [--device INDEX|NAME]\n"
@@ -23,6 +24,6 @@ int cmd_devices(int argc, char **argv, const cli_gpu_opts *global) {
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error("devices", "unknown option '%s'", argv[i]);
   }
-  sessile_status s = sessile_gpu_print_devices(stdout, o.device);
+  sessile_status s = sessile_gpu_print_devices(stdout, cli_env_device(o.device));
   return s == SESSILE_OK ? EXIT_OK : cli_fail(s);
 }

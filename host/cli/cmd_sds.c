@@ -4,7 +4,7 @@
 #include <string.h>
 #include "cli_generator.h"
 #include "cli_run.h"
-#include "sds/sds_builtin.h"
+#include "sessile/sds_builtin.h"
 #include "sessile/sds_run.h"
 
 static int list_models(void) {

@@ -107,7 +107,7 @@ sessile_status sessile_buffer_create(sessile_gpu *g, size_t bytes, sessile_buffe
   }
   sessile_status s = alloc_buffer(g, bytes, usage, want, fallback, b);
   /* A discrete GPU may hand us host-visible device memory (BAR): kept mapped,
-   * unless the context takes the staged paths on purpose ($SESSILE_STAGED). */
+   * unless the context takes the staged paths on purpose (options.staged). */
   if (s == SESSILE_OK && kind == SESSILE_BUFFER_DEVICE && g->staged_only && b->mapped) {
     vkUnmapMemory(g->device, b->memory);
     b->mapped = NULL;

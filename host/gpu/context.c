@@ -18,15 +18,6 @@ double sessile_wall_seconds(void) {
 }
 
 static sessile_status resolve_precision(int asked, int float64, const char *name, int *out) {
-  if (asked == 0) {
-    const char *e = getenv("SESSILE_PRECISION");
-    if (e && *e) {
-      SESSILE_CHECK(strcmp(e, "32") == 0 || strcmp(e, "64") == 0 || strcmp(e, "fp32") == 0 ||
-                        strcmp(e, "fp64") == 0,
-                    SESSILE_ERR_USAGE, "SESSILE_PRECISION=%s: use 32 or 64", e);
-      asked = strstr(e, "32") ? 32 : 64;
-    }
-  }
   if (asked == 0) asked = float64 ? 64 : 32;
   SESSILE_CHECK(asked == 32 || asked == 64, SESSILE_ERR_USAGE,
                 "precision %d is not supported: use 32 or 64", asked);
@@ -102,11 +93,10 @@ static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(g->phys, &props);
   g->limits = props.limits;
-  /* SESSILE_STAGED=1 takes a discrete GPU's paths on unified memory too
-   * (device buffers unmapped, transfers staged), so that the tests on
-   * lavapipe cover them (tests/CMakeLists.txt, the *_staged tests). */
-  const char *staged = getenv("SESSILE_STAGED");
-  if (staged && *staged && strcmp(staged, "0") != 0) g->info.unified_memory = 0, g->staged_only = 1;
+  /* staged: a discrete GPU's paths on unified memory too (device buffers
+   * unmapped, transfers staged), so that the tests on lavapipe cover them
+   * (tests/CMakeLists.txt, the *_staged tests). */
+  if (o->staged) g->info.unified_memory = 0, g->staged_only = 1;
   SESSILE_CALL(resolve_precision(o->precision, g->info.float64, g->info.name, &g->info.precision));
   /* The reductions use subgroupAdd (fewer barriers on lavapipe); every
    * Vulkan 1.1 GPU driver we know of has it, but a device may not. */
@@ -115,7 +105,7 @@ static sessile_status gpu_init(sessile_gpu *g, const sessile_gpu_options *o) {
                 "(VK_SUBGROUP_FEATURE_ARITHMETIC_BIT), which sessile's reductions need; "
                 "choose another device with --device (see 'sessile devices')", g->info.name);
   SESSILE_CALL(create_device(g));
-  SESSILE_CALL(sessile_pipeline_cache_open_(g, o->cache_dir));
+  SESSILE_CALL(sessile_pipeline_cache_open_(g, o->cache_dir, o->cache_default));
   return SESSILE_OK;
 }
 

@@ -1,5 +1,6 @@
 /* Device description and choice: discrete > integrated > virtual > CPU, with
- * --device INDEX|NAME-SUBSTRING and $SESSILE_DEVICE as overrides. */
+ * the options' device as override (the CLI's --device INDEX|NAME-SUBSTRING
+ * or $SESSILE_DEVICE). */
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
@@ -125,7 +126,6 @@ sessile_status sessile_choose_device_(VkInstance inst, const char *choice, VkPhy
   r = vkEnumeratePhysicalDevices(inst, &n, devs);
   if (r < 0) return sessile_vk_fail_(r, "vkEnumeratePhysicalDevices", __func__);
 
-  if (!choice || !*choice) choice = getenv("SESSILE_DEVICE");
   int pick = -1;
   if (choice && *choice) {
     char *end = NULL;

@@ -34,7 +34,7 @@ struct sessile_gpu {
    * A context is used by one host thread at a time, so one of each serves. */
   struct sessile_buffer *staging;
   VkFence fence;
-  int staged_only; /* $SESSILE_STAGED: device buffers are never mapped (context.c) */
+  int staged_only; /* options.staged (the CLI's $SESSILE_STAGED): device buffers are never mapped (context.c) */
   VkPipelineCache pipeline_cache;
   char cache_path[1024]; /* "" when the on-disk cache is off */
   VkPhysicalDeviceMemoryProperties mem;
@@ -98,7 +98,7 @@ sessile_status sessile_gpu_oneshot_end_(sessile_gpu *g, VkCommandBuffer cb);
 VkResult sessile_gpu_submit_wait_(sessile_gpu *g, VkQueue q, VkCommandBuffer cb, const char **what);
 
 /* Pipeline cache persistence (pipeline_cache.c). */
-sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir);
+sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir, const char *default_dir);
 void sessile_pipeline_cache_close_(sessile_gpu *g);
 
 #endif

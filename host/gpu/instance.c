@@ -81,10 +81,7 @@ sessile_status sessile_instance_create_(int validation, sessile_validation_sink_
                                         VkDebugUtilsMessengerEXT *messenger) {
   *inst = VK_NULL_HANDLE;
   *messenger = VK_NULL_HANDLE;
-  if (validation < 0) {
-    const char *e = getenv("SESSILE_VALIDATION");
-    validation = e && *e && strcmp(e, "0") != 0;
-  }
+  validation = validation > 0; /* -1: unchosen, off (the CLI reads the environment) */
   static const char *layer = "VK_LAYER_KHRONOS_validation";
   static const char *ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
   if (validation)

@@ -6,7 +6,8 @@
  * The cache folder may be shared or tampered with, so nothing in it is
  * trusted beyond "a regular file of ours":
  *   - missing folders are created with mode 0700; the default folder
- *     ($XDG_CACHE_HOME/sessile or ~/.cache/sessile) is not used when it is a
+ *     (the caller's cache_default: the CLI's $XDG_CACHE_HOME/sessile or
+ *     ~/.cache/sessile) is not used when it is a
  *     symlink (an explicit cache_dir is the caller's choice: it is resolved
  *     once with realpath);
  *   - the folder and the file must belong to us (euid);
@@ -96,19 +97,16 @@ static int open_cache_dir(const char *cache_path, const char **name) {
 }
 
 /* Sets g->cache_path, or leaves it "" when the cache is off or unusable. */
-static void cache_path(sessile_gpu *g, const char *dir) {
+static void cache_path(sessile_gpu *g, const char *dir, const char *default_dir) {
   g->cache_path[0] = 0;
   if (dir && !*dir) return; /* disabled */
   char *base = NULL;
-  const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
   if (dir) {
     /* the caller's folder: create it, then use its real location */
     if (mkdirs(dir) != 0) return;
     base = realpath(dir, NULL);
-  } else if (xdg && xdg[0] == '/') { /* XDG: relative values are ignored */
-    base = str_printf("%s/sessile", xdg);
-  } else if (home && *home) {
-    base = str_printf("%s/.cache/sessile", home);
+  } else if (default_dir && *default_dir) {
+    base = strdup(default_dir);
   }
   if (!base) return;
   if (!dir && mkdirs(base) != 0) {
@@ -230,8 +228,8 @@ static void write_cache(const char *cache_path, const void *data, size_t size) {
   close(dfd);
 }
 
-sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir) {
-  cache_path(g, dir);
+sessile_status sessile_pipeline_cache_open_(sessile_gpu *g, const char *dir, const char *default_dir) {
+  cache_path(g, dir, default_dir);
   void *data = NULL;
   size_t size = g->cache_path[0] ? read_cache(g->cache_path, &data) : 0;
   VkPipelineCacheCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO,

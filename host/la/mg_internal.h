@@ -43,8 +43,5 @@ sessile_status mg_rec_vcycle(sessile_mg *mg, sessile_cmd *c, vref r, vref out, i
                              uint32_t set, uint32_t *count, int guard);
 /* Where the finest level's first sweep goes so that the last lands in out. */
 vref mg_first_target(const sessile_mg *mg, vref out);
-/* `sessile bench la`'s multigrid table (bench_mg.c): the first `sizes` of
- * 33x33x25, 65x65x49, 129x129x97. */
-sessile_status la_bench_mg(sessile_la *la, unsigned sizes, FILE *out);
 
 #endif

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "gpu/graphics.h"
+#include "sessile/graphics.h"
 #include "mesh_internal.h"
 #include "sessile/colormap.h"
 

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/io.h"
-#include "sds/sds_builtin.h"
+#include "sessile/sds_builtin.h"
 #include "sds/sds_sim.h"
 
 static const char help[] =

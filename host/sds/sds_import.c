@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "mesh/tetgen_plc.h"
+#include "sessile/tetgen.h"
 #include "sds/sds_internal.h"
 
 sessile_status sessile_sds_from_tets(const double *x, uint32_t n, const uint32_t *tet, uint32_t nt,
@@ -39,43 +39,22 @@ sessile_status sessile_sds_from_surface(const sessile_surface *s, const char *sw
   if (switches) snprintf(sw, sizeof sw, "%s", switches);
   else if (max_volume > 0) snprintf(sw, sizeof sw, "%sa%.17g", SESSILE_SDS_TETGEN_SWITCHES, max_volume);
   else snprintf(sw, sizeof sw, "%s", SESSILE_SDS_TETGEN_SWITCHES);
-  tg_plc plc = {0};
-  int *facet_poly = malloc(((size_t)s->nf + 1) * sizeof(int));
-  int *poly_vert = malloc(((size_t)s->nf + 1) * sizeof(int));
-  int *verts = malloc(3 * (size_t)s->nf * sizeof(int));
-  int *facet_hole = calloc((size_t)s->nf + 1, sizeof(int));
-  int *marker = malloc((size_t)s->nf * sizeof(int));
-  if (!facet_poly || !poly_vert || !verts || !facet_hole || !marker) {
-    free(facet_poly), free(poly_vert), free(verts), free(facet_hole), free(marker);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for TetGen's input");
-  }
-  for (uint32_t f = 0; f <= s->nf; f++) facet_poly[f] = (int)f, poly_vert[f] = 3 * (int)f;
-  for (uint32_t f = 0; f < s->nf; f++) {
-    marker[f] = 1;
-    for (int i = 0; i < 3; i++) verts[3 * f + i] = (int)s->tri[3 * f + i];
-  }
-  plc.npoints = (int)s->nv, plc.xyz = s->pos;
-  plc.nfacets = (int)s->nf, plc.facet_poly = facet_poly, plc.poly_vert = poly_vert;
-  plc.verts = verts, plc.facet_hole = facet_hole, plc.facet_marker = marker;
-  tg_result r = {0};
+  sessile_tetgen_mesh r = {0};
   char msg[256] = "";
-  int code = tg_tetrahedralize(&plc, sw, &r, msg, sizeof msg);
-  free(facet_poly), free(poly_vert), free(verts), free(facet_hole), free(marker);
-  if (code != 0) {
-    tg_result_free(&r);
-    return sessile_error_set(code == 1 || code == -2 ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_USAGE,
+  sessile_status ts = sessile_tetgen_surface(s->pos, (int)s->nv, s->tri, (int)s->nf, sw, &r, msg, sizeof msg);
+  if (ts != SESSILE_OK)
+    return sessile_error_set(ts == SESSILE_ERR_NO_MEMORY ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_USAGE,
                              "sds: TetGen (switches %s) rejected the surface: %s", sw, msg);
-  }
   uint32_t *tet = malloc(4 * (size_t)r.ntets * sizeof *tet);
   if (!tet) {
-    tg_result_free(&r);
+    sessile_tetgen_mesh_free(&r);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %d tetrahedra", r.ntets);
   }
   for (size_t i = 0; i < 4 * (size_t)r.ntets; i++) tet[i] = (uint32_t)r.tet[i];
   sessile_status st = sessile_sds_from_tets(r.xyz, (uint32_t)r.npoints, tet, (uint32_t)r.ntets, nmorph,
                                             nstate, density, out);
   free(tet);
-  tg_result_free(&r);
+  sessile_tetgen_mesh_free(&r);
   return st;
 }
 

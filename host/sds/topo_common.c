@@ -5,9 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "../mesh/tetgen_plc.h"
-#include "mesh/mesh_internal.h"
 #include "sessile/intersect.h"
+#include "sessile/mesh_sort.h"
+#include "sessile/tetgen.h"
 #include "topo_internal.h"
 
 const int topo_face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
@@ -143,15 +143,13 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
                               uint32_t **out, uint32_t *nout) {
   sessile_status st = SESSILE_OK;
   uint32_t *hv = malloc((3 * (size_t)nf + 1) * sizeof *hv);
-  int *facet_poly = malloc(((size_t)nf + 1) * sizeof(int)), *poly_vert = malloc(((size_t)nf + 1) * sizeof(int));
-  int *verts = malloc((3 * (size_t)nf + 1) * sizeof(int)), *facet_hole = calloc((size_t)nf + 1, sizeof(int));
-  int *marker = malloc(((size_t)nf + 1) * sizeof(int));
+  uint32_t *verts = malloc((3 * (size_t)nf + 1) * sizeof *verts);
   double *xyz = NULL;
   uint32_t *glob = NULL, *res = NULL;
   topo_face *hf = NULL, *rf = NULL;
-  tg_result r;
+  sessile_tetgen_mesh r;
   memset(&r, 0, sizeof r);
-  if (!hv || !facet_poly || !poly_vert || !verts || !facet_hole || !marker) goto nomem;
+  if (!hv || !verts) goto nomem;
   /* PLC points: the hull's vertices (sorted, unique), then the interior points. */
   memcpy(hv, faces, 3 * (size_t)nf * sizeof *hv);
   qsort(hv, 3 * (size_t)nf, sizeof *hv, u32_cmp);
@@ -166,11 +164,8 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
     glob[i] = i < nh ? hv[i] : pts[i - nh];
     memcpy(xyz + 3 * i, x + 3 * (size_t)glob[i], 3 * sizeof *xyz);
   }
-  for (uint32_t f = 0; f < nf; f++) {
-    facet_poly[f] = (int)f, poly_vert[f] = 3 * (int)f, marker[f] = 1;
-    for (int k = 0; k < 3; k++) verts[3 * f + k] = local_of(hv, nh, faces[3 * f + k]);
-  }
-  facet_poly[nf] = (int)nf, poly_vert[nf] = 3 * (int)nf;
+  for (uint32_t f = 0; f < nf; f++)
+    for (int k = 0; k < 3; k++) verts[3 * f + k] = (uint32_t)local_of(hv, nh, faces[3 * f + k]);
   /* TetGen 1.5.0 asserts (aborts the process) on some self-intersecting
    * PLCs: a tangled hull (a repair cavity around inverted tets, a split fan
    * folded over its star) is refused here instead.  O(nf^2) with box
@@ -193,17 +188,16 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
       }
     }
   }
-  tg_plc plc = {np, xyz, NULL, (int)nf, facet_poly, poly_vert, verts, facet_hole, NULL, marker, 0, NULL};
   char msg[256];
   /* p: a PLC; Y: no Steiner point on its facets; z: zero-based; Q: quiet.
    * No q/a: no quality or size refinement, so no interior Steiner point
    * either unless the hull needs one (then refused below). */
-  int code = tg_tetrahedralize(&plc, "pYzQ", &r, msg, sizeof msg);
-  if (code == 1 || code == -2) {
+  sessile_status ts = sessile_tetgen_surface(xyz, np, verts, (int)nf, "pYzQ", &r, msg, sizeof msg);
+  if (ts == SESSILE_ERR_NO_MEMORY) {
     st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "re-tetrahedralising a hull of %u faces: %s", nf, msg);
     goto done;
   }
-  if (code != 0) {
+  if (ts != SESSILE_OK) {
     st = sessile_error_set(SESSILE_ERR_NUMERIC, "re-tetrahedralising a hull of %u faces: %s", nf, msg);
     goto done;
   }
@@ -278,8 +272,8 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
 nomem:
   st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory re-tetrahedralising a hull of %u faces", nf);
 done:
-  tg_result_free(&r);
-  free(hv), free(facet_poly), free(poly_vert), free(verts), free(facet_hole), free(marker);
+  sessile_tetgen_mesh_free(&r);
+  free(hv), free(verts);
   free(xyz), free(glob), free(res), free(hf), free(rf);
   return st;
 }

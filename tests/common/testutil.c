@@ -1,4 +1,5 @@
 #include "testutil.h"
+#include "cli_gpu_env.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,8 +30,10 @@ sessile_gpu *t_gpu(int precision) {
   sessile_gpu_options_default(&o);
   o.validation = 1;
   o.precision = precision;
+  cli_gpu_env_store st;
   sessile_gpu *g = NULL;
-  sessile_status s = sessile_gpu_create(&o, &g);
+  sessile_status s = cli_gpu_env(&o, &st); /* as the CLI: the library reads no environment */
+  if (s == SESSILE_OK) s = sessile_gpu_create(&o, &g);
   if (s != SESSILE_OK) {
     printf("FAIL cannot create the GPU context: %s\n", sessile_error_message());
     exit(1);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include "sessile/gpu.h"
 #include "sessile/la.h"
+#include "sessile/matrix_gen.h" /* the test matrices (host/bench) */
 
 extern int t_failed, t_passed;
 

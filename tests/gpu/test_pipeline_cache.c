@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
+#include "cli/cli_gpu_env.h"
 #include "testutil.h"
 
 static char T[512];
@@ -50,9 +51,11 @@ static double cycle(const char *cache_dir) {
   sessile_gpu_options o;
   sessile_gpu_options_default(&o);
   o.cache_dir = cache_dir;
+  cli_gpu_env_store st; /* the default folder from $XDG_CACHE_HOME, as the CLI finds it */
   sessile_gpu *g = NULL;
   alarm(60);
-  sessile_status s = sessile_gpu_create(&o, &g);
+  sessile_status s = cli_gpu_env(&o, &st);
+  if (s == SESSILE_OK) s = sessile_gpu_create(&o, &g);
   if (s != SESSILE_OK) {
     alarm(0);
     printf("     sessile_gpu_create: %s\n", sessile_error_message());

@@ -14,6 +14,7 @@
 
 #include "sessile/la_ref.h"
 #include "sessile/matrix.h"
+#include "sessile/matrix_gen.h"
 #include "sessile/status.h"
 
 static int failures = 0;

@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "gpu/graphics.h"
+#include "sessile/graphics.h"
 #include "render_shapes.h"
 #include "sessile/colormap.h"
 #include "sessile/render_mesh.h"

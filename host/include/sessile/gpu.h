@@ -26,17 +26,27 @@ typedef struct sessile_cmd sessile_cmd;
 typedef void (*sessile_validation_fn)(void *user, int is_error, const char *message);
 
 typedef struct sessile_gpu_options {
-  /* Device by index or case-insensitive name substring; NULL: $SESSILE_DEVICE,
-   * else the best (discrete > integrated > virtual > CPU). */
+  /* The library reads no environment variable: the CLI fills these from
+   * SESSILE_DEVICE, SESSILE_VALIDATION, SESSILE_PRECISION, SESSILE_STAGED,
+   * XDG_CACHE_HOME and HOME (host/cli/cli_gpu_env.h). */
+  /* Device by index or case-insensitive name substring; NULL: the best
+   * (discrete > integrated > virtual > CPU). */
   const char *device;
-  /* Enable VK_LAYER_KHRONOS_validation: 1 yes, 0 no, -1 from $SESSILE_VALIDATION. */
+  /* Enable VK_LAYER_KHRONOS_validation: 1 yes, 0 or -1 (unchosen) no. */
   int validation;
   /* Krylov vector precision: 64, 32, or 0 = 64 where the device has
-   * shaderFloat64 ($SESSILE_PRECISION overrides 0). */
+   * shaderFloat64. */
   int precision;
-  /* Pipeline cache folder; NULL: $XDG_CACHE_HOME/sessile or ~/.cache/sessile;
-   * "" disables the on-disk cache. */
+  /* 1: take a discrete GPU's paths on unified memory too (device buffers
+   * unmapped, every transfer staged), so that lavapipe covers them. */
+  int staged;
+  /* Pipeline cache folder, the caller's choice (resolved once with
+   * realpath); NULL: cache_default; "" disables the on-disk cache. */
   const char *cache_dir;
+  /* The default cache folder (the CLI's: $XDG_CACHE_HOME/sessile or
+   * ~/.cache/sessile), created 0700 and not used when it is a symlink;
+   * NULL: no on-disk cache unless cache_dir names one. */
+  const char *cache_default;
   /* Where validation warnings and errors go once counted
    * (sessile_gpu_validation_count).  NULL (the default): printed to stderr
    * as "sessile: vulkan validation error|warning: MESSAGE", the line the

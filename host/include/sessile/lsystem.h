@@ -166,10 +166,6 @@ sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral
                                            size_t len, const sessile_coral_lsystem_result *r,
                                            const sessile_gpu *gpu, const volatile sig_atomic_t *stop);
 
-/* The benchmark: a lophelia-like grammar derived until it holds at least
- * target modules, interpreted and meshed as tubes; stage times to out. */
-sessile_status sessile_coral_lsystem_bench(uint32_t target, FILE *out);
-
 #ifdef __cplusplus
 }
 #endif

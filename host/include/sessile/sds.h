@@ -296,19 +296,6 @@ void sessile_sds_gpu_set_reads(sessile_sds_gpu *s, int storage);
 /* Tets with signed volume <= 0 at the uploaded state, ascending. */
 sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uint32_t *n);
 
-/* Times force + integrate steps for icosphere imports of levels 2-5 (and
- * the Figure 9 body over its rock), GPU against the C reference, with the
- * contact stages' share (medians of 5 repeats); prints one line per size. */
-sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
-/* Runs the shipped rock model (Figure 9) through sessile_sds_run to t_end
- * (< 0: the model's) in a temporary run directory (removed after) and prints
- * wall time, cells, tets, steps and the ratio to the paper's 5.7 minutes
- * (extrapolated, and labelled so, when t_end is short of the model's). */
-/* stop (may be NULL): a signal's flag, polled by the run; when it is raised
- * the run ends early with SESSILE_ERR_INTERRUPTED and the folder is removed
- * all the same. */
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const volatile sig_atomic_t *stop, FILE *out);
-
 #ifdef __cplusplus
 }
 #endif

@@ -11,6 +11,8 @@
 #ifndef SESSILE_TETGEN_H
 #define SESSILE_TETGEN_H
 
+#include <stddef.h>
+#include <stdint.h>
 #include "sessile/box.h"
 #include "sessile/status.h"
 #include "sessile/surface.h"
@@ -58,6 +60,28 @@ void sessile_tetgen_options_default(sessile_tetgen_options *o);
  * errors and any other failure.  out is empty on failure. */
 sessile_status sessile_tetgen_conforming(const sessile_box *box, const sessile_surface *sponge,
                                          const sessile_tetgen_options *opt, sessile_tetmesh *out);
+
+/* TetGen's mesh of the inside of a closed triangulated surface (the SDS
+ * import and its topology repairs): points first (zero-based), then any
+ * Steiner points TetGen added; tets as TetGen orients them.  The struct owns
+ * its malloc'd arrays (sessile_tetgen_mesh_free; a zeroed one is empty). */
+typedef struct sessile_tetgen_mesh {
+  int npoints, ntets;
+  double *xyz; /* 3 npoints */
+  int *tet;    /* 4 ntets */
+} sessile_tetgen_mesh;
+
+/* Meshes the PLC whose facets are the ntri triangles tri (one polygon each,
+ * marker 1, no holes) over the npoints points xyz, with TetGen's switches as
+ * given (e.g. "pYzQ": a PLC, no Steiner point on the facets, zero-based,
+ * quiet).  msg receives TetGen's reason on failure.  SESSILE_ERR_NO_MEMORY
+ * when TetGen or the copy ran out of memory, SESSILE_ERR_NUMERIC for any
+ * other failure (the input rejected, TetGen's internal errors, a crash of
+ * its process); out is empty then. */
+sessile_status sessile_tetgen_surface(const double *xyz, int npoints, const uint32_t *tri, int ntri,
+                                      const char *switches, sessile_tetgen_mesh *out, char *msg,
+                                      size_t msglen);
+void sessile_tetgen_mesh_free(sessile_tetgen_mesh *m);
 
 #ifdef __cplusplus
 }

@@ -11,8 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sds/sds_builtin.h"
-#include "sds/sds_internal.h"
+#include "sessile/sds_builtin.h"
+#include "sessile/sds.h"
 #include "sessile/bench.h"
 #include "sessile/sds_run.h"
 
@@ -123,14 +123,14 @@ static int rm_entry(const char *path, const struct stat *sb, int flag, struct FT
 
 #define PAPER_S (5.7 * 60) /* Porter & McCormack: the rock model of Figure 9, dual-core 2 GHz PC */
 
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const volatile sig_atomic_t *stop, FILE *out) {
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const char *scratch,
+                                      const volatile sig_atomic_t *stop, FILE *out) {
   const embedded_text *m = embedded_text_find(sds_builtins, "rock");
   SESSILE_CHECK(m, SESSILE_ERR_INTERNAL, "bench sds: the rock model is not embedded");
-  const char *tmp = getenv("TMPDIR");
   char dir[512];
-  snprintf(dir, sizeof dir, "%s/sessile-bench-sds-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+  snprintf(dir, sizeof dir, "%s/sessile-bench-sds-XXXXXX", scratch);
   SESSILE_CHECK(mkdtemp(dir), SESSILE_ERR_IO, "bench sds: cannot create a temporary run directory under %s",
-                tmp && *tmp ? tmp : "/tmp");
+                scratch);
   sessile_run_options ro = {.dir = dir, .generator = "bench-sds", .version = "bench", .mode = SESSILE_RUN_NEW,
                             .stop = stop};
   sessile_run *run = NULL;

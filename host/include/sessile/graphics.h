@@ -1,5 +1,5 @@
-/* Offscreen graphics on the compute context (not public API; used by
- * host/render).  A target is a w x h RGBA8 colour image (UNORM: shader values
+/* sessile — offscreen graphics on the compute context (host/gpu/graphics*.c),
+ * public so that host/render draws through it; the renderer is its one user.  A target is a w x h RGBA8 colour image (UNORM: shader values
  * are written as they are, no sRGB encoding), a depth buffer, optionally
  * multisampled with a resolve, one render pass and framebuffer, and a
  * host-visible readback buffer.  Pipelines are made for a target once and

@@ -1,12 +1,12 @@
-/* The welded surface's benchmark (`sessile bench coral weld`, weld_bench.h):
+/* The welded surface's benchmark (`sessile bench coral weld`, sessile/bench.h):
  * a random 10 k-segment branching skeleton on a 256-cell grid (longest
  * axis), on the device by stage and by the plain-C reference in the same
  * run (docs/weld.md). */
 #include <string.h>
-#include "weld_bench.h"
-#include "weld_internal.h"
+#include "mesh/weld_internal.h"
+#include "sessile/bench.h"
 
-sessile_status weld_bench(sessile_gpu *g, int quick, FILE *out) {
+sessile_status sessile_bench_weld(sessile_gpu *g, int quick, FILE *out) {
   uint32_t nseg = quick ? 500 : 10000, cells = quick ? 64 : 256;
   sessile_skeleton s = {0};
   sessile_surface m = {0}, r = {0};

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
+#include "sessile/bench.h"
 #include "sessile/lsystem.h"
 #include "sessile/rng.h"
 #include "sessile/skeleton.h"

@@ -8,7 +8,7 @@
  * solution with 1 % noise on the free nodes.  docs/performance.md. */
 #include <stdlib.h>
 #include <string.h>
-#include "mg_internal.h"
+#include "bench_internal.h"
 
 typedef struct {
   int nl;

@@ -8,7 +8,7 @@
 #include <omp.h>
 #include <stdlib.h>
 #include <string.h>
-#include "mg_internal.h"
+#include "bench_internal.h"
 #include "sessile/bench.h"
 #include "sessile/la_ref.h"
 
