@@ -331,12 +331,7 @@ static void test_p1tet(void) {
   check_true(csr_valid(&a) && a.nrows == 65 * 65 * 65,
              "p1tet 64^3: %u rows, %" PRIu64 " nonzeros in %.3f s (%d threads)", a.nrows, a.nnz,
              dt, omp_get_max_threads());
-#if defined(__SANITIZE_ADDRESS__)
-  const double limit = 20.0; /* instrumented build: only a sanity bound */
-#else
-  const double limit = 1.0;
-#endif
-  check_le("p1tet 64^3 build time in seconds", dt, limit);
+  /* its time is printed, never asserted: tests do not time (sessile bench la does) */
   sessile_csr_free(&a);
 
   sessile_status s = sessile_csr_p1tet(2, 2, 2, 1.0, -1.0, 1.0, &a);
