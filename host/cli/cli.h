@@ -60,7 +60,6 @@ typedef struct cli_command {
 
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
-int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */

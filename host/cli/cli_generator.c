@@ -6,17 +6,21 @@
 #include <string.h>
 #include <unistd.h>
 #include "cli_generator.h"
+#include "cli_monitor.h"
 #include "cli_run.h"
 
 static void print_help(const sessile_generator *g) {
   int pad = (int)strlen(g->name) + 15;
-  printf("usage: sessile %s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
+  printf("usage: sessile %s%s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
          "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
-         g->name, pad, "");
+         g->name, g->presets ? " [--preset NAME]" : "", pad, "");
+  for (int k = 0; k < g->noptions; k++) printf("%*s[%s %s]\n", pad, "", g->options[k].option, g->options[k].metavar);
   for (int k = 0; k < g->nflags; k++) printf("%*s[%s]\n", pad, "", g->flags[k].option);
   if (g->needs_device) printf("%*s[--device D] [--precision 32|64]\n", pad, "");
   printf("       sessile %s --resume DIR [--iterations N]\n\n%s\n"
          "Parameters, units and sources: --print-config.\n\n", g->name, g->about);
+  if (g->presets) printf("  --preset NAME   the parameters' starting point (default %s):\n%s\n", g->presets->fallback,
+                         g->presets->help);
   printf("  --seed N        seed of %s, 0..2^64-1 (default 1)\n"
          "  --iterations N  iterations (default %d)      --every K  snapshot interval (default %d)\n"
          "  --out DIR       run directory (default %s); must be new or empty\n"
@@ -24,6 +28,11 @@ static void print_help(const sessile_generator *g) {
          "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
          "  --quiet         no progress and no summary line\n",
          g->seed_help, g->iterations, g->every, g->out_default);
+  for (int k = 0; k < g->noptions; k++) {
+    char head[64];
+    snprintf(head, sizeof head, "%s %s", g->options[k].option, g->options[k].metavar);
+    printf("  %-15s %s (default '%s')\n", head, g->options[k].help, g->options[k].fallback);
+  }
   for (int k = 0; k < g->nflags; k++) printf("  %-15s %s\n", g->flags[k].option, g->flags[k].help);
   if (g->needs_device) printf("  --device D      the device, when the configuration needs one (sessile --help)\n");
   printf("Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n");
@@ -42,8 +51,24 @@ typedef struct gen_cmd {
   cli_run_args a;
   cli_gpu_opts go;
   sessile_gen_setup su;
+  cJSON *stored; /* a resume's stored configuration: su's strings point into it */
+  char out_default[512];
   char params[4096] __attribute__((aligned(16))); /* the table's struct */
 } gen_cmd;
+
+/* The generator's own options with a value, and --preset: 1 consumed, 0
+ * not one, -1 usage error.  An empty value is a value (--slices ''). */
+static int option(gen_cmd *c, int argc, char **argv, int *i) {
+  const sessile_generator *g = c->g;
+  int k = 0;
+  while (k < g->noptions && strcmp(argv[*i], g->options[k].option)) k++;
+  const char **to = k < g->noptions ? &c->su.values[k] : g->presets && !strcmp(argv[*i], "--preset") ? &c->su.preset : NULL;
+  if (!to) return 0;
+  if (*i + 1 < argc && !argv[*i + 1][0]) *to = argv[++*i];
+  else if (!(*to = cli_value(g->name, argc, argv, i))) return -1;
+  c->a.have_run_option = 1;
+  return 1;
+}
 
 static int parse(gen_cmd *c, int argc, char **argv) {
   const char *name = c->g->name;
@@ -59,7 +84,8 @@ static int parse(gen_cmd *c, int argc, char **argv) {
       c->a.have_run_option = 1;
       continue;
     }
-    int r = cli_gpu_option(name, argc, argv, &i, &c->go);
+    int r = option(c, argc, argv, &i);
+    if (r == 0) r = cli_gpu_option(name, argc, argv, &i, &c->go);
     if (r == 0) r = cli_run_option(name, argc, argv, &i, &c->a);
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error(name, "unknown option '%.60s'", argv[i]);
@@ -74,6 +100,7 @@ static sessile_status configure(gen_cmd *c) {
   sessile_params_defaults(g->table, c->params);
   c->su.seed = c->a.seed, c->su.iterations = c->a.iterations, c->su.every = c->a.every;
   if (c->a.resume) return SESSILE_OK; /* the stored configuration, once admitted */
+  if (g->presets) SESSILE_CALL(g->presets->apply(c->su.preset, c->params));
   SESSILE_CALL(cli_run_apply_params(g->table, c->params, &c->a));
   SESSILE_CALL(sessile_params_check(g->table, c->params));
   return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
@@ -83,12 +110,23 @@ static sessile_status configure(gen_cmd *c) {
  * iteration, all before the folder is written. */
 static sessile_status resume_config(gen_cmd *c, sessile_run *run) {
   const sessile_generator *g = c->g;
-  SESSILE_CALL(sessile_gen_config_read(g, sessile_run_config(run), c->params, &c->su));
+  c->stored = cJSON_Duplicate(sessile_run_config(run), 1); /* the run's copy is replaced at start */
+  SESSILE_CHECK(c->stored, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  SESSILE_CALL(sessile_gen_config_read(g, c->stored, c->params, &c->su));
   if (c->a.have_iterations) c->su.iterations = c->a.iterations;
   int k = sessile_ckpt_iteration(sessile_run_checkpoint_loaded(run));
   SESSILE_CHECK(k <= c->su.iterations, SESSILE_ERR_USAGE,
                 "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
   return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
+}
+
+/* The device, and the checks that need it, before the folder is touched. */
+static sessile_status device(gen_cmd *c, sessile_gpu **gpu) {
+  SESSILE_CALL(cli_gpu_create(&c->go, gpu));
+  c->su.gpu = *gpu;
+  sessile_status s = c->g->check ? c->g->check(c->params, &c->su) : SESSILE_OK;
+  c->su.gpu = NULL;
+  return s;
 }
 
 static int run_generator(gen_cmd *c, int argc, char **argv) {
@@ -100,16 +138,17 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
     s = sessile_params_print(g->table, c->params, stdout);
     return s == SESSILE_OK ? EXIT_OK : cli_fail_in(name, s);
   }
-  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : g->out_default;
+  snprintf(c->out_default, sizeof c->out_default, g->out_default, c->su.preset ? c->su.preset : "");
+  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : c->out_default;
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_gpu *gpu = NULL;
   /* a new run's device first: an unknown --device writes nothing */
-  if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = cli_gpu_create(&c->go, &gpu);
+  if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = device(c, &gpu);
   sessile_run *run = NULL;
   if (s == SESSILE_OK) s = cli_run_admit(name, argc, argv, &c->a, dir, stop, &run);
   if (s == SESSILE_OK && c->a.resume) s = resume_config(c, run);
   if (s == SESSILE_OK && c->a.resume && g->needs_device && g->needs_device(c->params))
-    s = cli_gpu_create(&c->go, &gpu);
+    s = device(c, &gpu);
   if (s == SESSILE_OK) s = sessile_run_start(run);
   if (s == SESSILE_OK) {
     cJSON *cfg = sessile_gen_config(g, c->params, &c->su);
@@ -118,8 +157,11 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   if (s == SESSILE_OK) cli_run_note_device(run, gpu);
   int done = 0;
   c->su.run = run, c->su.gpu = gpu;
-  int show = !c->a.quiet && isatty(STDERR_FILENO);
+  int tty = isatty(STDERR_FILENO), show = !c->a.quiet && tty && !g->says_progress;
+  cli_monitor mon = {.cmd = name, .quiet = c->a.quiet, .tty = tty};
+  c->su.say = cli_monitor_line, c->su.say_user = &mon;
   if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
+  cli_monitor_end(&mon);
   if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(gpu);
@@ -132,6 +174,8 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   static gen_cmd c;
   memset(&c, 0, sizeof c);
   c.g = g, c.go = *global;
+  for (int k = 0; k < g->noptions && k < SESSILE_GEN_MAX_OPTIONS; k++) c.su.values[k] = g->options[k].fallback;
+  if (g->presets) c.su.preset = g->presets->fallback;
   if (cli_run_args_init(&c.a, argc, 1, g->iterations, g->every) != 0) {
     cli_run_args_free(&c.a);
     fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
@@ -140,5 +184,6 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   int rc = parse(&c, argc, argv);
   if (rc < 0) rc = run_generator(&c, argc, argv);
   cli_run_args_free(&c.a);
+  cJSON_Delete(c.stored);
   return rc;
 }

@@ -180,4 +180,4 @@ const sessile_generator sessile_gen_coral_venation = {
     "checkpoint at each snapshot (docs/run.md).",
     "the auxins' placement", "runs/coral-venation", "coral/iter_%04d.ply", "coral/final.ply",
     &sessile_venation_param_table, 60, 20, NULL, 0, needs_device, check_size,
-    create, restore, step, snapshot, sections, finish, destroy};
+    create, restore, step, snapshot, sections, finish, destroy, NULL, 0, NULL, 0, NULL};

@@ -87,4 +87,4 @@ const sessile_generator sessile_gen_sphere = {
     "exactly as every generator does (docs/run.md).",
     "the random walk", "runs/sphere", "sphere/iter_%04d.ply", "sphere/final.ply",
     &sessile_sphere_param_table, 10, 5, NULL, 0, NULL, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    create, restore, step, snapshot, sections, finish, destroy, NULL, 0, NULL, 0, NULL};

@@ -159,4 +159,4 @@ const sessile_generator sessile_gen_sponge_particles = {
     "manifest.json, records.jsonl and a checkpoint at each snapshot.",
     "the particles", "runs/sponge", "sponge/iter_%04d.ply", "sponge/final.ply",
     &sessile_psponge_param_table, 50, 10, flags, 1, needs_device, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    create, restore, step, snapshot, sections, finish, destroy, NULL, 0, NULL, 0, NULL};

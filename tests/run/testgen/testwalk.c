@@ -78,4 +78,4 @@ const sessile_generator sessile_gen_testwalk = {
     "Walkers on a line take seeded uniform steps.  Writes walk/iter_NNNN.csv every K\n"
     "iterations and at the last, and walk/final.csv.",
     "the steps", "runs/testwalk", "walk/iter_%04d.csv", NULL, &table, 6, 2, NULL, 0, NULL, NULL,
-    create, restore, step, snapshot, sections, finish, destroy};
+    create, restore, step, snapshot, sections, finish, destroy, NULL, 0, NULL, 0, NULL};
