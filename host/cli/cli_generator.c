@@ -11,6 +11,8 @@
 
 static void print_help(const sessile_generator *g) {
   int pad = (int)strlen(g->name) + 15;
+  char out[512];
+  snprintf(out, sizeof out, g->out_default, g->presets ? g->presets->fallback : ""); /* "runs/%s": the preset's */
   printf("usage: sessile %s%s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
          "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
          g->name, g->presets ? " [--preset NAME]" : "", pad, "");
@@ -27,7 +29,7 @@ static void print_help(const sessile_generator *g) {
          "  --force         replace the earlier sessile run in DIR     --resume DIR  continue it\n"
          "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
          "  --quiet         no progress and no summary line\n",
-         g->seed_help, g->iterations, g->every, g->out_default);
+         g->seed_help, g->iterations, g->every, out);
   for (int k = 0; k < g->noptions; k++) {
     char head[64];
     snprintf(head, sizeof head, "%s %s", g->options[k].option, g->options[k].metavar);

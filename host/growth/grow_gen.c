@@ -140,8 +140,9 @@ const sessile_generator sessile_gen_grow = {
         "statistics), checkpoint.bin, sponge/final.ply and final.obj, and at each\n"
         "snapshot sponge/iter_NNNN.ply, slices/iter_NNNN_P.exr and fields/iter_NNNN.vtu\n"
         "(fields/series.pvd opens the VTU series in ParaView).  --resume gives the bytes\n"
-        "of a run that never stopped.  --out defaults to runs/<preset>.",
-    .seed_help = "every random choice (same seed, same device: same bytes)",
+        "of a run that never stopped; the same seed on the same device gives the same\n"
+        "bytes.  --out defaults to runs/<preset>.",
+    .seed_help = "every random choice",
     .out_default = "runs/%s",
     .snapshot_name = "sponge/iter_%04d.ply",
     .preview = "sponge/final.ply",
