@@ -105,7 +105,7 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   return sessile_gpu_create(&go, g);
 }
 
-sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {
+sessile_status cli_params_set_kv(sessile_grow_params *p, const char *kv) {
   return sessile_params_set_kv(&sessile_grow_param_table, p, kv);
 }
 

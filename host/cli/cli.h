@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 
 enum { EXIT_OK = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
 
@@ -36,7 +36,7 @@ int cli_parse_uint(const char *cmd, const char *opt, const char *val, unsigned l
 int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts *o);
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
 /* Applies one --set KEY=VALUE to p (SESSILE_ERR_USAGE with a message on bad input). */
-sessile_status cli_params_set_kv(sessile_params *p, const char *kv);
+sessile_status cli_params_set_kv(sessile_grow_params *p, const char *kv);
 /* Writes stdout's pending output and reports a failure (a full disk, a
  * closed pipe): returns EXIT_RUNTIME then, else rc. */
 int cli_finish_stdout(int rc);

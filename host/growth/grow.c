@@ -36,7 +36,7 @@ static double uniform_pm1(uint64_t *state) {
 }
 
 sessile_status grow_setup(grow_run *r) {
-  const sessile_params *p = r->p;
+  const sessile_grow_params *p = r->p;
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
                              (uint32_t)p->box_cells_z};
@@ -98,7 +98,7 @@ void grow_teardown(grow_run *r) {
 }
 
 /* Refuses a box the device cannot hold, with the estimate. */
-sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_params *p) {
+sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_grow_params *p) {
   const sessile_gpu_info *gi = sessile_gpu_info_of(g);
   double need = sessile_params_device_bytes(p);
   if (gi->precision == 32) need *= 0.5;

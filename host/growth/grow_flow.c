@@ -35,7 +35,7 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
 /* The immersed flow's box, mesh and solver, once. */
 sessile_status grow_flow_setup(grow_run *r) {
   if (r->flow_ready) return SESSILE_OK;
-  const sessile_params *p = r->p;
+  const sessile_grow_params *p = r->p;
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
                              (uint32_t)p->box_cells_z};

@@ -167,7 +167,7 @@ const sessile_generator sessile_gen_grow = {
     .unsnapshot = unsnapshot,
 };
 
-sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p, const sessile_grow_options *o,
+sessile_status sessile_grow_run(sessile_gpu *g, const sessile_grow_params *p, const sessile_grow_options *o,
                                 sessile_surface *final, sessile_grow_summary *summary) {
   if (summary) memset(summary, 0, sizeof *summary);
   SESSILE_CALL(sessile_params_validate(p));

@@ -33,7 +33,7 @@ typedef struct grow_flow_saved {
 } grow_flow_saved;
 
 typedef struct grow_run {
-  const sessile_params *p;
+  const sessile_grow_params *p;
   const sessile_grow_options *o;
   sessile_gpu *gpu;
   sessile_la *la;

@@ -63,7 +63,7 @@ sessile_status grow_parse_planes(grow_run *r) {
   return parse_planes(r->o->slices ? r->o->slices : "", mx, r->center, r->planes, &r->nplanes);
 }
 
-sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o) {
+sessile_status sessile_grow_check_options(const sessile_grow_params *p, const sessile_grow_options *o) {
   SESSILE_CALL(sessile_params_validate(p));
   SESSILE_CHECK(o->iterations >= 0 && o->every >= 0, SESSILE_ERR_USAGE,
                 "iterations and every must be >= 0");

@@ -1,6 +1,6 @@
 /* The welded surface's benchmark, apart from weld_internal.h so that the
  * CLI can call it without sessile/skeleton.h (whose sessile_skeleton clashes
- * with the growth parameters' enum of the same name in sessile/params.h). */
+ * with the growth parameters' enum of the same name in sessile/grow_params.h). */
 #ifndef SESSILE_WELD_BENCH_H
 #define SESSILE_WELD_BENCH_H
 #include <stdio.h>

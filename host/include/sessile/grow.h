@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include "sessile/generator.h"
 #include "sessile/gpu.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "sessile/run.h"
 #include "sessile/surface.h"
 
@@ -65,11 +65,11 @@ typedef struct sessile_grow_summary {
 
 /* Every check of parameters and options that needs no device (the
  * parameter table's, the --slices spec): a run that passes it starts. */
-sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o);
+sessile_status sessile_grow_check_options(const sessile_grow_params *p, const sessile_grow_options *o);
 
 /* Refuses (SESSILE_ERR_USAGE, with the estimate) parameters whose
  * device-memory estimate exceeds the device's largest device-local heap. */
-sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_params *p);
+sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_grow_params *p);
 
 /* `sessile grow` as a generator (host/growth/grow_gen.c): presets, --slices,
  * --no-fields; the command line is the CLI's generic one. */
@@ -84,7 +84,7 @@ extern const sessile_generator sessile_gen_grow;
  * SESSILE_ERR_INTERRUPTED when the run's stop flag was raised (the state
  * after the last whole iteration is checkpointed); files already written
  * stay whole.  The caller closes the run (sessile_run_close). */
-sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
+sessile_status sessile_grow_run(sessile_gpu *g, const sessile_grow_params *p,
                                 const sessile_grow_options *o, sessile_surface *final,
                                 sessile_grow_summary *summary);
 
