@@ -62,9 +62,10 @@ typedef struct gen_cmd {
  * not one, -1 usage error.  An empty value is a value (--slices ''). */
 static int option(gen_cmd *c, int argc, char **argv, int *i) {
   const sessile_generator *g = c->g;
-  int k = 0;
-  while (k < g->noptions && strcmp(argv[*i], g->options[k].option)) k++;
-  const char **to = k < g->noptions ? &c->su.values[k] : g->presets && !strcmp(argv[*i], "--preset") ? &c->su.preset : NULL;
+  int k = 0, n = g->noptions < SESSILE_GEN_MAX_OPTIONS ? g->noptions : SESSILE_GEN_MAX_OPTIONS;
+  while (k < n && strcmp(argv[*i], g->options[k].option)) k++;
+  const char **to = k < n ? &c->su.values[k] : NULL;
+  if (!to && g->presets && !strcmp(argv[*i], "--preset")) to = &c->su.preset;
   if (!to) return 0;
   if (*i + 1 < argc && !argv[*i + 1][0]) *to = argv[++*i];
   else if (!(*to = cli_value(g->name, argc, argv, i))) return -1;

@@ -15,7 +15,7 @@ cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const 
   cJSON *c = sessile_run_config_make(g->table, params, su->seed, su->iterations, su->every);
   int ok = c != NULL;
   for (int k = 0; ok && k < g->nflags; k++) ok = cJSON_AddBoolToObject(c, g->flags[k].key, (su->flags >> k) & 1u) != NULL;
-  for (int k = 0; ok && k < g->noptions; k++)
+  for (int k = 0; ok && k < g->noptions && k < SESSILE_GEN_MAX_OPTIONS; k++)
     ok = cJSON_AddStringToObject(c, g->options[k].key, su->values[k] ? su->values[k] : "") != NULL;
   if (ok && g->presets) ok = cJSON_AddStringToObject(c, "preset", su->preset ? su->preset : "") != NULL;
   if (!ok) cJSON_Delete(c);
