@@ -176,7 +176,7 @@ sessile_status cli_gpu_check(const cli_gpu_opts *o) {
   return sessile_gpu_check_device(cli_env_device(o->device));
 }
 
-sessile_status cli_params_set_kv(sessile_params *p, const char *kv) {
+sessile_status cli_params_set_kv(sessile_grow_params *p, const char *kv) {
   return sessile_params_set_kv(&sessile_grow_param_table, p, kv);
 }
 

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include "sessile/gpu.h"
 #include "sessile/param_table.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 
 enum { EXIT_OK = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
 
@@ -55,7 +55,7 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
  * before it writes anything.  SESSILE_OK when none is named. */
 sessile_status cli_gpu_check(const cli_gpu_opts *o);
 /* Applies one --set KEY=VALUE to p (SESSILE_ERR_USAGE with a message on bad input). */
-sessile_status cli_params_set_kv(sessile_params *p, const char *kv);
+sessile_status cli_params_set_kv(sessile_grow_params *p, const char *kv);
 /* Writes stdout's pending output and reports a failure (a full disk, a
  * closed pipe): returns EXIT_RUNTIME then, else rc. */
 int cli_finish_stdout(int rc);
@@ -79,7 +79,6 @@ typedef struct cli_command {
 
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
-int cmd_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */

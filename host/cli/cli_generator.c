@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "cli_generator.h"
+#include "cli_monitor.h"
 #include "cli_run.h"
 
 static void print_help(const sessile_generator *g) {
@@ -15,13 +16,18 @@ static void print_help(const sessile_generator *g) {
     return;
   }
   int pad = (int)strlen(g->name) + 15;
-  printf("usage: sessile %s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
+  char out[512];
+  snprintf(out, sizeof out, g->out_default, g->presets ? g->presets->fallback : ""); /* "runs/%s": the preset's */
+  printf("usage: sessile %s%s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
          "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
-         g->name, pad, "");
+         g->name, g->presets ? " [--preset NAME]" : "", pad, "");
+  for (int k = 0; k < g->noptions; k++) printf("%*s[%s %s]\n", pad, "", g->options[k].option, g->options[k].metavar);
   for (int k = 0; k < g->nflags; k++) printf("%*s[%s]\n", pad, "", g->flags[k].option);
   if (g->needs_device) printf("%*s[--device D] [--precision 32|64]\n", pad, "");
   printf("       sessile %s --resume DIR [--iterations N]\n\n%s\n"
          "Parameters, units and sources: --print-config.\n\n", g->name, g->about);
+  if (g->presets) printf("  --preset NAME   the parameters' starting point (default %s):\n%s\n", g->presets->fallback,
+                         g->presets->help);
   printf("  --seed N        seed of %s, 0..2^64-1 (default 1)\n"
          "  --iterations N  iterations (default %d)      --every K  snapshot interval (default %d)\n"
          "  --out DIR       run directory (default %s); must be new or empty\n"
@@ -30,7 +36,12 @@ static void print_help(const sessile_generator *g) {
          "  --quiet         no progress and no summary line\n"
          "  --max-memory G  stop with the state saved once the process holds more than G GiB\n"
          "                  after an iteration (default: half the machine's memory; also with --resume)\n",
-         g->seed_help, g->iterations, g->every, g->out_default);
+         g->seed_help, g->iterations, g->every, out);
+  for (int k = 0; k < g->noptions; k++) {
+    char head[64];
+    snprintf(head, sizeof head, "%s %s", g->options[k].option, g->options[k].metavar);
+    printf("  %-15s %s (default '%s')\n", head, g->options[k].help, g->options[k].fallback);
+  }
   for (int k = 0; k < g->nflags; k++) printf("  %-15s %s\n", g->flags[k].option, g->flags[k].help);
   if (g->needs_device) printf("  --device D      the device, when the configuration needs one (sessile --help)\n");
   printf("Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n");
@@ -49,10 +60,27 @@ typedef struct gen_cmd {
   cli_run_args a;
   cli_gpu_opts go;
   sessile_gen_setup su;
-  int have_max_memory;
   sessile_gen_result result;
+  cJSON *stored; /* a resume's stored configuration: su's strings point into it */
+  char out_default[512];
   char params[4096] __attribute__((aligned(16))); /* the table's struct */
 } gen_cmd;
+
+/* The generator's own options with a value, and --preset: 1 consumed, 0
+ * not one, -1 usage error.  An empty value is a value (--slices ''). */
+static int option(gen_cmd *c, int argc, char **argv, int *i) {
+  const sessile_generator *g = c->g;
+  int k = 0, n = g->noptions < SESSILE_GEN_MAX_OPTIONS ? g->noptions : SESSILE_GEN_MAX_OPTIONS;
+  while (k < n && strcmp(argv[*i], g->options[k].option)) k++;
+  const char **to = k < n ? &c->su.values[k] : NULL;
+  if (!to && g->presets && !strcmp(argv[*i], "--preset")) to = &c->su.preset;
+  if (!to) return 0;
+  if (cli_once(g->name, argv[*i], argv[*i])) return -1; /* the last one winning hid mistakes */
+  if (*i + 1 < argc && !argv[*i + 1][0]) *to = argv[++*i];
+  else if (!(*to = cli_value(g->name, argc, argv, i))) return -1;
+  c->a.have_run_option = 1;
+  return 1;
+}
 
 static int parse(gen_cmd *c, int argc, char **argv) {
   const char *name = c->g->name;
@@ -80,13 +108,14 @@ static int parse(gen_cmd *c, int argc, char **argv) {
       char *end = NULL;
       double gib = v ? strtod(v, &end) : 0;
       if (!v) return EXIT_USAGE;
-      if (c->have_max_memory) return cli_usage_error(name, "--max-memory given twice");
+      if (cli_once(name, "--max-memory", "--max-memory")) return EXIT_USAGE;
       if (end == v || *end || !(gib > 0 && gib <= 1e6) || strpbrk(v, "xXnNiI"))
         return cli_usage_error(name, "--max-memory takes GiB, a number above 0 (not '%.40s')", v);
-      c->su.max_memory = gib * 1073741824.0, c->have_max_memory = 1;
+      c->su.max_memory = gib * 1073741824.0;
       continue;
     }
-    int r = cli_gpu_option(name, argc, argv, &i, &c->go);
+    int r = option(c, argc, argv, &i);
+    if (r == 0) r = cli_gpu_option(name, argc, argv, &i, &c->go);
     if (r == 0) r = cli_run_option(name, argc, argv, &i, &c->a);
     if (r < 0) return EXIT_USAGE;
     if (r == 0) return cli_usage_error(name, "unknown option '%.60s'", argv[i]);
@@ -104,6 +133,7 @@ static sessile_status configure(gen_cmd *c) {
   else sessile_params_defaults(g->table, c->params);
   c->su.seed = c->a.seed, c->su.iterations = c->a.iterations, c->su.every = c->a.every;
   if (c->a.resume) return SESSILE_OK; /* the stored configuration, once admitted */
+  if (g->presets) SESSILE_CALL(g->presets->apply(c->su.preset, c->params));
   SESSILE_CALL(cli_run_apply_params(g->table, c->params, &c->a));
   SESSILE_CALL(sessile_params_check(g->table, c->params));
   if (g->check) SESSILE_CALL(g->check(c->params, &c->su));
@@ -114,12 +144,23 @@ static sessile_status configure(gen_cmd *c) {
  * iteration, all before the folder is written. */
 static sessile_status resume_config(gen_cmd *c, sessile_run *run) {
   const sessile_generator *g = c->g;
-  SESSILE_CALL(sessile_gen_config_read(g, sessile_run_config(run), c->params, &c->su));
+  c->stored = cJSON_Duplicate(sessile_run_config(run), 1); /* the run's copy is replaced at start */
+  SESSILE_CHECK(c->stored, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  SESSILE_CALL(sessile_gen_config_read(g, c->stored, c->params, &c->su));
   if (c->a.have_iterations) c->su.iterations = c->a.iterations;
   int k = sessile_ckpt_iteration(sessile_run_checkpoint_loaded(run));
   SESSILE_CHECK(k <= c->su.iterations, SESSILE_ERR_USAGE,
                 "the run's checkpoint is at iteration %d: --iterations must be at least %d", k, k);
   return g->check ? g->check(c->params, &c->su) : SESSILE_OK;
+}
+
+/* The device, and the checks that need it, before the folder is touched. */
+static sessile_status device(gen_cmd *c, sessile_gpu **gpu) {
+  SESSILE_CALL(cli_gpu_create(&c->go, gpu));
+  c->su.gpu = *gpu;
+  sessile_status s = c->g->check ? c->g->check(c->params, &c->su) : SESSILE_OK;
+  c->su.gpu = NULL;
+  return s;
 }
 
 static int run_generator(gen_cmd *c, int argc, char **argv) {
@@ -133,20 +174,21 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   }
   char out[256];
   if (g->out_dir) g->out_dir(c->su.extra, out, sizeof out);
-  else snprintf(out, sizeof out, "%s", g->out_default);
-  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : out;
+  else snprintf(out, sizeof out, g->out_default, c->su.preset ? c->su.preset : "");
+  snprintf(c->out_default, sizeof c->out_default, "%s", out);
+  const char *dir = c->a.resume ? c->a.resume : c->a.out ? c->a.out : c->out_default;
   /* an unknown --device is refused before any file, even where only the
    * preview would use it */
   if ((s = cli_gpu_check(&c->go)) != SESSILE_OK) return cli_fail_in(name, s);
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   sessile_gpu *gpu = NULL;
   /* a new run's device first: an unknown --device writes nothing */
-  if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = cli_gpu_create(&c->go, &gpu);
+  if (!c->a.resume && g->needs_device && g->needs_device(c->params)) s = device(c, &gpu);
   sessile_run *run = NULL;
   if (s == SESSILE_OK) s = cli_run_admit(g->generator ? g->generator : name, argc, argv, &c->a, dir, stop, &run);
   if (s == SESSILE_OK && c->a.resume) s = resume_config(c, run);
   if (s == SESSILE_OK && c->a.resume && g->needs_device && g->needs_device(c->params))
-    s = cli_gpu_create(&c->go, &gpu);
+    s = device(c, &gpu);
   if (s == SESSILE_OK) s = sessile_run_start(run);
   if (s == SESSILE_OK) {
     cJSON *cfg = sessile_gen_config(g, c->params, &c->su);
@@ -155,8 +197,11 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   if (s == SESSILE_OK) cli_run_note_device(run, gpu);
   int done = 0;
   c->su.run = run, c->su.gpu = gpu, c->su.result = &c->result;
-  int show = !c->a.quiet && isatty(STDERR_FILENO);
+  int tty = isatty(STDERR_FILENO), show = !c->a.quiet && tty && !g->says_progress;
+  cli_monitor mon = {.cmd = name, .quiet = c->a.quiet, .tty = tty};
+  c->su.say = cli_monitor_line, c->su.say_user = &mon;
   if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
+  cli_monitor_end(&mon);
   if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(gpu);
@@ -178,6 +223,8 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
     fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
     return EXIT_RUNTIME;
   }
+  for (int k = 0; k < g->noptions && k < SESSILE_GEN_MAX_OPTIONS; k++) c.su.values[k] = g->options[k].fallback;
+  if (g->presets) c.su.preset = g->presets->fallback;
   if (cli_run_args_init(&c.a, argc, 1, g->iterations, g->every) != 0) {
     cli_run_args_free(&c.a);
     fprintf(stderr, "sessile %s: error: out of host memory\n", g->name);
@@ -188,5 +235,6 @@ int cli_generator_main(const sessile_generator *g, int argc, char **argv, const 
   cli_run_args_free(&c.a);
   if (g->extra_free && c.su.extra) g->extra_free(c.su.extra);
   free(c.su.extra);
+  cJSON_Delete(c.stored);
   return rc;
 }

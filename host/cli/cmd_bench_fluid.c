@@ -71,7 +71,7 @@ static sessile_status dome_mask(const sessile_box *b, double radius, double cx, 
 
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
-  sessile_params p;
+  sessile_grow_params p;
   sessile_params_default(&p);
   unsigned res = 0;
   int pc = -1, ksp = -1, picard = -1, restart = -1, lsic = -1, verbose = 0;

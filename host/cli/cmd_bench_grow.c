@@ -29,7 +29,7 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   o.slices = "";
   o.fields = 0;
   const char *preset = "crella";
-  sessile_params p;
+  sessile_grow_params p;
   const char **sets = calloc((size_t)argc + 1, sizeof *sets);
   if (!sets) {
     fprintf(stderr, "sessile bench grow: error: out of host memory\n");

@@ -12,7 +12,6 @@ static int cmd_version(int argc, char **argv, const cli_gpu_opts *g);
 static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
 
 static const cli_command commands[] = {
-    {"grow", "grow a sponge (O'Hagan et al.'s accretive model); 'sessile grow --help'", cmd_grow},
     {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
     {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
     {"sds", "SDS, a tetrahedral developmental system: 'sds run MODEL', 'sds models'", cmd_sds},

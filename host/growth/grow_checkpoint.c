@@ -86,18 +86,19 @@ static sessile_status take_tetmesh(reader *rd, sessile_tetmesh *m) {
   return SESSILE_OK;
 }
 
-sessile_status grow_checkpoint_save(grow_run *r, int it) {
+sessile_status grow_checkpoint_sections(grow_run *r, sessile_ckpt_section *sec, int *count) {
   uint32_t nb = sessile_box_nodes(&r->box);
+  for (int i = 0; i < 3; i++) free(r->ck_bytes[i]), r->ck_bytes[i] = NULL;
   blob surf = {0}, cm = {0};
   uint32_t counts[2] = {r->surf.nv, r->surf.nf};
   put(&surf, counts, sizeof counts);
   put(&surf, r->surf.pos, (size_t)3 * r->surf.nv * sizeof *r->surf.pos);
   put(&surf, r->surf.tri, (size_t)3 * r->surf.nf * sizeof *r->surf.tri);
   double *c = malloc((size_t)nb * sizeof *c);
-  sessile_status s = SESSILE_OK;
-  if (!c || surf.failed) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
-  if (s == SESSILE_OK) s = sessile_vec_download(r->c, c);
-  sessile_ckpt_section sec[8];
+  /* the bytes stay valid until the next call (the run loop writes them) */
+  r->ck_bytes[0] = surf.p, r->ck_bytes[1] = c;
+  SESSILE_CHECK(c && !surf.failed, SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
+  SESSILE_CALL(sessile_vec_download(r->c, c));
   int n = 0;
   sec[n++] = (sessile_ckpt_section){"surface", surf.p, surf.n};
   sec[n++] = (sessile_ckpt_section){"nutrient", c, (size_t)nb * sizeof *c};
@@ -107,17 +108,15 @@ sessile_status grow_checkpoint_save(grow_run *r, int it) {
     sec[n++] = (sessile_ckpt_section){"flow_up", r->up, (size_t)4 * sessile_box_nodes(&r->fbox) * sizeof *r->up};
   if (r->cup && r->cmesh.nnodes) {
     put_tetmesh(&cm, &r->cmesh);
-    if (cm.failed && s == SESSILE_OK) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
+    r->ck_bytes[2] = cm.p;
+    SESSILE_CHECK(!cm.failed, SESSILE_ERR_NO_MEMORY, "out of host memory for a checkpoint");
     sec[n++] = (sessile_ckpt_section){"flow_cmesh", cm.p, cm.n};
     sec[n++] = (sessile_ckpt_section){"flow_cup", r->cup, (size_t)4 * r->cmesh.nnodes * sizeof *r->cup};
   }
   if (r->ad) sec[n++] = (sessile_ckpt_section){"advected", r->nc, (size_t)nb * sizeof *r->nc};
-  if (s == SESSILE_OK) s = grow_manifest_totals(r);
-  if (s == SESSILE_OK) s = sessile_run_checkpoint(r->o->run, it, n, sec);
-  free(c);
-  free(surf.p);
-  free(cm.p);
-  return s;
+  *count = n;
+  /* the manifest's totals at each checkpoint (the checkpoint writes it) */
+  return grow_manifest_totals(r);
 }
 
 sessile_status grow_checkpoint_restore(grow_run *r, const sessile_ckpt *ck) {

@@ -35,7 +35,7 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
 /* The immersed flow's box, mesh and solver, once. */
 sessile_status grow_flow_setup(grow_run *r) {
   if (r->flow_ready) return SESSILE_OK;
-  const sessile_params *p = r->p;
+  const sessile_grow_params *p = r->p;
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p->box_cells_x, (uint32_t)p->box_cells_y,
                              (uint32_t)p->box_cells_z};
@@ -201,4 +201,27 @@ sessile_status grow_nutrient_advected(grow_run *r, sessile_solve_result *res) {
   sessile_status s = sessile_vec_upload(r->c, cl);
   free(cl);
   return s;
+}
+
+sessile_status grow_flow_iteration(grow_run *r, int it, cJSON *rec, int snap) {
+  /* The flow feeds the nutrient unless diffusion limited; then it is solved
+   * only for snapshots (or every iteration on request). */
+  int advect = !r->p->diffusion_limited;
+  r->flow_valid = 0;
+  int snap_flow = !advect && !r->p->fluid_every_iteration;
+  if (!(advect || r->p->fluid_every_iteration || (snap && r->o->run && r->p->fluid_at_snapshots)))
+    return SESSILE_OK;
+  if (snap_flow && snap == 2) SESSILE_CALL(grow_flow_keep(r, &r->saved)); /* put back after the snapshot */
+  grow_progress(r, it, "fluid", 0);
+  sessile_status fs = grow_flow_solve(r, it, rec);
+  if (fs == SESSILE_OK || advect) return fs;
+  /* Diffusion limited: the flow is output only, so its failure costs the
+   * flow channels of this snapshot, not the run. */
+  cJSON *fl = cJSON_GetObjectItem(rec, "fluid");
+  if (!fl) fl = cJSON_AddObjectToObject(rec, "fluid");
+  cJSON_AddStringToObject(fl, "error", sessile_error_message());
+  grow_warn(r, "iteration %d: the flow solve failed (%s); this snapshot has no flow channels", it,
+            sessile_error_message());
+  r->flow_valid = 0;
+  return SESSILE_OK;
 }

@@ -7,6 +7,7 @@
 #include "sessile/box.h"
 #include "sessile/grow.h"
 #include "sessile/growth_gpu.h"
+#include "sessile/growth_ref.h"
 #include "sessile/la.h"
 #include "sessile/nutrient_cut.h"
 #include "sessile/surface.h"
@@ -20,8 +21,19 @@ typedef struct grow_plane {
   char name[32];
 } grow_plane;
 
+/* A final-only snapshot (the last iteration, off the --every grid) solves
+ * the flow only for its outputs; its solution must not become the next warm
+ * start, or a resumed longer run would differ from one that never stopped.
+ * keep copies the flow's warm starts before such a solve, putback restores
+ * them after the snapshot is written (and frees the copies). */
+typedef struct grow_flow_saved {
+  int active, was_ready;
+  double *up, *cup;
+  sessile_tetmesh cmesh;
+} grow_flow_saved;
+
 typedef struct grow_run {
-  const sessile_params *p;
+  const sessile_grow_params *p;
   const sessile_grow_options *o;
   sessile_gpu *gpu;
   sessile_la *la;
@@ -54,21 +66,51 @@ typedef struct grow_run {
   sessile_advdiff *ad;
   uint8_t *nmask, *nsolid;
   double *nval, *nc;
-  int first_it;
-  int warned_degenerate;      /* the first iteration this process runs (1, or after the checkpoint) */
+  int first_it;               /* the first iteration this process runs (1, or after the checkpoint) */
+  int warned_degenerate;
   double t_start;
   sessile_grow_summary sum;
+  /* The generator's (grow_gen.c): the options (r->o points here when the
+   * command's setup made them), the kernels' parameters, the normals of the
+   * current surface (snapshots and the final meshes write them), the growth
+   * step's positions, a final-only snapshot's flow warm starts (put back
+   * after it), the checkpoint's bytes, and a library caller's outputs. */
+  sessile_grow_options opts;
+  const sessile_gen_setup *su;
+  sessile_growth_params gp;
+  double *normals, *newpos;
+  grow_flow_saved saved;
+  void *ck_bytes[3];
+  sessile_surface *final_out;
+  sessile_grow_summary *summary_out;
 } grow_run;
+
+/* The state (grow.c): box, sponge, nutrient and kernels; freed whole. */
+sessile_status grow_setup(grow_run *r);
+void grow_teardown(grow_run *r);
+
+/* One iteration (grow_iterate.c); snap: sessile_gen_snapshot_kind.  Its
+ * stages: classify and the nutrient (grow_nutrient.c), the flow
+ * (grow_flow.c), uptake, translocation and growth (grow_step.c), the
+ * remesh (grow_remesh.c); r->normals are the new surface's at the end. */
+sessile_status grow_iterate(grow_run *r, int it, cJSON *rec, int snap);
+void grow_progress(grow_run *r, int it, const char *stage, int done);
+sessile_status grow_classify(grow_run *r);
+sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessile_vec **probe_field);
+sessile_status grow_flow_iteration(grow_run *r, int it, cJSON *rec, int snap);
+sessile_status grow_growth_step(grow_run *r, int it, cJSON *rec, const sessile_vec *probe_field);
+sessile_status grow_remesh(grow_run *r, int it, cJSON *rec);
+sessile_status grow_normals(grow_run *r);
 
 /* Parses o->slices into run->planes (SESSILE_ERR_USAGE on a bad spec). */
 sessile_status grow_parse_planes(grow_run *r);
 /* Writes sponge/iter_NNNN.ply, slices and fields for iteration it. */
-sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals);
+sessile_status grow_write_snapshot(grow_run *r, int it);
 /* Removes the snapshot of iteration it (files and series entry): a resumed
  * run that goes past its old last iteration drops that final-only snapshot. */
 sessile_status grow_forget_snapshot(grow_run *r, int it);
 /* Writes sponge/final.ply and final.obj. */
-sessile_status grow_write_final(grow_run *r, const double *normals);
+sessile_status grow_write_final(grow_run *r);
 
 /* The flow of iteration it (records it under "fluid" in rec), with ufine
  * and pfine filled; the advected nutrient into r->c. */
@@ -93,23 +135,12 @@ void grow_monitor(const grow_run *r, sessile_monitor_kind kind, const char *fmt,
     __attribute__((format(printf, 3, 4)));
 void grow_warn(const grow_run *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* The manifest's growth members (parameters, device, box, ...), the
- * per-iteration record, and the totals written at checkpoints and the end. */
+/* The manifest's growth members (parameters, device, box, ...), and the
+ * totals (set at checkpoints and the end; the run writes the manifest). */
 sessile_status grow_manifest_begin(grow_run *r);
-cJSON *grow_manifest_iteration(grow_run *r, int it);
 sessile_status grow_manifest_totals(grow_run *r);
 void grow_manifest_surface_stats(cJSON *obj, const sessile_surface *s);
 
-/* A final-only snapshot (the last iteration, off the --every grid) solves
- * the flow only for its outputs; its solution must not become the next warm
- * start, or a resumed longer run would differ from one that never stopped.
- * keep copies the flow's warm starts before such a solve, putback restores
- * them after the snapshot is written (and frees the copies). */
-typedef struct grow_flow_saved {
-  int active, was_ready;
-  double *up, *cup;
-  sessile_tetmesh cmesh;
-} grow_flow_saved;
 sessile_status grow_flow_keep(grow_run *r, grow_flow_saved *k);
 void grow_flow_putback(grow_run *r, grow_flow_saved *k);
 void grow_flow_saved_free(grow_flow_saved *k);
@@ -123,8 +154,9 @@ void grow_flow_saved_free(grow_flow_saved *k);
 sessile_status grow_guard_motion(grow_run *r, int it, double *newpos, cJSON *rec);
 sessile_status grow_guard_check(grow_run *r, int it, const sessile_remesh_stats *rs, cJSON *rec);
 
-/* Checkpoint (grow_checkpoint.c): the state after iteration it, and back. */
-sessile_status grow_checkpoint_save(grow_run *r, int it);
+/* Checkpoint (grow_checkpoint.c): the state as sections (their bytes valid
+ * until the next call), and back. */
+sessile_status grow_checkpoint_sections(grow_run *r, sessile_ckpt_section *sec, int *n);
 sessile_status grow_checkpoint_restore(grow_run *r, const sessile_ckpt *c);
 
 #endif

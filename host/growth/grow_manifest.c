@@ -87,12 +87,6 @@ sessile_status grow_manifest_begin(grow_run *r) {
   return SESSILE_OK;
 }
 
-cJSON *grow_manifest_iteration(grow_run *r, int it) {
-  cJSON *rec = cJSON_CreateObject();
-  if (rec) cJSON_AddNumberToObject(rec, "iteration", it);
-  return rec;
-}
-
 sessile_status grow_manifest_totals(grow_run *r) {
   cJSON *m = sessile_run_manifest(r->o->run);
   cJSON_DeleteItemFromObjectCaseSensitive(m, "totals");
@@ -107,5 +101,5 @@ sessile_status grow_manifest_totals(grow_run *r) {
     cJSON_AddNumberToObject(st, sessile_grow_stage_name(s), r->sum.stage_seconds[s]);
   cJSON *fin = cJSON_AddObjectToObject(tot, "surface");
   grow_manifest_surface_stats(fin, &r->surf);
-  return sessile_run_write_manifest(r->o->run);
+  return SESSILE_OK;
 }

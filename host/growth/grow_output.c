@@ -63,7 +63,7 @@ sessile_status grow_parse_planes(grow_run *r) {
   return parse_planes(r->o->slices ? r->o->slices : "", mx, r->center, r->planes, &r->nplanes);
 }
 
-sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o) {
+sessile_status sessile_grow_check_options(const sessile_grow_params *p, const sessile_grow_options *o) {
   SESSILE_CALL(sessile_params_validate(p));
   SESSILE_CHECK(o->iterations >= 0 && o->every >= 0, SESSILE_ERR_USAGE,
                 "iterations and every must be >= 0");
@@ -98,7 +98,8 @@ static sessile_status run_path(grow_run *r, char *path, size_t n, const char *fm
   return sessile_run_file(r->o->run, rel, path, n);
 }
 
-sessile_status grow_write_snapshot(grow_run *r, int it, const double *normals) {
+sessile_status grow_write_snapshot(grow_run *r, int it) {
+  const double *normals = r->normals;
   char path[4096];
   SESSILE_CALL(run_path(r, path, sizeof path, "sponge/iter_%04d.ply", it));
   SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
@@ -194,7 +195,8 @@ sessile_status grow_forget_snapshot(grow_run *r, int it) {
   return changed ? write_pvd(r) : SESSILE_OK;
 }
 
-sessile_status grow_write_final(grow_run *r, const double *normals) {
+sessile_status grow_write_final(grow_run *r) {
+  const double *normals = r->normals;
   char path[4096];
   SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.ply", path, sizeof path));
   SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));

@@ -5,9 +5,9 @@
 #include <string.h>
 #include "sessile/growth_ref.h"
 
-/* The defaults are the parameter table's (sessile/params.h), the one source:
+/* The defaults are the parameter table's (sessile/grow_params.h), the one source:
  * this only maps the run's parameters onto the kernels'. */
-void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *g) {
+void sessile_growth_params_from(const sessile_grow_params *p, sessile_growth_params *g) {
   memset(g, 0, sizeof *g);
   g->probe_offset = p->concentration_offset_distance;
   g->probe_flux = p->probe == SESSILE_PROBE_FLUX;
@@ -33,7 +33,7 @@ void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *
 }
 
 void sessile_growth_params_default(sessile_growth_params *g) {
-  sessile_params p;
+  sessile_grow_params p;
   sessile_params_default(&p);
   sessile_growth_params_from(&p, g);
 }

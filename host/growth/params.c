@@ -1,11 +1,11 @@
-/* The parameter table of `sessile grow` (sessile/params.h): the one source
+/* The parameter table of `sessile grow` (sessile/grow_params.h): the one source
  * of every default; presets; the checks that need no device. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 
 static const char *const skeleton_names[] = {"radiate", "halichondrid", NULL};
 static const char *const domain_names[] = {"immersed", "conforming", NULL};
@@ -24,7 +24,7 @@ static const char *const solver_names[] = {"mg", "jacobi", NULL};
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \
-  {#name, type_, offsetof(sessile_params, name), def, lo, hi, bounds, unit, src, desc, names_},
+  {#name, type_, offsetof(sessile_grow_params, name), def, lo, hi, bounds, unit, src, desc, names_},
 #define DESC_(...) DESC(__VA_ARGS__)
 
 static const sessile_param_desc descs[] = {
@@ -37,19 +37,19 @@ static const sessile_param_desc descs[] = {
 static sessile_status validate(const void *values);
 
 const sessile_param_table sessile_grow_param_table = {
-    "grow", sizeof(sessile_params), (int)(sizeof descs / sizeof descs[0]), descs, validate};
+    "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate};
 
-void sessile_params_default(sessile_params *p) { sessile_params_defaults(&sessile_grow_param_table, p); }
+void sessile_params_default(sessile_grow_params *p) { sessile_params_defaults(&sessile_grow_param_table, p); }
 
-sessile_status sessile_params_set(sessile_params *p, const char *key, const char *value) {
+sessile_status sessile_params_set(sessile_grow_params *p, const char *key, const char *value) {
   return sessile_params_set_text(&sessile_grow_param_table, p, key, value);
 }
 
-sessile_status sessile_params_validate(const sessile_params *p) {
+sessile_status sessile_params_validate(const sessile_grow_params *p) {
   return sessile_params_check(&sessile_grow_param_table, p);
 }
 
-sessile_status sessile_params_preset(sessile_params *p, const char *name) {
+sessile_status sessile_params_preset(sessile_grow_params *p, const char *name) {
   sessile_params_default(p);
   if (strcmp(name, "radiate") == 0) return SESSILE_OK;
   if (strcmp(name, "crella") == 0) {
@@ -63,12 +63,12 @@ sessile_status sessile_params_preset(sessile_params *p, const char *name) {
   return sessile_error_set(SESSILE_ERR_USAGE, "unknown preset '%s' (presets: radiate, crella)", name);
 }
 
-double sessile_params_far_field_height(const sessile_params *p) {
+double sessile_params_far_field_height(const sessile_grow_params *p) {
   return p->far_field_height < 0 ? p->box_base_cell * p->box_cells_z : p->far_field_height;
 }
 
 /* Box nodes at the nutrient's resolution (each level halves the cell). */
-static double box_nodes(const sessile_params *p, int level) {
+static double box_nodes(const sessile_grow_params *p, int level) {
   double k = ldexp(1.0, level - 1);
   return (p->box_cells_x * k + 1) * (p->box_cells_y * k + 1) * (p->box_cells_z * k + 1);
 }
@@ -77,7 +77,7 @@ static double box_nodes(const sessile_params *p, int level) {
  * estimated from the far-field size (a regular tetrahedron of edge a has
  * volume a^3 / (6 sqrt 2); about 6 tetrahedra per node).  The sponge's
  * surface refines the conforming mesh further: this is a lower bound. */
-static double flow_nodes(const sessile_params *p, double *tets) {
+static double flow_nodes(const sessile_grow_params *p, double *tets) {
   double h = p->box_base_cell;
   double vol = h * p->box_cells_x * h * p->box_cells_y * h * p->box_cells_z;
   double a = p->conforming_size_far;
@@ -86,7 +86,7 @@ static double flow_nodes(const sessile_params *p, double *tets) {
   return box_nodes(p, p->fluid_resolution);
 }
 
-double sessile_params_device_bytes(const sessile_params *p) {
+double sessile_params_device_bytes(const sessile_grow_params *p) {
   double tets;
   /* nutrient: ~12 reals per node (solution, CG vectors, operator diagonal)
    * plus the solid mask; flow: block-CSR (4x4 reals, ~15 neighbours) for the
@@ -98,7 +98,7 @@ double sessile_params_device_bytes(const sessile_params *p) {
 }
 
 static sessile_status validate(const void *values) {
-  const sessile_params *p = values;
+  const sessile_grow_params *p = values;
   double h = p->box_base_cell * ldexp(1.0, 1 - p->box_resolution); /* node spacing */
   double top = p->box_base_cell * p->box_cells_z;
   double sx = p->box_base_cell * p->box_cells_x, sy = p->box_base_cell * p->box_cells_y;

@@ -7,19 +7,29 @@
 #include <unistd.h>
 #include "sessile/generator.h"
 
+int sessile_gen_snapshot_kind(const sessile_gen_setup *su, int it) {
+  if (su->every > 0 && it % su->every == 0) return 1;
+  return it == su->iterations ? 2 : 0;
+}
+
 cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const sessile_gen_setup *su) {
   cJSON *c = sessile_run_config_make(g->table, params, su->seed, su->iterations, su->every);
-  for (int k = 0; c && k < g->nflags; k++) {
-    if (!cJSON_AddBoolToObject(c, g->flags[k].key, (su->flags >> k) & 1u)) {
-      cJSON_Delete(c);
-      return NULL;
-    }
-  }
-  if (c && g->config_write && g->config_write(su->extra, c) != SESSILE_OK) {
-    cJSON_Delete(c);
-    return NULL;
-  }
-  return c;
+  int ok = c != NULL;
+  for (int k = 0; ok && k < g->nflags; k++) ok = cJSON_AddBoolToObject(c, g->flags[k].key, (su->flags >> k) & 1u) != NULL;
+  for (int k = 0; ok && k < g->noptions && k < SESSILE_GEN_MAX_OPTIONS; k++)
+    ok = cJSON_AddStringToObject(c, g->options[k].key, su->values[k] ? su->values[k] : "") != NULL;
+  if (ok && g->presets) ok = cJSON_AddStringToObject(c, "preset", su->preset ? su->preset : "") != NULL;
+  if (ok && g->config_write) ok = g->config_write(su->extra, c) == SESSILE_OK;
+  if (!ok) cJSON_Delete(c);
+  return ok ? c : NULL;
+}
+
+/* A text member of a stored configuration. */
+static sessile_status config_text(const cJSON *cfg, const char *key, const char **out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(cfg, key);
+  SESSILE_CHECK(cJSON_IsString(v), SESSILE_ERR_USAGE, "the run's stored configuration is damaged (no '%s')", key);
+  *out = v->valuestring;
+  return SESSILE_OK;
 }
 
 sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *cfg, void *params,
@@ -34,6 +44,9 @@ sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *
                   g->flags[k].key);
     if (cJSON_IsTrue(f)) su->flags |= 1u << k;
   }
+  for (int k = 0; k < g->noptions && k < SESSILE_GEN_MAX_OPTIONS; k++)
+    SESSILE_CALL(config_text(cfg, g->options[k].key, &su->values[k]));
+  if (g->presets) SESSILE_CALL(config_text(cfg, "preset", &su->preset));
   return g->config_read ? g->config_read(su->extra, cfg) : SESSILE_OK;
 }
 
@@ -41,6 +54,14 @@ static sessile_status snapshot_rel(const sessile_generator *g, int it, char *rel
   int k = snprintf(rel, n, g->snapshot_name, it);
   SESSILE_CHECK(k > 0 && (size_t)k < n, SESSILE_ERR_INTERNAL, "%s: snapshot name too long", g->name);
   return SESSILE_OK;
+}
+
+/* Removes the final-only snapshot of iteration k. */
+static sessile_status unsnapshot(const sessile_generator *g, void *state, sessile_run *run, int k) {
+  if (g->unsnapshot) return g->unsnapshot(state, k);
+  char rel[256];
+  SESSILE_CALL(snapshot_rel(g, k, rel, sizeof rel));
+  return sessile_run_remove_file(run, rel);
 }
 
 static sessile_status checkpoint(const sessile_generator *g, void *state, sessile_run *run, int it) {
@@ -58,17 +79,17 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
   SESSILE_CHECK(rec && cJSON_AddNumberToObject(rec, "iteration", it), SESSILE_ERR_NO_MEMORY,
                 "out of host memory for a record");
   sessile_status s = g->step(state, it, rec);
-  if (s == SESSILE_ERR_INTERRUPTED) { /* stopped part way: the state so far, as iteration it - 1 */
+  if (s == SESSILE_ERR_INTERRUPTED && su->run) { /* stopped part way: the state so far, as iteration it - 1 */
     char why[512];
     snprintf(why, sizeof why, "%s", sessile_error_message());
     cJSON_Delete(rec);
     SESSILE_CALL(checkpoint(g, state, su->run, it - 1));
     return sessile_error_set(SESSILE_ERR_INTERRUPTED, "%s", why);
   }
-  if (s == SESSILE_OK) s = sessile_run_record(su->run, rec);
+  if (s == SESSILE_OK && su->run) s = sessile_run_record(su->run, rec);
   cJSON_Delete(rec);
   SESSILE_CALL_AT(s, "iteration %d", it);
-  *snap = (su->every > 0 && it % su->every == 0) || it == su->iterations;
+  *snap = su->run && sessile_gen_snapshot_kind(su, it);
   if (*snap) {
     char rel[256];
     SESSILE_CALL(snapshot_rel(g, it, rel, sizeof rel));
@@ -80,7 +101,7 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
 static sessile_status loop(const sessile_generator *g, void *state, const sessile_gen_setup *su,
                            sessile_progress_fn progress, void *user, int *done) {
   sessile_run *run = su->run;
-  const sessile_ckpt *ck = sessile_run_checkpoint_loaded(run);
+  const sessile_ckpt *ck = run ? sessile_run_checkpoint_loaded(run) : NULL;
   int first = 1;
   if (ck) {
     int k = sessile_ckpt_iteration(ck);
@@ -90,22 +111,18 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
     first = k + 1;
     *done = k;
     /* the old last iteration was a snapshot only because it was the last */
-    if (k < su->iterations && (su->every == 0 || k % su->every)) {
-      char rel[256];
-      SESSILE_CALL(snapshot_rel(g, k, rel, sizeof rel));
-      SESSILE_CALL(sessile_run_remove_file(run, rel));
-    }
+    if (k < su->iterations && sessile_gen_snapshot_kind(su, k) != 1) SESSILE_CALL(unsnapshot(g, state, run, k));
   }
   double t0 = sessile_wall_seconds();
   for (int it = first; it <= su->iterations; it++) {
     int snap = 0;
     SESSILE_CALL(one_iteration(g, state, su, it, &snap));
     *done = it;
-    int stop = sessile_run_stop_requested(run);
+    int stop = run ? sessile_run_stop_requested(run) : 0;
     /* the memory budget is checked between iterations: over it, the run
      * stops with its state saved, before the machine's OOM killer ends it */
-    double rss = su->max_memory > 0 ? sessile_process_memory() : 0;
-    int over = rss > su->max_memory && su->max_memory > 0 && it < su->iterations;
+    double rss = su->max_memory > 0 && run ? sessile_process_memory() : 0;
+    int over = rss > su->max_memory && su->max_memory > 0 && run && it < su->iterations;
     if (snap || stop || over) SESSILE_CALL_AT(checkpoint(g, state, run, it), "checkpoint at iteration %d", it);
     if (progress) progress(user, it, su->iterations, sessile_wall_seconds() - t0);
     if (stop && it < su->iterations)
@@ -122,14 +139,15 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
 sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
                                 sessile_progress_fn progress, void *user, int *done) {
   *done = 0;
-  SESSILE_CHECK(su->run, SESSILE_ERR_USAGE, "sessile %s needs a run directory", g->name);
   SESSILE_CALL(sessile_params_check(g->table, params));
-  cJSON *m = sessile_run_manifest(su->run);
-  cJSON *pj = sessile_params_to_json(g->table, params);
-  SESSILE_CHECK(pj, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
-  cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
-  cJSON_AddItemToObject(m, "parameters", pj);
-  void *state = NULL;
+  if (su->run) {
+    cJSON *m = sessile_run_manifest(su->run);
+    cJSON *pj = sessile_params_to_json(g->table, params);
+    SESSILE_CHECK(pj, SESSILE_ERR_NO_MEMORY, "out of host memory for the manifest");
+    cJSON_DeleteItemFromObjectCaseSensitive(m, "parameters");
+    cJSON_AddItemToObject(m, "parameters", pj);
+  }
+  void *state = NULL; /* a create that failed after setting it is destroyed too */
   sessile_status s = g->create(params, su, &state);
   if (s != SESSILE_OK) {
     g->destroy(state);

@@ -106,7 +106,7 @@ static sessile_status sds_arg(void *extra, int argc, char **argv, int *i, int *t
     /* decimal only: no hexadecimal, inf or nan */
     double x = strspn(v, "0123456789.eE+-") == strlen(v) ? strtod(v, &end) : -1;
     SESSILE_CHECK(*v && end && !*end && x >= 0 && x <= 1e9, SESSILE_ERR_USAGE,
-                  "--t-end needs a decimal time in [0, 1e9] (got '%.40s')", v);
+                  "%s: '%.40s' is not a decimal number in [%g, %g]", o, v, 0.0, 1e9);
     a->t_end = x, a->have_t_end = 1, ++*i;
   } else if (!strcmp(o, "--frames")) {
     SESSILE_CALL(parse_uint(o, v, 1, 100000, &u));

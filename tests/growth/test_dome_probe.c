@@ -18,7 +18,7 @@
 #include "sessile/growth_gpu.h"
 #include "sessile/growth_ref.h"
 #include "sessile/nutrient_cut.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "shapes.h"
 #include "testutil.h"
 
@@ -30,7 +30,7 @@ static double delta_override = 0;
 
 /* C per vertex at box resolution res; rings out. */
 static int probe_rings(int res, const sessile_surface *s, ring *rings) {
-  sessile_params p;
+  sessile_grow_params p;
   sessile_params_default(&p);
   const double o[3] = {0, 0, 0};
   const uint32_t cells[3] = {32, 32, 24};

@@ -29,7 +29,7 @@ static char *slurp(const char *path) {
 
 int main(void) {
   sessile_gpu *g = t_gpu(0);
-  sessile_params p;
+  sessile_grow_params p;
   sessile_params_default(&p);
   t_ok("diffusion_limited=false", sessile_params_set(&p, "diffusion_limited", "false"));
   t_ok("domain=conforming", sessile_params_set(&p, "domain", "conforming"));

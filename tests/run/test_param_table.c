@@ -11,7 +11,7 @@
 #include <string.h>
 #include "sessile/growth_ref.h"
 #include "sessile/param_table.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "testutil.h"
 
 typedef struct demo {
@@ -125,7 +125,7 @@ int main(void) {
   }
 
   /* One source: the kernels' defaults are the grow table's. */
-  sessile_params gp;
+  sessile_grow_params gp;
   sessile_params_default(&gp);
   sessile_growth_params kp;
   sessile_growth_params_default(&kp);

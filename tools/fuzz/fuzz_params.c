@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/param_table.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "sessile/sphere.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

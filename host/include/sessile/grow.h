@@ -8,8 +8,9 @@
 #define SESSILE_GROW_H
 
 #include <stdint.h>
+#include "sessile/generator.h"
 #include "sessile/gpu.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "sessile/run.h"
 #include "sessile/surface.h"
 
@@ -28,9 +29,6 @@ typedef enum {
 } sessile_grow_stage;
 const char *sessile_grow_stage_name(int stage);
 
-/* What a monitor line is: a transient status (a terminal may overwrite it),
- * the end of an iteration, or a warning the user should read. */
-typedef enum { SESSILE_MONITOR_STATUS = 0, SESSILE_MONITOR_ITERATION = 1, SESSILE_MONITOR_WARNING = 2 } sessile_monitor_kind;
 
 typedef struct sessile_grow_options {
   /* The run directory (sessile/run.h), opened by the caller; NULL writes
@@ -65,29 +63,28 @@ typedef struct sessile_grow_summary {
   double worst_relres;
 } sessile_grow_summary;
 
-/* The configuration a resume restarts from (parameters, preset, seed,
- * iterations, snapshots) as JSON, and back: config_read fills p and o
- * (strings point into cfg, which must outlive o).  A malformed config is
- * SESSILE_ERR_USAGE. */
-cJSON *sessile_grow_config(const sessile_params *p, const sessile_grow_options *o);
-sessile_status sessile_grow_config_read(const cJSON *cfg, sessile_params *p, sessile_grow_options *o);
-
 /* Every check of parameters and options that needs no device (the
  * parameter table's, the --slices spec): a run that passes it starts. */
-sessile_status sessile_grow_check_options(const sessile_params *p, const sessile_grow_options *o);
+sessile_status sessile_grow_check_options(const sessile_grow_params *p, const sessile_grow_options *o);
 
 /* Refuses (SESSILE_ERR_USAGE, with the estimate) parameters whose
  * device-memory estimate exceeds the device's largest device-local heap. */
-sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_params *p);
+sessile_status sessile_grow_check_device(const sessile_gpu *g, const sessile_grow_params *p);
 
-/* Runs the growth loop.  The final surface is returned in final (may be
+/* `sessile grow` as a generator (host/growth/grow_gen.c): presets, --slices,
+ * --no-fields; the command line is the CLI's generic one. */
+extern const sessile_generator sessile_gen_grow;
+
+/* Runs the growth loop (sessile_run_loop over sessile_gen_grow) with the
+ * options o: what a library caller (a benchmark, a test) needs beyond the
+ * command's.  The final surface is returned in final (may be
  * NULL).  Errors: SESSILE_ERR_USAGE for bad parameters (nothing written
  * then), SESSILE_ERR_TOO_LARGE when the box would not fit the device,
  * SESSILE_ERR_IO, SESSILE_ERR_NUMERIC for a solve that broke down,
  * SESSILE_ERR_INTERRUPTED when the run's stop flag was raised (the state
  * after the last whole iteration is checkpointed); files already written
  * stay whole.  The caller closes the run (sessile_run_close). */
-sessile_status sessile_grow_run(sessile_gpu *g, const sessile_params *p,
+sessile_status sessile_grow_run(sessile_gpu *g, const sessile_grow_params *p,
                                 const sessile_grow_options *o, sessile_surface *final,
                                 sessile_grow_summary *summary);
 

@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include "sessile/box.h"
 #include "sessile/growth_gpu.h"
-#include "sessile/params.h"
+#include "sessile/grow_params.h"
 #include "sessile/surface.h"
 
 #ifdef __cplusplus
@@ -23,10 +23,10 @@ extern "C" {
 
 /* Fills p with the defaults documented in docs/growth.md (Table 1 where it
  * gives a value, ours otherwise). */
-/* The `sessile grow` table's defaults (sessile/params.h), mapped. */
+/* The `sessile grow` table's defaults (sessile/grow_params.h), mapped. */
 void sessile_growth_params_default(sessile_growth_params *p);
 /* The kernels' parameters from a run's. */
-void sessile_growth_params_from(const sessile_params *p, sessile_growth_params *g);
+void sessile_growth_params_from(const sessile_grow_params *p, sessile_growth_params *g);
 /* Checks ranges (samples >= 2, t_give in [0,1], passes >= 0, ...). */
 sessile_status sessile_growth_params_check(const sessile_growth_params *p);
 

@@ -23,7 +23,7 @@
 extern "C" {
 #endif
 
-/* sessile/skeleton.h; only the tag here, because sessile/params.h (the grow
+/* sessile/skeleton.h; only the tag here, because sessile/grow_params.h (the grow
  * generator's) also names a type sessile_skeleton and the CLI includes both. */
 struct sessile_skeleton;
 

@@ -17,7 +17,7 @@
 #include "sessile/param_table.h"
 #include "sessile/run.h"
 
-/* Only the struct tag: sessile/params.h names an enum sessile_skeleton too,
+/* Only the struct tag: sessile/grow_params.h names an enum sessile_skeleton too,
  * and the CLI includes both (include sessile/skeleton.h to use it). */
 struct sessile_skeleton;
 

@@ -6,8 +6,8 @@
  * value; the rest are ours, each with its reason in docs/model.md.  Lengths
  * are in centimetres (the scene unit that reads Table 1's thresholds against
  * the 6 cm sponge). */
-#ifndef SESSILE_PARAMS_H
-#define SESSILE_PARAMS_H
+#ifndef SESSILE_GROW_PARAMS_H
+#define SESSILE_GROW_PARAMS_H
 
 #include <stdint.h>
 #include <stdio.h>
@@ -104,7 +104,7 @@ typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
 typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
 
-typedef struct sessile_params {
+typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_REAL(n) double n;
 #define SESSILE_PARAM_FIELD_INT(n) int n;
 #define SESSILE_PARAM_FIELD_BOOL(n) int n;
@@ -116,30 +116,30 @@ typedef struct sessile_params {
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
-} sessile_params;
+} sessile_grow_params;
 
 /* The table of `sessile grow` (sessile/param_table.h): the one source of
  * every default, range, unit and source. */
 extern const sessile_param_table sessile_grow_param_table;
 
 /* Table 1 as is (the `radiate` preset). */
-void sessile_params_default(sessile_params *p);
+void sessile_params_default(sessile_grow_params *p);
 /* Applies a preset: "radiate" (Table 1 as is) or "crella" (Halichondrid +
  * randomised position).  SESSILE_ERR_USAGE for an unknown name. */
-sessile_status sessile_params_preset(sessile_params *p, const char *name);
+sessile_status sessile_params_preset(sessile_grow_params *p, const char *name);
 /* Sets one parameter from text ("0.3", "true", "halichondrid"). */
-sessile_status sessile_params_set(sessile_params *p, const char *key, const char *value);
+sessile_status sessile_params_set(sessile_grow_params *p, const char *key, const char *value);
 /* Every range and every cross-parameter check that needs no device (the
  * sponge inside the box with its wall margin, box sizes within 32-bit
  * indices and host memory, ...). */
-sessile_status sessile_params_validate(const sessile_params *p);
+sessile_status sessile_params_validate(const sessile_grow_params *p);
 /* The far-field height in cm: far_field_height, or the box top for -1. */
-double sessile_params_far_field_height(const sessile_params *p);
+double sessile_params_far_field_height(const sessile_grow_params *p);
 
 /* Bytes of device memory the growth loop needs at least (box vectors, the
  * nutrient operator, the flow at snapshots): the run refuses to start when
  * it exceeds the device's heap. */
-double sessile_params_device_bytes(const sessile_params *p);
+double sessile_params_device_bytes(const sessile_grow_params *p);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,58 @@
+/* The nutrient of one growth iteration: the uploaded surface classified
+ * on every box level (the solid mask and the cut fractions), then the field
+ * solved (Laplace with cut cells, warm-started; or advected by the flow),
+ * recorded under "nutrient_solve". */
+#include "grow_internal.h"
+
+sessile_status grow_classify(grow_run *r) {
+  /* The solid mask and the cut fractions on every box level (the nutrient's
+   * multigrid rediscretises the cut cells on each). */
+  for (int l = 0; l < sessile_cut_nutrient_levels(r->nutrient); l++) {
+    sessile_box lb;
+    sessile_buffer *solid, *theta;
+    sessile_cut_nutrient_level(r->nutrient, l, &lb, &solid, &theta);
+    SESSILE_CALL(sessile_growth_gpu_cut(r->growth, &lb, solid, theta));
+  }
+  return SESSILE_OK;
+}
+
+static void record_solve(cJSON *rec, int advect, sessile_cut_solver solver, const sessile_solve_result *res) {
+  cJSON *ns = cJSON_AddObjectToObject(rec, "nutrient_solve");
+  cJSON_AddStringToObject(ns, "equation", advect ? "advection-diffusion (SUPG), u from the flow"
+                                                 : "Laplace (diffusion limited), cut-cell boundary");
+  cJSON_AddStringToObject(ns, "solver", advect ? "bicgstab+jacobi"
+                                        : solver == SESSILE_CUT_SOLVER_MG ? "pcg+multigrid" : "pcg+jacobi");
+  cJSON_AddNumberToObject(ns, "iterations", res->iterations);
+  cJSON_AddNumberToObject(ns, "true_relres", res->true_relres);
+  cJSON_AddStringToObject(ns, "status", sessile_solve_status_name(res->status));
+  cJSON_AddStringToObject(ns, "reason", res->reason);
+  cJSON_AddNumberToObject(ns, "seconds", res->seconds);
+}
+
+sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessile_vec **probe_field) {
+  int advect = !r->p->diffusion_limited;
+  sessile_ksp_options ko;
+  sessile_ksp_options_default(&ko);
+  ko.type = SESSILE_KSP_CG;
+  ko.pc = SESSILE_PC_JACOBI;
+  ko.rtol = r->p->linear_rtol;
+  ko.max_it = r->p->linear_max_iterations;
+  sessile_solve_result res;
+  sessile_cut_solver solver =
+      r->p->nutrient_solver == SESSILE_SOLVER_MG ? SESSILE_CUT_SOLVER_MG : SESSILE_CUT_SOLVER_JACOBI;
+  if (advect) SESSILE_CALL(grow_nutrient_advected(r, &res));
+  else SESSILE_CALL(sessile_cut_nutrient_solve(r->nutrient, solver, r->c, &ko, &res));
+  /* The flux probe reads the field extended across the surface. */
+  if (advect && r->p->probe == SESSILE_PROBE_FLUX) SESSILE_CALL(sessile_cut_nutrient_extend(r->nutrient, r->c));
+  *probe_field = r->p->probe == SESSILE_PROBE_FLUX ? sessile_cut_nutrient_extended(r->nutrient) : r->c;
+  record_solve(rec, advect, solver, &res);
+  r->sum.solver_iterations += res.iterations;
+  if (res.true_relres > r->sum.worst_relres) r->sum.worst_relres = res.true_relres;
+  SESSILE_CHECK(res.status != SESSILE_SOLVE_BREAKDOWN, SESSILE_ERR_NUMERIC,
+                "iteration %d: the nutrient solve broke down (%s); the run stops here, its "
+                "files so far are whole", it, res.reason);
+  if (res.status != SESSILE_SOLVE_CONVERGED)
+    grow_warn(r, "iteration %d: nutrient solve stopped at %d iterations with true relative residual "
+                 "%.2e (%s); raise linear_max_iterations", it, res.iterations, res.true_relres, res.reason);
+  return SESSILE_OK;
+}
