@@ -169,11 +169,9 @@ typedef void (*sessile_progress_fn)(void *user, int iteration, int iterations, d
  * checkpoints at each snapshot and when a stop is asked
  * (SESSILE_ERR_INTERRUPTED then), the final outputs.  Over su->max_memory
  * after an iteration it checkpoints and fails with SESSILE_ERR_TOO_LARGE.
- * A failure's message names where it passed ("iteration 12: ...").  *done: iterations
- * complete. */
- * (SESSILE_ERR_INTERRUPTED then), the final outputs.  *done: iterations
- * complete.  su->run NULL (a library caller): the iterations and finish
- * only, no records, snapshots or checkpoints. */
+ * A failure's message names where it passed ("iteration 12: ...").  *done:
+ * iterations complete.  su->run NULL (a library caller): the iterations and
+ * finish only, no records, snapshots or checkpoints. */
 sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
                                 sessile_progress_fn progress, void *user, int *done);
 
