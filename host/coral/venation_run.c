@@ -192,11 +192,5 @@ const sessile_generator sessile_gen_coral_venation = {
     .every = 20,
     .needs_device = needs_device,
     .check = check_size,
-    .create = create,
-    .restore = restore,
-    .step = step,
-    .snapshot = snapshot,
-    .sections = sections,
-    .finish = finish,
-    .destroy = destroy,
+    SESSILE_GEN_CALLBACKS,
 };

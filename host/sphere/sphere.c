@@ -88,6 +88,5 @@ const sessile_generator sessile_gen_sphere = {
     "exactly as every generator does (docs/run.md).",
     .seed_help = "the random walk", .out_default = "runs/sphere", .table = &sessile_sphere_param_table,
     .snapshot_name = "sphere/iter_%04d.ply", .preview = "sphere/final.ply", .iterations = 10, .every = 5,
-    .create = create, .restore = restore, .step = step, .snapshot = snapshot, .sections = sections,
-    .finish = finish, .destroy = destroy,
+    SESSILE_GEN_CALLBACKS,
 };

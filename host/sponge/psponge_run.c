@@ -168,11 +168,5 @@ const sessile_generator sessile_gen_sponge_particles = {
     .flags = flags,
     .nflags = 1,
     .needs_device = needs_device,
-    .create = create,
-    .restore = restore,
-    .step = step,
-    .snapshot = snapshot,
-    .sections = sections,
-    .finish = finish,
-    .destroy = destroy,
+    SESSILE_GEN_CALLBACKS,
 };

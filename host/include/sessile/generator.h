@@ -157,6 +157,13 @@ typedef struct sessile_generator {
   sessile_status (*unsnapshot)(void *state, int k);
 } sessile_generator;
 
+/* The seven required callbacks of a generator that names its static
+ * functions create, restore, step, snapshot, sections, finish and destroy
+ * (every generator in this tree but sds, whose names carry a prefix). */
+#define SESSILE_GEN_CALLBACKS                                                   \
+  .create = create, .restore = restore, .step = step, .snapshot = snapshot,   \
+  .sections = sections, .finish = finish, .destroy = destroy
+
 /* Whether iteration it writes a snapshot: 0 no, 1 on the --every grid,
  * 2 only because it is the last (a resume that goes on removes it). */
 int sessile_gen_snapshot_kind(const sessile_gen_setup *su, int it);

@@ -84,11 +84,5 @@ const sessile_generator sessile_gen_testwalk = {
     .table = &table,
     .iterations = 6,
     .every = 2,
-    .create = create,
-    .restore = restore,
-    .step = step,
-    .snapshot = snapshot,
-    .sections = sections,
-    .finish = finish,
-    .destroy = destroy,
+    SESSILE_GEN_CALLBACKS,
 };
