@@ -63,9 +63,13 @@ done
 
 # under an address-space limit too small for a Vulkan driver (lavapipe died
 # by SIGSEGV inside device creation at ulimit -v 400000): one line, exit 1
-"$S" sphere --iterations 1 --out "$T/ul" --quiet --no-preview >/dev/null 2>&1
-(ulimit -v 400000; "$S" render "$T/ul/sphere/final.ply" -o "$T/ul.png" >"$T/out" 2>"$T/err"; echo $? >"$T/rc")
-check "render under ulimit -v 400000: exit 1, one line naming the limit, no picture" eval \
-  'rc_is 1 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "ulimit -v" "$T/err" && [ ! -e "$T/ul.png" ]'
+if [ -z "${SESSILE_TEST_SANITIZED:-}" ]; then
+  "$S" sphere --iterations 1 --out "$T/ul" --quiet --no-preview >/dev/null 2>&1
+  (ulimit -v 400000; "$S" render "$T/ul/sphere/final.ply" -o "$T/ul.png" >"$T/out" 2>"$T/err"; echo $? >"$T/rc")
+  check "render under ulimit -v 400000: exit 1, one line naming the limit, no picture" eval \
+    'rc_is 1 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "ulimit -v" "$T/err" && [ ! -e "$T/ul.png" ]'
+else # not counted: ASan's shadow memory cannot live under any ulimit -v
+  echo "note: the ulimit -v check is not run in the sanitizer build (ASan needs an unlimited address space)"
+fi
 
 finish
