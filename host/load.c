@@ -1,7 +1,7 @@
 /* The machine's load averages, printed beside every benchmark's figures:
  * timings on a shared machine are comparable only at similar load. */
 #include <stdio.h>
-#include "sessile/bench.h"
+#include "sessile/load.h"
 
 int sessile_load_average(double load[3]) {
   load[0] = load[1] = load[2] = -1;

@@ -15,7 +15,7 @@ out.append('''/* Colour maps for sessile's pictures: 256 entries each, 8-bit sRG
  * Visualization" (ISVC 2009).  Tables of published data, not code. */
 #include <math.h>
 #include <string.h>
-#include "sessile/colormap.h"
+#include "sessile/render/colormap.h"
 ''' % matplotlib.__version__)
 for name in ["viridis","magma","coolwarm"]:
     cm=colormaps[name]

@@ -3,7 +3,7 @@
 #define SESSILE_BENCH_INTERNAL_H
 #include <stdio.h>
 #include "la/mg_internal.h"
-#include "sessile/matrix_gen.h"
+#include "sessile/bench/matrix_gen.h"
 
 /* `sessile bench la`'s multigrid table (bench_mg.c): the first `sizes` of
  * 33x33x25, 65x65x49, 129x129x97. */

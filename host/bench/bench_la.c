@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "bench_internal.h"
-#include "sessile/bench.h"
-#include "sessile/la_ref.h"
+#include "sessile/bench/bench.h"
+#include "sessile/la/la_ref.h"
 
 typedef struct {
   sessile_la *la;

@@ -1,4 +1,4 @@
-/* `sessile bench la`, the multigrid part: MG-PCG (sessile/mg.h, default
+/* `sessile bench la`, the multigrid part: MG-PCG (sessile/la/mg.h, default
  * options) beside Jacobi-PCG (sessile_ksp_solve, CG + Jacobi) on the same
  * cut-cell operator: the sphere problem of tests/la/test_mg.c
  * (sessile_cut_sphere) on the nested box sizes 33x33x25, 65x65x49 and

@@ -2,7 +2,7 @@
  * benchmark geometry of the multigrid, generated the same way on every level
  * so that nested levels are rediscretisations of one domain. */
 #include <math.h>
-#include "sessile/matrix_gen.h"
+#include "sessile/bench/matrix_gen.h"
 
 typedef struct {
   uint32_t n[3];

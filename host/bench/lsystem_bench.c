@@ -6,10 +6,10 @@
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
-#include "sessile/bench.h"
-#include "sessile/lsystem.h"
+#include "sessile/bench/bench.h"
+#include "sessile/coral/lsystem.h"
 #include "sessile/rng.h"
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 
 /* A lophelia-like stochastic parametric grammar (conditions, weights,
  * variance, thickening): each polyp buds one or two daughters. */

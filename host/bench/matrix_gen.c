@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/matrix_gen.h"
+#include "sessile/bench/matrix_gen.h"
 #include "sessile/rng.h"
 
 /* Below this many rows the thread start-up costs more than the work. */

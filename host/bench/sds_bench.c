@@ -11,10 +11,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sessile/sds_builtin.h"
-#include "sessile/sds.h"
-#include "sessile/bench.h"
-#include "sessile/sds_run.h"
+#include "sessile/sds/sds_builtin.h"
+#include "sessile/sds/sds.h"
+#include "sessile/bench/bench.h"
+#include "sessile/sds/sds_run.h"
 
 #define REPS 5 /* medians over this many repeats */
 

@@ -1,10 +1,10 @@
-/* The welded surface's benchmark (`sessile bench coral weld`, sessile/bench.h):
+/* The welded surface's benchmark (`sessile bench coral weld`, sessile/bench/bench.h):
  * a random 10 k-segment branching skeleton on a 256-cell grid (longest
  * axis), on the device by stage and by the plain-C reference in the same
  * run (docs/weld.md). */
 #include <string.h>
 #include "mesh/weld_internal.h"
-#include "sessile/bench.h"
+#include "sessile/bench/bench.h"
 
 sessile_status sessile_bench_weld(sessile_gpu *g, int quick, FILE *out) {
   uint32_t nseg = quick ? 500 : 10000, cells = quick ? 64 : 256;

@@ -3,9 +3,9 @@
 #define SESSILE_CLI_H
 #include <signal.h>
 #include <stdio.h>
-#include "sessile/gpu.h"
-#include "sessile/param_table.h"
-#include "sessile/grow_params.h"
+#include "sessile/gpu/gpu.h"
+#include "sessile/run/param_table.h"
+#include "sessile/growth/grow_params.h"
 
 enum { EXIT_OK = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2 };
 
@@ -92,13 +92,16 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global);
 /* `sessile render FILE -o OUT.png` (cmd_render.c); `sessile bench render`. */
 int cmd_render(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global);
-/* `sessile bench coral`: one section per generator (cmd_bench_coral_*.c). */
+/* `sessile bench coral` and `bench sponge`: one section per generator
+ * (cmd_bench_coral_*.c, cmd_bench_sponge_*.c). */
 int cmd_bench_coral(int argc, char **argv, const cli_gpu_opts *global);
-typedef struct bench_coral_opts {
+int cmd_bench_sponge(int argc, char **argv, const cli_gpu_opts *global);
+typedef struct bench_section_opts {
   int quick; /* smaller sizes: a smoke run for the tests */
-} bench_coral_opts;
-sessile_status bench_coral_lsystem(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
-sessile_status bench_coral_weld(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
-sessile_status bench_coral_venation(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
-sessile_status bench_coral_particles(sessile_gpu *g, const bench_coral_opts *o, FILE *out);
+} bench_section_opts;
+typedef sessile_status bench_section_fn(sessile_gpu *g, const bench_section_opts *o, FILE *out);
+sessile_status bench_coral_lsystem(sessile_gpu *g, const bench_section_opts *o, FILE *out);
+sessile_status bench_coral_weld(sessile_gpu *g, const bench_section_opts *o, FILE *out);
+sessile_status bench_coral_venation(sessile_gpu *g, const bench_section_opts *o, FILE *out);
+sessile_status bench_sponge_particles(sessile_gpu *g, const bench_section_opts *o, FILE *out);
 #endif

@@ -3,7 +3,7 @@
 #ifndef SESSILE_CLI_GENERATOR_H
 #define SESSILE_CLI_GENERATOR_H
 #include "cli.h"
-#include "sessile/generator.h"
+#include "sessile/run/generator.h"
 
 /* `sessile NAME ...` for generator g: argv[0] is the generator's last word. */
 int cli_generator_main(const sessile_generator *g, int argc, char **argv, const cli_gpu_opts *global);

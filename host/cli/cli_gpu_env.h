@@ -4,7 +4,7 @@
 #ifndef SESSILE_CLI_GPU_ENV_H
 #define SESSILE_CLI_GPU_ENV_H
 #include <stddef.h>
-#include "sessile/gpu.h"
+#include "sessile/gpu/gpu.h"
 
 /* Room for the default pipeline cache folder that cli_gpu_env writes. */
 typedef struct { char cache_default[4096]; } cli_gpu_env_store;

@@ -2,7 +2,7 @@
  * place on a terminal, one line per iteration in a log), warnings always. */
 #ifndef SESSILE_CLI_MONITOR_H
 #define SESSILE_CLI_MONITOR_H
-#include "sessile/generator.h"
+#include "sessile/run/generator.h"
 
 typedef struct cli_monitor {
   const char *cmd; /* "grow" */

@@ -3,7 +3,7 @@
  * a picture that fails costs one warning, never the run. */
 #include <stdio.h>
 #include "cli_run.h"
-#include "sessile/render_run.h"
+#include "sessile/render/render_run.h"
 
 void cli_run_preview(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel,
                      sessile_gpu *g, const cli_gpu_opts *go) {

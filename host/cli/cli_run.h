@@ -5,7 +5,7 @@
 #ifndef SESSILE_CLI_RUN_H
 #define SESSILE_CLI_RUN_H
 #include "cli.h"
-#include "sessile/run.h"
+#include "sessile/run/run.h"
 
 typedef struct cli_run_args {
   const char *out, *resume;

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include "cli.h"
 #include "sessile/rng.h"
-#include "sessile/venation.h"
+#include "sessile/coral/venation.h"
 
 /* A vein-like cloud: random walks from the origin (nodes step 0.2 cm apart),
  * and auxins uniform in the walks' bounds. */
@@ -27,7 +27,7 @@ static void clouds(uint32_t n, uint32_t m, double *nodes, double *pts) {
   for (uint32_t i = 0; i < 3 * m; i++) pts[i] = sessile_rng_range(&r, lo[i % 3], hi[i % 3]);
 }
 
-sessile_status bench_coral_venation(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
+sessile_status bench_coral_venation(sessile_gpu *g, const bench_section_opts *o, FILE *out) {
   uint32_t n = o->quick ? 10000 : 100000, m = o->quick ? 1000 : 10000;
   double *nodes = malloc((size_t)3 * n * sizeof *nodes), *pts = malloc((size_t)3 * m * sizeof *pts);
   uint32_t *ig = malloc((size_t)m * sizeof *ig), *ih = malloc((size_t)m * sizeof *ih), *ib = malloc((size_t)m * 4);

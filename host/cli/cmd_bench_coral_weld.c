@@ -2,8 +2,8 @@
  * coral on a 256-cell grid, GPU by stage against the plain-C reference in
  * the same run (host/bench/weld_bench.c, docs/weld.md). */
 #include "cli.h"
-#include "sessile/bench.h"
+#include "sessile/bench/bench.h"
 
-sessile_status bench_coral_weld(sessile_gpu *g, const bench_coral_opts *o, FILE *out) {
+sessile_status bench_coral_weld(sessile_gpu *g, const bench_section_opts *o, FILE *out) {
   return sessile_bench_weld(g, o->quick, out);
 }

@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
-#include "sessile/fluid.h"
-#include "sessile/growth_ref.h"
-#include "sessile/pc.h"
-#include "sessile/tetmesh.h"
+#include "sessile/fem/fluid.h"
+#include "sessile/growth/growth_ref.h"
+#include "sessile/la/pc.h"
+#include "sessile/mesh/tetmesh.h"
 
 static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"

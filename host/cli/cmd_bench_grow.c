@@ -6,8 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
-#include "sessile/bench.h"
-#include "sessile/grow.h"
+#include "sessile/bench/bench.h"
+#include "sessile/growth/grow.h"
 
 static const char *help =
     "usage: sessile bench grow [--preset radiate|crella] [--iterations N] [--seed N]\n"

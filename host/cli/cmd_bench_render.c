@@ -9,10 +9,10 @@
 #include <sys/resource.h>
 #include <unistd.h>
 #include "cli.h"
-#include "sessile/bench.h"
-#include "sessile/io.h"
-#include "sessile/png.h"
-#include "sessile/render_mesh.h"
+#include "sessile/bench/bench.h"
+#include "sessile/io/io.h"
+#include "sessile/io/png.h"
+#include "sessile/render/render_mesh.h"
 
 #define CMD "bench render"
 #define PI 3.14159265358979323846

@@ -8,8 +8,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "sessile/bench.h"
-#include "sessile/sds.h"
+#include "sessile/bench/bench.h"
+#include "sessile/sds/sds.h"
 
 static const char *help =
     "usage: sessile bench sds [--rock-t T] [--no-physics] [--kernels] [--device D]\n"

@@ -1,5 +1,5 @@
 /* `sessile coral lsystem`: stony corals from a stochastic parametric
- * L-system (sessile/lsystem.h, docs/lsystem.md).  Everything is computed
+ * L-system (sessile/coral/lsystem.h, docs/lsystem.md).  Everything is computed
  * before the run directory opens, so bad input, a malformed grammar or a
  * derivation too large writes nothing. */
 #include <fcntl.h>
@@ -10,8 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "cli_run.h"
-#include "sessile/io.h"
-#include "sessile/lsystem.h"
+#include "sessile/io/io.h"
+#include "sessile/coral/lsystem.h"
 
 static const char *CMD = "coral lsystem";
 

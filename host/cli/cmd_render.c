@@ -1,6 +1,6 @@
 /* `sessile render`: pictures of sessile's outputs (docs/render.md).
  * Meshes (.ply, .obj) are drawn through Vulkan and annotated with Cairo
- * (sessile/render_run.h); EXR slices by the 2-D renderer (sessile/render2d.h);
+ * (sessile/render/render_run.h); EXR slices by the 2-D renderer (sessile/render/render2d.h);
  * run directories by both (host/render/run_*.c). */
 #include <errno.h>
 #include <fcntl.h>
@@ -11,10 +11,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "cli.h"
-#include "sessile/png.h"
-#include "sessile/render2d.h"
-#include "sessile/render_mesh.h"
-#include "sessile/render_run.h"
+#include "sessile/io/png.h"
+#include "sessile/render/render2d.h"
+#include "sessile/render/render_mesh.h"
+#include "sessile/render/render_run.h"
 
 #define CMD "render"
 /* A name in a message: at most 60 characters and "...", the reason after it whole. */

@@ -4,8 +4,8 @@
 #include <string.h>
 #include "cli_generator.h"
 #include "cli_run.h"
-#include "sessile/sds_builtin.h"
-#include "sessile/sds_run.h"
+#include "sessile/sds/sds_builtin.h"
+#include "sessile/sds/sds_run.h"
 
 static int list_models(void) {
   for (const embedded_text *b = sds_builtins; b->name; b++) {

@@ -8,7 +8,7 @@ int cmd_sponge(int argc, char **argv, const cli_gpu_opts *global) {
   static const char *top =
       "usage: sessile sponge particles [OPTIONS]   ('sessile sponge particles --help')\n"
       "\n"
-      "Sponges after Liapis et al., Coralize (docs/particle_sponge.md):\n"
+      "Sponges after Liapis et al., Coralize (docs/sponge_particles.md):\n"
       "  particles  a hemisphere in a cube fed by falling nutrient particles (Section 3.3)\n";
   if (argc < 2) return cli_usage_error("sponge", "name a generator: particles");
   if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {

@@ -2,7 +2,7 @@
  * host/coral/grammars/ *.lsys at configure time). */
 #include <string.h>
 #include "coral/lsys_builtin.h"
-#include "sessile/lsystem.h"
+#include "sessile/coral/lsystem.h"
 
 int sessile_lsys_builtin_count(void) {
   int n = 0;

@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 #include "sessile/expr.h"
-#include "sessile/lsystem.h"
+#include "sessile/coral/lsystem.h"
 
 enum {
   LSYS_MAX_DEFINES = 128,

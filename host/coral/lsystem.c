@@ -1,4 +1,4 @@
-/* `sessile coral lsystem` (sessile/lsystem.h, docs/lsystem.md): derive the
+/* `sessile coral lsystem` (sessile/coral/lsystem.h, docs/lsystem.md): derive the
  * grammar, interpret it with the turtle into a skeleton, mesh it as tubes
  * (Coralize's way) or as one welded surface, and write the run's files. */
 #include <math.h>
@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "sessile/io.h"
-#include "sessile/lsystem.h"
+#include "sessile/io/io.h"
+#include "sessile/coral/lsystem.h"
 #include "sessile/rng.h"
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 
 static const char *const grammar_names[] = {"lophelia1", "lophelia2", "flat", NULL};
 static const char *const geometry_names[] = {"tubes", "weld", NULL};

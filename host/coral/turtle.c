@@ -6,9 +6,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/lsystem.h"
+#include "sessile/coral/lsystem.h"
 #include "sessile/rng.h"
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 
 typedef struct tstate {
   double pos[3], H[3], L[3], U[3];

@@ -1,10 +1,10 @@
-/* The GPU nearest-node search (sessile/venation.h): uploads nodes, the grid
+/* The GPU nearest-node search (sessile/coral/venation.h): uploads nodes, the grid
  * and the auxins, records shaders/coral/nearest.comp, downloads the answer.
  * Buffers grow by doubling and are kept between iterations. */
 #include <stdlib.h>
 #include <string.h>
 #include "coral_kernels.h"
-#include "sessile/venation.h"
+#include "sessile/coral/venation.h"
 
 enum { B_GP, B_NODE, B_OFF, B_CELL, B_PTS, B_NEAR, B_D2, B_ST, B_TODO, B_CAND, B_CD2, B_START, B_BLK, B_COUNT };
 

@@ -1,4 +1,4 @@
-/* The nearest vein node of every auxin (sessile/venation.h): the uniform grid
+/* The nearest vein node of every auxin (sessile/coral/venation.h): the uniform grid
  * of nodes and the two plain-C references the kernel is tested against.  The
  * grid search is shaders/coral/nearest.comp operation by operation. */
 #include <math.h>

@@ -1,8 +1,8 @@
 /* Shared inside the venation generator (host/coral/venation*.c). */
 #ifndef SESSILE_VENATION_INTERNAL_H
 #define SESSILE_VENATION_INTERNAL_H
-#include "sessile/skeleton.h"
-#include "sessile/venation.h"
+#include "sessile/mesh/skeleton.h"
+#include "sessile/coral/venation.h"
 
 /* The blade's extent at relative height z in [0, 1] for unit width: the
  * left and right Bezier curves' x there (xl > xr: no blade at that height). */

@@ -1,4 +1,4 @@
-/* From the vein graph to a skeleton (sessile/skeleton.h): radii from the
+/* From the vein graph to a skeleton (sessile/mesh/skeleton.h): radii from the
  * thickness index through the thickness curve (Coralize §3.2, Fig. 5), and
  * rotation-minimising frames carried from each node to its children by the
  * double reflection method (Wang et al. 2008), so tubes do not twist. */

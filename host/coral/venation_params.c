@@ -1,4 +1,4 @@
-/* The venation generator's parameter table (sessile/venation.h): every
+/* The venation generator's parameter table (sessile/coral/venation.h): every
  * parameter with its unit, range, the paper's name for it (Coralize §3.2, or
  * Runions et al. 2005) or "ours", and its meaning (docs/venation.md). */
 #include <math.h>

@@ -1,11 +1,11 @@
-/* `sessile coral venation` on the run framework (sessile/venation.h): the
+/* `sessile coral venation` on the run framework (sessile/coral/venation.h): the
  * configuration a resume restarts from, per-iteration records, snapshots,
  * the checkpoint (vein graph, auxins, rng state) and the final meshes. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
-#include "sessile/generator.h"
+#include "sessile/io/io.h"
+#include "sessile/run/generator.h"
 #include "venation_internal.h"
 
 /* The generator's state: the vein graph and what writes it. */

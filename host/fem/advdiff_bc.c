@@ -1,7 +1,7 @@
 /* The nutrient's boundary conditions on a tet mesh (paper §4.3): the walls
  * carry the idealised 1 mol m^-3, the substratum and the sponge absorb
  * everything (0). */
-#include "sessile/advdiff.h"
+#include "sessile/fem/advdiff.h"
 
 void sessile_advdiff_nutrient_bc(const sessile_tetmesh *mesh, const uint8_t *solid_or_null,
                                  uint8_t *mask, double *values) {

@@ -1,9 +1,9 @@
-/* Private state of the SUPG advection-diffusion solver (sessile/advdiff.h),
+/* Private state of the SUPG advection-diffusion solver (sessile/fem/advdiff.h),
  * shared by advdiff.c (object, graph, solve) and advdiff_assemble.c. */
 #ifndef SESSILE_ADVDIFF_INTERNAL_H
 #define SESSILE_ADVDIFF_INTERNAL_H
 
-#include "sessile/advdiff.h"
+#include "sessile/fem/advdiff.h"
 
 struct sessile_advdiff {
   sessile_la *la;

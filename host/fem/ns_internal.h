@@ -3,7 +3,7 @@
 #define SESSILE_NS_INTERNAL_H
 
 #include <stdint.h>
-#include "sessile/fluid.h"
+#include "sessile/fem/fluid.h"
 
 /* Coefficients of one assembly: newton = 1 for the full Jacobian, 0 for the
  * Picard (Oseen) linearisation. */
@@ -25,7 +25,7 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
 #define NS_QA 0.5854101966249685
 #define NS_QB 0.1381966011250105
 
-/* The solver object (sessile/fluid.h). */
+/* The solver object (sessile/fem/fluid.h). */
 struct sessile_fluid {
   sessile_la *la;
   uint32_t nnodes, ntets;

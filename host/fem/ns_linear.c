@@ -5,8 +5,8 @@
 #include <stdlib.h>
 
 #include "fem/ns_internal.h"
-#include "sessile/la_ref.h"
-#include "sessile/pc.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/la/pc.h"
 
 sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p, const double *r,
                                double *du, sessile_vec *b, sessile_vec *x, sessile_fluid_step *st) {

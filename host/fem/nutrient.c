@@ -13,7 +13,7 @@
  * Dirichlet rows (docs/fem.md). */
 #include <stdlib.h>
 #include "fem_kernels.h"
-#include "sessile/nutrient.h"
+#include "sessile/fem/nutrient.h"
 
 struct sessile_nutrient {
   sessile_la *la;

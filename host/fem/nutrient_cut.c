@@ -1,12 +1,12 @@
-/* The cut-cell nutrient (sessile/nutrient_cut.h, docs/nutrient.md): the
+/* The cut-cell nutrient (sessile/fem/nutrient_cut.h, docs/nutrient.md): the
  * level hierarchy and its buffers, the boundary setup kernel per level, the
  * MG-PCG (or Jacobi-PCG) solve of the homogenised system, and the extension
  * across the surface for the probe. */
 #include <stdlib.h>
 #include <string.h>
 #include "fem_kernels.h"
-#include "sessile/mg.h"
-#include "sessile/nutrient_cut.h"
+#include "sessile/la/mg.h"
+#include "sessile/fem/nutrient_cut.h"
 
 #define MAX_LEVELS 12
 

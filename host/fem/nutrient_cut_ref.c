@@ -1,7 +1,7 @@
 /* Host references of shaders/fem/cutcell.comp and ghost.comp (the cut-cell
  * nutrient's boundary setup and its extension across the surface), in
  * double, operation by operation, for the tests. */
-#include "sessile/nutrient_cut.h"
+#include "sessile/fem/nutrient_cut.h"
 
 typedef struct {
   const sessile_box *box;

@@ -4,7 +4,7 @@
  * reference CG solves for comparison. */
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/nutrient.h"
+#include "sessile/fem/nutrient.h"
 
 /* Gradients of the 4 barycentric functions of tet (p0..p3); returns its
  * signed volume. */

@@ -3,7 +3,7 @@
 #define SESSILE_GPU_INTERNAL_H
 
 #include <vulkan/vulkan.h>
-#include "sessile/gpu.h"
+#include "sessile/gpu/gpu.h"
 
 /* Where the validation messenger reports (instance.c): every warning and
  * error is counted, then handed to fn (NULL: printed to stderr). */

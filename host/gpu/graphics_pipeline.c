@@ -2,7 +2,7 @@
  * vertex and index buffers they draw.  See graphics.h. */
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/graphics.h"
+#include "sessile/gpu/graphics.h"
 #include "graphics_internal.h"
 
 static sessile_status module_create(sessile_gpu *g, const char *name, VkShaderModule *m) {

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "gpu_internal.h"
-#include "sessile/graphics.h"
+#include "sessile/gpu/graphics.h"
 #include "graphics_internal.h"
 
 uint32_t sessile_gfx_sample_counts(const sessile_gpu *g) {

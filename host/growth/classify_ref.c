@@ -4,7 +4,7 @@
  * operation by operation in the kernel so the masks are identical. */
 #include <math.h>
 #include <stdlib.h>
-#include "sessile/growth_ref.h"
+#include "sessile/growth/growth_ref.h"
 
 /* Lines along axis a are indexed by the two other axes in cyclic order
  * (u, v) = (a+1, a+2) mod 3, so (u, v, a) is right-handed and axis 2 is the

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
-#include "sessile/growth_ref.h"
+#include "sessile/growth/growth_ref.h"
 #include "sessile/rng.h"
 
 const char *sessile_grow_stage_name(int stage) {

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
-#include "sessile/locate.h"
-#include "sessile/tetgen.h"
+#include "sessile/mesh/locate.h"
+#include "sessile/mesh/tetgen.h"
 
 /* The P1 interpolant of the 4 nodal fields f4 (ux, uy, uz, p interleaved,
  * 4 per node of loc's mesh) at the n points pts (3 n, cm), on the GPU:

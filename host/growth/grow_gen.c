@@ -1,4 +1,4 @@
-/* `sessile grow` as a generator (sessile/generator.h): the run loop drives
+/* `sessile grow` as a generator (sessile/run/generator.h): the run loop drives
  * the growth state (grow.c) through grow_iterate.c, the snapshots and final
  * meshes (grow_output.c), the checkpoint (grow_checkpoint.c) and the
  * manifest's members (grow_manifest.c).  sessile_grow_run is the same loop

@@ -2,7 +2,7 @@
  * guard between the growth step and the remesh, and the self-intersection
  * check after the remesh, with what they record.  grow.c calls each once. */
 #include "grow_internal.h"
-#include "sessile/intersect.h"
+#include "sessile/mesh/intersect.h"
 
 /* Halfway first, then back: in the default runs it held back fewer
  * vertices and kept more growth than stepping straight back

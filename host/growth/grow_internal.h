@@ -4,16 +4,16 @@
 #define SESSILE_GROW_INTERNAL_H
 
 #include <cjson/cJSON.h>
-#include "sessile/box.h"
-#include "sessile/grow.h"
-#include "sessile/growth_gpu.h"
-#include "sessile/growth_ref.h"
-#include "sessile/la.h"
-#include "sessile/nutrient_cut.h"
-#include "sessile/surface.h"
-#include "sessile/advdiff.h"
-#include "sessile/fluid.h"
-#include "sessile/tetmesh.h"
+#include "sessile/mesh/box.h"
+#include "sessile/growth/grow.h"
+#include "sessile/growth/growth_gpu.h"
+#include "sessile/growth/growth_ref.h"
+#include "sessile/la/la.h"
+#include "sessile/fem/nutrient_cut.h"
+#include "sessile/mesh/surface.h"
+#include "sessile/fem/advdiff.h"
+#include "sessile/fem/fluid.h"
+#include "sessile/mesh/tetmesh.h"
 
 typedef struct grow_plane {
   int axis;     /* 0 x, 1 y, 2 z */

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "grow_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 static void add_vec3(cJSON *o, const char *name, const double v[3]) {
   cJSON *a = cJSON_AddArrayToObject(o, name);

@@ -1,5 +1,5 @@
 /* The files of `sessile grow`: snapshots (PLY, EXR slices, VTU + PVD) and
- * the final meshes, each listed in the run directory (sessile/run.h) and
+ * the final meshes, each listed in the run directory (sessile/run/run.h) and
  * written through host/io's atomic writers. */
 #include <errno.h>
 #include <stdarg.h>
@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "grow_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 /* Parses a --slices spec against the box's extent mx; bare axes go through
  * center.  Each plane once. */

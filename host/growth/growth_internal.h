@@ -2,8 +2,8 @@
 #ifndef SESSILE_GROWTH_INTERNAL_H
 #define SESSILE_GROWTH_INTERNAL_H
 
-#include "sessile/growth_gpu.h"
-#include "sessile/growth_ref.h"
+#include "sessile/growth/growth_gpu.h"
+#include "sessile/growth/growth_ref.h"
 
 /* The kernels (growth_kernel_id, sessile_growth_kernels[]), growth_push,
  * the parameter slots P_* and GROWTH_LOCAL: generated from

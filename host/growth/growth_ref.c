@@ -3,9 +3,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/growth_ref.h"
+#include "sessile/growth/growth_ref.h"
 
-/* The defaults are the parameter table's (sessile/grow_params.h), the one source:
+/* The defaults are the parameter table's (sessile/growth/grow_params.h), the one source:
  * this only maps the run's parameters onto the kernels'. */
 void sessile_growth_params_from(const sessile_grow_params *p, sessile_growth_params *g) {
   memset(g, 0, sizeof *g);

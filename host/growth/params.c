@@ -1,11 +1,11 @@
-/* The parameter table of `sessile grow` (sessile/grow_params.h): the one source
+/* The parameter table of `sessile grow` (sessile/growth/grow_params.h): the one source
  * of every default; presets; the checks that need no device. */
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "sessile/grow_params.h"
+#include "sessile/growth/grow_params.h"
 
 static const char *const skeleton_names[] = {"radiate", "halichondrid", NULL};
 static const char *const domain_names[] = {"immersed", "conforming", NULL};

@@ -1,4 +1,4 @@
-/* The EXR slice reader (sessile/io_read.h), through OpenEXR's C API.  The
+/* The EXR slice reader (sessile/io/io_read.h), through OpenEXR's C API.  The
  * file is opened here (O_NONBLOCK, regular files only: a FIFO named as a
  * slice is refused, never waited on) and OpenEXR reads it through pread on
  * that descriptor; OpenEXR's messages go into ours, not to stderr. */

@@ -3,8 +3,8 @@
 #define SESSILE_IO_INTERNAL_H
 #include <stdint.h>
 #include <string.h>
-#include "sessile/io.h"
-#include "sessile/io_read.h"
+#include "sessile/io/io.h"
+#include "sessile/io/io_read.h"
 
 /* Little-endian stores, independent of the host's byte order. */
 static inline uint8_t *io_put_u32(uint8_t *p, uint32_t v) {

@@ -1,4 +1,4 @@
-/* The OBJ reader (sessile/io_read.h): "v x y z [w]" and "f a b c ..." lines
+/* The OBJ reader (sessile/io/io_read.h): "v x y z [w]" and "f a b c ..." lines
  * (a as v, v/t, v//n or v/t/n; negative indices count back from the last
  * vertex); every other line (vn, vt, o, g, s, usemtl, mtllib, comments) is
  * ignored, however long.  Normals are not taken from vn: OBJ indexes them

@@ -1,4 +1,4 @@
-/* The PLY reader (sessile/io_read.h; ascii, binary little- and big-endian).
+/* The PLY reader (sessile/io/io_read.h; ascii, binary little- and big-endian).
  *
  * The header is parsed and checked whole before anything is allocated: the
  * vertex and face counts against the caller's limits, and every element's

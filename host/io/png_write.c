@@ -12,8 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
-#include "sessile/png.h"
+#include "sessile/io/io.h"
+#include "sessile/io/png.h"
 
 typedef struct membuf {
   unsigned char *data;

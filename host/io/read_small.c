@@ -8,7 +8,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 sessile_status sessile_read_small_file(const char *path, size_t max, const char *what, char **text, size_t *len) {
   *text = NULL, *len = 0;

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 typedef struct {
   uint32_t nlev;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "pc_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 void sessile_ksp_options_default(sessile_ksp_options *o) {
   memset(o, 0, sizeof *o);

@@ -2,8 +2,8 @@
 #ifndef SESSILE_LA_INTERNAL_H
 #define SESSILE_LA_INTERNAL_H
 
-#include "sessile/la.h"
-#include "sessile/pc.h"
+#include "sessile/la/la.h"
+#include "sessile/la/pc.h"
 
 /* The kernels (la_kernel_id, sessile_la_kernels[]), their push structs
  * (vec_push, spmv_push, ...) and the scalar slots (S_*, CG_*, BI_*, GM_*),

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 static sessile_status copy_csr(const sessile_csr *a, sessile_csr *out) {
   SESSILE_CALL(sessile_csr_alloc(a->nrows, a->ncols, a->nnz, out));

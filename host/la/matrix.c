@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/matrix.h"
+#include "sessile/la/matrix.h"
 
 /* count*elem bytes, or SIZE_MAX when that does not fit in size_t. */
 static size_t array_bytes(uint64_t count, size_t elem) {

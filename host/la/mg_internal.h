@@ -4,7 +4,7 @@
 
 #include <stdio.h>
 #include "la_internal.h"
-#include "sessile/mg.h"
+#include "sessile/la/mg.h"
 
 #define MG_MAX_LEVELS 16
 

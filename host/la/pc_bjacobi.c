@@ -7,7 +7,7 @@
  * blocks: the setup is then point Jacobi's, with its fused solver paths. */
 #include <stdlib.h>
 #include "pc_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 static sessile_status bj_setup(sessile_pc *pc, const sessile_mat *a) {
   if (a->kind != MAT_BCSR4) return la_pc_jacobi_setup(pc, a);

@@ -4,7 +4,7 @@
 #define SESSILE_PC_INTERNAL_H
 
 #include "la_internal.h"
-#include "sessile/pc.h"
+#include "sessile/la/pc.h"
 
 /* One preconditioner type.  setup is called on a pc with nothing built
  * (release ran before) and either builds everything or returns an error

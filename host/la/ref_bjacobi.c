@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 sessile_status sessile_ref_bjacobi_bcsr4(const sessile_bcsr4 *a, double *dinv) {
   /* A failure in a worker is reduced to the lowest failing block row and

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 /* c = a b for bs x bs row-major blocks. */
 static void bmul(int bs, const double *a, const double *b, double *c) {

@@ -5,8 +5,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/la_ref.h"
-#include "sessile/mg.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/la/mg.h"
 
 typedef sessile_ref_mg_level level;
 

@@ -16,7 +16,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 /* n-vectors in one block, with an overflow-checked size. */
 static double *alloc_vectors(const char *solver, uint64_t count, uint64_t n) {

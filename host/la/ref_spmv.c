@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 /* Parallelise once the matrix has this many stored entries. */
 #define SPMV_PAR_MIN_NNZ 32768

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 /* Below this length a parallel region costs more than it saves. */
 #define VEC_PAR_MIN 32768

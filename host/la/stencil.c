@@ -7,7 +7,7 @@
  * shaders/la/stencil7*.comp; plain-C reference: sessile_ref_stencil7. */
 #include <stdlib.h>
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 sessile_status la_stencil_mat(sessile_la *la, mat_kind kind, const char *what, uint32_t nx,
                               uint32_t ny, uint32_t nz, double h, sessile_buffer *mask,

@@ -7,7 +7,7 @@
  * sessile_ref_stencil7_cut. */
 #include <stdlib.h>
 #include "la_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 
 /* Texel reads need every view within maxTexelBufferElements. */
 static int texel_fits(sessile_la *la, const sessile_buffer *mask, const sessile_vec *diag) {

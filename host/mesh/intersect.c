@@ -1,5 +1,5 @@
 /* Self-intersection of a triangle surface: a bounding-volume hierarchy over
- * the triangles and the pairs it finds (sessile/intersect.h).
+ * the triangles and the pairs it finds (sessile/mesh/intersect.h).
  *
  * Build: top down, each node's triangles split at the median of their
  * centroids along the longest axis of the centroids' box, ties broken by the

@@ -4,7 +4,7 @@
 #define SESSILE_INTERSECT_INTERNAL_H
 #include <stddef.h>
 #include <stdint.h>
-#include "sessile/intersect.h"
+#include "sessile/mesh/intersect.h"
 
 /* Bounding box of triangle t (ids into pos): lo[3], hi[3] into box[6]. */
 static inline void isect_tri_box(const double *pos, const uint32_t *t, double box[6]) {

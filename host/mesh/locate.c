@@ -1,5 +1,5 @@
 /* Point location in an unstructured tet mesh: uniform bin grid built on the
- * host, and the host query (sessile/locate.h).  shaders/mesh/locate.comp
+ * host, and the host query (sessile/mesh/locate.h).  shaders/mesh/locate.comp
  * repeats locate_weights and the scan operation by operation. */
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* The GPU point locator: uploads a locator's mesh and bins, records
- * shaders/mesh/locate.comp (sessile/locate.h). */
+ * shaders/mesh/locate.comp (sessile/mesh/locate.h). */
 #include <stdlib.h>
 #include <string.h>
 #include "locate_internal.h"

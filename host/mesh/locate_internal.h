@@ -1,7 +1,7 @@
-/* Internal: the locator's fields (sessile/locate.h). */
+/* Internal: the locator's fields (sessile/mesh/locate.h). */
 #ifndef SESSILE_LOCATE_INTERNAL_H
 #define SESSILE_LOCATE_INTERNAL_H
-#include "sessile/locate.h"
+#include "sessile/mesh/locate.h"
 
 struct sessile_locator {
   const sessile_tetmesh *m; /* not owned */

@@ -16,12 +16,12 @@ static inline void mesh_face_cross(const double *pos, const uint32_t *t, double 
 }
 
 /* The sorts (mesh_sort_u64, mesh_order3 ...) are public: sds uses them. */
-#include "sessile/mesh_sort.h"
+#include "sessile/mesh/mesh_sort.h"
 
 
 
 /* --- remesh phases (remesh.c drives them) --------------------------------- */
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 
 /* The position of a vertex inserted on edge (a, b), or of the two fused: the
  * curve midpoint, clamped into the box; an edge whose ends lie on the same

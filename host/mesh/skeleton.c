@@ -1,9 +1,9 @@
-/* A coral's skeleton (sessile/skeleton.h): storage, bounds and the tube mesh.
+/* A coral's skeleton (sessile/mesh/skeleton.h): storage, bounds and the tube mesh.
  * The welded surface lives in weld.c (GPU) and weld_ref.c (host reference). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 
 void sessile_skeleton_free(sessile_skeleton *s) {
   if (!s) return;

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/mesh_internal.h"
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 
 void sessile_surface_free(sessile_surface *s) {
   if (!s) return;

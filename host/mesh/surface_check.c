@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/mesh_internal.h"
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 
 typedef struct { uint32_t v[3], f; } sorted_tri;
 

@@ -1,6 +1,6 @@
 /* The conforming water domain: builds TetGen's piecewise linear complex for
  * the box minus the sponge, runs TetGen (tetgen_shim.cpp) and converts its
- * mesh into a sessile_tetmesh (sessile/tetgen.h; docs/conforming.md).
+ * mesh into a sessile_tetmesh (sessile/mesh/tetgen.h; docs/conforming.md).
  *
  * The PLC: the 8 box corners and the sponge vertices that bound the water;
  * one facet per box face (the rectangle, plus as segments the sponge edges
@@ -15,7 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/tetgen.h"
+#include "sessile/mesh/tetgen.h"
 #include "tetgen_plc.h"
 
 void sessile_tetgen_options_default(sessile_tetgen_options *o) {

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/tetgen.h"
+#include "sessile/mesh/tetgen.h"
 #include "tetgen_plc.h"
 
 void sessile_tetgen_mesh_free(sessile_tetgen_mesh *m) {

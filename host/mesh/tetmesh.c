@@ -1,9 +1,9 @@
 /* General tetrahedral meshes of the water: storage and the structured box
- * converted (sessile/tetmesh.h).  TetGen's conforming mesh lives in
+ * converted (sessile/mesh/tetmesh.h).  TetGen's conforming mesh lives in
  * tetgen_shim.cpp. */
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/tetmesh.h"
+#include "sessile/mesh/tetmesh.h"
 
 void sessile_tetmesh_free(sessile_tetmesh *m) {
   if (!m) return;

@@ -1,4 +1,4 @@
-/* The welded surface on the GPU (sessile/skeleton.h, docs/weld.md): the
+/* The welded surface on the GPU (sessile/mesh/skeleton.h, docs/weld.md): the
  * host builds the grid and the brick lists (weld_grid.c); the kernels
  * shaders/mesh/weld_*.comp sample the signed distance per brick, count per
  * node into row totals, and after the host's scan of those number the rows

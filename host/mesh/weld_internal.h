@@ -8,7 +8,7 @@
 #include <math.h>
 #include <stdint.h>
 #include "mesh_kernels.h"
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 
 /* nodes per brick edge: the capsule lists are per brick of WELD_BRICK^3
  * nodes (8: weld_sdf.comp's workgroup of 64 columns of 8) */

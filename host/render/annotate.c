@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "draw2d.h"
-#include "sessile/colormap.h"
-#include "sessile/render_run.h"
+#include "sessile/render/colormap.h"
+#include "sessile/render/render_run.h"
 
 static void text_setup(cairo_t *cr) {
   cairo_font_options_t *fo = cairo_font_options_create();

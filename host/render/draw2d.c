@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/png.h"
+#include "sessile/io/png.h"
 
 sessile_status d2_check_size(const char *what, int w, int h) {
   SESSILE_CHECK(w >= SESSILE_RENDER2D_MIN_SIZE && h >= SESSILE_RENDER2D_MIN_SIZE && w <= SESSILE_RENDER2D_MAX_SIZE &&

@@ -4,7 +4,7 @@
 #define SESSILE_DRAW2D_H
 #include <cairo.h>
 #include <stdint.h>
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 
 #define D2_FONT "DejaVu Sans"
 

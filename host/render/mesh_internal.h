@@ -3,7 +3,7 @@
 #define SESSILE_RENDER_MESH_INTERNAL_H
 #include <stddef.h>
 #include <stdint.h>
-#include "sessile/render_mesh.h"
+#include "sessile/render/render_mesh.h"
 
 /* Finite coordinates, indices in range, not empty; then normals (the
  * file's normalised, else area-weighted). */

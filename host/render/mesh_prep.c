@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh_internal.h"
-#include "sessile/io_read.h"
+#include "sessile/io/io_read.h"
 
 void sessile_render_mesh_destroy(sessile_render_mesh *m) {
   if (!m) return;

@@ -4,9 +4,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/graphics.h"
+#include "sessile/gpu/graphics.h"
 #include "mesh_internal.h"
-#include "sessile/colormap.h"
+#include "sessile/render/colormap.h"
 
 /* One vertex as the pipelines read it (28 bytes). */
 typedef struct vtx {

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 
 typedef struct preset {
   const char *name, *title, *xlabel, *ylabel, *x;

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "run_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 #define MAX_LINE 4096 /* a row of 8 numbers is ~150 bytes */
 #define MAX_FIELDS 64

@@ -2,8 +2,8 @@
  * generator's run holds and what to draw) shared with run_render.c (drawing). */
 #ifndef SESSILE_RUN_RENDER_INTERNAL_H
 #define SESSILE_RUN_RENDER_INTERNAL_H
-#include "sessile/render2d.h"
-#include "sessile/render_run.h"
+#include "sessile/render/render2d.h"
+#include "sessile/render/render_run.h"
 
 /* Where a generator writes its meshes (docs/render.md "Runs"). */
 typedef struct rp_layout {

@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -2,8 +2,8 @@
  * preview.png (render_run.h). */
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/png.h"
-#include "sessile/render_run.h"
+#include "sessile/io/png.h"
+#include "sessile/render/render_run.h"
 
 sessile_status sessile_render_mesh_png(sessile_gpu *g, const char *mesh_path, const sessile_render_options *o,
                                        const char *png_out, sessile_render_result *res) {

@@ -16,9 +16,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "run_internal.h"
-#include "sessile/io.h"
-#include "sessile/render2d.h"
-#include "sessile/render_mesh.h"
+#include "sessile/io/io.h"
+#include "sessile/render/render2d.h"
+#include "sessile/render/render_mesh.h"
 
 static const char *const views[4] = {"oblique", "side", "top", "front"};
 

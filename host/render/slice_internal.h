@@ -2,7 +2,7 @@
 #ifndef SESSILE_SLICE_INTERNAL_H
 #define SESSILE_SLICE_INTERNAL_H
 #include <stddef.h>
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 
 /* One sessile EXR slice, read.  Pixel (i, j) is at world
  * origin + i su axis_u + j sv axis_v, and at in-plane (u0 + i su, v0 + j sv). */

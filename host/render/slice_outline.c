@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/render_mesh.h"
+#include "sessile/render/render_mesh.h"
 #include "slice_internal.h"
 
 void seg_list_free(seg_list *s) {
@@ -75,7 +75,7 @@ sessile_status slice_contour(const slice_image *im, const float *f, double level
 }
 
 /* --- the mesh cut ------------------------------------------------------------ */
-/* The surface is read by the mesh renderer's reader (sessile/render_mesh.h:
+/* The surface is read by the mesh renderer's reader (sessile/render/render_mesh.h:
  * ascii and binary PLY of either byte order, OBJ), which checks counts,
  * indices and coordinates; its normals are not needed here. */
 sessile_status slice_cut_ply(const slice_image *im, const char *ply_path, seg_list *out) {

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io_read.h"
+#include "sessile/io/io_read.h"
 #include "slice_internal.h"
 
 void slice_image_free(slice_image *im) {

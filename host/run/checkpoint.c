@@ -12,7 +12,7 @@
 #include <string.h>
 #include <zlib.h>
 #include "run_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 static const char MAGIC[] = "SESSILE-CHECKPOINT 1\n";
 #define MAGIC_LEN (sizeof MAGIC - 1)

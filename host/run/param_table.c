@@ -1,4 +1,4 @@
-/* Parameter tables (sessile/param_table.h): defaults, strict text and JSON
+/* Parameter tables (sessile/run/param_table.h): defaults, strict text and JSON
  * parsing, checks, printing and the manifest record, for every generator. */
 #include <errno.h>
 #include <fcntl.h>
@@ -8,7 +8,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "sessile/param_table.h"
+#include "sessile/run/param_table.h"
 
 #define CONFIG_MAX_BYTES (1u << 20)
 

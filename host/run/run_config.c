@@ -1,10 +1,10 @@
 /* The configuration every generator with iterations stores for --resume
- * (sessile/run.h): seed, iterations, snapshot interval and its parameter
+ * (sessile/run/run.h): seed, iterations, snapshot interval and its parameter
  * table's values, written and read back in one place. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "sessile/run.h"
+#include "sessile/run/run.h"
 
 cJSON *sessile_run_config_make(const sessile_param_table *t, const void *params, uint64_t seed, int iterations,
                                int every) {

@@ -3,7 +3,7 @@
 #define SESSILE_RUN_INTERNAL_H
 #include <stddef.h>
 #include <stdint.h>
-#include "sessile/run.h"
+#include "sessile/run/run.h"
 
 #define RUN_MANIFEST "manifest.json"
 #define RUN_RECORDS "records.jsonl"

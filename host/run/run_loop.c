@@ -1,11 +1,11 @@
-/* The one iteration loop every generator runs through (sessile/generator.h):
+/* The one iteration loop every generator runs through (sessile/run/generator.h):
  * what used to be copied into each generator (resume, records, snapshots,
  * checkpoints, stop requests) lives here once. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "sessile/generator.h"
+#include "sessile/run/generator.h"
 
 int sessile_gen_snapshot_kind(const sessile_gen_setup *su, int it) {
   if (su->every > 0 && it % su->every == 0) return 1;

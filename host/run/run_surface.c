@@ -1,9 +1,9 @@
 /* A surface written as a file of the run, with its vertex normals: the
- * write every surface generator's snapshots share (sessile/generator.h). */
+ * write every surface generator's snapshots share (sessile/run/generator.h). */
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/generator.h"
-#include "sessile/io.h"
+#include "sessile/run/generator.h"
+#include "sessile/io/io.h"
 
 sessile_status sessile_run_write_surface(sessile_run *run, const char *rel, const sessile_surface *s, int nextra,
                                          const char *const *names, const double *const *extra) {

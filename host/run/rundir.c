@@ -1,4 +1,4 @@
-/* The run directory (sessile/run.h): lock, manifest, file list, records,
+/* The run directory (sessile/run/run.h): lock, manifest, file list, records,
  * stop flag.  Everything inside the folder is reached through its file
  * descriptor with O_NOFOLLOW, so a symlink planted in a shared run directory
  * never redirects a write (docs/run.md). */
@@ -13,7 +13,7 @@
 #include <unistd.h>
 #include <dirent.h>
 #include "run_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 void sessile_run_utc_now(char *buf, size_t n) {
   time_t t = time(NULL);

@@ -4,7 +4,7 @@
  * doubles (docs/sds_morphogens.md). */
 #include <math.h>
 #include <stdlib.h>
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 /* 4/3 pi, rounded as the kernel rounds its literal (4.0lf / 3.0lf * pi). */
 static const double FOUR_THIRDS_PI = 4.0 / 3.0 * 3.14159265358979311600;

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sds_kernels.h"
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 enum { B_POS, B_RADIUS, B_OFF, B_NBR, B_COEF, B_SRC, B_PHI0, B_PHI1, B_COUNT };
 

@@ -4,7 +4,7 @@
 #ifndef SESSILE_SDS_RULES_INTERNAL_H
 #define SESSILE_SDS_RULES_INTERNAL_H
 #include "sessile/expr.h"
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 enum {
   SDS_MAX_MORPH = 16,

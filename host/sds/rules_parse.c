@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "rules_internal.h"
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 
 typedef struct cur {
   const sessile_sds_model *m;

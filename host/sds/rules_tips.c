@@ -4,7 +4,7 @@
  * divide inward (docs/sds_rules.md, "A cell below each tip"). */
 #include <math.h>
 #include <stdlib.h>
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 sessile_status sessile_sds_tips_below(const sessile_morph_cells *cl, const uint8_t *surface, const double *normals,
                                       const double *state, int nstate, int tip_state, double min_cos,

@@ -6,9 +6,9 @@
 #ifndef SESSILE_SDS_CHECKPOINT_H
 #define SESSILE_SDS_CHECKPOINT_H
 #include <stdint.h>
-#include "sessile/run.h"
-#include "sessile/sds.h"
-#include "sessile/sds_run.h"
+#include "sessile/run/run.h"
+#include "sessile/sds/sds.h"
+#include "sessile/sds/sds_run.h"
 
 /* Everything the loop carries from one step to the next besides the
  * organism.  Only 8-byte members: no padding, the same layout everywhere. */

@@ -4,7 +4,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/mesh_sort.h"
+#include "sessile/mesh/mesh_sort.h"
 #include "sds/sds_internal.h"
 
 #define FREE0(p) (free(p), (p) = NULL)

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 #include "sds/sds_sim.h"
 
 sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const char *ply_rel) {

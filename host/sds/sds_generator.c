@@ -1,4 +1,4 @@
-/* `sessile sds run MODEL` as a generator (sessile/generator.h): the run
+/* `sessile sds run MODEL` as a generator (sessile/run/generator.h): the run
  * loop's iteration is one frame interval of simulated time (--frames N over
  * --t-end T), a snapshot every frame, the step log appended through the run
  * (sds/steps.csv), the checkpoint's sections the SDS state (docs/sds.md). */
@@ -6,8 +6,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
-#include "sessile/sds_builtin.h"
+#include "sessile/io/io.h"
+#include "sessile/sds/sds_builtin.h"
 #include "sds/sds_sim.h"
 
 static const char help[] =

@@ -1,4 +1,4 @@
-/* The SDS physics on the GPU, shared by its files (sessile/sds.h;
+/* The SDS physics on the GPU, shared by its files (sessile/sds/sds.h;
  * sds_gpu_buffers.c: the buffers, their uploads and the kernels' choice;
  * sds_gpu_contacts.c: the contact lists; sds_gpu_step.c: forces, steps and
  * their control, the inverted flags). */

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/tetgen.h"
+#include "sessile/mesh/tetgen.h"
 #include "sds/sds_internal.h"
 
 sessile_status sessile_sds_from_tets(const double *x, uint32_t n, const uint32_t *tet, uint32_t nt,

@@ -3,7 +3,7 @@
 #define SESSILE_SDS_INTERNAL_H
 
 #include <stdint.h>
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 
 #define SDS_PI 3.14159265358979323846
 

@@ -1,4 +1,4 @@
-/* The SDS loop (sessile/sds_run.h, docs/sds.md "The loop").  One step:
+/* The SDS loop (sessile/sds/sds_run.h, docs/sds.md "The loop").  One step:
  *   1. physics: one integrator step on the GPU (step control inside);
  *   2. inversions: tets with volume <= 0 after the step are found on the GPU;
  *      the first inversion time among them (linear motion over the step,
@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/io.h"
+#include "sessile/io/io.h"
 #include "sessile/rng.h"
 #include "sds/sds_checkpoint.h"
 #include "sds/sds_sim.h"

@@ -1,4 +1,4 @@
-/* The SDS model's scalar parameters as a table (sessile/sds_run.h,
+/* The SDS model's scalar parameters as a table (sessile/sds/sds_run.h,
  * docs/sds.md "Parameters"): the model text's `NAME = value` lines over the
  * table's defaults, then --config and --set over both (the CLI).  Units:
  * lengths in model units u, time in model seconds s (docs/sds.md "Units").
@@ -10,8 +10,8 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
-#include "sessile/sds_process.h"
-#include "sessile/sds_run.h"
+#include "sessile/sds/sds_process.h"
+#include "sessile/sds/sds_run.h"
 
 #define OFF(f) offsetof(sessile_sds_run_params, f)
 #define OPEN_BOTH (SESSILE_PARAM_LO_OPEN | SESSILE_PARAM_HI_OPEN)

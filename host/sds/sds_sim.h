@@ -1,5 +1,5 @@
 /* The SDS loop's state and its parts, shared by the files of the loop
- * (sessile/sds_run.h; docs/sds.md "The loop"): sds_setup.c (the model, the
+ * (sessile/sds/sds_run.h; docs/sds.md "The loop"): sds_setup.c (the model, the
  * starting organism), sds_rules_step.c (neighbours, morphogens, rules),
  * sds_divide.c (division through the complex), sds_inversions.c (§3.1.2
  * and the repairs), sds_frames.c (frames and records), sds_steplog.c
@@ -7,13 +7,13 @@
 #ifndef SESSILE_SDS_SIM_H
 #define SESSILE_SDS_SIM_H
 #include <stdint.h>
-#include "sessile/generator.h"
-#include "sessile/run.h"
+#include "sessile/run/generator.h"
+#include "sessile/run/run.h"
 #include "sds/sds_checkpoint.h"
-#include "sessile/sds.h"
-#include "sessile/sds_process.h"
-#include "sessile/sds_run.h"
-#include "sessile/sds_topo.h"
+#include "sessile/sds/sds.h"
+#include "sessile/sds/sds_process.h"
+#include "sessile/sds/sds_run.h"
+#include "sessile/sds/sds_topo.h"
 
 typedef struct sds_sim {
   const char *text;           /* the model */

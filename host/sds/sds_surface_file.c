@@ -1,11 +1,11 @@
 /* A model's starting surface from a PLY file (`surface = "FILE.ply"`,
- * docs/sds_rules.md), read by io's PLY reader (sessile/io_read.h: ascii or
+ * docs/sds_rules.md), read by io's PLY reader (sessile/io/io_read.h: ascii or
  * binary, hostile input refused with the line and the fault): a vertex
  * element with x, y, z and a face element of triangles; other properties
  * and elements are skipped. */
 #include <stdlib.h>
 #include "sds/sds_surface_file.h"
-#include "sessile/io_read.h"
+#include "sessile/io/io_read.h"
 
 /* Counts above this are refused from the header (a model's surface is a
  * starting shape, far smaller). */

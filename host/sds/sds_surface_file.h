@@ -2,7 +2,7 @@
 #ifndef SESSILE_SDS_SURFACE_FILE_H
 #define SESSILE_SDS_SURFACE_FILE_H
 #include "sessile/status.h"
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 
 /* Reads the triangles of an ASCII or binary PLY file (io's reader)
  * (SESSILE_ERR_USAGE naming the file and the fault). */

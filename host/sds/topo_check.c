@@ -2,7 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 #include "topo_internal.h"
 
 static uint32_t uf_find(uint32_t *p, uint32_t a) {

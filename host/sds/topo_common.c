@@ -5,9 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/intersect.h"
-#include "sessile/mesh_sort.h"
-#include "sessile/tetgen.h"
+#include "sessile/mesh/intersect.h"
+#include "sessile/mesh/mesh_sort.h"
+#include "sessile/mesh/tetgen.h"
 #include "topo_internal.h"
 
 const int topo_face_of[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};

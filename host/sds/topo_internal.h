@@ -4,7 +4,7 @@
 #define SESSILE_SDS_TOPO_INTERNAL_H
 
 #include <stdint.h>
-#include "sessile/sds_topo.h"
+#include "sessile/sds/sds_topo.h"
 
 /* Outward faces of a positively oriented tet (v0, v1, v2, v3): face q is
  * opposite vertex q, counter-clockwise seen from outside. */

@@ -1,14 +1,14 @@
-/* `sessile sphere` (sessile/sphere.h): per iteration every vertex's distance
+/* `sessile sphere` (sessile/sphere/sphere.h): per iteration every vertex's distance
  * from the centre is multiplied by 1 + noise * u, u uniform in [-1, 1) from
  * one splitmix64 stream seeded by --seed; the stream's state is
  * checkpointed.  The whole generator: a table and six callbacks. */
 #include <math.h>
 #include <stdlib.h>
-#include "sessile/generator.h"
-#include "sessile/io.h"
+#include "sessile/run/generator.h"
+#include "sessile/io/io.h"
 #include "sessile/rng.h"
-#include "sessile/sphere.h"
-#include "sessile/surface.h"
+#include "sessile/sphere/sphere.h"
+#include "sessile/mesh/surface.h"
 
 static const sessile_param_desc descs[] = {
     {"level", SESSILE_PT_INT, offsetof(sessile_sphere_params, level), 3, 1, 7, 0, "", "ours",

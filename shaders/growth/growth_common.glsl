@@ -1,5 +1,5 @@
 // Shared GLSL of the growth kernels: box point location (mirrors
-// sessile_box_locate in host/include/sessile/box.h exactly), the counter-based hash (mirrors sessile_growth_hash) and a
+// sessile_box_locate in host/include/sessile/mesh/box.h exactly), the counter-based hash (mirrors sessile_growth_hash) and a
 // double-precision pow (GLSL's pow/exp/log are float-only).
 #ifndef GROWTH_COMMON_GLSL
 #define GROWTH_COMMON_GLSL

@@ -4,10 +4,10 @@
 // invocation (a gather: no atomics, nothing depends on scheduling).  Keeps
 // the feed smallest vertex indices within the particle's radius, ascending,
 // and counts them all.  Operation by operation as
-// sessile_psponge_collide_grid (host/sponge/psponge_collide.c).
+// sessile_sponge_particles_collide_grid (host/sponge/particles_collide.c).
 #include "sponge_kernels.glsl"
 
-const uint SPONGE_NO_HIT = 0xFFFFFFFFu; // = SESSILE_PSPONGE_NO_HIT
+const uint SPONGE_NO_HIT = 0xFFFFFFFFu; // = SESSILE_SPONGE_PARTICLES_NO_HIT
 
 void main() {
   uint i = sessile_gid();

@@ -9,7 +9,7 @@ S="$1"
 one_line_error() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" && [ ! -s "$T/out" ]; }
 no_validation() { ! grep -qi "validation \(error\|warning\)" "$T/err"; }
 
-for args in "--help" "help" "devices --help" "bench --help" "bench la --help" "bench coral --help" \
+for args in "--help" "help" "devices --help" "bench --help" "bench la --help" "bench coral --help" "bench sponge --help" \
             "coral --help" "coral lsystem --help" "coral venation --help" "sponge --help" "sponge particles --help" \
             "sds --help" "sds run --help" "bench sds --help"; do
   run $args
@@ -21,7 +21,7 @@ check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessil
 for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4" \
-            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "sds" "sds grow" "sds run" "bench sds --x" \
+            "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "bench coral particles" "bench sponge nope" "sds" "sds grow" "sds run" "bench sds --x" \
             "bench sds --kernels --rock-t 0"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'

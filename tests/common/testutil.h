@@ -4,9 +4,9 @@
 #ifndef SESSILE_TESTUTIL_H
 #define SESSILE_TESTUTIL_H
 #include <stdio.h>
-#include "sessile/gpu.h"
-#include "sessile/la.h"
-#include "sessile/matrix_gen.h" /* the test matrices (host/bench) */
+#include "sessile/gpu/gpu.h"
+#include "sessile/la/la.h"
+#include "sessile/bench/matrix_gen.h" /* the test matrices (host/bench) */
 
 extern int t_failed, t_passed;
 

@@ -9,10 +9,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/intersect.h"
-#include "sessile/lsystem.h"
-#include "sessile/skeleton.h"
-#include "sessile/venation.h"
+#include "sessile/mesh/intersect.h"
+#include "sessile/coral/lsystem.h"
+#include "sessile/mesh/skeleton.h"
+#include "sessile/coral/venation.h"
 #include "testutil.h"
 
 static uint32_t find(uint32_t *u, uint32_t x) {

@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/lsystem.h"
+#include "sessile/coral/lsystem.h"
 #include "testutil.h"
 
 /* text derived n times with seed; the result as text (caller frees) or NULL */

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/lsystem.h"
+#include "sessile/coral/lsystem.h"
 #include "testutil.h"
 
 static void bad(const char *text, size_t len, const char *where_prefix, const char *word) {

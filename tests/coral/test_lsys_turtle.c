@@ -7,8 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/lsystem.h"
-#include "sessile/skeleton.h"
+#include "sessile/coral/lsystem.h"
+#include "sessile/mesh/skeleton.h"
 #include "testutil.h"
 
 static const double TOL = 1e-12;

@@ -1,4 +1,4 @@
-/* The venation model (sessile/venation.h) against its invariants:
+/* The venation model (sessile/coral/venation.h) against its invariants:
  *   open venation is a tree (every node's parent precedes it, no extra edge:
  *   |E| = |V| - 1, connected); closed venation has cycles (|E| >= |V|) and
  *   stays connected (union-find over every edge); the root's thickness index
@@ -13,8 +13,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/skeleton.h"
-#include "sessile/venation.h"
+#include "sessile/mesh/skeleton.h"
+#include "sessile/coral/venation.h"
 #include "testutil.h"
 
 static double d2of(const double *a, const double *b) {

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/rng.h"
-#include "sessile/venation.h"
+#include "sessile/coral/venation.h"
 #include "testutil.h"
 
 static uint64_t compare(sessile_gpu *g, sessile_venation_gpu *vg, const char *what, const double *nodes, uint32_t n,

@@ -29,7 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/advdiff.h"
+#include "sessile/fem/advdiff.h"
 #include "testutil.h"
 
 static const double PI = 3.14159265358979323846;

@@ -19,8 +19,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sessile/advdiff.h"
-#include "sessile/fluid.h"
+#include "sessile/fem/advdiff.h"
+#include "sessile/fem/fluid.h"
 #include "testutil.h"
 
 static sessile_gpu *gpu;

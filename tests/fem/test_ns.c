@@ -35,7 +35,7 @@
 #include <string.h>
 
 #include "fem/ns_internal.h"
-#include "sessile/fluid.h"
+#include "sessile/fem/fluid.h"
 #include "testutil.h"
 
 #define NS_PI 3.14159265358979323846

@@ -7,8 +7,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/fluid.h"
-#include "sessile/tetgen.h"
+#include "sessile/fem/fluid.h"
+#include "sessile/mesh/tetgen.h"
 #include "testutil.h"
 
 #define PI 3.14159265358979323846

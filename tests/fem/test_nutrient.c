@@ -39,8 +39,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/la_ref.h"
-#include "sessile/nutrient.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/fem/nutrient.h"
 #include "testutil.h"
 
 static sessile_gpu *gpu;

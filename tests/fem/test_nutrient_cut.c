@@ -1,4 +1,4 @@
-/* The cut-cell nutrient (sessile/nutrient_cut.h, docs/nutrient.md):
+/* The cut-cell nutrient (sessile/fem/nutrient_cut.h, docs/nutrient.md):
  *  - the boundary setup kernel (cutcell.comp) and the extension (ghost.comp)
  *    equal their host references on random solids and cut fractions, both
  *    far fields (tolerance 1e-14 relative; 1e-6 in fp32);
@@ -20,10 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/growth_gpu.h"
-#include "sessile/growth_ref.h"
-#include "sessile/la_ref.h"
-#include "sessile/nutrient_cut.h"
+#include "sessile/growth/growth_gpu.h"
+#include "sessile/growth/growth_ref.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/fem/nutrient_cut.h"
 #include "testutil.h"
 
 static sessile_la *la;

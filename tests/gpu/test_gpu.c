@@ -1,4 +1,4 @@
-/* Tests of the Vulkan compute runtime (host/include/sessile/gpu.h): device
+/* Tests of the Vulkan compute runtime (host/include/sessile/gpu/gpu.h): device
  * info, device choice and its errors, buffers (round trips at offsets, the
  * size limits and their messages), kernels from the embedded SPIR-V table,
  * command recording with a dispatch and timestamps, transfers recorded inside

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 
 static inline void shape_must(sessile_status s) {
   if (s == SESSILE_OK) return;

@@ -19,8 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/growth_gpu.h"
-#include "sessile/growth_ref.h"
+#include "sessile/growth/growth_gpu.h"
+#include "sessile/growth/growth_ref.h"
 #include "shapes.h"
 #include "testutil.h"
 

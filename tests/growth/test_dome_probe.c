@@ -15,10 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/growth_gpu.h"
-#include "sessile/growth_ref.h"
-#include "sessile/nutrient_cut.h"
-#include "sessile/grow_params.h"
+#include "sessile/growth/growth_gpu.h"
+#include "sessile/growth/growth_ref.h"
+#include "sessile/fem/nutrient_cut.h"
+#include "sessile/growth/grow_params.h"
 #include "shapes.h"
 #include "testutil.h"
 

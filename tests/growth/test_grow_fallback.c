@@ -9,8 +9,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/grow.h"
-#include "sessile/run.h"
+#include "sessile/growth/grow.h"
+#include "sessile/run/run.h"
 #include "mesh/tetgen_plc.h"
 #include "testutil.h"
 

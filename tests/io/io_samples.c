@@ -36,8 +36,8 @@
 #include <string.h>
 #include <time.h>
 #include <sys/stat.h>
-#include "sessile/io.h"
-#include "sessile/tetmesh.h"
+#include "sessile/io/io.h"
+#include "sessile/mesh/tetmesh.h"
 
 static double lin(const double p[3]) { return 1 + 2 * p[0] + 3 * p[1] + 4 * p[2]; }
 

@@ -17,8 +17,8 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "sessile/io.h"
-#include "sessile/tetmesh.h"
+#include "sessile/io/io.h"
+#include "sessile/mesh/tetmesh.h"
 #include "testutil.h"
 
 static char T[256]; /* scratch folder */

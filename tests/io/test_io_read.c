@@ -1,4 +1,4 @@
-/* The io readers (sessile/io_read.h): files written by the io writers read
+/* The io readers (sessile/io/io_read.h): files written by the io writers read
  * back to the same content (PLY binary with normals and a property, the
  * same as ascii and big-endian, OBJ exactly, an EXR plane's channels and
  * attributes), and hostile files each refused with one message that names
@@ -14,8 +14,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "sessile/io.h"
-#include "sessile/io_read.h"
+#include "sessile/io/io.h"
+#include "sessile/io/io_read.h"
 #include "testutil.h"
 
 static char T[256];

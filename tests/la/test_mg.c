@@ -1,4 +1,4 @@
-/* Geometric multigrid (sessile/mg.h) on the cut-cell sphere problem
+/* Geometric multigrid (sessile/la/mg.h) on the cut-cell sphere problem
  * (sessile_cut_sphere): a 38.4 x 38.4 x 28.8 box, a solid sphere of radius
  * 8.64 at (17.28, 19.2, 11.52), zero-flux side walls, u = 0 on the sphere and
  * the bottom, u = 1 on the top, every level built the same way at its own
@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "la/mg_internal.h"
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 #include "testutil.h"
 
 static sessile_la *la;

@@ -1,4 +1,4 @@
-/* The preconditioner objects (sessile/pc.h): the registry, every registered
+/* The preconditioner objects (sessile/la/pc.h): the registry, every registered
  * pc applied on the device against its plain-C reference, and the Krylov
  * solvers with each pc.
  *
@@ -31,8 +31,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/la_ref.h"
-#include "sessile/pc.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/la/pc.h"
 #include "testutil.h"
 
 static sessile_la *la;

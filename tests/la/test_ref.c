@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/la_ref.h"
-#include "sessile/matrix.h"
-#include "sessile/matrix_gen.h"
+#include "sessile/la/la_ref.h"
+#include "sessile/la/matrix.h"
+#include "sessile/bench/matrix_gen.h"
 #include "sessile/status.h"
 
 static int failures = 0;

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/la_ref.h"
+#include "sessile/la/la_ref.h"
 #include "testutil.h"
 
 static sessile_la *la;

@@ -1,4 +1,4 @@
-/* Point location in unstructured tet meshes (sessile/locate.h):
+/* Point location in unstructured tet meshes (sessile/mesh/locate.h):
  * - on the structured box as a general mesh, the host query interpolates as
  *   sessile_box_interpolate (an independent locator) to 1e-12;
  * - on TetGen's conforming mesh of the box minus a dome, the binned host
@@ -12,8 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/locate_internal.h"
-#include "sessile/locate.h"
-#include "sessile/tetgen.h"
+#include "sessile/mesh/locate.h"
+#include "sessile/mesh/tetgen.h"
 #include "testutil.h"
 
 static uint64_t rng = 0x9E3779B97F4A7C15ull;

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 static const double ORIGIN[3] = {0, 0, 0};

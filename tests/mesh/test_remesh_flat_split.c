@@ -11,9 +11,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/intersect.h"
+#include "sessile/mesh/intersect.h"
 #include "sessile/rng.h"
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 static const double ORIGIN[3] = {0, 0, 0};

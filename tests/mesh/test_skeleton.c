@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 #include "testutil.h"
 
 int main(void) {

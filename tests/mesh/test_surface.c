@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 static const double C0[3] = {0.5, -1.0, 2.0};

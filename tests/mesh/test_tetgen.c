@@ -10,8 +10,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/locate.h"
-#include "sessile/tetgen.h"
+#include "sessile/mesh/locate.h"
+#include "sessile/mesh/tetgen.h"
 #include "mesh/tetgen_plc.h"
 #include "testutil.h"
 

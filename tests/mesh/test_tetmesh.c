@@ -3,7 +3,7 @@
  * outward orientation (divergence theorem), node tags equal to the box's. */
 #include <math.h>
 #include <stdlib.h>
-#include "sessile/tetmesh.h"
+#include "sessile/mesh/tetmesh.h"
 #include "testutil.h"
 
 int main(void) {

@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/weld_internal.h"
-#include "sessile/intersect.h"
+#include "sessile/mesh/intersect.h"
 #include "test_weld_shapes.h"
 
 static int fp64;

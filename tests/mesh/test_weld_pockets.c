@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/weld_internal.h"
-#include "sessile/surface.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 static void append(sessile_surface *all, const sessile_surface *s, int flip) {

@@ -2,7 +2,7 @@
 #ifndef TEST_WELD_SHAPES_H
 #define TEST_WELD_SHAPES_H
 #include <math.h>
-#include "sessile/skeleton.h"
+#include "sessile/mesh/skeleton.h"
 #include "testutil.h"
 
 static inline void shape_capsule(sessile_skeleton *s, double r, double len) {

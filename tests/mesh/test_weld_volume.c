@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "mesh/weld_internal.h"
-#include "sessile/intersect.h"
+#include "sessile/mesh/intersect.h"
 #include "sessile/rng.h"
 #include "test_weld_shapes.h"
 

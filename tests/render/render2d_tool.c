@@ -1,4 +1,4 @@
-/* A small driver of the 2-D pictures (sessile/render2d.h) by hand; `sessile
+/* A small driver of the 2-D pictures (sessile/render/render2d.h) by hand; `sessile
  * render` draws slices and runs, and this also makes contact sheets of any PNGs:
  *   render2d_tool slice EXR CHANNEL OUT.png [PLY]
  *   render2d_tool plot RECORDS.jsonl WHAT OUT.png
@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 
 int main(int argc, char **argv) {
   sessile_status st = SESSILE_ERR_USAGE;

@@ -15,10 +15,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/graphics.h"
+#include "sessile/gpu/graphics.h"
 #include "render_shapes.h"
-#include "sessile/colormap.h"
-#include "sessile/render_mesh.h"
+#include "sessile/render/colormap.h"
+#include "sessile/render/render_mesh.h"
 #include "testutil.h"
 
 static unsigned char *render(sessile_gpu *g, const sessile_render_mesh *m, const sessile_render_options *o,

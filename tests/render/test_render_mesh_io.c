@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "sessile/png.h"
-#include "sessile/render_mesh.h"
+#include "sessile/io/png.h"
+#include "sessile/render/render_mesh.h"
 #include "testutil.h"
 
 static char dir[256];

@@ -5,7 +5,7 @@
 #include <math.h>
 #include "render/draw2d.h"
 #include "render2d_testutil.h"
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 #include "testutil.h"
 
 

@@ -7,7 +7,7 @@
 #include <math.h>
 #include <sys/stat.h>
 #include "render2d_testutil.h"
-#include "sessile/render2d.h"
+#include "sessile/render/render2d.h"
 #include "testutil.h"
 
 

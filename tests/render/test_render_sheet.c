@@ -4,8 +4,8 @@
  * (sessile_png_write_rgba8) read back by Cairo's reader. */
 #include <math.h>
 #include "render2d_testutil.h"
-#include "sessile/png.h"
-#include "sessile/render2d.h"
+#include "sessile/io/png.h"
+#include "sessile/render/render2d.h"
 #include "testutil.h"
 
 

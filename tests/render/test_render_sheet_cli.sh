@@ -2,7 +2,7 @@
 # `sessile render --sheet COLS -o OUT.png A.png [--caption T] B.png ...`: the
 # tiles are PNGs written here by Python (RGBA and RGB, patterns that differ
 # in every pixel); the sheet must have the size of the layout formula of
-# sessile/render2d.h (PAD 8, caption strip 22), every tile must equal its
+# sessile/render/render2d.h (PAD 8, caption strip 22), every tile must equal its
 # source pixel for pixel at the formula's offset, captions draw only where
 # given, a rerun gives the same bytes, COLS above the count is reduced to it,
 # and bad input exits 2 with one line and writes nothing.  PNGs are decoded

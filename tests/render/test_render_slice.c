@@ -6,10 +6,10 @@
 #include <math.h>
 #include <openexr.h>
 #include "render2d_testutil.h"
-#include "sessile/colormap.h"
-#include "sessile/io.h"
-#include "sessile/render2d.h"
-#include "sessile/surface.h"
+#include "sessile/render/colormap.h"
+#include "sessile/io/io.h"
+#include "sessile/render/render2d.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 

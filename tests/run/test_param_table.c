@@ -1,4 +1,4 @@
-/* Parameter tables (sessile/param_table.h) on a small table of every kind:
+/* Parameter tables (sessile/run/param_table.h) on a small table of every kind:
  * defaults, text and JSON parsing (strict: duplicates, trailing bytes, NUL,
  * kinds, integers, open bounds), the cross-parameter hook, printing to a
  * failing stream, and the config round trip that a resume relies on (exact
@@ -9,9 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/growth_ref.h"
-#include "sessile/param_table.h"
-#include "sessile/grow_params.h"
+#include "sessile/growth/growth_ref.h"
+#include "sessile/run/param_table.h"
+#include "sessile/growth/grow_params.h"
 #include "testutil.h"
 
 typedef struct demo {

@@ -1,4 +1,4 @@
-/* The run directory (sessile/run.h) without a generator: the lock refuses a
+/* The run directory (sessile/run/run.h) without a generator: the lock refuses a
  * second run and names the first; a folder holding a run is refused unless
  * replaced (which removes exactly the listed files) or resumed; a non-run
  * folder is refused; temporaries of a killed run are swept; a symlink
@@ -14,8 +14,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "sessile/io.h"
-#include "sessile/run.h"
+#include "sessile/io/io.h"
+#include "sessile/run/run.h"
 #include "testutil.h"
 
 static char dir[200], path[512];

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 /* Two icosphere imports (level, radius 1) centred at c0 and c1, one complex. */

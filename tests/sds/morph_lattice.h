@@ -5,7 +5,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include "sessile/rng.h"
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 typedef struct lattice {
   sessile_morph_cells cells;

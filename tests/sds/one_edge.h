@@ -2,7 +2,7 @@
  * stretched to L along x: the SDS tests' smallest organism. */
 #ifndef SDS_ONE_EDGE_H
 #define SDS_ONE_EDGE_H
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 static inline void one_edge(sessile_sds *o, double L) {

@@ -4,7 +4,7 @@
  * conditions and actions; bad declarations and parameters. */
 #include <stdio.h>
 #include <string.h>
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 #include "testutil.h"
 
 static const char *head = "morphogen phi diffusion=0.1 decay=0\nstate tip\n"; /* lines 1-2 */

@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 #include "testutil.h"
 
 static char root[512];

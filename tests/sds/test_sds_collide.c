@@ -22,7 +22,7 @@
 
 #include "collide_scenes.h"
 #include "sessile/rng.h"
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 static int fp64;

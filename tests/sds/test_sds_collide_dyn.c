@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "collide_scenes.h"
-#include "sessile/intersect.h"
-#include "sessile/sds.h"
+#include "sessile/mesh/intersect.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 static uint64_t intersections(const sessile_sds *o) {

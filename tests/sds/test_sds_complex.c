@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 /* Volume from the six edge lengths by the Cayley-Menger determinant:

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/rng.h"
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 #include "one_edge.h"
 

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/rng.h"
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 
 static double potential(const sessile_sds *o, const sessile_sds_params *p) {

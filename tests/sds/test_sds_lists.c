@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "collide_scenes.h"
-#include "sessile/sds_topo.h"
+#include "sessile/sds/sds_topo.h"
 
 /* Divides cell c of o toward d as the loop does (sds_divide.c): the complex
  * through TetGen, daughter b appended with c's radius, mass and velocity,

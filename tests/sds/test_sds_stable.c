@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include "sessile/rng.h"
-#include "sessile/sds.h"
+#include "sessile/sds/sds.h"
 #include "testutil.h"
 #include "one_edge.h"
 

@@ -7,8 +7,8 @@
 #include <string.h>
 #include <time.h>
 #include "mesh/tetgen_plc.h"
-#include "sessile/sds_topo.h"
-#include "sessile/surface.h"
+#include "sessile/sds/sds_topo.h"
+#include "sessile/mesh/surface.h"
 #include "testutil.h"
 
 static inline double fx_now(void) {

@@ -7,21 +7,21 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/particle_sponge.h"
+#include "sessile/sponge/particles.h"
 #include "sessile/rng.h"
 #include "testutil.h"
 
 /* Runs all three on (vtx, part) and counts particles whose hits differ from
  * brute force; returns the total hit count (brute force) through *hits. */
-static uint32_t compare(sessile_psponge_gpu *col, const double *vtx, uint32_t nv, const float *part,
+static uint32_t compare(sessile_sponge_particles_gpu *col, const double *vtx, uint32_t nv, const float *part,
                         uint32_t np, float r, uint32_t feed, uint64_t *hits, uint32_t *bh, uint32_t *bc) {
-  sessile_psponge_grid g;
-  t_must("grid", sessile_psponge_grid_build(vtx, nv, r, &g));
+  sessile_sponge_particles_grid g;
+  t_must("grid", sessile_sponge_particles_grid_build(vtx, nv, r, &g));
   uint32_t *gh = t_xalloc((size_t)np * feed * 4 + 4), *gc = t_xalloc((size_t)np * 4 + 4);
   uint32_t *hh = t_xalloc((size_t)np * feed * 4 + 4), *hc = t_xalloc((size_t)np * 4 + 4);
-  t_must("brute force", sessile_psponge_collide_brute(part, np, g.pos4, nv, r, feed, bh, bc));
-  t_must("host grid", sessile_psponge_collide_grid(&g, part, np, r, feed, hh, hc));
-  t_must("GPU", sessile_psponge_gpu_collide(col, &g, part, np, r, feed, gh, gc, NULL));
+  t_must("brute force", sessile_sponge_particles_collide_brute(part, np, g.pos4, nv, r, feed, bh, bc));
+  t_must("host grid", sessile_sponge_particles_collide_grid(&g, part, np, r, feed, hh, hc));
+  t_must("GPU", sessile_sponge_particles_gpu_collide(col, &g, part, np, r, feed, gh, gc, NULL));
   uint32_t diff = 0;
   *hits = 0;
   for (uint32_t i = 0; i < np; i++) {
@@ -30,12 +30,12 @@ static uint32_t compare(sessile_psponge_gpu *col, const double *vtx, uint32_t nv
     if (bc[i] != gc[i] || bc[i] != hc[i] || memcmp(bh + o, gh + o, feed * 4) || memcmp(bh + o, hh + o, feed * 4))
       diff++;
   }
-  sessile_psponge_grid_free(&g);
+  sessile_sponge_particles_grid_free(&g);
   free(gh), free(gc), free(hh), free(hc);
   return diff;
 }
 
-static void random_cloud(sessile_psponge_gpu *col, uint64_t seed, uint32_t nv, uint32_t np, float r, uint32_t feed) {
+static void random_cloud(sessile_sponge_particles_gpu *col, uint64_t seed, uint32_t nv, uint32_t np, float r, uint32_t feed) {
   uint64_t rng = sessile_rng_stream(seed, 1);
   double *vtx = t_dalloc((size_t)nv * 3 + 3);
   float *part = t_xalloc((size_t)np * 16 + 16);
@@ -59,8 +59,8 @@ static void random_cloud(sessile_psponge_gpu *col, uint64_t seed, uint32_t nv, u
 
 int main(void) {
   sessile_gpu *gpu = t_gpu(0);
-  sessile_psponge_gpu *col = NULL;
-  t_must("GPU collider", sessile_psponge_gpu_create(gpu, &col));
+  sessile_sponge_particles_gpu *col = NULL;
+  t_must("GPU collider", sessile_sponge_particles_gpu_create(gpu, &col));
 
   random_cloud(col, 1, 3000, 20000, 0.05f, 1);
   random_cloud(col, 2, 3000, 20000, 0.1f, 3);
@@ -79,7 +79,7 @@ int main(void) {
     t_check("touching at r = 0.25: particles differing from brute force",
             compare(col, vtx, 2, part, 4, 0.25f, 1, &hits, bh, bc), 0);
     t_true("... a particle exactly r = 0.25 from a vertex touches it", bc[0] == 1 && bh[0] == 0);
-    t_true("... one float step further it does not", bc[2] == 0 && bh[2] == SESSILE_PSPONGE_NO_HIT);
+    t_true("... one float step further it does not", bc[2] == 0 && bh[2] == SESSILE_SPONGE_PARTICLES_NO_HIT);
     t_check("touching at r = 1.25 (a 3-4-5 triangle): differing", compare(col, vtx, 2, part, 4, 1.25f, 1, &hits, bh, bc), 0);
     t_true("... the particle 1.25 from vertex 1 touches it", bc[1] >= 1 && bh[1] == 1);
   }
@@ -98,8 +98,8 @@ int main(void) {
       if (close) near[k++] = v;
     }
     float part[4] = {0, 0, 0, 0};
-    for (uint32_t feed = 1; feed <= SESSILE_PSPONGE_MAX_FEED; feed += 5) {
-      uint32_t bh[SESSILE_PSPONGE_MAX_FEED], bc[1];
+    for (uint32_t feed = 1; feed <= SESSILE_SPONGE_PARTICLES_MAX_FEED; feed += 5) {
+      uint32_t bh[SESSILE_SPONGE_PARTICLES_MAX_FEED], bc[1];
       uint64_t hits = 0;
       char what[120];
       snprintf(what, sizeof what, "feed %u of 40 touching vertices: differing from brute force", feed);
@@ -136,9 +136,9 @@ int main(void) {
     uint32_t bh[2], bc[2];
     uint64_t hits = 1;
     t_check("an empty surface: differing", compare(col, NULL, 0, part, 2, 0.5f, 1, &hits, bh, bc), 0);
-    t_true("... no hits", hits == 0 && bh[0] == SESSILE_PSPONGE_NO_HIT);
+    t_true("... no hits", hits == 0 && bh[0] == SESSILE_SPONGE_PARTICLES_NO_HIT);
   }
 
-  sessile_psponge_gpu_destroy(col);
+  sessile_sponge_particles_gpu_destroy(col);
   return t_finish(gpu);
 }

@@ -17,9 +17,9 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
-#include "sessile/param_table.h"
-#include "sessile/grow_params.h"
-#include "sessile/sphere.h"
+#include "sessile/run/param_table.h"
+#include "sessile/growth/grow_params.h"
+#include "sessile/sphere/sphere.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,5 +1,5 @@
 /* Fuzz target of the L-system grammar parser and derivation
- * (sessile/lsystem.h): the input is a grammar.  A refused grammar must give
+ * (sessile/coral/lsystem.h): the input is a grammar.  A refused grammar must give
  * SESSILE_ERR_USAGE with one line "fuzz.lsys:LINE:COLUMN: ..." (LINE within
  * the input's lines); an accepted one is derived up to 6 steps within
  * 20000 modules (only the size limit, a non-finite parameter or memory may
@@ -12,8 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/lsystem.h"
-#include "sessile/skeleton.h"
+#include "sessile/coral/lsystem.h"
+#include "sessile/mesh/skeleton.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,4 +1,4 @@
-/* Fuzz target of the parameter parser (sessile/param_table.h): the input is
+/* Fuzz target of the parameter parser (sessile/run/param_table.h): the input is
  * fed to sessile_params_apply_json_text for both generators' tables (grow,
  * sphere), and its first line to sessile_params_set_kv.  Whatever the input,
  * a call that returns SESSILE_OK must leave every parameter inside its
@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/param_table.h"
-#include "sessile/grow_params.h"
-#include "sessile/sphere.h"
+#include "sessile/run/param_table.h"
+#include "sessile/growth/grow_params.h"
+#include "sessile/sphere/sphere.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,5 +1,5 @@
 /* Fuzz target of the SDS process-model parser and rule evaluation
- * (sessile/sds_process.h, docs/sds_rules.md): the input is a model text.  A
+ * (sessile/sds/sds_process.h, docs/sds_rules.md): the input is a model text.  A
  * refused model must give SESSILE_ERR_USAGE and no handle, with one line
  * "fuzz.sds:LINE:COLUMN: ..." (LINE within the input's lines, COLUMN >= 1);
  * an accepted one is evaluated on a 3x3x3 lattice of cells (random amounts
@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/sds_process.h"
+#include "sessile/sds/sds_process.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

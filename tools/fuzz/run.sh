@@ -44,7 +44,7 @@ done
 # A dictionary: every parameter name (both tables), enum names, JSON tokens.
 DICT="$WORK/params.dict"
 {
-  sed -n 's/^ *X(\([a-z_0-9]*\),.*/"\1"/p' "$ROOT/host/include/sessile/grow_params.h"
+  sed -n 's/^ *X(\([a-z_0-9]*\),.*/"\1"/p' "$ROOT/host/include/sessile/growth/grow_params.h"
   sed -n 's/^ *{"\([a-z_0-9]*\)", SESSILE_PT_.*/"\1"/p' "$ROOT/host/sphere/sphere.c"
   printf '"%s"\n' radiate halichondrid immersed conforming true false null nan inf 1e999 0x1p3 \
     "{" "}" "[" "]" ":" "," "=" "\\\"" "-1" "2147483648" "18446744073709551616"

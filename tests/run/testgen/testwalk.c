@@ -5,8 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "sessile/generator.h"
-#include "sessile/io.h"
+#include "sessile/run/generator.h"
+#include "sessile/io/io.h"
 #include "sessile/rng.h"
 
 typedef struct walk_params {

@@ -1,0 +1,88 @@
+/* sessile — the stationary nutrient with the sponge surface as its true
+ * Dirichlet boundary (docs/nutrient.md): -Laplace c = 0 on the box grid by
+ * the symmetric cut-cell finite differences of Gibou et al. (2002): c = 0
+ * exactly on the surface, at the fractions of the grid edges where it
+ * crosses them (sessile_growth_gpu_cut), second order, matrix-free on the
+ * GPU, solved by multigrid-preconditioned CG on the nested box levels (each
+ * level's operator rediscretised from its own cut fractions).
+ *
+ * Boundary conditions: c = 0 on the substratum (z = origin) and on the
+ * sponge; the far field either
+ *  - HEIGHT: c = 1 at and above a set height over the substratum, zero flux
+ *    through the side walls (the box size is then a convergence parameter), or
+ *  - WALLS: c = 1 on every wall but the substratum (the paper's box).
+ *
+ * Ownership: the object owns every level's buffers (solid mask and cut
+ * fractions, which the caller's classifier fills; the operator's mask and
+ * diagonal; the multigrid's work vectors); the caller owns the field. */
+#ifndef SESSILE_NUTRIENT_CUT_H
+#define SESSILE_NUTRIENT_CUT_H
+
+#include "sessile/mesh/box.h"
+#include "sessile/la/la.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Mask codes of the operator (shaders/fem/kernels.def). */
+enum { SESSILE_CUT_FREE = 0, SESSILE_CUT_SOLID = 1, SESSILE_CUT_NODE = 2 };
+
+typedef enum { SESSILE_FAR_FIELD_HEIGHT = 0, SESSILE_FAR_FIELD_WALLS = 1 } sessile_far_field;
+
+typedef struct sessile_cut_bc {
+  sessile_far_field far_field;
+  double height;    /* HEIGHT: the far-field plane, cm above the substratum (<= the box top) */
+  double theta_min; /* cut fractions are raised to at least this (default 1e-3) */
+} sessile_cut_bc;
+void sessile_cut_bc_default(sessile_cut_bc *bc); /* WALLS off: HEIGHT at the caller's top */
+
+typedef enum { SESSILE_CUT_SOLVER_MG = 0, SESSILE_CUT_SOLVER_JACOBI = 1 } sessile_cut_solver;
+
+typedef struct sessile_cut_nutrient sessile_cut_nutrient;
+
+/* box: the finest level (the nutrient's grid, origin at the substratum);
+ * coarser levels halve it while every axis has an even number of cells and
+ * at least 4, up to max_levels levels in all (1: no multigrid). */
+sessile_status sessile_cut_nutrient_create(sessile_la *la, const sessile_box *box,
+                                           const sessile_cut_bc *bc, int max_levels,
+                                           sessile_cut_nutrient **out);
+void sessile_cut_nutrient_destroy(sessile_cut_nutrient *nt);
+int sessile_cut_nutrient_levels(const sessile_cut_nutrient *nt);
+/* Level l (0 finest): its box, and the buffers its classifier fills before a
+ * solve: solid (uint32 per node, 1 inside the sponge) and theta (6 reals per
+ * node), as sessile_growth_gpu_cut writes them. */
+void sessile_cut_nutrient_level(sessile_cut_nutrient *nt, int l, sessile_box *box,
+                                sessile_buffer **solid, sessile_buffer **theta);
+/* The operator's mask of the finest level after a solve (SESSILE_CUT_*). */
+sessile_buffer *sessile_cut_nutrient_mask(sessile_cut_nutrient *nt);
+
+/* Solves for c on the finest level: builds every level's operator from its
+ * solid and theta, then MG-PCG (or Jacobi-PCG, the baseline) from the warm
+ * start c to the true relative residual opt->rtol (opt: type and pc are
+ * ignored).  On return c holds the solution (0 on the sponge's solid nodes,
+ * the far-field and substratum values on theirs), and the extended field
+ * (sessile_cut_nutrient_extended) the same with the linear extrapolation
+ * across the surface on solid nodes next to the water. */
+sessile_status sessile_cut_nutrient_solve(sessile_cut_nutrient *nt, sessile_cut_solver solver,
+                                          sessile_vec *c, const sessile_ksp_options *opt,
+                                          sessile_solve_result *res);
+const sessile_vec *sessile_cut_nutrient_extended(const sessile_cut_nutrient *nt);
+/* The extension of a field solved elsewhere (the advected nutrient, whose
+ * solid nodes hold 0): builds the finest level's mask from its solid and
+ * theta, then extends c as the solve does. */
+sessile_status sessile_cut_nutrient_extend(sessile_cut_nutrient *nt, const sessile_vec *c);
+
+/* --- host references (double; the tests compare the kernels with them) --- */
+/* cutcell.comp: mask, diag, and (lift, value when lift != NULL). */
+void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *solid,
+                           const double *theta, uint32_t *mask, double *diag, double *lift,
+                           double *value);
+/* ghost.comp: ext from c. */
+void sessile_cut_ref_ghost(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *mask,
+                           const double *theta, const double *c, double *ext);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
