@@ -16,6 +16,13 @@ typedef struct {
   int validation;
 } cli_gpu_opts;
 
+/* The version, "0.1.0", and the commit the binary was built from, "ab63207"
+ * (git describe --always --dirty at build time; "unknown" without git). */
+const char *cli_version(void);
+const char *cli_commit(void);
+/* Prints "sessile 0.1.0 (commit ab63207)"; returns EXIT_OK. */
+int cli_print_version(void);
+
 /* Prints "sessile: error: ..." (one line) and returns EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Prints the library's last message and returns the exit code for s. */

@@ -4,10 +4,6 @@
 #include <string.h>
 #include "cli_run.h"
 
-#ifndef SESSILE_VERSION
-#define SESSILE_VERSION "dev"
-#endif
-
 int cli_run_args_init(cli_run_args *a, int argc, unsigned long long seed, int iterations, int every) {
   memset(a, 0, sizeof *a);
   a->seed = seed, a->iterations = iterations, a->every = every;
@@ -72,7 +68,7 @@ sessile_status cli_run_admit(const char *generator, int argc, char **argv, const
                              const char *dir, volatile sig_atomic_t *stop, sessile_run **run) {
   /* the manifest records the whole command line, global options included */
   cli_command_line(&argc, &argv);
-  sessile_run_options ro = {.dir = dir, .generator = generator, .version = SESSILE_VERSION,
+  sessile_run_options ro = {.dir = dir, .generator = generator, .version = cli_version(), .commit = cli_commit(),
                             .argc = argc, .argv = argv,
                             .mode = a->resume ? SESSILE_RUN_RESUME
                                     : a->force ? SESSILE_RUN_REPLACE : SESSILE_RUN_NEW,

@@ -51,6 +51,7 @@ struct sessile_run {
   run_log_len logs[RUN_MAX_LOGS];
   sessile_ckpt *ckpt;     /* on resume: the checkpoint read at open */
   char *version;
+  char *commit;           /* NULL: not recorded */
   cJSON *command;         /* argv, until the start puts it in the manifest */
   sessile_run_mode mode;
   int absent;             /* admitted a folder that does not exist yet */

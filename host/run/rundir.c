@@ -308,7 +308,9 @@ static sessile_status admit_folder(sessile_run *r, const sessile_run_options *o)
   r->dir = strdup(o->dir);
   r->generator = strdup(o->generator ? o->generator : "");
   r->version = strdup(o->version ? o->version : "dev");
-  SESSILE_CHECK(r->dir && r->generator && r->version, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  r->commit = o->commit ? strdup(o->commit) : NULL;
+  SESSILE_CHECK(r->dir && r->generator && r->version && (r->commit || !o->commit), SESSILE_ERR_NO_MEMORY,
+                "out of host memory");
   r->mode = o->mode;
   if (gethostname(r->host, sizeof r->host) != 0) snprintf(r->host, sizeof r->host, "unknown");
   r->host[sizeof r->host - 1] = 0;
@@ -399,6 +401,7 @@ sessile_status sessile_run_start(sessile_run *r) {
     cJSON_AddStringToObject(m, "program", "sessile");
     cJSON_AddStringToObject(m, "generator", r->generator);
     cJSON_AddStringToObject(m, "version", r->version);
+    if (r->commit) cJSON_AddStringToObject(m, "commit", r->commit);
     cJSON_AddStringToObject(m, "state", "running");
     cJSON_AddNumberToObject(m, "pid", (double)getpid());
     cJSON_AddStringToObject(m, "host", r->host);
@@ -542,6 +545,7 @@ void run_free(sessile_run *r) {
   free(r->dir);
   free(r->generator);
   free(r->version);
+  free(r->commit);
   free(r);
 }
 

@@ -38,6 +38,7 @@ typedef struct sessile_run_options {
   const char *dir;          /* the run directory (created with its parents) */
   const char *generator;    /* e.g. "grow": a resume must name the same */
   const char *version;      /* sessile's version, recorded */
+  const char *commit;       /* the commit it was built from, recorded when not NULL */
   int argc;                 /* the command line, recorded */
   char *const *argv;
   sessile_run_mode mode;
