@@ -31,6 +31,7 @@ int cli_fail_in(const char *cmd, sessile_status s) {
 
 const char *cli_value(const char *cmd, int argc, char **argv, int *i) {
   const char *opt = argv[*i];
+  if (*i + 1 < argc && cli_attached(argv[*i + 1])) return argv[++*i]; /* --out=X: X, whatever it holds */
   if (*i + 1 >= argc || strncmp(argv[*i + 1], "--", 2) == 0) {
     cli_usage_error(cmd, "%s needs a value", opt);
     return NULL;

@@ -23,6 +23,23 @@ const char *cli_commit(void);
 /* Prints "sessile 0.1.0 (commit ab63207)"; returns EXIT_OK. */
 int cli_print_version(void);
 
+/* GNU long options (docs/design.md "Command line"): every `--name=value`
+ * word becomes the two words `--name` `value` before any command parses,
+ * so each parser's `--name value` handling takes both forms.  Returns 0,
+ * or -1 out of host memory; cli_split_free releases what it made. */
+int cli_split_options(int argc, char **argv, int *nargc, char ***nargv);
+void cli_split_free(void);
+/* Whether word came from the right of a `--name=value` (pointer identity). */
+int cli_attached(const char *word);
+/* Every option loop calls it first for argv[i]: an attached value that no
+ * option took (`--force=1`) is refused, "--force takes no value"; returns
+ * EXIT_USAGE then, else 0. */
+int cli_stray_value(const char *cmd, char **argv, int i);
+/* `--version` anywhere on the (split) command line: prints "sessile 0.1.0
+ * (commit ab63207)" and returns EXIT_OK; -1 when absent; EXIT_USAGE for
+ * `--version=x`. */
+int cli_version_option(int argc, char **argv);
+
 /* Prints "sessile: error: ..." (one line) and returns EXIT_USAGE. */
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* Prints the library's last message and returns the exit code for s. */
@@ -31,7 +48,8 @@ int cli_fail(sessile_status s);
 int cli_fail_in(const char *cmd, sessile_status s);
 /* The value of the option at argv[*i] (advancing *i), or NULL after a
  * usage error when it is missing or starts with "--" ("--out needs a
- * value": `--out --print-config` must not make a folder named so). */
+ * value": `--out --print-config` must not make a folder named so); an
+ * attached value (`--out=X`) is taken whatever it holds. */
 const char *cli_value(const char *cmd, int argc, char **argv, int *i);
 /* Parses a seed: decimal digits only, within 0..2^64-1. */
 int cli_parse_seed(const char *cmd, const char *val, unsigned long long *out);

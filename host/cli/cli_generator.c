@@ -85,6 +85,7 @@ static int option(gen_cmd *c, int argc, char **argv, int *i) {
 static int parse(gen_cmd *c, int argc, char **argv) {
   const char *name = c->g->name;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value(name, argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       print_help(c->g);
       return EXIT_OK;

@@ -39,6 +39,7 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_bench_la_options bo = {.size = 64, .repeat = 20, .solvers = 1, .mg_sizes = 3};
   for (int i = 2; i < argc; i++) {
     const char *a = argv[i];
+    if (cli_stray_value("bench la", argv, i)) return EXIT_USAGE;
     if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
       fputs(help, stdout);
       return EXIT_OK;

@@ -33,6 +33,7 @@ static int bench_sections(const char *cmd, const char *help, int n, const char *
   bench_section_opts o = {0};
   int want[8] = {0}, any = 0;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value(cmd, argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
       return EXIT_OK;

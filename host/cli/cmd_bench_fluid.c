@@ -78,6 +78,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
+    if (cli_stray_value("bench fluid", argv, i)) return EXIT_USAGE;
     int r = cli_gpu_option("bench fluid", argc, argv, &i, &go);
     if (r < 0) return EXIT_USAGE;
     if (r > 0) continue;

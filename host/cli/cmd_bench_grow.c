@@ -39,6 +39,7 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     unsigned u;
+    if (cli_stray_value("bench grow", argv, i)) { free(sets); return EXIT_USAGE; }
     int r = cli_gpu_option("bench grow", argc, argv, &i, &go);
     if (r < 0) { free(sets); return EXIT_USAGE; }
     if (r > 0) continue;

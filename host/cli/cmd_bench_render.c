@@ -146,6 +146,7 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
   unsigned runs = 3;
   int quick = 0;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value(CMD, argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
       return cli_finish_stdout(EXIT_OK);

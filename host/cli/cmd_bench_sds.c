@@ -67,6 +67,7 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   double rock_t = 1;
   int physics = 1, kernels = 0;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value("bench sds", argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
       return EXIT_OK;

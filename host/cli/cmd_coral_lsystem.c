@@ -74,6 +74,7 @@ static sessile_status read_grammar(const char *path, char **text, size_t *len) {
 static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_args *a, lsys_cli *c) {
   cli_gpu_opts go = *global;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value(CMD, argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       fputs(help, stdout);
       return EXIT_OK;

@@ -16,6 +16,7 @@ static const char *help =
 int cmd_devices(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts o = *global;
   for (int i = 1; i < argc; i++) {
+    if (cli_stray_value("devices", argv, i)) return EXIT_USAGE;
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
       fputs(help, stdout);
       return EXIT_OK;

@@ -208,6 +208,7 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
     const char *v = NULL;
+    if (cli_stray_value(CMD, argv, i)) return EXIT_USAGE;
     /* every valued option but none repeats: the second is refused */
 #define VALUE() do { if (!(v = cli_value(CMD, argc, argv, &i)) || cli_once(CMD, a[1] == 'o' ? "--out" : a, a)) \
                        return EXIT_USAGE; } while (0)
@@ -377,7 +378,8 @@ static int render_sheet(int argc, char **argv) {
   }
   for (int i = 1; i < argc && rc == EXIT_OK; i++) {
     const char *a = argv[i], *v = NULL;
-    if (!strcmp(a, "--sheet")) {
+    if (cli_stray_value(CMD, argv, i)) rc = EXIT_USAGE;
+    else if (!strcmp(a, "--sheet")) {
       if (!(v = cli_value(CMD, argc, argv, &i)) || cli_once(CMD, a, a) || cli_parse_uint(CMD, a, v, 1, 1000, &cols))
         rc = EXIT_USAGE;
     } else if (!strcmp(a, "-o") || !strcmp(a, "--out")) {

@@ -24,6 +24,11 @@ int cmd_sds(int argc, char **argv, const cli_gpu_opts *global) {
     return EXIT_OK;
   }
   if (!strcmp(argv[1], "models")) {
+    if (argc > 2 && (!strcmp(argv[2], "--help") || !strcmp(argv[2], "-h"))) {
+      fputs("usage: sessile sds models\n\nLists the built-in SDS models, one a line: its name for "
+            "'sessile sds run MODEL'\nand what it grows (docs/sds.md).\n", stdout);
+      return EXIT_OK;
+    }
     if (argc > 2) return cli_usage_error("sds models", "takes no arguments");
     return list_models();
   }

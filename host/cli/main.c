@@ -4,10 +4,6 @@
 #include <string.h>
 #include "cli_generator.h"
 
-#ifndef SESSILE_VERSION
-#define SESSILE_VERSION "dev"
-#endif
-
 static int cmd_version(int argc, char **argv, const cli_gpu_opts *g);
 static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
 
@@ -42,6 +38,9 @@ static void print_help(FILE *out) {
         "                  has fp64; 32: mixed-precision refinement for the solvers, float SDS\n"
         "                  kernels; env SESSILE_PRECISION)\n"
         "  --validation    enable the Khronos validation layer (env SESSILE_VALIDATION=1)\n"
+        "  -h, --help      this text; after a command, that command's ('sessile grow --help')\n"
+        "  --version       the version and commit, after any command too\n"
+        "Every option's value may follow it ('--seed 7') or be joined by '=' ('--seed=7').\n"
         "\n"
         "Runs write a run directory (docs/run.md): manifest.json, records.jsonl, a checkpoint\n"
         "at every snapshot; SIGINT/SIGTERM stop a run at the end of its iteration (exit 130/143)\n"
@@ -52,9 +51,15 @@ static void print_help(FILE *out) {
 
 static int cmd_version(int argc, char **argv, const cli_gpu_opts *g) {
   (void)g;
+  if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+    fputs("usage: sessile version   (or sessile --version, after any command too)\n"
+          "\n"
+          "Prints the version and the commit sessile was built from ('unknown' when it was\n"
+          "built outside a git checkout); manifest.json records both.\n", stdout);
+    return EXIT_OK;
+  }
   if (argc > 1) return cli_usage_error("version", "takes no arguments ('%s')", argv[1]);
-  printf("sessile %s\n", SESSILE_VERSION);
-  return EXIT_OK;
+  return cli_print_version();
 }
 
 static int cmd_help(int argc, char **argv, const cli_gpu_opts *g) {
@@ -65,14 +70,12 @@ static int cmd_help(int argc, char **argv, const cli_gpu_opts *g) {
 
 static int run(int argc, char **argv) {
   cli_gpu_opts g = {0};
-  int i = 1;
-  for (; i < argc && argv[i][0] == '-'; i++) {
+  int i = 1, rc = cli_version_option(argc, argv);
+  if (rc >= 0) return rc;
+  for (; i < argc && (argv[i][0] == '-' || cli_attached(argv[i])); i++) {
+    if (cli_stray_value(NULL, argv, i)) return EXIT_USAGE;
     if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
       print_help(stdout);
-      return EXIT_OK;
-    }
-    if (strcmp(argv[i], "--version") == 0) {
-      printf("sessile %s\n", SESSILE_VERSION);
       return EXIT_OK;
     }
     int r = cli_gpu_option(NULL, argc, argv, &i, &g);
@@ -96,6 +99,14 @@ static int run(int argc, char **argv) {
 int main(int argc, char **argv) {
   /* Every command's output goes through stdout: a write error there (a full
    * disk, `> /dev/full`) is a failure, not a silent success. */
-  cli_set_command_line(argc, argv);
-  return cli_finish_stdout(run(argc, argv));
+  cli_set_command_line(argc, argv); /* as typed: the manifest's "command" */
+  int n = 0;
+  char **words = NULL;
+  if (cli_split_options(argc, argv, &n, &words) != 0) {
+    fprintf(stderr, "sessile: error: out of host memory\n");
+    return EXIT_RUNTIME;
+  }
+  int rc = cli_finish_stdout(run(n, words));
+  cli_split_free();
+  return rc;
 }

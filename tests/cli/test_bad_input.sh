@@ -97,7 +97,7 @@ cases=$(cat <<'CASES'
 2 | grow: error: unknown option '--bogus' | - | grow --bogus
 2 | unknown option 'extra' | - | grow extra
 2 | unknown option '-x' | - | grow -x
-2 | unknown option '--print-config=1' | - | grow --print-config=1
+2 | grow: error: --print-config takes no value \('--print-config=1'\) | - | grow --print-config=1
 2 | unknown option '--' | - | grow -- --print-config
 2 | sphere: error: unknown option '--bogus' | - | sphere --bogus
 2 | sphere: error: unknown option '--preset' | - | sphere --preset radiate --print-config
@@ -340,6 +340,45 @@ cases=$(cat <<'CASES'
 2 | coral lsystem: error: --seed given twice | - | coral lsystem --seed 1 --seed 1
 2 | bench fluid: error: --picard given twice | - | bench fluid --picard 1 --picard 2
 0 | ^t_give +0\.2  | - | grow --set t_give=0.1 --set t_give=0.2 --print-config
+# GNU --opt=value: the same checks as --opt value; a flag takes no value
+2 | grow: error: --iterations: 'abc' is not an integer | - | grow --iterations=abc
+2 | sphere: error: --iterations: 'abc' is not an integer | - | sphere --iterations=abc
+2 | --seed: '' is not an integer | - | grow --seed= --print-config
+2 | --every needs a value | - | sphere --every=
+2 | sphere: error: the run directory needs a name | - | sphere --out=
+2 | grow: error: --seed given twice | - | grow --seed=1 --seed 2 --print-config
+2 | grow: error: --seed given twice | - | grow --seed 1 --seed=2 --print-config
+2 | --out given twice | - | sphere --out=a --out=b --print-config
+2 | --device given twice | - | --device=0 grow --device=0 --print-config
+2 | --precision: '16' must be 32 or 64 | - | --precision=16 grow
+2 | grow: error: unknown option '--bogus' | - | grow --bogus=3
+2 | grow: error: unknown option '--=3' | - | grow --=3
+2 | sphere: error: --force takes no value \('--force=yes'\) | - | sphere --force=yes --out x
+2 | --quiet takes no value | - | sphere --quiet= --out x
+2 | sessile: error: --validation takes no value | - | --validation=1 devices
+2 | devices: error: --validation takes no value | - | devices --validation=1
+2 | --version takes no value | - | grow --version=1
+2 | render: error: --ortho takes no value \('--ortho=in\.png'\) | png | render --ortho=in.png -o a.png
+2 | render: error: --quiet takes no value | png | render --sheet=1 -o a.png in.png --quiet=yes
+2 | render: error: --sheet given twice | - | render --sheet=1 --sheet 2 -o a.png $F/prevrun/preview.png
+2 | render: error: --size given twice | - | render $F/prevrun/sphere/final.ply --out=a.png --size=8x8 --size 9x9
+2 | --range needs two values: LO HI | - | render x.exr -o a.png --range=1
+2 | sds run: error: --t-end: 'inf' is not a decimal number | - | sds run limb --t-end=inf
+2 | sds run: error: --frames given twice | - | sds run limb --frames=1 --frames=2
+2 | sds models: error: takes no arguments | - | sds models --x=1
+2 | coral lsystem: error: --grammar given twice | - | coral lsystem --grammar=flat --grammar flat
+2 | coral venation: error: --iterations: 'x' is not an integer | - | coral venation --iterations=x --out v
+2 | sponge particles: error: --seed: 'x' is not an integer | - | sponge particles --seed=x --out p
+2 | bench la: error: --size: 'x' is not an integer | - | bench la --size=x
+2 | bench la: error: --no-solvers takes no value | - | bench la --no-solvers=1
+2 | bench fluid: error: --picard given twice | - | bench fluid --picard=1 --picard 2
+2 | bench grow: error: --iterations: 'x' is not an integer | - | bench grow --iterations=x
+2 | bench render: error: --runs: '0' is not an integer | - | bench render --runs=0
+2 | bench sds: error: --rock-t: 'nan' is not a decimal number | - | bench sds --rock-t=nan
+2 | bench coral: error: --quick takes no value | - | bench coral --quick=1
+0 | ^t_give +0\.7  | - | grow --set=t_give=0.7 --print-config
+0 | ^level +2  | - | sphere --config=$F/sa.json --print-config
+1 | cannot write | full | grow --version
 # numbers are decimal, finite and the whole word, on every command
 2 | --t-end: '0x10' is not a decimal number in \[0, 1e\+09\] | - | sds run limb --t-end 0x10
 2 | --t-end: 'inf' is not a decimal number | - | sds run limb --t-end inf

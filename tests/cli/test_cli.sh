@@ -16,7 +16,59 @@ for args in "--help" "help" "devices --help" "bench --help" "bench la --help" "b
   check "'sessile $args' exits 0 with usage text" eval 'rc_is 0 && grep -q "usage: sessile" "$T/out"'
 done
 run --version
-check "'sessile --version' prints the version" eval 'rc_is 0 && grep -q "^sessile " "$T/out"'
+check "'sessile --version' prints the version and the commit" eval \
+  'rc_is 0 && [ "$(wc -l <"$T/out")" -eq 1 ] && grep -qE "^sessile [0-9]+\.[0-9]+\.[0-9]+ \(commit [0-9A-Za-z._-]+\)$" "$T/out"'
+version_line=$(cat "$T/out")
+commit=$(sed -n 's/.*(commit \(.*\))$/\1/p' "$T/out")
+# the commit is this checkout's (git describe: a hash, maybe after a tag and
+# before -dirty), or "unknown" where the source holds no .git
+src="$(cd "$(dirname "$0")/../.." && pwd)"
+if [ -e "$src/.git" ] && command -v git >/dev/null; then
+  hash=$(echo "$commit" | sed -E 's/-dirty$//; s/.*-g([0-9a-f]+)$/\1/')
+  check "the version's commit '$commit' is a commit of this repository" \
+    git -C "$src" cat-file -e "$hash^{commit}"
+else
+  check "outside a git checkout the commit is 'unknown'" test "$commit" = unknown
+fi
+
+# every command and subcommand answers -h, --help and --version with exit 0:
+# the fixed list, and whatever `sessile --help` lists as commands and generators
+run --help
+listed=$(sed -n '/^commands:/,/^$/p' "$T/out" | sed -n 's/^  \([a-z]\+\) .*/\1/p'
+         sed -n '/^generators/,/^$/p' "$T/out" | sed 1d | cut -c3-18 | sed 's/ *$//' | grep .)
+all=$(printf '%s\n' "help" "version" "devices" "render" "bench" "bench la" "bench grow" "bench fluid" \
+        "bench coral" "bench sponge" "bench sds" "bench render" "coral" "coral lsystem" "coral venation" \
+        "sponge" "sponge particles" "sds" "sds run" "sds models" "grow" "sphere" "$listed" | sort -u)
+while IFS= read -r c; do
+  for h in --help -h; do
+    run $c $h
+    check "'sessile $c $h' exits 0 with usage text" eval 'rc_is 0 && grep -q "usage: sessile" "$T/out" && [ ! -s "$T/err" ]'
+  done
+  run $c --version
+  check "'sessile $c --version' prints the version" eval 'rc_is 0 && [ "$(cat "$T/out")" = "$version_line" ] && [ ! -s "$T/err" ]'
+done <<<"$all"
+run -h
+check "'sessile -h' exits 0 with usage text" eval 'rc_is 0 && grep -q "usage: sessile" "$T/out"'
+run --device=0 devices
+check "'sessile --device=0 devices' works" eval 'rc_is 0 && grep -q "^\* \[0\]" "$T/out"'
+
+# --opt=value and --opt value give the same run, byte for byte (all but the
+# manifest and the records, which hold times and the command line, and the
+# lock, which holds the pid); the
+# manifest records the version and commit of --version
+"$S" sphere --iterations 3 --every 2 --seed 5 --out "$T/sp" --quiet --no-preview >/dev/null 2>&1
+"$S" sphere --iterations=3 --every=2 --seed=5 --out="$T/se" --quiet --no-preview >/dev/null 2>"$T/err"
+same=1
+files=$(cd "$T/sp" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort)
+[ -n "$files" ] && [ "$files" = "$(cd "$T/se" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort)" ] || same=0
+for f in $files; do cmp -s "$T/sp/$f" "$T/se/$f" || same=0; done
+check "'sphere --iterations=3 --seed=5 --out=DIR' writes the bytes of '--iterations 3 --seed 5 --out DIR'" \
+  eval '[ "$same" = 1 ] && [ ! -s "$T/err" ]'
+check "manifest.json records the version and the commit" python3 -c '
+import json, sys
+m = json.load(open(sys.argv[1]))
+line = "sessile %s (commit %s)" % (m["version"], m["commit"])
+sys.exit(0 if line == sys.argv[2] and m["command"][1:3] == ["sphere", "--iterations=3"] else 1)' "$T/se/manifest.json" "$version_line"
 
 for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "bench la --size x" \
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
@@ -44,8 +96,8 @@ run --validation bench sds --no-physics --rock-t 1 --kernels
 check "'sessile bench sds --rock-t 1 --kernels' prints the rock run's kernels and their sum" eval \
   'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
 check "bench sds --kernels under the validation layer is silent" no_validation
-run --precision 32 bench la --size 8 --repeat 1 --no-solvers
-check "'--precision 32 bench la' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
+run --precision=32 bench la --size=8 --repeat=1 --no-solvers
+check "'--precision=32 bench la --size=8' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
 
 # a benchmark stopped by a signal removes its temporary folder and exits 143
 for b in "render --runs 20" "sds --no-physics --rock-t 400"; do
