@@ -1,7 +1,7 @@
 /* The glTF JSON document of a checked scene (gltf_write.c lays out the
- * binary it describes).  Numbers go through cJSON, which prints a double
- * with %1.15g, or %1.17g when that does not read back: deterministic, and
- * exact for the POSITION bounds the validator compares with the data. */
+ * binary it describes).  Non-integer numbers are printed here, not by
+ * cJSON: cJSON keeps %1.15g when it reads back within a relative epsilon,
+ * not exactly, and the POSITION bounds must equal the data's floats. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,8 +15,8 @@ void gltf_node_matrix(const double *m, double mpu, double *out) {
     double col[3] = {m[4 * c], m[4 * c + 1], m[4 * c + 2]};
     gltf_dir(col, a[c]); /* a[c] = R A e_c */
   }
-  /* (R A R^T) e_c = R A (R^T e_c); R^T e_0 = e_0, R^T e_1 = -e_2, R^T e_2 = e_1 */
-  for (int r = 0; r < 3; r++) ra[0][r] = a[0][r], ra[1][r] = -a[2][r], ra[2][r] = a[1][r];
+  /* (R A R^T) e_c = R A (R^T e_c); R^T e_0 = e_0, R^T e_1 = e_2, R^T e_2 = -e_1 */
+  for (int r = 0; r < 3; r++) ra[0][r] = a[0][r], ra[1][r] = a[2][r], ra[2][r] = -a[1][r];
   double t[3];
   gltf_dir(m + 12, t);
   for (int c = 0; c < 3; c++) {
@@ -44,8 +44,25 @@ static double short_float(float f) {
   return strtod(b, NULL);
 }
 
+/* The shortest of %.15g..%.17g that reads back as exactly v, as raw JSON
+ * (the C locale's '.', as everywhere in sessile's files). */
+static cJSON *exact(double v) {
+  char b[40];
+  for (int p = 15; p <= 17; p++) {
+    snprintf(b, sizeof b, "%.*g", p, v);
+    if (strtod(b, NULL) == v) break;
+  }
+  return cJSON_CreateRaw(b);
+}
+
 static cJSON *numbers(const double *v, int n) {
-  return cJSON_CreateDoubleArray(v, n);
+  cJSON *a = cJSON_CreateArray();
+  for (int k = 0; a && k < n; k++)
+    if (!cJSON_AddItemToArray(a, exact(v[k]))) {
+      cJSON_Delete(a);
+      return NULL;
+    }
+  return a;
 }
 
 static int add_view(cJSON *views, cJSON *accs, uint64_t off, uint64_t bytes, int target, int ctype, uint32_t count,
@@ -103,8 +120,8 @@ static int add_material(cJSON *mats, const sessile_gltf_material *m) {
   for (int c = 0; c < 4; c++) rgba[c] = short_float(m->rgba[c]);
   return (!m->name || cJSON_AddStringToObject(o, "name", m->name)) &&
          cJSON_AddItemToObject(pbr, "baseColorFactor", numbers(rgba, 4)) &&
-         cJSON_AddNumberToObject(pbr, "metallicFactor", short_float(m->metallic)) &&
-         cJSON_AddNumberToObject(pbr, "roughnessFactor", short_float(m->roughness)) &&
+         cJSON_AddItemToObject(pbr, "metallicFactor", exact(short_float(m->metallic))) &&
+         cJSON_AddItemToObject(pbr, "roughnessFactor", exact(short_float(m->roughness))) &&
          cJSON_AddFalseToObject(o, "doubleSided");
 }
 
