@@ -11,7 +11,11 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
   libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev libcairo2-dev fonts-dejavu-core zlib1g-dev libmuparser-dev \
-  python3-vtk9 python3-meshio python3-numpy python3-scipy openimageio-tools >/dev/null
+  python3-vtk9 python3-meshio python3-numpy python3-scipy openimageio-tools assimp-utils >/dev/null
+# The .glb tests' readers: assimp (above) and the Khronos glTF validator
+# (npm, pinned, under tools/node; Node.js from Debian unless one is there).
+command -v npm >/dev/null || $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+npm install --prefix tools/node --no-save --no-package-lock --no-audit --no-fund gltf-validator@2.0.0-dev.3.10 >/dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # The main job on its embedded default: the device in use, then a Crella
