@@ -20,9 +20,13 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
   libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev libcairo2-dev fonts-dejavu-core zlib1g-dev libmuparser-dev \
-  $VTK_PY python3-meshio python3-numpy python3-scipy openimageio-tools man-db zsh >/dev/null
+  $VTK_PY python3-meshio python3-numpy python3-scipy openimageio-tools man-db zsh assimp-utils >/dev/null
 python3 -c "import vtkmodules.vtkIOXML, vtkmodules.vtkIOPLY, vtkmodules.vtkIOGeometry" ||
   echo "install.sh: warning: Python's vtkmodules do not import; the reader tests will fail" >&2
+# The .glb tests' readers: assimp (above) and the Khronos glTF validator
+# (npm, pinned, under tools/node; Node.js from Debian unless one is there).
+command -v npm >/dev/null || $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+npm install --prefix tools/node --no-save --no-package-lock --no-audit --no-fund gltf-validator@2.0.0-dev.3.10 >/dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # The main job on its embedded default: the device in use, then a Crella

@@ -33,6 +33,7 @@ static void print_help(const sessile_generator *g) {
          "  --out DIR       run directory (default %s); must be new or empty\n"
          "  --force         replace the earlier sessile run in DIR     --resume DIR  continue it\n"
          "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
+         "  --glb           the final mesh as glTF 2.0 binary too (.glb beside the .ply; docs/io.md)\n"
          "  --quiet         no progress and no summary line\n"
          "  --max-memory G  stop with the state saved once the process holds more than G GiB\n"
          "                  after an iteration (default: half the machine's memory; also with --resume)\n",
@@ -203,6 +204,7 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   c->su.say = cli_monitor_line, c->su.say_user = &mon;
   if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
   cli_monitor_end(&mon);
+  if (s == SESSILE_OK && g->preview) s = cli_run_glb(name, &c->a, run, g->preview);
   if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
   s = sessile_run_close(run, s);
   sessile_gpu_destroy(gpu);

@@ -23,6 +23,7 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
   if (!strcmp(opt, "--print-config")) return a->print_config = a->have_run_option = 1;
   if (!strcmp(opt, "--quiet")) return a->quiet = 1;
   if (!strcmp(opt, "--no-preview")) return a->no_preview = 1;
+  if (!strcmp(opt, "--glb")) return a->glb = 1;
   if (!strcmp(opt, "--force")) return a->force = a->have_run_option = 1;
   static const char *valued[] = {"--config", "--set", "--out", "--resume", "--iterations", "--every", "--seed"};
   int k = 0;

@@ -13,6 +13,7 @@ typedef struct cli_run_args {
   int nconfigs, nsets;
   int print_config, force, quiet;
   int no_preview;               /* --no-preview: no preview.png at the end */
+  int glb;                      /* --glb: the final mesh as .glb too (cli_glb.c) */
   int have_iterations;          /* --iterations given */
   int have_run_option;          /* an option a resume must not change */
   unsigned long long seed;
@@ -47,6 +48,11 @@ void cli_run_note_device(sessile_run *run, sessile_gpu *g);
  * on stderr: the run still succeeds, without preview.png. */
 void cli_run_preview(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel,
                      sessile_gpu *g, const cli_gpu_opts *go);
+/* At the end of a completed run, with --glb: the mesh mesh_rel (a PLY,
+ * "sponge/final.ply") as glTF 2.0 binary beside it ("sponge/final.glb"),
+ * with the command's material colour (docs/io.md "glTF").  A failure fails
+ * the run: the user asked for the file. */
+sessile_status cli_run_glb(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel);
 /* The exit code after sessile_run_close returned s. */
 int cli_run_exit(const char *cmd, sessile_status s, const char *dir, const volatile sig_atomic_t *stop,
                  int iterations_done);

@@ -55,4 +55,13 @@ typedef struct sessile_gltf_scene {
  * name), SESSILE_ERR_IO naming the file otherwise. */
 sessile_status sessile_gltf_write(const char *path, const sessile_gltf_scene *s);
 
+/* A PLY surface (a generator's final.ply) as a one-mesh, one-node scene
+ * with material m: its vertices and triangles, its normals when it has
+ * nx ny nz (else computed), every other vertex property as a custom
+ * attribute named "_" + the name in upper case ("c" -> "_C", other
+ * characters than A-Z, 0-9 and '_' as '_').  The PLY is read with
+ * sessile_read_ply (its refusals are SESSILE_ERR_USAGE). */
+sessile_status sessile_gltf_write_ply(const char *glb_path, const char *ply_path, const sessile_gltf_material *m,
+                                      double metres_per_unit, const char *generator);
+
 #endif
