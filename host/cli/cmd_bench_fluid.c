@@ -8,7 +8,6 @@
 #include "cli.h"
 #include "sessile/fem/fluid.h"
 #include "sessile/growth/growth_ref.h"
-#include "sessile/la/pc.h"
 #include "sessile/mesh/tetmesh.h"
 
 static const char *help =
@@ -22,13 +21,16 @@ static const char *help =
     "rest, then warm-started after the sponge grew by 0.3 cm (a growth\n"
     "iteration's worth).  Prints each Newton step: residual, linear iterations,\n"
     "true linear residual, assembly and solve time.  Figures are for the record\n"
-    "(docs/performance.md), never pass/fail.  --pc: la's preconditioner by its\n"
-    "registered name (none, jacobi, ilu0, block_jacobi; docs/la.md), ILU(0) by default\n"
-    "(Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
-    "the pc column says which ran).  --block-scale is --pc block_jacobi (the inverse of\n"
-    "each node's 4x4 diagonal block); --picard K takes\n"
-    "K Picard (Oseen) steps before Newton; --restart M is GMRES(M); --no-lsic drops the\n"
-    "grad-div term.  --verbose prints each step to stderr as it goes.\n";
+    "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
+    "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
+    "fluid_ksp_restart, nvs_rtol and max_nvs_iterations (--set; docs/fluid.md); the\n"
+    "flags are short for some: --pc NAME is --set fluid_pc_type=NAME (none, jacobi,\n"
+    "ilu0, block_jacobi; docs/la.md), ILU(0) by default (Jacobi where the matrix\n"
+    "exceeds maxStorageBufferRange and is stored in chunks; the pc column says which\n"
+    "ran); --ksp K is --set fluid_ksp_type=K; --restart M is --set fluid_ksp_restart=M\n"
+    "(GMRES(M)); --block-scale is --pc block_jacobi (the inverse of each node's 4x4\n"
+    "diagonal block).  --picard K takes K Picard (Oseen) steps before Newton;\n"
+    "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n";
 
 /* --verbose: the fluid solver's monitor lines to stderr. */
 static void print_line(void *user, const char *line) {
@@ -74,7 +76,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_grow_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int pc = -1, ksp = -1, picard = -1, restart = -1, lsic = -1, verbose = 0;
+  int picard = -1, lsic = -1, verbose = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -87,8 +89,9 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       return EXIT_OK;
     }
     if (!strcmp(a, "--block-scale") || !strcmp(a, "--no-block-scale")) {
-      if (!strcmp(a, "--block-scale")) pc = SESSILE_PC_BLOCK_JACOBI;
-      else if (pc == SESSILE_PC_BLOCK_JACOBI) pc = -1; /* back to the default */
+      if (!strcmp(a, "--block-scale")) p.fluid_pc_type = SESSILE_PC_BLOCK_JACOBI;
+      else if (p.fluid_pc_type == SESSILE_PC_BLOCK_JACOBI) /* back to the default */
+        p.fluid_pc_type = (int)sessile_params_find(&sessile_grow_param_table, "fluid_pc_type")->def;
       continue;
     }
     if (!strcmp(a, "--no-lsic")) {
@@ -111,21 +114,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, SESSILE_FLUID_MAX_STEPS, &u)) return EXIT_USAGE;
       picard = (int)u;
-    } else if (!strcmp(a, "--restart")) {
-      unsigned u;
-      if (cli_parse_uint("bench fluid", a, v, 1, 64, &u)) return EXIT_USAGE; /* GMRES(m), m <= 64 */
-      restart = (int)u;
-    } else if (!strcmp(a, "--pc")) {
-      sessile_pc_type t = SESSILE_PC_NONE;
-      if (sessile_pc_type_from_name(v, &t) != SESSILE_OK)
-        return cli_usage_error("bench fluid", "--pc: %s", sessile_error_message());
-      if (t == SESSILE_PC_MG)
-        return cli_usage_error("bench fluid", "--pc: mg needs a grid hierarchy, the fluid mesh has none");
-      pc = (int)t;
-    } else if (!strcmp(a, "--ksp")) {
-      if (!strcmp(v, "gmres")) ksp = SESSILE_KSP_GMRES;
-      else if (!strcmp(v, "bicgstab")) ksp = SESSILE_KSP_BICGSTAB;
-      else return cli_usage_error("bench fluid", "--ksp: '%s' is not gmres or bicgstab", v);
+    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp")) {
+      /* the table's parameters under a short flag: one parser, one list of names */
+      const char *key = a[2] == 'r' ? "fluid_ksp_restart" : a[2] == 'p' ? "fluid_pc_type" : "fluid_ksp_type";
+      s = sessile_params_set(&p, key, v);
+      if (s != SESSILE_OK) return cli_usage_error("bench fluid", "%s: %s", a, sessile_error_message());
     } else if (!strcmp(a, "--set")) {
       s = cli_params_set_kv(&p, v);
       if (s != SESSILE_OK) return cli_fail(s);
@@ -159,12 +152,8 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.rho = p.fluid_density;
   fp.eta = p.fluid_viscosity;
   fp.inlet[0] = p.inlet_velocity;
-  fp.newton_max = p.max_nvs_iterations;
-  fp.newton_rtol = p.nvs_rtol;
-  if (pc >= 0) fp.pc = (sessile_pc_type)pc;
-  if (ksp >= 0) fp.ksp = (sessile_ksp_type)ksp;
+  sessile_params_fluid_solver(&p, &fp);
   if (picard >= 0) fp.picard_steps = picard;
-  if (restart >= 0) fp.restart = restart;
   if (lsic >= 0) fp.lsic = lsic;
   if (verbose) fp.monitor = print_line;
   if (s == SESSILE_OK) {

@@ -16,7 +16,7 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
   SESSILE_CALL(sessile_mat_create_bcsr4(fl->la, &fl->a, &m));
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
-  o.type = p->ksp;
+  o.type = st->lin_ksp = p->ksp;
   /* la factorises ILU(0) only on a matrix stored in one piece */
   st->lin_chunks = sessile_mat_chunks(m);
   st->lin_pc = p->pc == SESSILE_PC_ILU0 && st->lin_chunks > 1 ? SESSILE_PC_JACOBI : p->pc;

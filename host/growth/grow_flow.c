@@ -26,10 +26,8 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp) {
   fp->eta = r->p->fluid_viscosity;
   fp->inlet[0] = r->p->inlet_velocity;
   fp->inlet[1] = fp->inlet[2] = 0;
-  fp->newton_max = r->p->max_nvs_iterations;
   fp->max_seconds = r->p->fluid_max_seconds;
-  fp->newton_rtol = r->p->nvs_rtol;
-  fp->linear_rtol = r->p->linear_rtol;
+  sessile_params_fluid_solver(r->p, fp);
 }
 
 /* The immersed flow's box, mesh and solver, once. */
@@ -100,6 +98,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
     cJSON_AddNumberToObject(o, "linear_true_relres", st->lin_relres);
     cJSON_AddStringToObject(o, "linear_status", sessile_solve_status_name(st->lin_status));
+    cJSON_AddStringToObject(o, "krylov", sessile_ksp_type_name(st->lin_ksp));
     cJSON_AddStringToObject(o, "preconditioner", sessile_pc_type_name(st->lin_pc));
     cJSON_AddNumberToObject(o, "matrix_chunks", st->lin_chunks);
     cJSON_AddNumberToObject(o, "assembly_seconds", st->assembly_s);

@@ -12,6 +12,13 @@ static const char *const domain_names[] = {"immersed", "conforming", NULL};
 static const char *const probe_names[] = {"flux", "paper", NULL};
 static const char *const far_names[] = {"height", "walls", NULL};
 static const char *const solver_names[] = {"mg", "jacobi", NULL};
+/* fluid_ksp_type: sessile_fluid_ksp's order (CG is not offered: the fluid's
+ * Jacobian is nonsymmetric). */
+static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
+/* fluid_pc_type: the pc registry's names (sessile/la/pc.h) indexed by
+ * sessile_pc_type, without mg (the fluid mesh has no grid hierarchy);
+ * tests/growth/test_grow_solver_params.c checks them against the registry. */
+static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", NULL};
 
 #define PT_REAL SESSILE_PT_REAL, NULL
 #define PT_INT SESSILE_PT_INT, NULL
@@ -21,6 +28,8 @@ static const char *const solver_names[] = {"mg", "jacobi", NULL};
 #define PT_ENUM_PROBE SESSILE_PT_ENUM, probe_names
 #define PT_ENUM_FAR SESSILE_PT_ENUM, far_names
 #define PT_ENUM_SOLVER SESSILE_PT_ENUM, solver_names
+#define PT_ENUM_KSP SESSILE_PT_ENUM, ksp_names
+#define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \

@@ -171,6 +171,12 @@ cases=$(cat <<'CASES'
 2 | parameter probe: 'foo' is not one of flux, paper | - | grow --out run --set probe=foo
 2 | parameter far_field: 'top' is not one of height, walls | - | grow --out run --set far_field=top
 2 | parameter nutrient_solver: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_solver=cg
+2 | parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | grow --out run --set fluid_ksp_type=cg
+2 | parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | grow --out run --set fluid_pc_type=mg
+2 | parameter fluid_pc_type: 'ilu1' is not one of | - | grow --out run --set fluid_pc_type=ilu1
+2 | parameter fluid_ksp_restart: '65' is not an integer in \[1, 64\] | - | grow --out run --set fluid_ksp_restart=65
+2 | parameter fluid_ksp_max_it: '0' is not an integer in \[1, | - | grow --out run --set fluid_ksp_max_it=0
+2 | parameter fluid_ksp_rtol: '1' is not a number in | - | grow --out run --set fluid_ksp_rtol=1
 2 | parameter probe_distance: '0' is not a number in \(0, 100\] cm | - | grow --out run --set probe_distance=0
 2 | far_field_height must be positive, or -1 for the box top \(got 0\) | - | grow --out run --set far_field_height=0
 2 | far_field_height \(1000 cm\) must not exceed the box top | - | grow --out run --set far_field_height=1000
@@ -339,6 +345,11 @@ cases=$(cat <<'CASES'
 2 | coral lsystem: error: --grammar given twice | - | coral lsystem --grammar flat --grammar flat
 2 | coral lsystem: error: --seed given twice | - | coral lsystem --seed 1 --seed 1
 2 | bench fluid: error: --picard given twice | - | bench fluid --picard 1 --picard 2
+2 | bench fluid: error: --restart given twice | - | bench fluid --restart 3 --restart 4
+2 | bench fluid: error: --pc: parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | bench fluid --pc mg
+2 | bench fluid: error: --ksp: parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | bench fluid --ksp cg
+2 | bench fluid: error: --restart: parameter fluid_ksp_restart: '0' is not an integer in \[1, 64\] | - | bench fluid --restart 0
+2 | parameter fluid_pc_type: 'ilu' is not one of none, jacobi, ilu0, block_jacobi | - | bench fluid --set fluid_pc_type=ilu
 0 | ^t_give +0\.2  | - | grow --set t_give=0.1 --set t_give=0.2 --print-config
 # GNU --opt=value: the same checks as --opt value; a flag takes no value
 2 | grow: error: --iterations: 'abc' is not an integer | - | grow --iterations=abc

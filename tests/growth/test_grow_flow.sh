@@ -8,7 +8,8 @@
 # flow solve keep the test short; the flow solver's accuracy is tested in
 # tests/fem/test_ns.c.  Also checks the flow's outputs: EXR channels ux, uy,
 # uz, umag, p, the VTU's u and p, the records' Newton steps, and
-# tools/compare_flow.py (a run against itself: 0; two domains: not 0).
+# tools/compare_flow.py (a run against itself: 0; two domains: not 0), and
+# that fluid_ksp_type and fluid_pc_type reach the solver (the records).
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -48,6 +49,22 @@ for d in ("immersed", "conforming"):
     ok = ok and (all(x == d for x in doms) if d == "immersed" else doms.count("conforming") >= 6)
     print(d, doms)
 sys.exit(0 if ok else 1)
+PYEOF
+# The fluid's solver choices reach the solver: each Newton step records the
+# Krylov method and preconditioner it ran (defaults gmres + ilu0 above).
+"$S" grow ${SMALL/--iterations 8/--iterations 1} --every 1 --set fluid_ksp_type=bicgstab \
+  --set fluid_pc_type=block_jacobi --out "$T/opts" 2>"$T/opts.err"
+check "run with fluid_ksp_type=bicgstab, fluid_pc_type=block_jacobi" [ $? -eq 0 ]
+check "records: the Newton steps ran the chosen Krylov method and preconditioner" \
+  /usr/bin/python3 - "$T" <<'PYEOF'
+import json, sys
+T = sys.argv[1]
+def kinds(d):
+    return {(s["krylov"], s["preconditioner"]) for l in open(f"{T}/{d}/records.jsonl")
+            for s in json.loads(l).get("fluid", {}).get("steps", [])}
+a, b = kinds("immersed"), kinds("opts")
+print("default:", a, "chosen:", b)
+sys.exit(0 if a == {("gmres", "ilu0")} and b == {("bicgstab", "block_jacobi")} else 1)
 PYEOF
 check "EXR slice carries c, ux, uy, uz, umag, p" eval \
   'exrheader "$T/immersed/slices/iter_0008_z.exr" | grep -q "umag, 32-bit floating-point" && exrheader "$T/immersed/slices/iter_0008_z.exr" | grep -q "  p, 32-bit floating-point"'

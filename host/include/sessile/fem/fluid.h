@@ -95,6 +95,7 @@ typedef struct sessile_fluid_step {
   int lin_iterations;
   double lin_relres;     /* true relative residual of the linear solve */
   sessile_solve_status lin_status;
+  sessile_ksp_type lin_ksp; /* the Krylov method used (params.ksp) */
   sessile_pc_type lin_pc;  /* the preconditioner used (see params.pc) */
   uint32_t lin_chunks;     /* row chunks the block matrix was stored in (la) */
   double assembly_s, solve_s;

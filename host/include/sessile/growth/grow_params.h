@@ -11,6 +11,7 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include "sessile/la/la.h"
 #include "sessile/run/param_table.h"
 #include "sessile/status.h"
 
@@ -90,12 +91,25 @@ extern "C" {
   X(fluid_max_seconds, REAL, 600, 0, 1e7, LO_OPEN, "s", "ours",                                   \
     "wall-clock bound of one flow solve: past it the solve fails with a message (docs/fluid.md)") \
   X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, 0, "", "paper §4.2", "Newton stops at residual <= this times the rest state's residual") \
+  X(fluid_ksp_type, ENUM_KSP, 0, 0, 1, 0, "", "ours (docs/fluid.md)",                              \
+    "Krylov method of each Newton step's linear system: gmres (GMRES(fluid_ksp_restart)) or "     \
+    "bicgstab")                                                                                    \
+  X(fluid_pc_type, ENUM_PC, SESSILE_PC_ILU0, 0, 3, 0, "", "ours (docs/fluid.md)",                  \
+    "la's preconditioner of the fluid's linear solves (sessile/la/pc.h): none, jacobi, ilu0 "    \
+    "(Jacobi on a matrix stored in chunks) or block_jacobi (each node's 4x4 block)")             \
+  X(fluid_ksp_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper §4.2 (linear 1e-6)",                      \
+    "true relative residual each Newton step's linear solve aims at")                             \
+  X(fluid_ksp_max_it, INT, 100, 1, 1000000, 0, "", "paper §4.2 (linear 100)",                       \
+    "Krylov iterations per Newton step at most (past it the step is taken as it is)")             \
+  X(fluid_ksp_restart, INT, 50, 1, 64, 0, "", "ours (docs/fluid.md)",                               \
+    "GMRES(m): basis vectors between restarts (la holds at most 64; unused by bicgstab)")         \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, 0, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
   X(conforming_size_far, REAL, 2.4, 0.1, 100, 0, "cm", "ours", "TetGen target edge length far from the sponge") \
   X(linear_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper (linear tolerance)",                           \
-    "true relative residual the nutrient solve must reach")                                        \
+    "true relative residual the nutrient solve (diffusion limited: CG) must reach; the fluid's "  \
+    "is fluid_ksp_rtol")                                        \
   X(linear_max_iterations, INT, 5000, 1, 1000000, 0, "", "ours", "iteration bound of the nutrient solve")
 
 typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 } sessile_skeleton_type;
@@ -103,6 +117,9 @@ typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sess
 typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
 typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
+/* fluid_ksp_type's values; fluid_pc_type's value is la's sessile_pc_type
+ * itself (its names are the pc registry's, in the enum's order). */
+typedef enum { SESSILE_FLUID_KSP_GMRES = 0, SESSILE_FLUID_KSP_BICGSTAB = 1 } sessile_fluid_ksp;
 
 typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_REAL(n) double n;
@@ -113,6 +130,8 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_PROBE(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_FAR(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SOLVER(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_KSP(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_PC(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
@@ -135,6 +154,12 @@ sessile_status sessile_params_set(sessile_grow_params *p, const char *key, const
 sessile_status sessile_params_validate(const sessile_grow_params *p);
 /* The far-field height in cm: far_field_height, or the box top for -1. */
 double sessile_params_far_field_height(const sessile_grow_params *p);
+
+struct sessile_fluid_params;
+/* The fluid's solver choices (fluid_ksp_*, fluid_pc_type, nvs_rtol,
+ * max_nvs_iterations) into fp, its other fields left as they are: the one
+ * mapping `sessile grow` and `sessile bench fluid` share. */
+void sessile_params_fluid_solver(const sessile_grow_params *p, struct sessile_fluid_params *fp);
 
 /* Bytes of device memory the growth loop needs at least (box vectors, the
  * nutrient operator, the flow at snapshots): the run refuses to start when
