@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <cjson/cJSON.h>
 #include "sessile/gpu/gpu.h"
 #include "sessile/io/gltf.h"
 #include "sessile/mesh/surface.h"
@@ -94,7 +95,8 @@ int sessile_reef_seabed_at(const sessile_reef_seabed *b, double x, double y, dou
 typedef struct sessile_reef_placement {
   uint32_t entry;
   uint32_t stroke;    /* the brush stroke, or UINT32_MAX for a grown one */
-  int automatic;      /* a distinct organism per placement (else one per entry) */
+  uint32_t automatic; /* 1: a distinct organism per placement (else one per entry) */
+  uint32_t pad;       /* 0: no padding bytes, so a checkpoint's bytes are the same */
   uint64_t seed;      /* the organism's seed */
   double pos[3];      /* base on the seabed, m */
   double up[3];       /* unit up axis (terrain normal or +z) */
@@ -153,6 +155,12 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
                                       const sessile_reef_placements *pl, sessile_reef_organism_fn fn, void *ctx,
                                       sessile_reef_gltf *out);
 void sessile_reef_gltf_free(sessile_reef_gltf *g);
+
+/* placements.json (docs/reef.md, "Output"): per placement its entry,
+ * generator, parameters, seed, transform (g's node matrix in metres; none
+ * when g is NULL), exposure and depth.  NULL when out of memory. */
+cJSON *sessile_reef_placements_json(const sessile_reef_scene *s, const sessile_reef_placements *pl,
+                                    const sessile_reef_gltf *g);
 
 #ifdef __cplusplus
 }
