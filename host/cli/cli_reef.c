@@ -54,6 +54,27 @@ static sessile_status arg(void *extra, int argc, char **argv, int *i, int *taken
   return load(a, a->text, len);
 }
 
+/* The scene without SCENE.json: a small reef of spheres (docs/reef.md). */
+static const char builtin[] =
+    "{\"seabed\": {\"noise\": {\"seed\": 1, \"resolution\": [17, 17], \"extent\": [4, 4], \"height_scale\": 0.5,"
+    " \"base\": -3, \"wavelength\": 3, \"octaves\": 2}},"
+    " \"pool\": [{\"name\": \"ball\", \"generator\": \"sphere\", \"parameters\": [\"level=2\", \"iterations=2\"],"
+    " \"colour\": [0.9, 0.45, 0.3, 1], \"bias\": 60, \"size\": [0.25, 0.3]},"
+    " {\"name\": \"pebble\", \"generator\": \"sphere\", \"parameters\": [\"level=1\", \"iterations=2\"],"
+    " \"colour\": [0.3, 0.5, 0.9, 1], \"bias\": 40, \"size\": [0.2, 0.25], \"rotate\": [\"x\", \"y\", \"z\"]}],"
+    " \"brushes\": [{\"points\": [[1, 1], [3, 3]], \"size\": 0.8, \"density\": 2}],"
+    " \"currents\": [{\"origin\": [0, 2, -2], \"direction\": [1, 0, 0], \"strength\": 4, \"nutrition_range\": 0.5}],"
+    " \"growth\": {\"steps\": 2, \"spacing\": 1}}";
+
+static sessile_status defaults(void *params, void *extra) {
+  reef_args *a = extra;
+  sessile_params_defaults(&table, params);
+  if (a->parsed) return SESSILE_OK;
+  SESSILE_CHECK((a->path = strdup("(built-in scene)")) && (a->text = strdup(builtin)), SESSILE_ERR_NO_MEMORY,
+                "out of host memory");
+  return load(a, a->text, strlen(a->text));
+}
+
 static sessile_status config_write(const void *extra, cJSON *cfg) {
   const reef_args *a = extra;
   int ok = cJSON_AddStringToObject(cfg, "scene", a->path) && cJSON_AddStringToObject(cfg, "scene_text", a->text);
@@ -90,7 +111,8 @@ static sessile_status check(const void *params, const sessile_gen_setup *su) {
 
 static sessile_status schedule(const void *params, sessile_gen_setup *su) {
   const reef_args *a = su->extra;
-  su->iterations = 1 + a->scene.growth_steps, su->every = 0;
+  /* --iterations N: N - 1 growth steps whatever the scene says */
+  if (su->iterations == 0) su->iterations = 1 + a->scene.growth_steps;
   return SESSILE_OK;
 }
 
@@ -222,13 +244,14 @@ const sessile_generator sessile_gen_reef = {
     "place organisms of a pool of generators, reef growth and water currents\n"
     "(Liapis et al., Coralize, §4).  Writes reef.glb (one mesh per distinct\n"
     "organism, a node per placement), placements.json, reef/reef.ply and\n"
-    "preview.png.  Iteration 1 runs the brushes; iterations 2.. the growth steps.",
+    "preview.png.  Iteration 1 runs the brushes, iterations 2.. the growth steps\n"
+    "(--iterations 0, the default: 1 + the scene's growth.steps).  Without\n"
+    "SCENE.json: a small built-in scene.  usage: sessile reef [SCENE.json] [options]",
     .help = NULL,
     .seed_help = "the brushes", .out_default = "runs/reef", .table = &table,
-    .snapshot_name = "reef/placements_%04d.json", .preview = "reef/reef.ply", .iterations = 1, .every = 0,
-    .needs_device = needs_device, .check = check, .no_iterations =
-    "the reef's iterations are the scene's growth steps (growth.steps)",
-    .extra_size = sizeof(reef_args), .arg = arg, .schedule = schedule, .config_write = config_write,
+    .snapshot_name = "reef/placements_%04d.json", .preview = "reef/reef.ply", .iterations = 0, .every = 0,
+    .needs_device = needs_device, .check = check,
+    .extra_size = sizeof(reef_args), .arg = arg, .defaults = defaults, .schedule = schedule, .config_write = config_write,
     .config_read = config_read, .extra_free = extra_free,
     SESSILE_GEN_CALLBACKS,
 };
