@@ -16,11 +16,11 @@
 
 /* Each generator's parameters that exposure thickens (§4.3, Figure 13). */
 static const struct {
-  const char *generator, *params[2];
+  const char *generator, *params[4];
 } thickness[] = {
-    {"sphere", {"radius", NULL}},
-    {"coral venation", {"initial_width", "width_increment"}},
-    {"sponge particles", {"growth_fraction", NULL}},
+    {"sphere", {"radius"}},
+    {"coral venation", {"thickness_0", "thickness_1", "thickness_2", "thickness_3"}},
+    {"sponge particles", {"growth_fraction"}},
 };
 
 static const sessile_generator *find(const char *name) {
@@ -80,7 +80,7 @@ sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef
 static void thicken(const sessile_generator *g, void *values, double exposure) {
   for (size_t k = 0; k < sizeof thickness / sizeof thickness[0]; k++) {
     if (strcmp(thickness[k].generator, g->name)) continue;
-    for (int i = 0; i < 2 && thickness[k].params[i]; i++) {
+    for (int i = 0; i < 4 && thickness[k].params[i]; i++) {
       const sessile_param_desc *d = sessile_params_find(g->table, thickness[k].params[i]);
       if (!d || d->type != SESSILE_PT_REAL) continue;
       double *v = (double *)((char *)values + d->offset), x = *v * (1 + exposure);
