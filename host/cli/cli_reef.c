@@ -50,7 +50,7 @@ static sessile_status arg(void *extra, int argc, char **argv, int *i, int *taken
   *taken = 1;
   size_t len = 0;
   SESSILE_CHECK(a->path = strdup(argv[*i]), SESSILE_ERR_NO_MEMORY, "out of host memory");
-  SESSILE_CALL(sessile_read_small_file(a->path, 16u << 20, "the scene", &a->text, &len));
+  SESSILE_CALL(sessile_read_small_file(a->path, 16u << 20, "scene", &a->text, &len));
   return load(a, a->text, len);
 }
 
