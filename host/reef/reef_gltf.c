@@ -108,9 +108,9 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
   size_t nm = (size_t)pl->n + 1;
   g->surfaces = calloc(nm, sizeof *g->surfaces), g->radius_cm = calloc(nm, sizeof *g->radius_cm);
   g->meshes = calloc(nm, sizeof *g->meshes), g->nodes = calloc(nm, sizeof *g->nodes);
-  g->node_mesh = calloc(nm, sizeof *g->node_mesh);
+  g->node_mesh = calloc(nm, sizeof *g->node_mesh), g->names = calloc(2 * nm, sizeof *g->names);
   g->materials = calloc((size_t)s->nentries + 1, sizeof *g->materials);
-  if (!g->surfaces || !g->radius_cm || !g->meshes || !g->nodes || !g->node_mesh || !g->materials) {
+  if (!g->surfaces || !g->radius_cm || !g->meshes || !g->nodes || !g->node_mesh || !g->materials || !g->names) {
     sessile_reef_gltf_free(g);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u placements", pl->n);
   }
@@ -127,13 +127,19 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
                                                    s->entries[e].rgba[2], s->entries[e].rgba[3]},
                                                   0, s->entries[e].roughness};
   for (uint32_t m = 0; m < g->scene.nmeshes; m++)
-    g->meshes[m] = (sessile_gltf_mesh){.name = m ? NULL : "seabed", .nv = g->surfaces[m].nv,
-                                       .nt = g->surfaces[m].nf, .pos = g->surfaces[m].pos, .tri = g->surfaces[m].tri};
-  g->nodes[0] = (sessile_gltf_node){"seabed", 0, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
+    g->meshes[m] = (sessile_gltf_mesh){.name = g->names[m], .nv = g->surfaces[m].nv, .nt = g->surfaces[m].nf,
+                                       .pos = g->surfaces[m].pos, .tri = g->surfaces[m].tri};
+  snprintf(g->names[0], sizeof g->names[0], "seabed");
+  snprintf(g->names[nm], sizeof g->names[0], "seabed");
+  g->nodes[0] = (sessile_gltf_node){g->names[nm], 0, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
   for (uint32_t k = 0; k < pl->n; k++) {
     uint32_t m = g->node_mesh[k];
+    const char *entry = s->entries[pl->p[k].entry].name;
     g->meshes[m].material = pl->p[k].entry + 1;
-    g->nodes[k + 1].mesh = m;
+    /* a mesh is named by its first placement's entry and the mesh index */
+    if (!g->names[m][0]) snprintf(g->names[m], sizeof g->names[m], "%.40s %u", entry, m);
+    snprintf(g->names[nm + k + 1], sizeof g->names[0], "%.40s %u", entry, k);
+    g->nodes[k + 1].name = g->names[nm + k + 1], g->nodes[k + 1].mesh = m;
     transform(&pl->p[k], g->radius_cm[m], g->nodes[k + 1].matrix);
   }
   g->scene.meshes = g->meshes, g->scene.materials = g->materials, g->scene.nmaterials = (uint32_t)s->nentries + 1;
@@ -144,6 +150,6 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
 void sessile_reef_gltf_free(sessile_reef_gltf *g) {
   if (!g) return;
   for (uint32_t m = 0; g->surfaces && m < g->scene.nmeshes; m++) sessile_surface_free(&g->surfaces[m]);
-  free(g->surfaces), free(g->radius_cm), free(g->meshes), free(g->nodes), free(g->node_mesh), free(g->materials);
+  free(g->surfaces), free(g->radius_cm), free(g->meshes), free(g->nodes), free(g->node_mesh), free(g->materials), free(g->names);
   memset(g, 0, sizeof *g);
 }

@@ -46,6 +46,11 @@ int main(void) {
   t_true("materials = the seabed's + one per entry", g.scene.nmaterials == 3 && g.materials[1].rgba[0] == 1 &&
                                                          g.materials[2].rgba[2] == 1);
   t_true("the seabed mesh", g.meshes[0].nv == 17 * 9 && g.meshes[0].nt == 2 * 16 * 8 && g.scene.metres_per_unit == 0.01);
+  int named = 1;
+  for (uint32_t m = 0; m < g.scene.nmeshes; m++) named &= g.meshes[m].name && g.meshes[m].name[0];
+  for (uint32_t k = 0; k < g.scene.nnodes; k++) named &= g.nodes[k].name && g.nodes[k].name[0];
+  t_true("every mesh and node is named", named && !strncmp(g.nodes[1].name, s.entries[pl.p[0].entry].name, 1) &&
+                                                g.nodes[1].name[1] == ' ');
   double base = 0, axis = 0, foot = 0, mat = 0;
   for (uint32_t k = 0; k < pl.n; k++) {
     const sessile_reef_placement *p = &pl.p[k];

@@ -150,6 +150,7 @@ typedef struct sessile_reef_gltf {
   sessile_surface *surfaces; /* nmeshes, the seabed's first */
   uint32_t *node_mesh;       /* per placement: its mesh */
   double *radius_cm;         /* per mesh: its footprint radius */
+  char (*names)[64];         /* the meshes' names, then the nodes' */
 } sessile_reef_gltf;
 sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile_reef_seabed *b,
                                       const sessile_reef_placements *pl, sessile_reef_organism_fn fn, void *ctx,
