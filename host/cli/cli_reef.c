@@ -201,7 +201,7 @@ static sessile_status finish(void *state) {
   const sessile_reef_scene *s = &r->a->scene;
   if (r->device && r->gpu) SESSILE_CALL(sessile_reef_exposure_gpu(r->gpu, s, &r->seabed, &r->pl, 0));
   else sessile_reef_exposure_ref(s, &r->seabed, &r->pl, 0);
-  cli_reef_organisms org = {.gpu = r->gpu, .where = r->a->path};
+  cli_reef_organisms org = {.gpu = r->gpu, .run = r->run, .where = r->a->path};
   sessile_reef_gltf g;
   SESSILE_CALL(sessile_reef_gltf_make(s, &r->seabed, &r->pl, cli_reef_organism, &org, &g));
   char path[4096];

@@ -8,6 +8,7 @@
 
 typedef struct cli_reef_organisms {
   sessile_gpu *gpu;   /* for generators that need a device (NULL: refused) */
+  const sessile_run *run; /* the reef's run: a stop request ends the organisms (NULL: never) */
   const char *where;  /* the scene file, in messages */
   uint32_t made;      /* organisms generated so far */
 } cli_reef_organisms;

@@ -128,6 +128,9 @@ static sessile_status run_in(const sessile_generator *g, organism_params *p, uin
 sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
                                  uint64_t seed, double exposure, sessile_surface *out) {
   cli_reef_organisms *c = ctx;
+  /* the reef's last iteration is checkpointed: a resume runs finish again */
+  int stop = c->run ? sessile_run_stop_requested(c->run) : 0;
+  SESSILE_CHECK(!stop, SESSILE_ERR_INTERRUPTED, "stopped by signal %d while generating organisms", stop);
   const sessile_generator *g = find(generator);
   SESSILE_CHECK(g, SESSILE_ERR_USAGE, "unknown generator '%.60s'", generator);
   static organism_params p;
