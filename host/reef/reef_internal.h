@@ -27,5 +27,8 @@ int reef_site(const sessile_reef_scene *s, const sessile_reef_seabed *b, const s
               double y, sessile_reef_placement *p);
 /* Random rotations from one stream (three draws whichever axes rotate). */
 void reef_angles(const sessile_reef_entry *e, uint64_t *rng, double angle[3]);
+/* seabed.mesh of the scene (seabed_mesh.c): s->heights, res and extent. */
+struct rj_obj;
+sessile_status reef_seabed_mesh(const struct rj_obj *o, sessile_reef_scene *s);
 sessile_status reef_push(sessile_reef_placements *pl, const sessile_reef_placement *p);
 #endif

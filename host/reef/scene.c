@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "reef/reef_internal.h"
 #include "reef/reef_json.h"
 #include "sessile/reef/reef.h"
 
@@ -15,8 +16,13 @@ static sessile_status seabed(const rj_obj *root, sessile_reef_scene *s) {
   const cJSON *j = rj_get(root, "seabed");
   if (!j) return rj_fail(root, "seabed", "is required");
   SESSILE_CALL(rj_open(&sb, j, root->where, "seabed"));
-  SESSILE_CALL(rj_known(&sb, (const char *const[]){"noise", NULL}));
-  if (!rj_get(&sb, "noise")) return rj_fail(&sb, "noise", "is required (the seabed's kind)");
+  SESSILE_CALL(rj_known(&sb, (const char *const[]){"noise", "mesh", NULL}));
+  if (!rj_get(&sb, "noise") == !rj_get(&sb, "mesh"))
+    return rj_fail(&sb, NULL, "needs one of \"noise\" and \"mesh\" (the seabed's kind)");
+  if (rj_get(&sb, "mesh")) {
+    SESSILE_CALL(rj_open(&nz, rj_get(&sb, "mesh"), root->where, "seabed.mesh"));
+    return reef_seabed_mesh(&nz, s);
+  }
   SESSILE_CALL(rj_open(&nz, rj_get(&sb, "noise"), root->where, "seabed.noise"));
   SESSILE_CALL(rj_known(&nz, (const char *const[]){"seed", "resolution", "extent", "height_scale", "base",
                                                    "wavelength", "octaves", NULL}));
@@ -211,6 +217,6 @@ void sessile_reef_scene_free(sessile_reef_scene *s) {
     free(e->settings), free(e->name), free(e->generator);
   }
   for (int k = 0; s->strokes && k < s->nstrokes; k++) free(s->strokes[k].pts);
-  free(s->entries), free(s->strokes), free(s->currents);
+  free(s->entries), free(s->strokes), free(s->currents), free(s->heights);
   memset(s, 0, sizeof *s);
 }

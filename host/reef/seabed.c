@@ -29,6 +29,10 @@ sessile_status sessile_reef_seabed_make(const sessile_reef_scene *s, sessile_ree
   out->extent[0] = s->extent[0], out->extent[1] = s->extent[1];
   out->h = malloc((size_t)out->nx * out->ny * sizeof *out->h);
   SESSILE_CHECK(out->h, SESSILE_ERR_NO_MEMORY, "out of host memory for a %ux%u seabed", out->nx, out->ny);
+  if (s->heights) {
+    memcpy(out->h, s->heights, (size_t)out->nx * out->ny * sizeof *out->h);
+    return SESSILE_OK;
+  }
   double dx = out->extent[0] / (out->nx - 1), dy = out->extent[1] / (out->ny - 1), norm = 0;
   for (int o = 0; o < s->octaves; o++) norm += ldexp(1, -o);
   for (uint32_t j = 0; j < out->ny; j++)

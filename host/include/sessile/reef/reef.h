@@ -63,6 +63,8 @@ typedef struct sessile_reef_current {
 } sessile_reef_current;
 
 typedef struct sessile_reef_scene {
+  /* seabed: a user's mesh sampled to res heights (owned; NULL: noise) */
+  double *heights;
   /* seabed: noise (octaves of seeded value noise) */
   uint32_t res[2];
   double extent[2], height_scale, base, wavelength;
