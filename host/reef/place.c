@@ -32,28 +32,32 @@ void reef_angles(const sessile_reef_entry *e, uint64_t *rng, double angle[3]) {
   }
 }
 
-/* The dabs of a stroke: its points, and along a polyline every `size`
- * metres of arc length from its start (the last point always). */
-static int dabs(const sessile_reef_stroke *st, int k, double at[2]) {
-  if (k == 0) return at[0] = st->pts[0], at[1] = st->pts[1], 1;
-  if (st->npts == 1) return 0;
-  double want = k * st->size, run = 0;
-  for (int i = 0; i + 1 < st->npts; i++) {
-    const double *a = st->pts + 2 * i, *c = a + 2;
+/* The dabs of a stroke: its first point, then one every `size` metres of
+ * arc length along the polyline, and its last point (once).  An iterator,
+ * so a stroke of many points costs one pass. */
+typedef struct dab_it {
+  int k, seg, ended;
+  double run; /* arc length at the start of segment seg */
+} dab_it;
+
+static int dab_next(const sessile_reef_stroke *st, dab_it *it, double at[2]) {
+  if (it->ended) return 0;
+  double want = it->k++ * st->size;
+  for (; it->seg + 1 < st->npts; it->seg++) {
+    const double *a = st->pts + 2 * it->seg, *c = a + 2;
     double len = hypot(c[0] - a[0], c[1] - a[1]);
-    if (want <= run + len && len > 0) {
-      double t = (want - run) / len;
+    if (want <= it->run + len) {
+      double t = len > 0 ? (want - it->run) / len : 0;
       at[0] = a[0] + t * (c[0] - a[0]), at[1] = a[1] + t * (c[1] - a[1]);
       return 1;
     }
-    run += len;
+    it->run += len;
   }
-  /* the end point, once, after the last full step */
-  if (want - st->size < run && want > run) {
-    at[0] = st->pts[2 * st->npts - 2], at[1] = st->pts[2 * st->npts - 1];
-    return 1;
-  }
-  return 0;
+  /* past the end: the last point, unless the previous dab was it */
+  it->ended = 1;
+  if (it->k > 1 && want - st->size >= it->run) return 0;
+  at[0] = st->pts[2 * st->npts - 2], at[1] = st->pts[2 * st->npts - 1];
+  return 1;
 }
 
 static double per_dab(const sessile_reef_stroke *st) {
@@ -64,7 +68,10 @@ sessile_status sessile_reef_check(const sessile_reef_scene *s, double *estimate)
   double n = 0, at[2];
   for (int k = 0; k < s->nstrokes; k++) {
     double d = 0;
-    while (dabs(&s->strokes[k], (int)d, at) && d < 1e7) d++;
+    for (dab_it it = {0}; dab_next(&s->strokes[k], &it, at);)
+      if (++d > 1e7)
+        return sessile_error_set(SESSILE_ERR_USAGE, "brushes[%d].size: the stroke makes over 10^7 dabs: a larger "
+                                 "brush or a shorter stroke", k);
     n += d * ceil(per_dab(&s->strokes[k]));
     if (n > SESSILE_REEF_MAX_ORGANISMS)
       return sessile_error_set(SESSILE_ERR_USAGE, "brushes[%d].density: the brushes ask for %.3g organisms, over "
@@ -126,7 +133,7 @@ sessile_status sessile_reef_place(const sessile_reef_scene *s, const sessile_ree
   double at[2];
   for (uint32_t k = 0; k < (uint32_t)s->nstrokes && st == SESSILE_OK; k++) {
     double m = per_dab(&s->strokes[k]);
-    for (int d = 0; st == SESSILE_OK && dabs(&s->strokes[k], d, at); d++) {
+    for (dab_it it = {0}; st == SESSILE_OK && dab_next(&s->strokes[k], &it, at);) {
       /* a fractional count: one more candidate with that probability */
       int n = (int)floor(m) + (sessile_rng_uniform(&rng) < m - floor(m));
       for (int c = 0; c < n && st == SESSILE_OK; c++) st = candidate(s, b, &g, k, at, &rng, out);
