@@ -22,7 +22,7 @@ grep -rn --include='*.c' --include='*.h' --include='*.cpp' --include='*.def' \
       rank["base"] = 0; rank["gpu"] = 1; rank["la"] = 2; rank["mesh"] = 3
       rank["fem"] = 4; rank["io"] = 4; rank["run"] = 5; rank["render"] = 5
       rank["growth"] = 6
-      rank["sphere"] = 7; rank["coral"] = 7; rank["sponge"] = 7; rank["sds"] = 7
+      rank["sphere"] = 7; rank["coral"] = 7; rank["sponge"] = 7; rank["sds"] = 7; rank["reef"] = 7
       rank["bench"] = 8; rank["cli"] = 9
     }
     function bad_line(msg) { print file ":" line ": \"" inc "\" " msg; bad = 1 }

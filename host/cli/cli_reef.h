@@ -1,0 +1,23 @@
+/* `sessile reef` (cli_reef.c) and the organisms of its pool
+ * (cli_reef_organisms.c): the CLI is the one layer that knows both the reef
+ * and every generator (docs/reef.md, "Organisms"). */
+#ifndef SESSILE_CLI_REEF_H
+#define SESSILE_CLI_REEF_H
+#include "sessile/reef/reef.h"
+#include "sessile/run/generator.h"
+
+typedef struct cli_reef_organisms {
+  sessile_gpu *gpu;   /* for generators that need a device (NULL: refused) */
+  const sessile_run *run; /* the reef's run: a stop request ends the organisms (NULL: never) */
+  const char *where;  /* the scene file, in messages */
+  uint32_t made;      /* organisms generated so far */
+} cli_reef_organisms;
+
+/* Refuses a pool entry whose generator is unknown (or cannot be one) or
+ * whose parameters its table refuses, naming the JSON path. */
+sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef_entry *e);
+/* sessile_reef_organism_fn over the registered generators (ctx: a
+ * cli_reef_organisms). */
+sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
+                                 uint64_t seed, double exposure, sessile_surface *out);
+#endif
