@@ -258,8 +258,9 @@ bool send_request(int fd, const tg_plc *p, const char *switches) {
   }
 }
 
-// Reads a reply into out; false if the worker's answer is incomplete.
-bool receive(int fd, tg_result *out, reply *w) {
+// Reads a reply into out; false if the worker's answer is incomplete, or
+// (*nomem set) if there was no memory to take it.
+bool receive(int fd, tg_result *out, reply *w, bool *nomem) {
   if (!get(fd, w, sizeof *w)) return false;
   w->msg[sizeof w->msg - 1] = '\0';
   if (w->code != 0) return true;
@@ -269,7 +270,10 @@ bool receive(int fd, tg_result *out, reply *w) {
   out->tet = static_cast<int *>(std::malloc(4 * (size_t)w->ntets * sizeof(int) + 1));
   out->face = static_cast<int *>(std::malloc(3 * (size_t)w->nfaces * sizeof(int) + 1));
   out->face_marker = static_cast<int *>(std::malloc((size_t)w->nfaces * sizeof(int) + 1));
-  if (!out->xyz || !out->tet || !out->face || !out->face_marker) return false;
+  if (!out->xyz || !out->tet || !out->face || !out->face_marker) {
+    *nomem = true;
+    return false;
+  }
   return get(fd, out->xyz, 3 * (size_t)w->npoints * sizeof(double)) &&
          get(fd, out->tet, 4 * (size_t)w->ntets * sizeof(int)) &&
          get(fd, out->face, 3 * (size_t)w->nfaces * sizeof(int)) &&
@@ -349,7 +353,8 @@ extern "C" int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_res
     return run_here(plc, switches, out, msg, msglen); /* no worker to be had: in this process */
   reply w;
   std::memset(&w, 0, sizeof w);
-  if (send_request(sock, plc, switches) && receive(sock, out, &w)) {
+  bool nomem = false;
+  if (send_request(sock, plc, switches) && receive(sock, out, &w, &nomem)) {
     drain_stderr();
     std::snprintf(msg, msglen, "%s", w.msg);
     if (w.code != 0) tg_result_free(out);
@@ -358,6 +363,10 @@ extern "C" int tg_tetrahedralize(const tg_plc *plc, const char *switches, tg_res
   tg_result_free(out);
   int status = 0;
   worker_end(&status); /* the next call forks a new one */
+  if (nomem) { /* ours, not TetGen's: the reply's rest was unread, so the worker went too */
+    std::snprintf(msg, msglen, "out of host memory receiving TetGen's mesh");
+    return -2;
+  }
   if (WIFSIGNALED(status))
     std::snprintf(msg, msglen, "TetGen stopped on signal %d (%s)%s%s", WTERMSIG(status), strsignal(WTERMSIG(status)),
                   errline[0] ? ": " : "", errline);

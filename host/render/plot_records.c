@@ -88,6 +88,11 @@ static sessile_status read_records(const char *path, const char *x, const char *
     }
     cJSON_Delete(rec);
   }
+  /* getline's -1 is the end only at the end of the file: else a read error
+   * or no memory, which must not pass as a shorter file */
+  if (st == SESSILE_OK && !feof(f))
+    st = sessile_error_set(errno == ENOMEM ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_IO, "cannot read '%s': %s", path,
+                           strerror(errno));
   free(line);
   fclose(f);
   return st;

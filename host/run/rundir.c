@@ -329,6 +329,7 @@ static sessile_status admit_folder(sessile_run *r, const sessile_run_options *o)
 static sessile_status take_folder(sessile_run *r) {
   if (r->absent) {
     sessile_status s = sessile_mkdirs(r->dir);
+    if (s == SESSILE_ERR_NO_MEMORY) return sessile_error_pass(s, "cannot create the run directory");
     if (s != SESSILE_OK)
       return sessile_error_set(SESSILE_ERR_USAGE, "cannot create the run directory: %s", sessile_error_message());
     sessile_run_options o = {.dir = r->dir, .generator = r->generator, .mode = r->mode};

@@ -54,8 +54,10 @@ sessile_status sds_divide(sds_sim *s, uint32_t c, const double dir[3]) {
   /* slivers elsewhere, inverted before and unchanged, do not count against
    * it: one lasting sliver had stopped every division (the rock model: 29 622
    * put off from t = 320; docs/sds.md "The loop") */
-  int valid = st == SESSILE_OK &&
-              sessile_sds_topo_check_kept(s->o.x, s->o.ntets, s->o.tet, &cx, dv.tet_from) == SESSILE_OK;
+  sessile_status kept = st == SESSILE_OK ? sessile_sds_topo_check_kept(s->o.x, s->o.ntets, s->o.tet, &cx, dv.tet_from)
+                                         : SESSILE_OK;
+  if (kept == SESSILE_ERR_NO_MEMORY) st = kept; /* a failure, not an invalid division to put off */
+  int valid = st == SESSILE_OK && kept == SESSILE_OK;
   if (st == SESSILE_ERR_UNSUPPORTED || st == SESSILE_ERR_NUMERIC || (st == SESSILE_OK && !valid)) {
     /* TetGen cannot mesh c's hull without a new point (and the cone
      * fallback failed), or the division would leave an invalid complex (a

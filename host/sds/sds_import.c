@@ -42,9 +42,10 @@ sessile_status sessile_sds_from_surface(const sessile_surface *s, const char *sw
   sessile_tetgen_mesh r = {0};
   char msg[256] = "";
   sessile_status ts = sessile_tetgen_surface(s->pos, (int)s->nv, s->tri, (int)s->nf, sw, &r, msg, sizeof msg);
+  if (ts == SESSILE_ERR_NO_MEMORY) /* no verdict on the surface */
+    return sessile_error_set(ts, "sds: TetGen (switches %s): %s", sw, msg);
   if (ts != SESSILE_OK)
-    return sessile_error_set(ts == SESSILE_ERR_NO_MEMORY ? SESSILE_ERR_NO_MEMORY : SESSILE_ERR_USAGE,
-                             "sds: TetGen (switches %s) rejected the surface: %s", sw, msg);
+    return sessile_error_set(SESSILE_ERR_USAGE, "sds: TetGen (switches %s) rejected the surface: %s", sw, msg);
   uint32_t *tet = malloc(4 * (size_t)r.ntets * sizeof *tet);
   if (!tet) {
     sessile_tetgen_mesh_free(&r);

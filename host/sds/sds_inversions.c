@@ -74,8 +74,11 @@ static sessile_status repair(sds_sim *s) {
     st = sds_complex_of(o, &cx);
     sessile_status rst = st == SESSILE_OK ? sessile_sds_topo_repair(&cx, bad, ntry, &tr) : st;
     /* inverted tets left out of the try may stay as they were */
-    int ok = st == SESSILE_OK && rst == SESSILE_OK &&
-             sessile_sds_topo_check_kept(o->x, o->ntets, o->tet, &cx, tr.tet_from) == SESSILE_OK;
+    sessile_status kst = st == SESSILE_OK && rst == SESSILE_OK
+                             ? sessile_sds_topo_check_kept(o->x, o->ntets, o->tet, &cx, tr.tet_from)
+                             : SESSILE_OK;
+    if (kst == SESSILE_ERR_NO_MEMORY) rst = kst; /* a failure, not a repair to leave out */
+    int ok = st == SESSILE_OK && rst == SESSILE_OK && kst == SESSILE_OK;
     if (ok) {
       st = sds_take_complex(s, &cx, tr.tet_from);
       if (st == SESSILE_OK) s->st->repairs++;
@@ -160,8 +163,10 @@ sessile_status sds_inversions(sds_sim *s, int *handled, double *frac) {
   /* the result must be a valid complex before the organism takes it (an
    * inverted sliver elsewhere, or a covering tet that overlaps the body,
    * would otherwise spread): a refusal like the transformation's own */
-  if (st == SESSILE_OK && tst == SESSILE_OK && sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL) != SESSILE_OK)
-    tst = SESSILE_ERR_UNSUPPORTED;
+  if (st == SESSILE_OK && tst == SESSILE_OK) {
+    sessile_status cst = sessile_sds_topo_check(cx.nv, cx.x, cx.nt, cx.tet, 0, NULL);
+    if (cst != SESSILE_OK) tst = cst == SESSILE_ERR_NO_MEMORY ? cst : SESSILE_ERR_UNSUPPORTED;
+  }
   if (st == SESSILE_OK && tst == SESSILE_OK) st = sds_take_complex(s, &cx, tr.tet_from);
   free(tr.tet_from);
   sessile_sds_topo_complex_free(&cx);

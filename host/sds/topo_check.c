@@ -152,8 +152,9 @@ sessile_status sessile_sds_topo_check(uint32_t nv, const double *x, uint32_t nt,
     st = (3 * nb) % 2 ? sessile_error_set(SESSILE_ERR_INTERNAL, "the boundary has an odd number (%u) of faces", nb)
                       : sessile_surface_check(&s, rep.boundary_euler, 0.0);
     if (st != SESSILE_OK) {
-      st = sessile_error_set(SESSILE_ERR_INTERNAL, "the boundary is not a closed oriented 2-manifold: %s",
-                             sessile_error_message());
+      if (st != SESSILE_ERR_NO_MEMORY) /* no memory to check is no verdict on the complex */
+        st = sessile_error_set(SESSILE_ERR_INTERNAL, "the boundary is not a closed oriented 2-manifold: %s",
+                               sessile_error_message());
       goto done;
     }
     st = check_fans(s.nv, s.tri, s.nf);

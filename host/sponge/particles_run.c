@@ -81,7 +81,9 @@ static sessile_status write_mesh(const particles_gen *g, const char *rel) {
 
 /* The invariants, when asked for: closed oriented 2-manifold, no self-intersection. */
 static sessile_status check(const sessile_sponge_particles *ps, cJSON *rec) {
-  SESSILE_CHECK(sessile_surface_check(&ps->surf, 2, 0.0) == SESSILE_OK, SESSILE_ERR_INTERNAL,
+  sessile_status cs = sessile_surface_check(&ps->surf, 2, 0.0);
+  if (cs == SESSILE_ERR_NO_MEMORY) return cs; /* no memory to check is no broken surface */
+  SESSILE_CHECK(cs == SESSILE_OK, SESSILE_ERR_INTERNAL,
                 "iteration %d: the surface is broken (%s): a bug", ps->iteration, sessile_error_message());
   uint64_t n = 0;
   SESSILE_CALL(sessile_surface_self_intersections(&ps->surf, 0, NULL, &n));
