@@ -23,7 +23,7 @@ static const char *help =
     "true linear residual, assembly and solve time.  Figures are for the record\n"
     "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
-    "fluid_ksp_restart, nvs_rtol and max_nvs_iterations (--set; docs/fluid.md); the\n"
+    "fluid_ksp_restart, fluid_newton_rtol and fluid_newton_max_it (--set; docs/fluid.md); the\n"
     "flags are short for some: --pc NAME is --set fluid_pc_type=NAME (none, jacobi,\n"
     "ilu0, block_jacobi; docs/la.md), ILU(0) by default (Jacobi where the matrix\n"
     "exceeds maxStorageBufferRange and is stored in chunks; the pc column says which\n"

@@ -14,7 +14,7 @@ static const char *help =
     "                          [--set KEY=VALUE]... [--device D]\n"
     "\n"
     "Runs N growth iterations (default 50) of a preset with no output files, twice:\n"
-    "with the nutrient solved by multigrid-preconditioned CG (nutrient_solver = mg,\n"
+    "with the nutrient solved by multigrid-preconditioned CG (nutrient_pc_type = mg,\n"
     "the default) and by Jacobi-PCG (the baseline), and prints per stage (upload,\n"
     "classify, nutrient, growth, remesh) the total and per-iteration time and its\n"
     "share of the run, the box node count, the nutrient solver iterations, and the\n"
@@ -81,7 +81,7 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
     printf("preset %s, %d iterations, seed %llu\n", preset, o.iterations, (unsigned long long)o.seed);
     fflush(stdout);
     for (int k = 0; k < 2 && s == SESSILE_OK; k++) {
-      p.nutrient_solver = k == 0 ? SESSILE_SOLVER_MG : SESSILE_SOLVER_JACOBI;
+      p.nutrient_pc_type = k == 0 ? SESSILE_SOLVER_MG : SESSILE_SOLVER_JACOBI;
       s = sessile_grow_run(g, &p, &o, NULL, &sum[k]);
     }
   }

@@ -69,7 +69,7 @@ sessile_status grow_setup(grow_run *r) {
   bc.far_field = p->far_field == SESSILE_FAR_WALLS ? SESSILE_FAR_FIELD_WALLS : SESSILE_FAR_FIELD_HEIGHT;
   bc.height = sessile_params_far_field_height(p);
   SESSILE_CALL(sessile_cut_nutrient_create(r->la, &r->box, &bc,
-                                           p->nutrient_solver == SESSILE_SOLVER_MG ? 12 : 1,
+                                           p->nutrient_pc_type == SESSILE_SOLVER_MG ? 12 : 1,
                                            &r->nutrient));
   SESSILE_CALL(sessile_growth_gpu_create(r->la, &r->growth));
   uint32_t nodes = sessile_box_nodes(&r->box);

@@ -164,7 +164,7 @@ sessile_status grow_flow_solve(grow_run *r, int it, cJSON *rec) {
     grow_warn(r, "iteration %d: Navier-Stokes stopped after %d Newton steps at residual %.2e, %.2e of "
                  "the rest state's (not converged to %g); see records.jsonl",
               it, res.nsteps, res.residual,
-              res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->nvs_rtol);
+              res.residual_rest > 0 ? res.residual / res.residual_rest : 0.0, r->p->fluid_newton_rtol);
   r->flow_valid = 1;
   return SESSILE_OK;
 }

@@ -35,11 +35,11 @@ sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessil
   sessile_ksp_options_default(&ko);
   ko.type = SESSILE_KSP_CG;
   ko.pc = SESSILE_PC_JACOBI;
-  ko.rtol = r->p->linear_rtol;
-  ko.max_it = r->p->linear_max_iterations;
+  ko.rtol = r->p->nutrient_ksp_rtol;
+  ko.max_it = r->p->nutrient_ksp_max_it;
   sessile_solve_result res;
   sessile_cut_solver solver =
-      r->p->nutrient_solver == SESSILE_SOLVER_MG ? SESSILE_CUT_SOLVER_MG : SESSILE_CUT_SOLVER_JACOBI;
+      r->p->nutrient_pc_type == SESSILE_SOLVER_MG ? SESSILE_CUT_SOLVER_MG : SESSILE_CUT_SOLVER_JACOBI;
   if (advect) SESSILE_CALL(grow_nutrient_advected(r, &res));
   else SESSILE_CALL(sessile_cut_nutrient_solve(r->nutrient, solver, r->c, &ko, &res));
   /* The flux probe reads the field extended across the surface. */
@@ -53,6 +53,6 @@ sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessil
                 "files so far are whole", it, res.reason);
   if (res.status != SESSILE_SOLVE_CONVERGED)
     grow_warn(r, "iteration %d: nutrient solve stopped at %d iterations with true relative residual "
-                 "%.2e (%s); raise linear_max_iterations", it, res.iterations, res.true_relres, res.reason);
+                 "%.2e (%s); raise nutrient_ksp_max_it", it, res.iterations, res.true_relres, res.reason);
   return SESSILE_OK;
 }

@@ -45,8 +45,17 @@ static const sessile_param_desc descs[] = {
 
 static sessile_status validate(const void *values);
 
+/* The solver parameters' earlier names (before the fluid_/nutrient_ prefixes,
+ * docs/fluid.md): configs and stored runs that use them still read. */
+static const sessile_param_alias aliases[] = {{"linear_rtol", "nutrient_ksp_rtol"},
+                                              {"linear_max_iterations", "nutrient_ksp_max_it"},
+                                              {"nutrient_solver", "nutrient_pc_type"},
+                                              {"nvs_rtol", "fluid_newton_rtol"},
+                                              {"max_nvs_iterations", "fluid_newton_max_it"},
+                                              {NULL, NULL}};
+
 const sessile_param_table sessile_grow_param_table = {
-    "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate};
+    "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, aliases};
 
 void sessile_params_default(sessile_grow_params *p) { sessile_params_defaults(&sessile_grow_param_table, p); }
 

@@ -14,6 +14,6 @@ void sessile_params_fluid_solver(const sessile_grow_params *p, sessile_fluid_par
   fp->linear_rtol = p->fluid_ksp_rtol;
   fp->linear_max = p->fluid_ksp_max_it;
   fp->restart = p->fluid_ksp_restart;
-  fp->newton_rtol = p->nvs_rtol;
-  fp->newton_max = p->max_nvs_iterations;
+  fp->newton_rtol = p->fluid_newton_rtol;
+  fp->newton_max = p->fluid_newton_max_it;
 }

@@ -36,6 +36,8 @@ void sessile_params_defaults(const sessile_param_table *t, void *values) {
 const sessile_param_desc *sessile_params_find(const sessile_param_table *t, const char *name) {
   for (int i = 0; name && i < t->count; i++)
     if (strcmp(t->params[i].name, name) == 0) return &t->params[i];
+  for (const sessile_param_alias *a = t->aliases; name && a && a->old_name; a++)
+    if (strcmp(a->old_name, name) == 0) return sessile_params_find(t, a->name);
   return NULL;
 }
 
@@ -193,11 +195,19 @@ sessile_status sessile_params_apply_json(const sessile_param_table *t, void *val
   if (!cJSON_IsObject(root))
     s = sessile_error_set(SESSILE_ERR_USAGE, "%s: must hold one JSON object {\"key\": value, ...}", where);
   for (const cJSON *it = root ? root->child : NULL; s == SESSILE_OK && it; it = it->next) {
-    for (const cJSON *o = it->next; o; o = o->next)
-      if (it->string && o->string && !strcmp(it->string, o->string)) {
+    for (const cJSON *o = it->next; o; o = o->next) {
+      if (!it->string || !o->string) continue;
+      const sessile_param_desc *d = sessile_params_find(t, it->string);
+      if (!strcmp(it->string, o->string)) {
         s = sessile_error_set(SESSILE_ERR_USAGE, "%s: parameter '%.80s' is given twice", where, it->string);
         break;
       }
+      if (d && d == sessile_params_find(t, o->string)) { /* a name and its earlier name */
+        s = sessile_error_set(SESSILE_ERR_USAGE, "%s: parameter '%.80s' is given twice (also as '%.80s')", where,
+                              d->name, strcmp(it->string, d->name) ? it->string : o->string);
+        break;
+      }
+    }
     if (s == SESSILE_OK) s = apply_item(t, values, it, where);
   }
   return s;

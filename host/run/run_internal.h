@@ -75,7 +75,7 @@ void run_free(sessile_run *r);
  * checkpoint does not (written after it, or every file when there is no
  * checkpoint) are removed, so the resumed run never mixes in later
  * snapshots of the stopped one. */
-void run_prune_to_checkpoint(sessile_run *r);
+sessile_status run_prune_to_checkpoint(sessile_run *r);
 /* The logs' lengths to keep in a checkpoint: this start's, and the loaded
  * checkpoint's for logs not appended to since (n set to their count). */
 void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);

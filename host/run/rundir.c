@@ -194,16 +194,28 @@ static sessile_status proven_run(const sessile_run *r, const cJSON *old) {
   return SESSILE_OK;
 }
 
-void run_prune_to_checkpoint(sessile_run *r) {
+sessile_status run_prune_to_checkpoint(sessile_run *r) {
   cJSON *files = cJSON_GetObjectItemCaseSensitive(r->manifest, "files");
   const cJSON *keep = r->ckpt ? r->ckpt->files : NULL;
-  if (r->ckpt && !keep) return; /* a checkpoint of an older version: no list to go by */
+  if (r->ckpt && !keep) return SESSILE_OK; /* a checkpoint of an older version: no list to go by */
   for (int i = cJSON_GetArraySize(files) - 1; i >= 0; i--) {
     const cJSON *f = cJSON_GetArrayItem(files, i);
     if (!cJSON_IsString(f) || (keep && listed(keep, f->valuestring))) continue;
     remove_rel(r->dfd, f->valuestring);
     cJSON_DeleteItemFromArray(files, i);
   }
+  if (!keep) return SESSILE_OK;
+  /* The checkpoint's list is the run's from here on: a run killed between
+   * its checkpoint and the manifest's next write has a manifest that lacks
+   * files the checkpoint already holds, and the next checkpoint would then
+   * lack them too (a resumed run's bytes would differ). */
+  cJSON *copy = cJSON_Duplicate(keep, 1);
+  SESSILE_CHECK(copy, SESSILE_ERR_NO_MEMORY, "out of host memory for the run's file list");
+  if (!cJSON_ReplaceItemInObjectCaseSensitive(r->manifest, "files", copy)) {
+    cJSON_Delete(copy);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for the run's file list");
+  }
+  return SESSILE_OK;
 }
 
 static const char *state_of(const cJSON *m) {
@@ -341,7 +353,7 @@ static sessile_status take_folder(sessile_run *r) {
   r->wrote_lock = 1;
   sweep_all(r->dfd);
   if (r->mode == SESSILE_RUN_RESUME) {
-    run_prune_to_checkpoint(r);
+    SESSILE_CALL(run_prune_to_checkpoint(r));
     return open_records(r, 1);
   }
   if (r->replaced) {

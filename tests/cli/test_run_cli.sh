@@ -17,7 +17,7 @@ S="$1"
 # A small box (19.2 x 19.2 x 14.4 cm at 1.2 cm) keeps each run to seconds.
 # At most 3 Newton steps per flow solve (the flow's accuracy is test_ns's
 # business; here it only has to be solved, warm-started and checkpointed).
-SMALL="--set box_resolution=1 --set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3 --set max_nvs_iterations=3 --quiet"
+SMALL="--set box_resolution=1 --set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3 --set fluid_newton_max_it=3 --quiet"
 ITS=6
 outputs() { (cd "$1" && find sponge slices fields -type f | LC_ALL=C sort | xargs sha256sum); }
 temps() { find "$1" -name '*.sessile-tmp.*' | wc -l; }

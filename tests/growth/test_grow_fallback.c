@@ -40,7 +40,7 @@ int main(void) {
   t_ok("box_cells_y=16", sessile_params_set(&p, "box_cells_y", "16"));
   t_ok("box_cells_z=12", sessile_params_set(&p, "box_cells_z", "12"));
   t_ok("sponge_radius=3", sessile_params_set(&p, "sponge_radius", "3"));
-  t_ok("max_nvs_iterations=2", sessile_params_set(&p, "max_nvs_iterations", "2"));
+  t_ok("fluid_newton_max_it=2", sessile_params_set(&p, "fluid_newton_max_it", "2"));
 
   /* A level-3 icosphere of radius 4 floating at z = 8, its top vertex pushed
    * to z = 2, through the bottom of the sphere: a closed manifold that

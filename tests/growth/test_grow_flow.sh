@@ -14,7 +14,7 @@ set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 SMALL="--set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3
-       --set box_resolution=1 --set max_nvs_iterations=4 --iterations 8 --quiet --seed 3"
+       --set box_resolution=1 --set fluid_newton_max_it=4 --iterations 8 --quiet --seed 3"
 "$S" grow $SMALL --every 0 --out "$T/dl" 2>"$T/dl.err"; check "diffusion-limited control run" [ $? -eq 0 ]
 for d in immersed conforming; do
   "$S" grow $SMALL --every 8 --set diffusion_limited=false --set domain=$d --out "$T/$d" 2>"$T/$d.err"

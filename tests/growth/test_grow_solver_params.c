@@ -1,6 +1,6 @@
 /* The fluid's solver choices in the grow table (fluid_ksp_type,
  * fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it, fluid_ksp_restart,
- * nvs_rtol, max_nvs_iterations): the table's defaults map onto the fluid
+ * fluid_newton_rtol, fluid_newton_max_it): the table's defaults map onto the fluid
  * library's own defaults (today's behaviour), fluid_pc_type's names are the
  * pc registry's (every registered pc but mg, in sessile_pc_type's order),
  * every value set by name arrives in sessile_fluid_params, and a small flow
@@ -31,8 +31,8 @@ static void defaults_are_the_fluids(void) {
   t_check("default fluid_ksp_rtol", got.linear_rtol - lib.linear_rtol, 0);
   t_check("default fluid_ksp_max_it", got.linear_max - lib.linear_max, 0);
   t_check("default fluid_ksp_restart", got.restart - lib.restart, 0);
-  t_check("default nvs_rtol", got.newton_rtol - lib.newton_rtol, 0);
-  t_check("default max_nvs_iterations", got.newton_max - lib.newton_max, 0);
+  t_check("default fluid_newton_rtol", got.newton_rtol - lib.newton_rtol, 0);
+  t_check("default fluid_newton_max_it", got.newton_max - lib.newton_max, 0);
   /* The mapping touches only the solver's fields. */
   got.ksp = lib.ksp, got.pc = lib.pc, got.linear_rtol = lib.linear_rtol, got.linear_max = lib.linear_max;
   got.restart = lib.restart, got.newton_rtol = lib.newton_rtol, got.newton_max = lib.newton_max;
@@ -67,8 +67,8 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_ok("fluid_ksp_rtol", sessile_params_set(p, "fluid_ksp_rtol", "1e-9"));
   t_ok("fluid_ksp_max_it", sessile_params_set(p, "fluid_ksp_max_it", "300"));
   t_ok("fluid_ksp_restart", sessile_params_set(p, "fluid_ksp_restart", "20"));
-  t_ok("nvs_rtol", sessile_params_set(p, "nvs_rtol", "1e-5"));
-  t_ok("max_nvs_iterations", sessile_params_set(p, "max_nvs_iterations", "7"));
+  t_ok("fluid_newton_rtol", sessile_params_set(p, "fluid_newton_rtol", "1e-5"));
+  t_ok("fluid_newton_max_it", sessile_params_set(p, "fluid_newton_max_it", "7"));
   t_ok("valid", sessile_params_validate(p));
   sessile_fluid_params_default(fp);
   sessile_params_fluid_solver(p, fp);

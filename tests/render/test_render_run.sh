@@ -81,7 +81,7 @@ listed() { "$PY" -c 'import json,sys; m=json.load(open(sys.argv[1] + "/manifest.
 sums() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs sha256sum); }
 
 # --- generators: preview.png -------------------------------------------------------
-GROW="--set box_resolution=1 --set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3 --set max_nvs_iterations=3 --set fluid_at_snapshots=false --no-fields --iterations 2 --every 1 --quiet"
+GROW="--set box_resolution=1 --set box_cells_x=16 --set box_cells_y=16 --set box_cells_z=12 --set sponge_radius=3 --set fluid_newton_max_it=3 --set fluid_at_snapshots=false --no-fields --iterations 2 --every 1 --quiet"
 run grow $GROW --out "$T/g"
 check "grow (tiny) runs" rc_is 0
 check "... preview.png: 640x480, > 200 colours, listed in the manifest" eval \

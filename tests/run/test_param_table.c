@@ -30,7 +30,9 @@ static const sessile_param_desc descs[] = {
     {"flag", SESSILE_PT_BOOL, offsetof(demo, flag), 1, 0, 1, 0, "", "ours", "a switch", NULL},
     {"kind", SESSILE_PT_ENUM, offsetof(demo, kind), 1, 0, 1, 0, "", "ours", "a choice", kinds},
 };
-static const sessile_param_table table = {"demo", sizeof(demo), 4, descs, demo_validate};
+/* "length" is x's earlier name (sessile_param_alias): still read everywhere. */
+static const sessile_param_alias aliases[] = {{"length", "x"}, {NULL, NULL}};
+static const sessile_param_table table = {"demo", sizeof(demo), 4, descs, demo_validate, aliases};
 
 /* JSON text refused with a message holding `part`, values left as they were
  * up to the failing key. */
@@ -85,6 +87,25 @@ int main(void) {
   t_ok("a JSON object applies", sessile_params_apply_json_text(&table, &d, good, strlen(good), "t.json"));
   t_true("JSON values stored", d.x == 4 && d.n == 7 && d.flag == 0 && d.kind == 1);
   json_refused("duplicate keys", "{\"x\": 1, \"x\": 2}", 16, "given twice");
+  json_refused("a name and its earlier name together", "{\"x\": 1, \"length\": 2}", 21, "also as 'length'");
+  json_refused("an earlier name and the name together", "{\"length\": 2, \"x\": 1}", 21, "'x' is given twice");
+  sessile_params_defaults(&table, &d);
+  t_ok("an earlier name in JSON applies", sessile_params_apply_json_text(&table, &d, "{\"length\": 7}", 13, "t.json"));
+  t_true("... to the parameter it names now", d.x == 7);
+  t_ok("an earlier name with --set", sessile_params_set_kv(&table, &d, "length=9"));
+  t_true("... sets the parameter it names now", d.x == 9);
+  t_true("find resolves an alias to the new descriptor", sessile_params_find(&table, "length") == &descs[0]);
+  t_true("an alias of a name not in the table is no parameter", sessile_params_find(&table, "kindness") == NULL);
+  /* the grow table's earlier names (docs/fluid.md) each name a parameter that
+   * exists, and none is itself a parameter's name */
+  int nalias = 0, alias_ok = 1;
+  for (const sessile_param_alias *a = sessile_grow_param_table.aliases; a && a->old_name; a++, nalias++) {
+    const sessile_param_desc *pd = sessile_params_find(&sessile_grow_param_table, a->old_name);
+    alias_ok &= pd && !strcmp(pd->name, a->name) && strcmp(a->old_name, a->name) != 0;
+    for (int i = 0; i < sessile_grow_param_table.count; i++)
+      alias_ok &= strcmp(sessile_grow_param_table.params[i].name, a->old_name) != 0;
+  }
+  t_true("the grow table's aliases resolve to its parameters", nalias == 5 && alias_ok);
   json_refused("bytes after the value", "{\"x\": 1} x", 10, "not valid JSON");
   json_refused("two objects", "{}{}", 4, "not valid JSON");
   json_refused("a NUL byte inside", "{\"x\": 1}\0 ", 10, "NUL byte");

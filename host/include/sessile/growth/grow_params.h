@@ -41,7 +41,7 @@ extern "C" {
   X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/model.md)",                           \
     "far_field = height: c = 1 at and above this height over the substratum (<= the box top); "  \
     "-1 = the box top (28.8 cm in the default box)")                                               \
-  X(nutrient_solver, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
+  X(nutrient_pc_type, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
     "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
     "box mesh subdivisions: 1 = the base grid, each step halves the cell size")                    \
@@ -87,10 +87,10 @@ extern "C" {
   X(fluid_density, REAL, 1000, 0, 1e5, 0, "kg/m^3", "paper §4.2", "rho in the Navier-Stokes equations (eq 3)") \
   X(fluid_viscosity, REAL, 5.0e-2, 1e-9, 1e5, 0, "Pa s", "paper §4.2", "eta in the Navier-Stokes equations (eq 3)") \
   X(inlet_velocity, REAL, 0.05, 0, 100, 0, "m/s", "paper §4.2", "inflow at x-min, along +x")        \
-  X(max_nvs_iterations, INT, 100, 1, 10000, 0, "", "Table 1", "Newton iterations of the fluid solve at most") \
+  X(fluid_newton_max_it, INT, 100, 1, 10000, 0, "", "Table 1", "Newton iterations of the fluid solve at most") \
   X(fluid_max_seconds, REAL, 600, 0, 1e7, LO_OPEN, "s", "ours",                                   \
     "wall-clock bound of one flow solve: past it the solve fails with a message (docs/fluid.md)") \
-  X(nvs_rtol, REAL, 1e-3, 1e-12, 0.5, 0, "", "paper §4.2", "Newton stops at residual <= this times the rest state's residual") \
+  X(fluid_newton_rtol, REAL, 1e-3, 1e-12, 0.5, 0, "", "paper §4.2", "Newton stops at residual <= this times the rest state's residual") \
   X(fluid_ksp_type, ENUM_KSP, 0, 0, 1, 0, "", "ours (docs/fluid.md)",                              \
     "Krylov method of each Newton step's linear system: gmres (GMRES(fluid_ksp_restart)) or "     \
     "bicgstab")                                                                                    \
@@ -107,10 +107,10 @@ extern "C" {
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, 0, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
   X(conforming_size_far, REAL, 2.4, 0.1, 100, 0, "cm", "ours", "TetGen target edge length far from the sponge") \
-  X(linear_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper (linear tolerance)",                           \
+  X(nutrient_ksp_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper (linear tolerance)",                           \
     "true relative residual the nutrient solve (diffusion limited: CG) must reach; the fluid's "  \
     "is fluid_ksp_rtol")                                        \
-  X(linear_max_iterations, INT, 5000, 1, 1000000, 0, "", "ours", "iteration bound of the nutrient solve")
+  X(nutrient_ksp_max_it, INT, 5000, 1, 1000000, 0, "", "ours", "iteration bound of the nutrient solve")
 
 typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 } sessile_skeleton_type;
 typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sessile_domain;
@@ -156,8 +156,8 @@ sessile_status sessile_params_validate(const sessile_grow_params *p);
 double sessile_params_far_field_height(const sessile_grow_params *p);
 
 struct sessile_fluid_params;
-/* The fluid's solver choices (fluid_ksp_*, fluid_pc_type, nvs_rtol,
- * max_nvs_iterations) into fp, its other fields left as they are: the one
+/* The fluid's solver choices (fluid_ksp_*, fluid_pc_type, fluid_newton_rtol,
+ * fluid_newton_max_it) into fp, its other fields left as they are: the one
  * mapping `sessile grow` and `sessile bench fluid` share. */
 void sessile_params_fluid_solver(const sessile_grow_params *p, struct sessile_fluid_params *fp);
 

@@ -41,6 +41,13 @@ typedef struct sessile_param_desc {
   const char *const *names; /* enums: value names, NULL-terminated */
 } sessile_param_desc;
 
+/* An earlier name of a parameter, still read wherever names are read
+ * (--set, --config, a stored run's configuration), so a rename breaks no
+ * config file and no resume; printed and recorded under the new name only. */
+typedef struct sessile_param_alias {
+  const char *old_name, *name;
+} sessile_param_alias;
+
 typedef struct sessile_param_table {
   const char *generator; /* "grow", "sphere": named in messages */
   size_t struct_size;
@@ -49,10 +56,12 @@ typedef struct sessile_param_table {
   /* Cross-parameter checks that need no device (NULL: none); called by
    * sessile_params_check after each parameter passed its own range. */
   sessile_status (*validate)(const void *values);
+  const sessile_param_alias *aliases; /* ends with a NULL old_name; NULL: none */
 } sessile_param_table;
 
 /* Every parameter to its default. */
 void sessile_params_defaults(const sessile_param_table *t, void *values);
+/* The parameter called name, or whose earlier name it is (t->aliases); NULL. */
 const sessile_param_desc *sessile_params_find(const sessile_param_table *t, const char *name);
 /* One parameter from text ("0.3", "true", "halichondrid"). */
 sessile_status sessile_params_set_text(const sessile_param_table *t, void *values, const char *key,
