@@ -115,7 +115,8 @@ static cJSON *strings(const char *const *v, int n) {
 
 /* The point's two command lines (after "sessile"), relative to the sweep
  * folder: a new run, and the resume of an interrupted one (which takes only
- * the generator's words, device options and --iterations). */
+ * the generator's words, --iterations and the options that do not change
+ * the run: device, --no-preview, --max-memory). */
 static void point_args(const sweep_spec *s, cJSON *pt, const char *rel, unsigned long long seed, const cJSON *params) {
   const char *v[SWEEP_MAX_ARGS * 2 + 200];
   char words[256], seedtxt[32], iters[16], sets[64 + SWEEP_MAX_AXES][600];
@@ -139,10 +140,11 @@ static void point_args(const sweep_spec *s, cJSON *pt, const char *rel, unsigned
   cJSON_AddItemToObject(pt, "args", strings(v, n));
   const char *u[SWEEP_MAX_ARGS + 16];
   for (int k = 0; k < nw; k++) u[r++] = w[k];
-  for (int k = 0; k < s->noptions; k++) { /* device options go with a resume */
+  for (int k = 0; k < s->noptions; k++) { /* the options a resume takes (docs/run.md) go with it */
     const char *o = s->options[k];
-    if (!strcmp(o, "--validation")) u[r++] = o;
-    if ((!strcmp(o, "--device") || !strcmp(o, "--precision")) && k + 1 < s->noptions) u[r++] = o, u[r++] = s->options[++k];
+    if (!strcmp(o, "--validation") || !strcmp(o, "--no-preview")) u[r++] = o;
+    if ((!strcmp(o, "--device") || !strcmp(o, "--precision") || !strcmp(o, "--max-memory")) && k + 1 < s->noptions)
+      u[r++] = o, u[r++] = s->options[++k];
   }
   u[r++] = "--resume", u[r++] = rel;
   if (s->iterations >= 0) u[r++] = "--iterations", u[r++] = iters;
