@@ -12,6 +12,14 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
   libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev libcairo2-dev fonts-dejavu-core zlib1g-dev libmuparser-dev \
   python3-vtk9 python3-meshio python3-numpy python3-scipy openimageio-tools >/dev/null
+# TEST dependencies only: tests/sweep/test_slurm.sh starts its own single-node
+# Slurm cluster under a temporary folder.  Installed here when missing, and no
+# daemon is left enabled or running (a workstation that only grows sponges
+# gets no scheduler service); an existing Slurm installation is left alone.
+if ! dpkg -s slurm-wlm munge >/dev/null 2>&1; then
+  $SUDO apt-get install -y -qq --no-install-recommends slurm-wlm munge >/dev/null
+  if [ -d /run/systemd/system ]; then $SUDO systemctl disable --now slurmctld slurmd munge >/dev/null 2>&1 || true; fi
+fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # The main job on its embedded default: the device in use, then a Crella
