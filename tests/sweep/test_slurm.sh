@@ -11,6 +11,7 @@
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
+. "$(dirname "$0")/sweep_common.sh"
 PIDS=()
 stop_daemons() {
   # our cluster's jobs first (their slurmstepd would outlive slurmd), then the daemons
@@ -87,26 +88,11 @@ done
 check "a single-node Slurm cluster is up (sinfo: idle)" true
 
 # --- the sweep, locally and on Slurm ------------------------------------------------
-cat >"$T/sweep.json" <<'EOF'
-{"generator": "sphere", "iterations": 200, "options": ["--no-preview", "--every", "5"],
- "base": {"level": 4},
- "axes": [{"parameter": "noise", "values": [0.01, 0.03]}],
- "seeds": {"count": 3}}
-EOF
+write_sweep "$T/sweep.json" 200 1
 for d in local s1 s2; do "$S" sweep plan "$T/sweep.json" --out "$T/$d" >/dev/null || fatal "sweep plan"; done
 "$S" sweep run "$T/local" -j 2 >/dev/null
 check "the local engine's reference completes" eval '"$S" sweep status "$T/local" | grep -q "6 points: 6 completed"'
 
-same() { # A B: every point's files but manifest, records and lock owner
-  local p f
-  for p in 0000 0001 0002 0003 0004 0005; do
-    [ -s "$1/runs/$p/sphere/final.ply" ] || return 1
-    (cd "$1/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fa"
-    (cd "$2/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fb"
-    cmp -s "$T/fa" "$T/fb" || return 1
-    while read -r f; do cmp -s "$1/runs/$p/$f" "$2/runs/$p/$f" || return 1; done <"$T/fa"
-  done
-}
 job_of() { sed -n 's/.*job array \([0-9]*\).*/\1/p' "$T/out"; }
 wait_job() { # the job's tasks all gone from squeue (at most 120 s)
   for _ in $(seq 1200); do [ -z "$(squeue -h -j "$1" 2>/dev/null)" ] && return 0; sleep 0.1; done; return 1

@@ -11,13 +11,8 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 
-cat >"$T/sweep.json" <<'EOF'
-{"generator": "sphere", "iterations": 60, "options": ["--no-preview", "--every", "5"],
- "base": {"level": 4},
- "axes": [{"parameter": "noise", "values": [0.01, 0.03]}],
- "seeds": {"count": 3, "first": 7},
- "metrics": ["last_record.radius_mean_cm", "checkpoint.iteration"]}
-EOF
+. "$(dirname "$0")/sweep_common.sh"
+write_sweep "$T/sweep.json" 60 7
 
 # --- malformed sweeps: exit 2, one line, nothing written ---------------------
 bad() { # what, sweep file text
@@ -60,18 +55,6 @@ for q in pts:
 sys.exit(0 if ok else 1)
 PYEOF
 
-# Every file of every run but the manifest, records and lock owner: the same bytes.
-same() { # A B [points...]: the named points (default all) equal
-  local a="$1" b="$2"; shift 2
-  local pts="${*:-0000 0001 0002 0003 0004 0005}" p f
-  for p in $pts; do
-    [ -s "$a/runs/$p/sphere/final.ply" ] || return 1
-    (cd "$a/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fa"
-    (cd "$b/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fb"
-    cmp -s "$T/fa" "$T/fb" || return 1
-    while read -r f; do cmp -s "$a/runs/$p/$f" "$b/runs/$p/$f" || return 1; done <"$T/fa"
-  done
-}
 all_completed() { "$S" sweep status "$1" | grep -q "6 points: 6 completed"; }
 no_running() { for _ in $(seq 200); do "$S" sweep status "$1" | grep -q "^[0-9]* running" || return 0; sleep 0.05; done; return 1; }
 wait_manifest() { for _ in $(seq 400); do [ -e "$1/runs/0000/manifest.json" ] && return 0; sleep 0.02; done; return 1; }
