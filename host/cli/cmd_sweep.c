@@ -28,13 +28,44 @@ int sweep_width(int npoints) {
   return w < 4 ? 4 : w;
 }
 
+static int string_list(const cJSON *a) {
+  if (!cJSON_IsArray(a)) return 0;
+  for (const cJSON *v = a->child; v; v = v->next)
+    if (!cJSON_IsString(v)) return 0;
+  return 1;
+}
+
+/* What the subcommands read of a plan, checked once: an edited or damaged
+ * sweep.json is refused, never followed into a crash. */
+static int plan_ok(const cJSON *p) {
+  const cJSON *w = cJSON_GetObjectItemCaseSensitive(p, "width"), *c = cJSON_GetObjectItemCaseSensitive(p, "combinations");
+  const cJSON *pts = cJSON_GetObjectItemCaseSensitive(p, "points");
+  if (!cJSON_IsNumber(w) || w->valueint < 4 || w->valueint > 6 || !cJSON_IsNumber(c) || c->valueint < 1 ||
+      !string_list(cJSON_GetObjectItemCaseSensitive(p, "metrics")) || !cJSON_IsArray(pts))
+    return 0;
+  int n = cJSON_GetArraySize(pts), i = 0;
+  if (n < 1 || n > SWEEP_MAX_POINTS || n % c->valueint) return 0;
+  for (const cJSON *pt = pts->child; pt; pt = pt->next, i++) {
+    const cJSON *ix = cJSON_GetObjectItemCaseSensitive(pt, "index"), *cb = cJSON_GetObjectItemCaseSensitive(pt, "combination");
+    const cJSON *par = cJSON_GetObjectItemCaseSensitive(pt, "parameters");
+    if (!cJSON_IsNumber(ix) || ix->valueint != i || !cJSON_IsNumber(cb) || cb->valueint != i / (n / c->valueint) ||
+        !cJSON_IsNumber(cJSON_GetObjectItemCaseSensitive(pt, "seed")) || !cJSON_IsObject(par) ||
+        !string_list(cJSON_GetObjectItemCaseSensitive(pt, "args")) ||
+        !string_list(cJSON_GetObjectItemCaseSensitive(pt, "resume_args")))
+      return 0;
+    for (const cJSON *v = par->child; v; v = v->next)
+      if (!cJSON_IsString(v)) return 0;
+  }
+  return 1;
+}
+
 cJSON *sweep_load_plan(const char *dir) {
   char path[4096];
   snprintf(path, sizeof path, "%s/sweep.json", dir);
   char *text = sweep_read_text(path, (size_t)1 << 30);
   cJSON *p = text ? cJSON_Parse(text) : NULL;
   free(text);
-  if (!p || !cJSON_IsArray(cJSON_GetObjectItemCaseSensitive(p, "points"))) {
+  if (!p || !plan_ok(p)) {
     cJSON_Delete(p);
     fprintf(stderr, "sessile sweep: error: '%.200s' holds no sweep plan (sweep.json; 'sessile sweep plan')\n", dir);
     return NULL;

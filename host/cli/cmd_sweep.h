@@ -48,7 +48,8 @@ void sweep_combo(const sweep_spec *s, long c, int idx[SWEEP_MAX_AXES]);
 /* v as the shortest text that reads back to the same double (buf). */
 const char *sweep_number(double v, char buf[40]);
 
-/* DIR/sweep.json, parsed; NULL after one line on stderr. */
+/* DIR/sweep.json, parsed and checked (what the subcommands read of it);
+ * NULL after one line on stderr (the caller exits 2). */
 cJSON *sweep_load_plan(const char *dir);
 /* The points' folder name width (4 digits, more past 10000 points). */
 int sweep_width(int npoints);

@@ -149,11 +149,11 @@ static int summary(const char *dir, const cJSON *plan, const table *t) {
   for (const cJSON *m = metrics->child; m; m = m->next)
     for (int s = 0; s < 5; s++) fputc(',', c), csv_field(c, m->valuestring), fprintf(c, "_%s", stat[s]);
   fputc('\n', c);
+  /* the plan's points are combination-major: combination c is the points
+   * [c * nseeds, (c + 1) * nseeds) */
+  int nseeds = ncomb ? t->n / ncomb : 0;
+  const cJSON *first = pts->child;
   for (int cmb = 0; cmb < ncomb; cmb++) {
-    const cJSON *first = NULL;
-    int i = 0;
-    for (const cJSON *pt = pts->child; pt && !first; pt = pt->next, i++)
-      if (cJSON_GetObjectItemCaseSensitive(pt, "combination")->valueint == cmb) first = pt;
     const cJSON *par = cJSON_GetObjectItemCaseSensitive(first, "parameters");
     cJSON *row = cJSON_CreateObject(), *mo = cJSON_CreateObject();
     cJSON_AddNumberToObject(row, "combination", cmb);
@@ -162,18 +162,14 @@ static int summary(const char *dir, const cJSON *plan, const table *t) {
     for (const cJSON *p = par ? par->child : NULL; p; p = p->next) fputc(',', c), csv_field(c, p->valuestring);
     int k = 0;
     for (const cJSON *m = metrics->child; m; m = m->next, k++) {
+      const double *v = t->v + (size_t)cmb * nseeds * t->nm + k;
       double sum = 0, ss = 0;
-      int n = 0, r = 0;
-      for (const cJSON *pt = pts->child; pt; pt = pt->next, r++) {
-        double v = t->v[(size_t)r * t->nm + k];
-        if (cJSON_GetObjectItemCaseSensitive(pt, "combination")->valueint == cmb && isfinite(v)) sum += v, n++;
-      }
+      int n = 0;
+      for (int r = 0; r < nseeds; r++)
+        if (isfinite(v[(size_t)r * t->nm])) sum += v[(size_t)r * t->nm], n++;
       double mean = n ? sum / n : NAN;
-      r = 0;
-      for (const cJSON *pt = pts->child; pt; pt = pt->next, r++) {
-        double v = t->v[(size_t)r * t->nm + k];
-        if (cJSON_GetObjectItemCaseSensitive(pt, "combination")->valueint == cmb && isfinite(v)) ss += (v - mean) * (v - mean);
-      }
+      for (int r = 0; r < nseeds; r++)
+        if (isfinite(v[(size_t)r * t->nm])) ss += (v[(size_t)r * t->nm] - mean) * (v[(size_t)r * t->nm] - mean);
       double sd = n > 1 ? sqrt(ss / (n - 1)) : NAN, h = n > 1 ? t95(n - 1) * sd / sqrt(n) : NAN;
       double st[5] = {n, mean, sd, mean - h, mean + h};
       cJSON *o = cJSON_CreateObject();
@@ -189,6 +185,7 @@ static int summary(const char *dir, const cJSON *plan, const table *t) {
     if (line) fprintf(jf, "%s\n", line);
     free(line);
     cJSON_Delete(row);
+    for (int r = 0; r < nseeds && first; r++) first = first->next;
   }
   fclose(c), fclose(jf);
   int rc = save(dir, "summary.csv", cb, cl);
@@ -201,7 +198,7 @@ int sweep_cmd_gather(int argc, char **argv) {
   if (argc != 2 || argv[1][0] == '-') return cli_usage_error("sweep gather", "usage: sessile sweep gather DIR");
   const char *dir = argv[1];
   cJSON *plan = sweep_load_plan(dir);
-  if (!plan) return EXIT_RUNTIME;
+  if (!plan) return EXIT_USAGE;
   char path[4096];
   snprintf(path, sizeof path, "%s/gather", dir);
   table t = {cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "points")),

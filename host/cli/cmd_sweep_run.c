@@ -50,18 +50,23 @@ static int exe_path(char *buf, size_t n) {
   return 0;
 }
 
-/* The point's argv (after "sessile"): a resume when it has a run, else new. */
+/* The point's argv (after "sessile"): a resume when it has a run, else new.
+ * A run killed between its first manifest and its configuration cannot be
+ * resumed ("holds no configuration"): it starts anew with --force, which
+ * removes only what its manifest lists. */
 static int point_argv(const char *dir, const cJSON *pt, int width, const char **argv, int max) {
   int index = cJSON_GetObjectItemCaseSensitive(pt, "index")->valueint;
   cJSON *m = sweep_point_manifest(dir, index, width);
-  const cJSON *a = cJSON_GetObjectItemCaseSensitive(pt, m ? "resume_args" : "args");
-  cJSON_Delete(m);
+  int resume = m && cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(m, "config"));
+  const cJSON *a = cJSON_GetObjectItemCaseSensitive(pt, resume ? "resume_args" : "args");
   if (!m) clear_leftovers(dir, index, width);
   int n = 0;
   argv[n++] = "sessile";
-  for (const cJSON *v = a ? a->child : NULL; v && n < max - 1; v = v->next)
+  for (const cJSON *v = a ? a->child : NULL; v && n < max - 2; v = v->next)
     if (cJSON_IsString(v)) argv[n++] = v->valuestring;
+  if (m && !resume) argv[n++] = "--force";
   argv[n] = NULL;
+  cJSON_Delete(m);
   return n;
 }
 
@@ -114,9 +119,16 @@ static void last_line(const char *dir, int index, int width, char *out, size_t n
   snprintf(out, n, "%s", l ? l + 1 : buf);
 }
 
-static void record(const char *dir, int index, int width, int rc, const char *error) {
+/* The point's last exit: kept for a failure (status reads it where the run
+ * failed before its manifest); an interruption (a signal passed on, maybe
+ * before the run could catch it) is no failure and leaves none. */
+static void record(const char *dir, int index, int width, int rc, int interrupted, const char *error) {
   char path[4096];
   snprintf(path, sizeof path, "%s/state/%0*d.json", dir, width, index);
+  if (interrupted || rc == 0) {
+    unlink(path);
+    return;
+  }
   cJSON *r = cJSON_CreateObject();
   cJSON_AddNumberToObject(r, "exit", rc);
   if (rc) cJSON_AddStringToObject(r, "error", error);
@@ -146,18 +158,20 @@ static int parse_run(int argc, char **argv, const char **dir, int *jobs) {
   return *dir ? -1 : cli_usage_error("sweep run", "usage: sessile sweep run DIR [-j N]");
 }
 
-/* One finished child: its state, one line, the engine's record. */
+/* One finished child: its state, one line, the engine's record; 1
+ * completed, 0 failed, -1 stopped by a signal passed on. */
 static int finished(const char *dir, int width, int index, int status) {
   int rc = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  int stopped = signals_seen && (rc == 130 || rc == 143 || (WIFSIGNALED(status) && WTERMSIG(status) == last_signal));
   char err[1024], line[2048];
   last_line(dir, index, width, line, sizeof line);
-  record(dir, index, width, rc, line);
+  record(dir, index, width, rc, stopped, line);
   sweep_state s = sweep_point_state(dir, index, width, err, sizeof err);
   if (s == PT_COMPLETED && rc == 0) printf("sweep: %0*d completed\n", width, index);
-  else if (rc == 130 || rc == 143 || s == PT_INTERRUPTED) printf("sweep: %0*d interrupted (exit %d); its state is saved\n", width, index, rc);
+  else if (stopped) printf("sweep: %0*d interrupted (exit %d); its state is saved\n", width, index, rc);
   else printf("sweep: %0*d failed (exit %d): %s\n", width, index, rc, line[0] ? line : err);
   fflush(stdout);
-  return s == PT_COMPLETED && rc == 0;
+  return stopped ? -1 : s == PT_COMPLETED && rc == 0;
 }
 
 int sweep_cmd_run(int argc, char **argv) {
@@ -166,7 +180,8 @@ int sweep_cmd_run(int argc, char **argv) {
   if (rc >= 0) return rc;
   cJSON *plan = sweep_load_plan(dir);
   char exe[4096];
-  if (!plan || exe_path(exe, sizeof exe)) return cJSON_Delete(plan), EXIT_RUNTIME;
+  if (!plan) return EXIT_USAGE;
+  if (exe_path(exe, sizeof exe)) return cJSON_Delete(plan), EXIT_RUNTIME;
   int width = cJSON_GetObjectItemCaseSensitive(plan, "width")->valueint;
   const cJSON *pts = cJSON_GetObjectItemCaseSensitive(plan, "points");
   int n = cJSON_GetArraySize(pts), nq = 0, done_before = 0, elsewhere = 0, ok = 0, bad = 0, nrun = 0, forwarded = 0;
@@ -210,8 +225,8 @@ int sweep_cmd_run(int argc, char **argv) {
     if (pid > 0) {
       for (int k = 0; k < nrun; k++)
         if (run[k].pid == pid) {
-          if (finished(dir, width, run[k].index, status)) ok++;
-          else bad++;
+          int f = finished(dir, width, run[k].index, status);
+          ok += f > 0, bad += f == 0;
           run[k] = run[--nrun];
           break;
         }
@@ -241,7 +256,8 @@ int sweep_cmd_task(int argc, char **argv) {
   if (cli_parse_uint("sweep task", "INDEX", argv[2], 0, SWEEP_MAX_POINTS, &index)) return EXIT_USAGE;
   cJSON *plan = sweep_load_plan(dir);
   char exe[4096], err[1024];
-  if (!plan || exe_path(exe, sizeof exe)) return cJSON_Delete(plan), EXIT_RUNTIME;
+  if (!plan) return EXIT_USAGE;
+  if (exe_path(exe, sizeof exe)) return cJSON_Delete(plan), EXIT_RUNTIME;
   int width = cJSON_GetObjectItemCaseSensitive(plan, "width")->valueint;
   const cJSON *pt = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(plan, "points"), (int)index);
   if (!pt) return cJSON_Delete(plan), cli_usage_error("sweep task", "the sweep has no point %u", index);

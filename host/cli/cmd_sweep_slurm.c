@@ -97,7 +97,7 @@ int sweep_cmd_status(int argc, char **argv) {
   if (argc != 2 || argv[1][0] == '-') return cli_usage_error("sweep status", "usage: sessile sweep status DIR");
   const char *dir = argv[1];
   cJSON *plan = sweep_load_plan(dir);
-  if (!plan) return EXIT_RUNTIME;
+  if (!plan) return EXIT_USAGE;
   int width = cJSON_GetObjectItemCaseSensitive(plan, "width")->valueint;
   int n = cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "points")), count[5] = {0};
   char (*sl)[24] = calloc((size_t)n + 1, sizeof *sl), job[64] = "", err[1024];
@@ -208,9 +208,10 @@ int sweep_cmd_submit(int argc, char **argv) {
   }
   if (!dir) return cli_usage_error("sweep submit", "usage: sessile sweep submit DIR [options] (sessile sweep --help)");
   cJSON *plan = sweep_load_plan(dir);
+  if (!plan) return EXIT_USAGE;
   char absdir[PATH_MAX], exe[PATH_MAX], script[PATH_MAX + 64];
   ssize_t k = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  if (!plan || !realpath(dir, absdir) || k <= 0) {
+  if (!realpath(dir, absdir) || k <= 0) {
     cJSON_Delete(plan);
     return fprintf(stderr, "sessile sweep submit: error: cannot resolve '%.200s' or this executable\n", dir), EXIT_RUNTIME;
   }

@@ -15,10 +15,10 @@ same() { # A B [points...]: the named points (default all 6) equal
   local a="$1" b="$2"; shift 2
   local pts="${*:-0000 0001 0002 0003 0004 0005}" p f
   for p in $pts; do
-    [ -s "$a/runs/$p/sphere/final.ply" ] || return 1
+    [ -s "$a/runs/$p/sphere/final.ply" ] || { echo "  $a/runs/$p has no final mesh"; return 1; }
     (cd "$a/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fa"
     (cd "$b/runs/$p" && find . -type f ! -name manifest.json ! -name records.jsonl ! -name .sessile.lock | sort) >"$T/fb"
-    cmp -s "$T/fa" "$T/fb" || return 1
-    while read -r f; do cmp -s "$a/runs/$p/$f" "$b/runs/$p/$f" || return 1; done <"$T/fa"
+    cmp -s "$T/fa" "$T/fb" || { echo "  runs/$p: other files: $(diff "$T/fa" "$T/fb" | tr '\n' ' ')"; return 1; }
+    while read -r f; do cmp -s "$a/runs/$p/$f" "$b/runs/$p/$f" || { echo "  runs/$p/$f differs"; return 1; }; done <"$T/fa"
   done
 }

@@ -39,6 +39,12 @@ mkdir -p "$T/full" && touch "$T/full/x"
 run sweep plan "$T/sweep.json" --out "$T/full"
 check "a folder that is not empty is refused (exit 2)" eval 'rc_is 2 && [ "$(ls "$T/full")" = x ]'
 
+mkdir -p "$T/damaged" && echo '{"width": 4, "combinations": 1, "metrics": [], "points": [{}]}' >"$T/damaged/sweep.json"
+for c in run status gather submit; do
+  run sweep $c "$T/damaged"
+  check "sweep $c of a damaged sweep.json: exit 2, one line" eval 'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ]'
+done
+
 # --- plan -------------------------------------------------------------------------
 for d in a b c d e f; do "$S" sweep plan "$T/sweep.json" --out "$T/$d" >"$T/plan.out" 2>&1; done
 check "plan: 6 points and the cost (6 x 60 iterations)" eval \
