@@ -22,6 +22,11 @@ char *sweep_read_text(const char *path, size_t max) {
   return text;
 }
 
+int sweep_oom(const char *cmd) {
+  fprintf(stderr, "sessile %s: error: out of host memory\n", cmd);
+  return EXIT_RUNTIME;
+}
+
 int sweep_width(int npoints) {
   int w = 1;
   for (int n = npoints > 1 ? npoints - 1 : 1; n >= 10; n /= 10) w++;
@@ -256,7 +261,7 @@ static int cmd_plan(int argc, char **argv) {
   int width = sweep_width((int)s.npoints);
   cJSON *plan = plan_json(&s, width);
   int fr = plan ? fresh_dir(out) : -1;
-  if (!plan) rc = cli_usage_error("sweep plan", "out of host memory");
+  if (!plan) rc = sweep_oom("sweep plan");
   else if (fr > 0) rc = cli_usage_error("sweep plan", "'%.200s' is not empty: a sweep folder starts new", out);
   else if (fr < 0) fprintf(stderr, "sessile sweep plan: error: cannot make '%.200s': %s\n", out, strerror(errno)), rc = EXIT_RUNTIME;
   char path[4096];

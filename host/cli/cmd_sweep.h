@@ -45,6 +45,8 @@ void sweep_spec_free(sweep_spec *s);
 /* The axis values of combination c: idx[a] indexes axes[a].values. */
 void sweep_combo(const sweep_spec *s, long c, int idx[SWEEP_MAX_AXES]);
 
+/* "sessile CMD: error: out of host memory"; EXIT_RUNTIME. */
+int sweep_oom(const char *cmd);
 /* v as the shortest text that reads back to the same double (buf). */
 const char *sweep_number(double v, char buf[40]);
 

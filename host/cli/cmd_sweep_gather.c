@@ -72,6 +72,14 @@ static int save(const char *dir, const char *name, char *buf, size_t len) {
   return s == SESSILE_OK ? EXIT_OK : cli_fail_in("sweep gather", s);
 }
 
+/* Out of host memory opening the two tables: whichever opened, closed. */
+static int drop(FILE *a, FILE *b, char **ab, char **bb) {
+  if (a) fclose(a);
+  if (b) fclose(b);
+  free(*ab), free(*bb);
+  return sweep_oom("sweep gather");
+}
+
 typedef struct table {
   int n, nm;
   double *v; /* n x nm, NAN where missing or not completed */
@@ -86,7 +94,7 @@ static int points(const char *dir, const cJSON *plan, table *t) {
   char *cb = NULL, *jb = NULL, err[1024];
   size_t cl = 0, jl = 0;
   FILE *c = open_memstream(&cb, &cl), *jf = open_memstream(&jb, &jl);
-  if (!c || !jf) return cli_usage_error("sweep gather", "out of host memory");
+  if (!c || !jf) return drop(c, jf, &cb, &jb);
   fputs("index,combination,seed,state", c);
   for (const cJSON *p = par0 ? par0->child : NULL; p; p = p->next) fputc(',', c), csv_field(c, p->string);
   for (const cJSON *m = metrics->child; m; m = m->next) fputc(',', c), csv_field(c, m->valuestring);
@@ -142,7 +150,7 @@ static int summary(const char *dir, const cJSON *plan, const table *t) {
   char *cb = NULL, *jb = NULL;
   size_t cl = 0, jl = 0;
   FILE *c = open_memstream(&cb, &cl), *jf = open_memstream(&jb, &jl);
-  if (!c || !jf) return cli_usage_error("sweep gather", "out of host memory");
+  if (!c || !jf) return drop(c, jf, &cb, &jb);
   fputs("combination", c);
   for (const cJSON *p = par0 ? par0->child : NULL; p; p = p->next) fputc(',', c), csv_field(c, p->string);
   static const char *const stat[] = {"n", "mean", "sd", "ci95_lo", "ci95_hi"};
@@ -204,7 +212,7 @@ int sweep_cmd_gather(int argc, char **argv) {
   table t = {cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "points")),
              cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "metrics")), NULL};
   t.v = calloc((size_t)t.n * (t.nm ? t.nm : 1), sizeof *t.v);
-  int rc = t.v ? EXIT_OK : cli_usage_error("sweep gather", "out of host memory");
+  int rc = t.v ? EXIT_OK : sweep_oom("sweep gather");
   sessile_status ms = rc ? SESSILE_OK : sessile_mkdirs(path);
   if (ms != SESSILE_OK) rc = cli_fail_in("sweep gather", ms);
   if (!rc) rc = points(dir, plan, &t);

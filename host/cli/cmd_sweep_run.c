@@ -187,7 +187,7 @@ int sweep_cmd_run(int argc, char **argv) {
   int n = cJSON_GetArraySize(pts), nq = 0, done_before = 0, elsewhere = 0, ok = 0, bad = 0, nrun = 0, forwarded = 0;
   const cJSON **queue = calloc((size_t)n + 1, sizeof *queue);
   running *run = calloc((size_t)jobs, sizeof *run);
-  if (!queue || !run) return free(queue), free(run), cJSON_Delete(plan), cli_usage_error("sweep run", "out of host memory");
+  if (!queue || !run) return free(queue), free(run), cJSON_Delete(plan), sweep_oom("sweep run");
   char err[1024];
   for (const cJSON *pt = pts->child; pt; pt = pt->next) {
     sweep_state s = sweep_point_state(dir, cJSON_GetObjectItemCaseSensitive(pt, "index")->valueint, width, err, sizeof err);

@@ -101,7 +101,7 @@ int sweep_cmd_status(int argc, char **argv) {
   int width = cJSON_GetObjectItemCaseSensitive(plan, "width")->valueint;
   int n = cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "points")), count[5] = {0};
   char (*sl)[24] = calloc((size_t)n + 1, sizeof *sl), job[64] = "", err[1024];
-  if (!sl) return cJSON_Delete(plan), cli_usage_error("sweep status", "out of host memory");
+  if (!sl) return cJSON_Delete(plan), sweep_oom("sweep status");
   int asked = sweep_slurm_states(dir, n, sl, job, sizeof job);
   for (int i = 0; i < n; i++) {
     sweep_state s = sweep_point_state(dir, i, width, err, sizeof err);

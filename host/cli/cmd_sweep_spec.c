@@ -83,7 +83,7 @@ static int read_axis(sweep_spec *s, const cJSON *ax, int a) {
     if (!cJSON_IsArray(vals)) return SWEEP_ERR("axis %.60s: \"values\" must be a list", x->param);
     x->n = cJSON_GetArraySize(vals);
     if (x->n > SWEEP_MAX_POINTS) return SWEEP_ERR("axis %.60s: more than %d values", x->param, SWEEP_MAX_POINTS);
-    if (x->n && !(x->values = calloc((size_t)x->n, sizeof *x->values))) return SWEEP_ERR("out of host memory");
+    if (x->n && !(x->values = calloc((size_t)x->n, sizeof *x->values))) return sweep_oom("sweep plan");
     int k = 0;
     for (const cJSON *v = vals->child; v; v = v->next, k++)
       if (!(x->values[k] = value_text(v)))
@@ -105,13 +105,13 @@ static int read_axis(sweep_spec *s, const cJSON *ax, int a) {
     }
     if (n > SWEEP_MAX_POINTS) return SWEEP_ERR("axis %.60s: more than %d values", x->param, SWEEP_MAX_POINTS);
     x->n = (int)n;
-    if (x->n && !(x->values = calloc((size_t)x->n, sizeof *x->values))) return SWEEP_ERR("out of host memory");
+    if (x->n && !(x->values = calloc((size_t)x->n, sizeof *x->values))) return sweep_oom("sweep plan");
     for (int k = 0; k < x->n; k++) {
       /* from + k*step (not a running sum): the same values on every machine */
       double v = st ? from + k * st->valuedouble : x->n == 1 ? from : from + (to - from) * k / (x->n - 1);
       char buf[40]; /* 15 digits: a step of 0.1 gives 0.3, not 0.30000000000000004 */
       snprintf(buf, sizeof buf, "%.15g", v);
-      if (!(x->values[k] = strdup(buf))) return SWEEP_ERR("out of host memory");
+      if (!(x->values[k] = strdup(buf))) return sweep_oom("sweep plan");
     }
   }
   if (x->n == 0) return SWEEP_ERR("axis %.60s has no values", x->param);
@@ -121,7 +121,7 @@ static int read_axis(sweep_spec *s, const cJSON *ax, int a) {
 static int read_seeds(sweep_spec *s, const cJSON *sd) {
   if (!sd) {
     s->seeds = calloc(1, sizeof *s->seeds);
-    if (!s->seeds) return SWEEP_ERR("out of host memory");
+    if (!s->seeds) return sweep_oom("sweep plan");
     s->seeds[0] = 1, s->nseeds = 1; /* the generators' default seed */
     return EXIT_OK;
   }
@@ -136,7 +136,7 @@ static int read_seeds(sweep_spec *s, const cJSON *sd) {
   else return SWEEP_ERR("\"seeds\" is a list of seeds or {\"count\": N, \"first\": S}");
   if (s->nseeds == 0) return SWEEP_ERR("\"seeds\" has none");
   if (s->nseeds > SWEEP_MAX_POINTS) return SWEEP_ERR("more than %d seeds", SWEEP_MAX_POINTS);
-  if (!(s->seeds = calloc((size_t)s->nseeds, sizeof *s->seeds))) return SWEEP_ERR("out of host memory");
+  if (!(s->seeds = calloc((size_t)s->nseeds, sizeof *s->seeds))) return sweep_oom("sweep plan");
   double f = first ? first->valuedouble : 1;
   for (int k = 0; k < s->nseeds; k++) {
     const cJSON *v = cJSON_IsArray(sd) ? cJSON_GetArrayItem(sd, k) : NULL;
