@@ -27,6 +27,14 @@ $SUDO apt-get install -y -qq --no-install-recommends \
 # (npm, pinned, under tools/node; Node.js from Debian unless one is there).
 command -v npm >/dev/null || $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
 npm install --prefix tools/node --no-save --no-package-lock --no-audit --no-fund gltf-validator@2.0.0-dev.3.10 >/dev/null
+# TEST dependencies only: tests/sweep/test_slurm.sh starts its own single-node
+# Slurm cluster under a temporary folder.  Installed here when missing, and no
+# daemon is left enabled or running (a workstation that only grows sponges
+# gets no scheduler service); an existing Slurm installation is left alone.
+if ! dpkg -s slurm-wlm munge >/dev/null 2>&1; then
+  $SUDO apt-get install -y -qq --no-install-recommends slurm-wlm munge >/dev/null
+  if [ -d /run/systemd/system ]; then $SUDO systemctl disable --now slurmctld slurmd munge >/dev/null 2>&1 || true; fi
+fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 # The main job on its embedded default: the device in use, then a Crella

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 #include "cli_generator.h"
+#include "cmd_sweep.h"
 
 static int cmd_version(int argc, char **argv, const cli_gpu_opts *g);
 static int cmd_help(int argc, char **argv, const cli_gpu_opts *g);
@@ -11,6 +12,7 @@ static const cli_command commands[] = {
     {"coral", "corals after Coralize: 'coral lsystem' (stony), 'coral venation' (soft)", cmd_coral},
     {"sponge", "Coralize's particle-fed sponge: 'sponge particles'", cmd_sponge},
     {"sds", "SDS, a tetrahedral developmental system: 'sds run MODEL', 'sds models'", cmd_sds},
+    {"sweep", "a study of many runs: 'sweep plan|run|submit|status|gather' (docs/sweep.md)", cmd_sweep},
     {"render", "pictures (PNG) of meshes through Vulkan; 'sessile render --help'", cmd_render},
     {"devices", "list the Vulkan devices and the one sessile uses", cmd_devices},
     {"bench", "benchmarks: 'bench la|grow|fluid|coral|sds|render' (figures, never pass/fail)", cmd_bench},
