@@ -19,5 +19,6 @@ sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef
 /* sessile_reef_organism_fn over the registered generators (ctx: a
  * cli_reef_organisms). */
 sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                                 uint64_t seed, double exposure, sessile_surface *out);
+                                 uint64_t seed, double exposure, sessile_surface *out,
+                                 sessile_reef_scalars *scalars);
 #endif

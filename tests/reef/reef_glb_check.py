@@ -87,4 +87,13 @@ for name, ply in own.items():
     for m in std:
         e = np.abs(sessile(mesh(m)[0]) - (q - base)).max() / np.abs(q).max()
         g.check(f"{name}: the standard mesh {m} = the PLY moved to its base (rel. error {e:.1e} <= 1e-6)", e <= 1e-6)
+    # the PLY's vertex properties as custom attributes, named as --glb names them
+    props = {"_" + "".join(c.upper() if c.isalnum() else "_" for c in k): k
+             for k in o.point_data if k not in ("nx", "ny", "nz")}
+    attrs = all({a for a in mesh(m)[2] if a.startswith("_")} == set(props) for m in ms)
+    g.check(f"{name}: its meshes carry the PLY's scalars as {sorted(props) or 'no attributes'}", attrs)
+    for m in std:
+        for a, k in props.items():
+            got = g.accessor(doc, binc, mesh(m)[2][a])
+            g.check(f"{name}: mesh {m}'s {a} = the PLY's '{k}'", np.array_equal(got, np.asarray(o.point_data[k], np.float32)))
 sys.exit(1 if g.fails else 0)

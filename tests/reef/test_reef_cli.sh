@@ -47,6 +47,21 @@ check "assimp: $((NM + 1)) meshes ($NM organisms + the seabed), $((NP + 2)) node
 "$S" sphere --set level=1 --set noise=0.1 --seed 1 --out "$T/pebble" --quiet --no-preview
 check "python: nodes, meshes, materials, transforms and vertices against placements.json and the PLYs" \
   "$PY" "$(dirname "$0")/reef_glb_check.py" "$T/a" "$SCENE" ball="$T/ball/sphere/final.ply" pebble="$T/pebble/sphere/final.ply"
+# an organism whose PLY has a scalar (venation's thickness_index): _THICKNESS_INDEX on its mesh
+"$PY" - "$SCENE" "$T/ven.json" <<'PYEOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["pool"] = [{"name": "fan", "generator": "coral venation", "parameters": ["search=host", "iterations=12"],
+              "size": [0.3, 0.4]}]
+d["brushes"] = [{"points": [[10, 16]], "size": 2, "density": 4}]
+d["growth"] = {"steps": 0}
+json.dump(d, open(sys.argv[2], "w"))
+PYEOF
+run reef "$T/ven.json" --seed 5 --out "$T/v" --quiet
+"$S" coral venation --set search=host --iterations 12 --seed 1 --out "$T/fan" --quiet --no-preview
+check "a venation reef: validator 0 errors or warnings" validate "$T/v/reef.glb"
+check "a venation reef: python: its mesh carries the PLY's thickness_index as _THICKNESS_INDEX" \
+  "$PY" "$(dirname "$0")/reef_glb_check.py" "$T/v" "$T/ven.json" fan="$T/fan/coral/final.ply"
 run reef "$SCENE" --seed 5 --out "$T/b" --quiet
 check "same scene, same seed: the same bytes" same "$T/a" "$T/b"
 run reef "$SCENE" --seed 6 --out "$T/c" --quiet
