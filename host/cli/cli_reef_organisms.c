@@ -94,6 +94,8 @@ static int unlink_one(const char *path, const struct stat *st, int flag, struct 
   return remove(path);
 }
 
+void cli_reef_remove_tree(const char *dir) { nftw(dir, unlink_one, 16, FTW_DEPTH | FTW_PHYS); }
+
 static sessile_status run_in(const sessile_generator *g, organism_params *p, uint64_t seed, sessile_gpu *gpu,
                              const char *dir, sessile_surface *out, sessile_reef_scalars *scalars) {
   sessile_run_options o = {.dir = dir, .generator = g->name, .version = "reef organism", .mode = SESSILE_RUN_NEW};
@@ -148,7 +150,7 @@ sessile_status cli_reef_organism(void *ctx, const char *generator, const char *c
   char sub[4200];
   snprintf(sub, sizeof sub, "%s/run", dir);
   sessile_status s = run_in(g, &p, seed, c->gpu, sub, out, scalars);
-  nftw(dir, unlink_one, 16, FTW_DEPTH | FTW_PHYS);
+  cli_reef_remove_tree(dir);
   if (s == SESSILE_OK) c->made++;
   return s;
 }

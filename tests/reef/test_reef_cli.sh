@@ -75,6 +75,14 @@ print("max exposure difference", err)
 sys.exit(0 if len(a) == len(h) and err <= 1e-4 else 1)
 PYEOF
 
+# sessile bench reef --quick: a smoke run; its figures are never checked
+run bench reef --quick
+check "bench reef --quick runs and prints its lines" eval 'rc_is 0 && grep -q "load average" "$T/out" &&
+  ( for l in "placement (brushes)" "growth (one step)" "exposure host ref" "exposure device" "organisms (generate)" \
+             "glTF write" "host ref / device" "distinct meshes written alone"; do grep -qF "$l" "$T/out" || exit 1; done )'
+run bench reef --quick --organisms 0
+check "bench reef --organisms 0: exit 2" rc_is 2
+
 bad() { # description, JSON path in the message, python edit of the scene d
   "$PY" - "$SCENE" "$T/bad.json" "$3" <<'PYEOF'
 import json, sys
