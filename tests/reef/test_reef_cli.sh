@@ -75,6 +75,10 @@ print("max exposure difference", err)
 sys.exit(0 if len(a) == len(h) and err <= 1e-4 else 1)
 PYEOF
 
+# the README's example scene runs and its reef.glb validates
+run reef "$(dirname "$0")/../../docs/reef_example.json" --out "$T/ex" --seed 3 --quiet
+check "docs/reef_example.json runs; its reef.glb has no validator errors or warnings" eval 'rc_is 0 && validate "$T/ex/reef.glb"'
+
 # sessile bench reef --quick: a smoke run; its figures are never checked
 run bench reef --quick
 check "bench reef --quick runs and prints its lines" eval 'rc_is 0 && grep -q "load average" "$T/out" &&
