@@ -34,6 +34,7 @@ int main(void) {
   t_must("sphere, exposure 1", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 1, &b, &sb));
   t_must("sphere, exposure 0 again", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 0, &c, &sc));
   t_true("a sphere's PLY has no scalars", sa.n == 0 && sb.n == 0 && sc.n == 0);
+  sessile_reef_scalars_free(&sa), sessile_reef_scalars_free(&sb), sessile_reef_scalars_free(&sc);
   t_true("the same seed, the same mesh", a.nv == c.nv && !memcmp(a.pos, c.pos, 3 * (size_t)a.nv * sizeof *a.pos));
   t_check("exposure 1 doubles the sphere's radius", fabs(max_radius(&b) / max_radius(&a) - 2), 1e-9);
   sessile_surface_free(&a), sessile_surface_free(&b), sessile_surface_free(&c);
