@@ -3,6 +3,7 @@
  * and every generator (docs/reef.md, "Organisms"). */
 #ifndef SESSILE_CLI_REEF_H
 #define SESSILE_CLI_REEF_H
+#include "cli.h"
 #include "sessile/reef/reef.h"
 #include "sessile/run/generator.h"
 
@@ -19,5 +20,11 @@ sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef
 /* sessile_reef_organism_fn over the registered generators (ctx: a
  * cli_reef_organisms). */
 sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                                 uint64_t seed, double exposure, sessile_surface *out);
+                                 uint64_t seed, double exposure, sessile_surface *out,
+                                 sessile_reef_scalars *scalars);
+/* Removes a temporary folder and everything in it (the organisms' runs,
+ * bench reef's files). */
+void cli_reef_remove_tree(const char *dir);
+/* `sessile bench reef` (cmd_bench_reef.c). */
+int cmd_bench_reef(int argc, char **argv, const cli_gpu_opts *global);
 #endif

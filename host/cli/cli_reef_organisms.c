@@ -94,8 +94,10 @@ static int unlink_one(const char *path, const struct stat *st, int flag, struct 
   return remove(path);
 }
 
+void cli_reef_remove_tree(const char *dir) { nftw(dir, unlink_one, 16, FTW_DEPTH | FTW_PHYS); }
+
 static sessile_status run_in(const sessile_generator *g, organism_params *p, uint64_t seed, sessile_gpu *gpu,
-                             const char *dir, sessile_surface *out) {
+                             const char *dir, sessile_surface *out, sessile_reef_scalars *scalars) {
   sessile_run_options o = {.dir = dir, .generator = g->name, .version = "reef organism", .mode = SESSILE_RUN_NEW};
   sessile_run *run = NULL;
   SESSILE_CALL(sessile_run_open(&o, &run));
@@ -114,19 +116,23 @@ static sessile_status run_in(const sessile_generator *g, organism_params *p, uin
   snprintf(path, sizeof path, "%s/%s", dir, g->preview ? g->preview : "");
   sessile_mesh_in m = {0};
   if (s == SESSILE_OK && !g->preview) s = sessile_error_set(SESSILE_ERR_USAGE, "%s writes no mesh", g->name);
-  if (s == SESSILE_OK) s = sessile_read_ply(path, &(sessile_mesh_read_opts){.triangles_only = 1}, &m);
+  if (s == SESSILE_OK) s = sessile_read_ply(path, &(sessile_mesh_read_opts){.triangles_only = 1, .keep_props = 1}, &m);
   if (s == SESSILE_OK) s = sessile_surface_reserve(out, m.nv, m.nf);
   if (s == SESSILE_OK) {
     memcpy(out->pos, m.pos, 3 * (size_t)m.nv * sizeof *m.pos);
     memcpy(out->tri, m.tri, 3 * (size_t)m.nf * sizeof *m.tri);
     out->nv = m.nv, out->nf = m.nf;
+    /* the PLY's vertex properties (thickness_index, growth_count...) go on as they are */
+    scalars->n = (uint32_t)m.nprops, scalars->names = m.prop_names, scalars->values = m.props;
+    m.nprops = 0, m.prop_names = NULL, m.props = NULL;
   }
   sessile_mesh_in_free(&m);
   return s;
 }
 
 sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                                 uint64_t seed, double exposure, sessile_surface *out) {
+                                 uint64_t seed, double exposure, sessile_surface *out,
+                                 sessile_reef_scalars *scalars) {
   cli_reef_organisms *c = ctx;
   /* the reef's last iteration is checkpointed: a resume runs finish again */
   int stop = c->run ? sessile_run_stop_requested(c->run) : 0;
@@ -143,8 +149,8 @@ sessile_status cli_reef_organism(void *ctx, const char *generator, const char *c
   SESSILE_CHECK(mkdtemp(dir), SESSILE_ERR_IO, "cannot make a temporary folder in %s", tmp && tmp[0] ? tmp : "/tmp");
   char sub[4200];
   snprintf(sub, sizeof sub, "%s/run", dir);
-  sessile_status s = run_in(g, &p, seed, c->gpu, sub, out);
-  nftw(dir, unlink_one, 16, FTW_DEPTH | FTW_PHYS);
+  sessile_status s = run_in(g, &p, seed, c->gpu, sub, out, scalars);
+  cli_reef_remove_tree(dir);
   if (s == SESSILE_OK) c->made++;
   return s;
 }

@@ -2,10 +2,11 @@
 #include <stdio.h>
 #include <string.h>
 #include "cli.h"
+#include "cli_reef.h"
 #include "sessile/bench/bench.h"
 
 static const char *help =
-    "usage: sessile bench la|grow|fluid|coral|sponge|sds|render ...   ('sessile bench NAME --help')\n"
+    "usage: sessile bench la|grow|fluid|coral|sponge|sds|render|reef ...   ('sessile bench NAME --help')\n"
     "       sessile bench la [--size N] [--repeat R] [--no-solvers] [--mg K] [--device D] [--precision 32|64]\n"
     "\n"
     "Times every linear-algebra kernel on the device and its plain-C reference\n"
@@ -23,7 +24,7 @@ static const char *help =
 
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
   if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-    if (argc < 2) return cli_usage_error("bench", "name a benchmark: la, grow, fluid, coral, sponge, sds or render");
+    if (argc < 2) return cli_usage_error("bench", "name a benchmark: la, grow, fluid, coral, sponge, sds, render or reef");
     fputs(help, stdout);
     return EXIT_OK;
   }
@@ -33,8 +34,9 @@ int cmd_bench(int argc, char **argv, const cli_gpu_opts *global) {
   if (strcmp(argv[1], "sponge") == 0) return cmd_bench_sponge(argc - 1, argv + 1, global);
   if (strcmp(argv[1], "sds") == 0) return cmd_bench_sds(argc - 1, argv + 1, global);
   if (strcmp(argv[1], "render") == 0) return cmd_bench_render(argc - 1, argv + 1, global);
+  if (strcmp(argv[1], "reef") == 0) return cmd_bench_reef(argc - 1, argv + 1, global);
   if (strcmp(argv[1], "la") != 0)
-    return cli_usage_error("bench", "unknown benchmark '%s' (available: la, grow, fluid, coral, sponge, sds, render)", argv[1]);
+    return cli_usage_error("bench", "unknown benchmark '%s' (available: la, grow, fluid, coral, sponge, sds, render, reef)", argv[1]);
   cli_gpu_opts o = *global;
   sessile_bench_la_options bo = {.size = 64, .repeat = 20, .solvers = 1, .mg_sizes = 3};
   for (int i = 2; i < argc; i++) {

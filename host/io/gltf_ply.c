@@ -7,8 +7,7 @@
 #include "sessile/io/gltf.h"
 #include "sessile/io/io_read.h"
 
-/* "_" + the PLY name in upper case, other characters as '_'. */
-static char *attribute_name(const char *ply) {
+char *sessile_gltf_attribute_name(const char *ply) {
   size_t n = strlen(ply);
   char *a = malloc(n + 2);
   if (!a) return NULL;
@@ -23,7 +22,7 @@ static char *attribute_name(const char *ply) {
 static sessile_status write_mesh(const char *glb, const sessile_mesh_in *in, const sessile_gltf_material *mat,
                                  double mpu, const char *generator, char **names, double *normal) {
   for (int p = 0; p < in->nprops; p++)
-    SESSILE_CHECK(names[p] = attribute_name(in->prop_names[p]), SESSILE_ERR_NO_MEMORY, "out of host memory");
+    SESSILE_CHECK(names[p] = sessile_gltf_attribute_name(in->prop_names[p]), SESSILE_ERR_NO_MEMORY, "out of host memory");
   for (uint64_t i = 0; normal && i < 3ull * in->nv; i++) normal[i] = in->normal[i];
   sessile_gltf_mesh mesh = {.name = "surface", .nv = in->nv, .nt = in->nf, .pos = in->pos, .tri = in->tri,
                             .normal = normal, .nscalars = (uint32_t)in->nprops,

@@ -72,6 +72,17 @@ static void transform(const sessile_reef_placement *p, double radius_cm, double 
   m[15] = 1;
 }
 
+/* The organism's scalars' PLY names as glTF custom attributes, as --glb
+ * names them (io's sessile_gltf_attribute_name). */
+static sessile_status attribute_names(sessile_reef_scalars *sc) {
+  for (uint32_t i = 0; i < sc->n; i++) {
+    char *a = sessile_gltf_attribute_name(sc->names[i]);
+    SESSILE_CHECK(a, SESSILE_ERR_NO_MEMORY, "out of host memory");
+    free(sc->names[i]), sc->names[i] = a;
+  }
+  return SESSILE_OK;
+}
+
 static sessile_status organisms(const sessile_reef_scene *s, const sessile_reef_placements *pl,
                                 sessile_reef_organism_fn fn, void *ctx, sessile_reef_gltf *g) {
   uint32_t *standard = malloc((size_t)s->nentries * sizeof *standard);
@@ -88,8 +99,10 @@ static sessile_status organisms(const sessile_reef_scene *s, const sessile_reef_
     /* a standard entry's one mesh: the generator's default seed 1, no current */
     uint32_t m = g->scene.nmeshes;
     st = fn(ctx, e->generator, (const char *const *)e->settings, e->nsettings, p->automatic ? p->seed : 1,
-            p->automatic ? p->exposure : 0, &g->surfaces[m]);
-    if (st != SESSILE_OK) {
+            p->automatic ? p->exposure : 0, &g->surfaces[m], &g->scalars[m]);
+    if (st == SESSILE_OK) st = attribute_names(&g->scalars[m]);
+    if (st != SESSILE_OK) { /* what the callback had made of mesh m, which nmeshes does not count */
+      sessile_surface_free(&g->surfaces[m]), sessile_reef_scalars_free(&g->scalars[m]);
       st = sessile_error_pass(st, "pool[%u] (%s)", p->entry, e->generator);
       break;
     }
@@ -106,11 +119,11 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
                                       sessile_reef_gltf *g) {
   memset(g, 0, sizeof *g);
   size_t nm = (size_t)pl->n + 1;
-  g->surfaces = calloc(nm, sizeof *g->surfaces), g->radius_cm = calloc(nm, sizeof *g->radius_cm);
+  g->surfaces = calloc(nm, sizeof *g->surfaces), g->scalars = calloc(nm, sizeof *g->scalars), g->radius_cm = calloc(nm, sizeof *g->radius_cm);
   g->meshes = calloc(nm, sizeof *g->meshes), g->nodes = calloc(nm, sizeof *g->nodes);
   g->node_mesh = calloc(nm, sizeof *g->node_mesh), g->names = calloc(2 * nm, sizeof *g->names);
   g->materials = calloc((size_t)s->nentries + 1, sizeof *g->materials);
-  if (!g->surfaces || !g->radius_cm || !g->meshes || !g->nodes || !g->node_mesh || !g->materials || !g->names) {
+  if (!g->surfaces || !g->scalars || !g->radius_cm || !g->meshes || !g->nodes || !g->node_mesh || !g->materials || !g->names) {
     sessile_reef_gltf_free(g);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %u placements", pl->n);
   }
@@ -128,7 +141,10 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
                                                   0, s->entries[e].roughness};
   for (uint32_t m = 0; m < g->scene.nmeshes; m++)
     g->meshes[m] = (sessile_gltf_mesh){.name = g->names[m], .nv = g->surfaces[m].nv, .nt = g->surfaces[m].nf,
-                                       .pos = g->surfaces[m].pos, .tri = g->surfaces[m].tri};
+                                       .pos = g->surfaces[m].pos, .tri = g->surfaces[m].tri,
+                                       .nscalars = g->scalars[m].n,
+                                       .scalar_names = (const char *const *)g->scalars[m].names,
+                                       .scalars = (const float *const *)g->scalars[m].values};
   snprintf(g->names[0], sizeof g->names[0], "seabed");
   snprintf(g->names[nm], sizeof g->names[0], "seabed");
   g->nodes[0] = (sessile_gltf_node){g->names[nm], 0, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}};
@@ -150,6 +166,17 @@ sessile_status sessile_reef_gltf_make(const sessile_reef_scene *s, const sessile
 void sessile_reef_gltf_free(sessile_reef_gltf *g) {
   if (!g) return;
   for (uint32_t m = 0; g->surfaces && m < g->scene.nmeshes; m++) sessile_surface_free(&g->surfaces[m]);
-  free(g->surfaces), free(g->radius_cm), free(g->meshes), free(g->nodes), free(g->node_mesh), free(g->materials), free(g->names);
+  for (uint32_t m = 0; g->scalars && m < g->scene.nmeshes; m++) sessile_reef_scalars_free(&g->scalars[m]);
+  free(g->surfaces), free(g->scalars), free(g->radius_cm), free(g->meshes), free(g->nodes), free(g->node_mesh), free(g->materials), free(g->names);
   memset(g, 0, sizeof *g);
+}
+
+void sessile_reef_scalars_free(sessile_reef_scalars *s) {
+  if (!s) return;
+  for (uint32_t i = 0; i < s->n; i++) {
+    if (s->names) free(s->names[i]);
+    if (s->values) free(s->values[i]);
+  }
+  free(s->names), free(s->values);
+  memset(s, 0, sizeof *s);
 }

@@ -99,8 +99,9 @@ def sample_case(d):
     check("cube.glb: no node list given: one node for the mesh", len(doc1["nodes"]) == 1 and doc1["nodes"][0]["mesh"] == 0)
 
 
-if sys.argv[1] == "ply":
-    ply_case(sys.argv[2], sys.argv[3])
-else:
-    sample_case(sys.argv[2])
-sys.exit(1 if fails else 0)
+if __name__ == "__main__":  # tests/reef/reef_glb_check.py imports the readers
+    if sys.argv[1] == "ply":
+        ply_case(sys.argv[2], sys.argv[3])
+    else:
+        sample_case(sys.argv[2])
+    sys.exit(1 if fails else 0)

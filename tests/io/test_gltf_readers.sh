@@ -37,17 +37,7 @@ if [ ${#missing[@]} -gt 0 ]; then
   exit 1
 fi
 
-validate() { # file: 0 errors and warnings, its counts in $T/counts
-  node "$HERE/gltf_validate.mjs" "$1" >"$T/v.out" 2>&1
-  local rc=$?
-  cat "$T/v.out"
-  grep '^counts' "$T/v.out" >"$T/counts"
-  return $rc
-}
-count() { # assimp's "Label:   N"
-  assimp info "$1" -r 2>/dev/null | sed -n "s/^$2: *\([0-9]*\).*/\1/p" | head -1
-}
-ply_count() { sed -n "s/^element $2 \([0-9]*\).*/\1/p" "$1" | head -1; }
+. "$HERE/gltf_readers.sh"
 
 # --- the writer's sample scenes -------------------------------------------------
 mkdir -p "$T/s"

@@ -28,16 +28,24 @@ static double volume(const sessile_surface *s) {
 int main(void) {
   cli_reef_organisms ctx = {0};
   sessile_surface a = {0}, b = {0}, c = {0};
+  sessile_reef_scalars sa = {0}, sb = {0}, sc = {0};
   const char *sph[] = {"level=2", "noise=0.05", "iterations=3"};
-  t_must("sphere, exposure 0", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 0, &a));
-  t_must("sphere, exposure 1", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 1, &b));
-  t_must("sphere, exposure 0 again", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 0, &c));
+  t_must("sphere, exposure 0", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 0, &a, &sa));
+  t_must("sphere, exposure 1", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 1, &b, &sb));
+  t_must("sphere, exposure 0 again", cli_reef_organism(&ctx, "sphere", sph, 3, 7, 0, &c, &sc));
+  t_true("a sphere's PLY has no scalars", sa.n == 0 && sb.n == 0 && sc.n == 0);
+  sessile_reef_scalars_free(&sa), sessile_reef_scalars_free(&sb), sessile_reef_scalars_free(&sc);
   t_true("the same seed, the same mesh", a.nv == c.nv && !memcmp(a.pos, c.pos, 3 * (size_t)a.nv * sizeof *a.pos));
   t_check("exposure 1 doubles the sphere's radius", fabs(max_radius(&b) / max_radius(&a) - 2), 1e-9);
   sessile_surface_free(&a), sessile_surface_free(&b), sessile_surface_free(&c);
   const char *ven[] = {"search=host", "iterations=12"};
-  t_must("venation, exposure 0", cli_reef_organism(&ctx, "coral venation", ven, 2, 3, 0, &a));
-  t_must("venation, exposure 1", cli_reef_organism(&ctx, "coral venation", ven, 2, 3, 1, &b));
+  t_must("venation, exposure 0", cli_reef_organism(&ctx, "coral venation", ven, 2, 3, 0, &a, &sa));
+  t_must("venation, exposure 1", cli_reef_organism(&ctx, "coral venation", ven, 2, 3, 1, &b, &sb));
+  /* venation's PLY carries thickness_index per vertex: the organism keeps it */
+  int has = sa.n == 1 && !strcmp(sa.names[0], "thickness_index") && sb.n == 1;
+  for (uint32_t v = 0; has && v < a.nv; v++) has = sa.values[0][v] >= 0 && isfinite(sa.values[0][v]);
+  t_true("a venation coral keeps its PLY's thickness_index, one per vertex", has);
+  sessile_reef_scalars_free(&sa), sessile_reef_scalars_free(&sb), sessile_reef_scalars_free(&sc);
   printf("venation volume %.4g -> %.4g cm^3\n", volume(&a), volume(&b));
   t_true("a venation coral thickens with exposure", volume(&b) > 2 * volume(&a) && volume(&a) > 0);
   sessile_surface_free(&a), sessile_surface_free(&b);

@@ -8,9 +8,8 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 SCENE="$(dirname "$0")/scene_small.json"
-same() { for f in placements.json reef/reef.ply reef/placements_0002.json checkpoint.bin preview.png; do
-  cmp -s "$1/$f" "$2/$f" || return 1; done
-  [ ! -e "$1/reef.glb" ] || cmp -s "$1/reef.glb" "$2/reef.glb"; }
+same() { for f in placements.json reef/reef.ply reef/placements_0002.json checkpoint.bin preview.png reef.glb; do
+  cmp -s "$1/$f" "$2/$f" || return 1; done; }
 
 run reef "$SCENE" --seed 5 --out "$T/a" --quiet
 check "a small reef runs" rc_is 0
@@ -33,11 +32,36 @@ ok = ok and all(abs(q["transform"][12 + i] - q["position"][i]) < 1e-12 for q in 
 print(len(pl), "placements,", len(meshes), "organism meshes")
 sys.exit(0 if ok else 1)
 PYEOF
-if grep -q '"reef.glb"' "$T/a/manifest.json"; then # once io's glTF writer is in the build
-  check "reef.glb is a binary glTF 2.0" eval '[ "$(head -c 4 "$T/a/reef.glb")" = glTF ]'
-else
-  echo "SKIP reef.glb: this build has no glTF writer yet"
-fi
+# reef.glb by the readers of tests/io/test_gltf_readers.sh (a missing reader fails)
+. "$(dirname "$0")/../io/gltf_readers.sh"
+check "reef.glb is written and listed in the manifest" eval 'test -s "$T/a/reef.glb" && grep -q "\"reef.glb\"" "$T/a/manifest.json"'
+NP=$("$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["count"])' "$T/a/placements.json")
+NM=$("$PY" -c 'import json,sys; print(len({p["mesh"] for p in json.load(open(sys.argv[1]))["placements"]}))' "$T/a/placements.json")
+check "validator: reef.glb has no errors or warnings" validate "$T/a/reef.glb"
+check "validator: 3 materials (2 pool colours + the seabed's)" grep -q " materials=3 " "$T/counts"
+# assimp adds a root node above glTF's scene nodes: placements + the seabed's node + 1
+check "assimp: $((NM + 1)) meshes ($NM organisms + the seabed), $((NP + 2)) nodes ($NP placements + the seabed + its root)" \
+  test "$(count "$T/a/reef.glb" Meshes) $(count "$T/a/reef.glb" Nodes)" = "$((NM + 1)) $((NP + 2))"
+# the PLYs the organisms came from: each entry's generator alone, its parameters, seed 1
+"$S" sphere --set level=2 --set radius=10 --iterations 3 --seed 1 --out "$T/ball" --quiet --no-preview
+"$S" sphere --set level=1 --set noise=0.1 --seed 1 --out "$T/pebble" --quiet --no-preview
+check "python: nodes, meshes, materials, transforms and vertices against placements.json and the PLYs" \
+  "$PY" "$(dirname "$0")/reef_glb_check.py" "$T/a" "$SCENE" ball="$T/ball/sphere/final.ply" pebble="$T/pebble/sphere/final.ply"
+# an organism whose PLY has a scalar (venation's thickness_index): _THICKNESS_INDEX on its mesh
+"$PY" - "$SCENE" "$T/ven.json" <<'PYEOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["pool"] = [{"name": "fan", "generator": "coral venation", "parameters": ["search=host", "iterations=12"],
+              "size": [0.3, 0.4]}]
+d["brushes"] = [{"points": [[10, 16]], "size": 2, "density": 4}]
+d["growth"] = {"steps": 0}
+json.dump(d, open(sys.argv[2], "w"))
+PYEOF
+run reef "$T/ven.json" --seed 5 --out "$T/v" --quiet
+"$S" coral venation --set search=host --iterations 12 --seed 1 --out "$T/fan" --quiet --no-preview
+check "a venation reef: validator 0 errors or warnings" validate "$T/v/reef.glb"
+check "a venation reef: python: its mesh carries the PLY's thickness_index as _THICKNESS_INDEX" \
+  "$PY" "$(dirname "$0")/reef_glb_check.py" "$T/v" "$T/ven.json" fan="$T/fan/coral/final.ply"
 run reef "$SCENE" --seed 5 --out "$T/b" --quiet
 check "same scene, same seed: the same bytes" same "$T/a" "$T/b"
 run reef "$SCENE" --seed 6 --out "$T/c" --quiet
@@ -50,6 +74,18 @@ err = max(abs(x["exposure"] - y["exposure"]) for x, y in zip(a, h))
 print("max exposure difference", err)
 sys.exit(0 if len(a) == len(h) and err <= 1e-4 else 1)
 PYEOF
+
+# the README's example scene runs and its reef.glb validates
+run reef "$(dirname "$0")/../../docs/reef_example.json" --out "$T/ex" --seed 3 --quiet
+check "docs/reef_example.json runs; its reef.glb has no validator errors or warnings" eval 'rc_is 0 && validate "$T/ex/reef.glb"'
+
+# sessile bench reef --quick: a smoke run; its figures are never checked
+run bench reef --quick
+check "bench reef --quick runs and prints its lines" eval 'rc_is 0 && grep -q "load average" "$T/out" &&
+  ( for l in "placement (brushes)" "growth (one step)" "exposure host ref" "exposure device" "organisms (generate)" \
+             "glTF write" "host ref / device" "distinct meshes written alone"; do grep -qF "$l" "$T/out" || exit 1; done )'
+run bench reef --quick --organisms 0
+check "bench reef --organisms 0: exit 2" rc_is 2
 
 bad() { # description, JSON path in the message, python edit of the scene d
   "$PY" - "$SCENE" "$T/bad.json" "$3" <<'PYEOF'

@@ -9,12 +9,19 @@
 static int calls, fail_at = -1;
 
 /* A stand-in organism: an icosphere of radius 5 cm whose centre sits 3 cm off
- * in x, so the base-at-origin shift is seen. */
+ * in x, so the base-at-origin shift is seen, with one scalar "t.k" = the
+ * vertex's index (as a PLY's vertex property). */
 static sessile_status organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                               uint64_t seed, double exposure, sessile_surface *out) {
+                               uint64_t seed, double exposure, sessile_surface *out, sessile_reef_scalars *sc) {
   (void)ctx, (void)generator, (void)settings, (void)nsettings, (void)seed, (void)exposure;
   if (calls++ == fail_at) return sessile_error_set(SESSILE_ERR_USAGE, "the stand-in fails");
-  return sessile_surface_icosphere(2, 5, (const double[3]){3, 0, 7}, out);
+  SESSILE_CALL(sessile_surface_icosphere(2, 5, (const double[3]){3, 0, 7}, out));
+  sc->names = calloc(1, sizeof *sc->names), sc->values = calloc(1, sizeof *sc->values);
+  if (sc->names && sc->values) sc->n = 1, sc->names[0] = malloc(4), sc->values[0] = malloc(out->nv * sizeof(float));
+  if (!sc->names || !sc->values || !sc->names[0] || !sc->values[0]) return sessile_error_set(SESSILE_ERR_NO_MEMORY, "oom");
+  memcpy(sc->names[0], "t.k", 4);
+  for (uint32_t v = 0; v < out->nv; v++) sc->values[0][v] = (float)v;
+  return SESSILE_OK;
 }
 
 static const char *json =
@@ -72,6 +79,12 @@ int main(void) {
   t_check("organism +z = the placement's up axis", axis, 1e-12);
   t_check("footprint radius = the placement's size (cm)", foot, 1e-9);
   t_check("meshes with another entry's material", mat, 0);
+  int scal = g.meshes[0].nscalars == 0;
+  for (uint32_t m = 1; m < g.scene.nmeshes; m++) {
+    scal &= g.meshes[m].nscalars == 1 && !strcmp(g.meshes[m].scalar_names[0], "_T_K");
+    for (uint32_t v = 0; scal && v < g.meshes[m].nv; v++) scal &= g.meshes[m].scalars[0][v] == (float)v;
+  }
+  t_true("each organism mesh carries its scalar as _T_K (io's attribute name), the seabed none", scal);
   sessile_reef_gltf_free(&g);
   calls = 0, fail_at = 2;
   sessile_status st = sessile_reef_gltf_make(&s, &b, &pl, organism, NULL, &g);

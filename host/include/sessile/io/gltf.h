@@ -55,6 +55,11 @@ typedef struct sessile_gltf_scene {
  * name), SESSILE_ERR_IO naming the file otherwise. */
 sessile_status sessile_gltf_write(const char *path, const sessile_gltf_scene *s);
 
+/* The custom attribute name of a PLY vertex property: "_" + the name in upper
+ * case, other characters than A-Z, 0-9 and '_' as '_' (malloc'd; NULL when
+ * out of memory).  What sessile_gltf_write_ply and the reef's meshes use. */
+char *sessile_gltf_attribute_name(const char *ply_name);
+
 /* A PLY surface (a generator's final.ply) as a one-mesh, one-node scene
  * with material m: its vertices and triangles, its normals when it has
  * nx ny nz (else computed), every other vertex property as a custom

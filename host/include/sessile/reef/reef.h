@@ -135,11 +135,22 @@ void sessile_reef_exposure_ref(const sessile_reef_scene *s, const sessile_reef_s
 sessile_status sessile_reef_exposure_gpu(sessile_gpu *gpu, const sessile_reef_scene *s, const sessile_reef_seabed *b,
                                          sessile_reef_placements *pl, uint32_t first);
 
+/* An organism's per-vertex scalars (its PLY's vertex properties): n names
+ * and n arrays of nv floats, all malloc'd; n = 0 when it has none. */
+typedef struct sessile_reef_scalars {
+  uint32_t n;
+  char **names;
+  float **values;
+} sessile_reef_scalars;
+void sessile_reef_scalars_free(sessile_reef_scalars *s);
+
 /* The organism's mesh (cm, z up, base near the origin) for generator with
  * settings, seed and exposure (the callee maps exposure to the generator's
- * thickness parameter).  The CLI implements it. */
+ * thickness parameter), and its per-vertex scalars (scalars arrives zeroed;
+ * the callee may leave it so).  The CLI implements it. */
 typedef sessile_status (*sessile_reef_organism_fn)(void *ctx, const char *generator, const char *const *settings,
-                                                   int nsettings, uint64_t seed, double exposure, sessile_surface *out);
+                                                   int nsettings, uint64_t seed, double exposure, sessile_surface *out,
+                                                   sessile_reef_scalars *scalars);
 
 /* A reef's glTF scene: its meshes (the seabed as mesh 0, then one per
  * distinct organism), materials (the seabed's, then one per entry), nodes
@@ -150,6 +161,7 @@ typedef struct sessile_reef_gltf {
   sessile_gltf_material *materials;
   sessile_gltf_node *nodes;
   sessile_surface *surfaces; /* nmeshes, the seabed's first */
+  sessile_reef_scalars *scalars; /* per mesh: its scalars, named as glTF attributes ("_THICKNESS_INDEX") */
   uint32_t *node_mesh;       /* per placement: its mesh */
   double *radius_cm;         /* per mesh: its footprint radius */
   char (*names)[64];         /* the meshes' names, then the nodes' */
