@@ -41,6 +41,7 @@ echo '{"t_give": 0.1, "l_max": 3}' >"$F/a.json"
 echo '{"t_give": 0.3}' >"$F/b.json"
 echo '{"noise": 0.1, "level": 2}' >"$F/sa.json"
 echo '{"noise": 0.3}' >"$F/sb.json"
+echo '{"nutrient_ksp_rtol": 1e-6, "linear_rtol": 1e-7}' >"$F/linear_both.json"
 mkfifo "$F/fifo" "$F/fifo.png" "$F/fifo.exr" "$F/fifo.ply"
 # L-system grammars whose numbers come out NaN at derivation (line 4 each)
 printf 'iterations: 2\nangle: 20\naxiom: F(1)\nF(x) -> F(x) [ +(20) F(sqrt(-x)) ]\n' >"$F/nan_param.lsys"
@@ -170,7 +171,9 @@ cases=$(cat <<'CASES'
 2 | parameter domain: '1' is not one of immersed, conforming | - | grow --out run --set domain=1
 2 | parameter probe: 'foo' is not one of flux, paper | - | grow --out run --set probe=foo
 2 | parameter far_field: 'top' is not one of height, walls | - | grow --out run --set far_field=top
-2 | parameter nutrient_solver: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_solver=cg
+2 | parameter nutrient_pc_type: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_pc_type=cg
+2 | parameter nutrient_pc_type: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_solver=cg
+2 | parameter 'nutrient_ksp_rtol' is given twice (also as 'linear_rtol') | - | grow --out run --config $F/linear_both.json
 2 | parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | grow --out run --set fluid_ksp_type=cg
 2 | parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | grow --out run --set fluid_pc_type=mg
 2 | parameter fluid_pc_type: 'ilu1' is not one of | - | grow --out run --set fluid_pc_type=ilu1

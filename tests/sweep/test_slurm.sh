@@ -89,7 +89,7 @@ check "a single-node Slurm cluster is up (sinfo: idle)" true
 
 # --- the sweep, locally and on Slurm ------------------------------------------------
 write_sweep "$T/sweep.json" 200 1
-for d in local s1 s2; do "$S" sweep plan "$T/sweep.json" --out "$T/$d" >/dev/null || fatal "sweep plan"; done
+for d in local s1; do "$S" sweep plan "$T/sweep.json" --out "$T/$d" >/dev/null || fatal "sweep plan"; done
 "$S" sweep run "$T/local" -j 2 >/dev/null
 check "the local engine's reference completes" eval '"$S" sweep status "$T/local" | grep -q "6 points: 6 completed"'
 
@@ -108,6 +108,19 @@ check "... status: every point completed" eval 'grep -q "6 points: 6 completed" 
 check "... the bytes of the local engine" same "$T/local" "$T/s1"
 
 # --- scancel a running task, resubmit: it resumes to the same bytes --------------------
+# A sweep of its own, 2 points of 200 000 sphere iterations (seconds each, a
+# checkpoint every 20 000): the 6-point sweep's runs take a fraction of a
+# second, too short to be caught running under load.
+cat >"$T/long.json" <<EOF2
+{"generator": "sphere", "iterations": 200000, "options": ["--no-preview", "--every", "20000"],
+ "base": {"level": 5},
+ "axes": [{"parameter": "noise", "values": [0.01, 0.03]}],
+ "seeds": {"count": 1, "first": 1},
+ "metrics": ["checkpoint.iteration"]}
+EOF2
+for d in local2 s2; do "$S" sweep plan "$T/long.json" --out "$T/$d" >"$T/out" 2>&1 || fatal "sweep plan (long): $(cat "$T/out")"; done
+"$S" sweep run "$T/local2" -j 2 >/dev/null
+check "the long sweep's local reference completes" eval '"$S" sweep status "$T/local2" | grep -q "2 points: 2 completed"'
 run sweep submit "$T/s2" --max-parallel 1
 j2=$(job_of)
 running=0
@@ -121,17 +134,17 @@ check "status while it runs: 0000 running, Slurm's state beside it" eval 'grep -
 scancel "${j2}_0"
 wait_job "$j2"
 run sweep status "$T/s2"
-check "scancel: point 0000 interrupted with its state saved, the others completed" eval \
-  'grep -q "^0000 interrupted" "$T/out" && grep -q "6 points: 5 completed" "$T/out" && grep -q "\"state\":[[:space:]]*\"interrupted\"" "$T/s2/runs/0000/manifest.json"'
+check "scancel: point 0000 interrupted with its state saved, the other completed" eval \
+  'grep -q "^0000 interrupted" "$T/out" && grep -q "2 points: 1 completed" "$T/out" && grep -q "\"state\":[[:space:]]*\"interrupted\"" "$T/s2/runs/0000/manifest.json"'
 run sweep submit "$T/s2"
 j3=$(job_of)
 check "resubmission: only the unfinished point (--array=0)" eval 'rc_is 0 && grep -q "(1 points: 0)" "$T/out"'
 wait_job "$j3"
 run sweep status "$T/s2"
-check "... every point completed" eval 'grep -q "6 points: 6 completed" "$T/out"'
+check "... every point completed" eval 'grep -q "2 points: 2 completed" "$T/out"'
 check "... point 0000 resumed (starts 2) from its checkpoint" eval \
   'grep -q "\"starts\":[[:space:]]*2" "$T/s2/runs/0000/manifest.json" && grep -q "\"resumed_from_iteration\":[[:space:]]*[1-9]" "$T/s2/runs/0000/manifest.json"'
-check "... to the local engine's bytes" same "$T/local" "$T/s2"
+check "... to the local engine's bytes" same "$T/local2" "$T/s2" 0000 0001
 run sweep submit "$T/s2"
 check "a third submit has nothing to do" eval 'rc_is 0 && grep -q "nothing to submit" "$T/out"'
 finish
