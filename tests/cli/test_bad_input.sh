@@ -173,7 +173,7 @@ cases=$(cat <<'CASES'
 2 | parameter far_field: 'top' is not one of height, walls | - | grow --out run --set far_field=top
 2 | parameter nutrient_pc_type: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_pc_type=cg
 2 | parameter nutrient_pc_type: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_solver=cg
-2 | parameter 'nutrient_ksp_rtol' is given twice (also as 'linear_rtol') | - | grow --out run --config $F/linear_both.json
+2 | parameter 'nutrient_ksp_rtol' is given twice .also as 'linear_rtol'. | - | grow --out run --config $F/linear_both.json
 2 | parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | grow --out run --set fluid_ksp_type=cg
 2 | parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | grow --out run --set fluid_pc_type=mg
 2 | parameter fluid_pc_type: 'ilu1' is not one of | - | grow --out run --set fluid_pc_type=ilu1
