@@ -214,8 +214,11 @@ static void check_nodes(const glb *g, const sessile_gltf_scene *s) {
     for (int i = 0; i < 16; i++) ident = ident && fabs(want[i] - (i % 5 == 0)) < 1e-15;
     char what[128];
     snprintf(what, sizeof what, "node %u: mesh %u; matrix %s", k, s->nodes[k].mesh, ident ? "omitted" : "C M C^-1");
-    for (int i = 0; !ident && i < 16; i++) err = fmax(err, mat ? fabs(at(n, "matrix", i)->valuedouble - want[i]) : 1);
-    t_check(what, err + (ident && mat) + (num(n, "mesh") != s->nodes[k].mesh), 1e-15);
+    /* node matrices are written at float precision (docs/io.md): each entry
+     * within half a float ulp of C M C^-1, relative */
+    for (int i = 0; !ident && i < 16; i++)
+      err = fmax(err, mat ? fabs(at(n, "matrix", i)->valuedouble - want[i]) / fmax(1, fabs(want[i])) : 1);
+    t_check(what, err + (ident && mat) + (num(n, "mesh") != s->nodes[k].mesh), 6e-8);
     /* and what it means: the node moves the glTF vertex where the sessile node
      * moves the sessile vertex */
     double perr = 0;
@@ -229,7 +232,7 @@ static void check_nodes(const glb *g, const sessile_gltf_scene *s) {
       perr = fmax(perr, fmax(fabs(gp[0] - mpu * mp[0]), fmax(fabs(gp[1] - mpu * mp[2]), fabs(gp[2] + mpu * mp[1]))));
     }
     snprintf(what, sizeof what, "node %u: the glTF node places the vertices where sessile's does (m)", k);
-    t_check(what, perr, 1e-15);
+    t_check(what, perr, 1e-7); /* float-precision matrices on a 0.3 m offset: ~2e-8 m */
   }
 }
 
