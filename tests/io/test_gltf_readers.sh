@@ -11,11 +11,7 @@ set -u
 GEN="$1" S="$2"
 HERE="$(cd "$(dirname "$0")" && pwd)"
 PY=/usr/bin/python3
-fails=0 passes=0
-check() { # description, command...
-  local what="$1"; shift
-  if "$@"; then echo "PASS $what"; passes=$((passes + 1)); else echo "FAIL $what"; fails=$((fails + 1)); fi
-}
+. "$HERE/../common/harness.sh" # check, finish, the temporary folder $T
 
 missing=()
 [ -x "$PY" ] || missing+=("/usr/bin/python3 (apt-get install python3)")
@@ -25,8 +21,6 @@ for m in "meshio python3-meshio" "numpy python3-numpy"; do
 done
 command -v assimp >/dev/null || missing+=("assimp (apt-get install assimp-utils)")
 command -v node >/dev/null || missing+=("node (apt-get install nodejs npm)")
-T="$(mktemp -d)"
-trap 'rm -rf "$T"' EXIT
 if command -v node >/dev/null; then
   node "$HERE/gltf_validate.mjs" >"$T/v.out" 2>&1
   [ $? -eq 2 ] && missing+=("gltf-validator (npm, under tools/node: tools/install.sh)")
@@ -86,5 +80,4 @@ check "without --glb: no .glb" test -z "$(find "$T/plain" -name '*.glb')"
 "$S" sphere --resume "$T/plain" --iterations 10 --glb --quiet --no-preview
 check "--glb with --resume: the resumed run's .glb, as a fresh run's" cmp "$T/plain/sphere/final.glb" "$T/sphere/sphere/final.glb"
 
-echo "$passes passed, $fails failed"
-[ "$fails" -eq 0 ]
+finish
