@@ -3,6 +3,7 @@
  * slice is refused, never waited on) and OpenEXR reads it through pread on
  * that descriptor; OpenEXR's messages go into ours, not to stderr. */
 #include <errno.h>
+#include <math.h>
 #include <openexr.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -76,12 +77,14 @@ static void read_attributes(sessile_exr_in *x) {
   h->nchannels = x->cl ? x->cl->num_channels : 0;
 }
 
-sessile_status sessile_exr_open(const char *path, sessile_exr_in **out) {
+/* Opens path (io_open_regular) and OpenEXR's context on it; slice: also
+ * requires a sessile slice.  `what` names the file's role in messages. */
+static sessile_status exr_open(const char *path, const char *what, int slice, sessile_exr_in **out) {
   *out = NULL;
   sessile_exr_in *x = calloc(1, sizeof *x);
   SESSILE_CHECK(x, SESSILE_ERR_NO_MEMORY, "out of host memory");
   x->path = path;
-  sessile_status st = io_open_regular(path, "slice", &x->fd, &x->size);
+  sessile_status st = io_open_regular(path, what, &x->fd, &x->size);
   if (st != SESSILE_OK) {
     free(x);
     return st;
@@ -98,6 +101,11 @@ sessile_status sessile_exr_open(const char *path, sessile_exr_in **out) {
   if (exr_start_read(&x->ctx, path, &init) != EXR_ERR_SUCCESS) {
     x->ctx = NULL;
     st = sessile_error_set(SESSILE_ERR_USAGE, "'%s' is not an EXR file that OpenEXR can read: %s", path, exr_msg);
+  } else if (!slice) {
+    if (exr_get_count(x->ctx, &parts) != EXR_ERR_SUCCESS || parts != 1)
+      st = sessile_error_set(SESSILE_ERR_USAGE, "'%s' has %d parts: one image expected", path, parts);
+    else
+      read_attributes(x);
   } else if (exr_get_count(x->ctx, &parts) != EXR_ERR_SUCCESS || parts != 1 ||
              exr_get_name(x->ctx, 0, &pname) != EXR_ERR_SUCCESS || !pname || strcmp(pname, "slice") ||
              exr_attr_get_string(x->ctx, 0, "sessile:plane", &plen, &plane) != EXR_ERR_SUCCESS) {
@@ -114,6 +122,8 @@ sessile_status sessile_exr_open(const char *path, sessile_exr_in **out) {
   *out = x;
   return SESSILE_OK;
 }
+
+sessile_status sessile_exr_open(const char *path, sessile_exr_in **out) { return exr_open(path, "slice", 1, out); }
 
 const sessile_slice_header *sessile_exr_header(const sessile_exr_in *x) { return &x->h; }
 
@@ -194,4 +204,43 @@ void sessile_exr_close(sessile_exr_in *x) {
   if (x->ctx) exr_finish(&x->ctx);
   if (x->fd >= 0) close(x->fd);
   free(x);
+}
+
+sessile_status sessile_read_exr_grey(const char *path, uint32_t max_side, sessile_image_in *out) {
+  memset(out, 0, sizeof *out);
+  sessile_exr_in *x = NULL;
+  SESSILE_CALL(exr_open(path, "EXR", 0, &x));
+  const sessile_slice_header *h = &x->h;
+  char list[256];
+  sessile_exr_channel_list(x, list, sizeof list);
+  sessile_status s = SESSILE_OK;
+  if (h->nchannels != 1)
+    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' has %d channels (%s): a heightfield needs one", path,
+                          h->nchannels, list);
+  else if (!sessile_exr_channel_is_float(x, 0))
+    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s': channel '%s' is not a float channel", path, list);
+  else if (h->width < 2 || h->height < 2)
+    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' is %lld x %lld pixels: a heightfield needs at least 2 x 2", path,
+                          (long long)h->width, (long long)h->height);
+  else if (h->width > max_side || h->height > max_side)
+    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' is %lld x %lld pixels (%.0f MiB of heights): more than %u a side",
+                          path, (long long)h->width, (long long)h->height,
+                          (double)h->width * (double)h->height * sizeof *out->v / 1048576.0, (unsigned)max_side);
+  float *f = NULL;
+  size_t n = (size_t)h->width * (size_t)h->height;
+  if (s == SESSILE_OK && !((f = malloc(n * sizeof *f)) && (out->v = malloc(n * sizeof *out->v))))
+    s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for '%s'", path);
+  const char *name = sessile_exr_channel_name(x, 0);
+  if (s == SESSILE_OK) s = sessile_exr_read_channels(x, 1, &name, &f);
+  for (size_t k = 0; s == SESSILE_OK && k < n; k++) {
+    if (!isfinite(f[k]))
+      s = sessile_error_set(SESSILE_ERR_USAGE, "'%s': pixel (%zu, %zu) is not finite", path,
+                            k % (size_t)h->width, k / (size_t)h->width);
+    out->v[k] = f[k];
+  }
+  if (s == SESSILE_OK) out->width = (uint32_t)h->width, out->height = (uint32_t)h->height;
+  free(f);
+  sessile_exr_close(x);
+  if (s != SESSILE_OK) sessile_image_in_free(out);
+  return s;
 }

@@ -1,6 +1,7 @@
-/* sessile — the readers: one per format (PLY, OBJ, sessile's EXR slices),
- * used by every layer that reads such a file (render, the SDS model's
- * surface).  docs/io.md "Readers" lists their limits.
+/* sessile — the readers: one per format (PLY, OBJ, sessile's EXR slices, and
+ * one-channel PNG and EXR heightfields), used by every layer that reads such a
+ * file (render, the SDS model's surface, the reef's seabed).  docs/io.md
+ * "Readers" lists their limits.
  *
  * Every reader treats its file as hostile: it is opened O_NONBLOCK and
  * refused unless it is a regular file (a FIFO never blocks), its header is
@@ -87,6 +88,24 @@ void sessile_exr_channel_list(const sessile_exr_in *x, char *buf, size_t n);
  * is refused. */
 sessile_status sessile_exr_read_channels(sessile_exr_in *x, int n, const char *const *names, float *const *dst);
 void sessile_exr_close(sessile_exr_in *x); /* NULL-safe */
+
+/* --- one-channel images (heightfields) --------------------------------------- */
+/* width x height values, row 0 first (the image's top row), each row left
+ * to right. */
+typedef struct sessile_image_in {
+  uint32_t width, height;
+  double *v;
+} sessile_image_in;
+/* A 16-bit greyscale PNG (libpng): values sample / 65535, in [0, 1].
+ * Refused: not a PNG, another colour type (colour, palette, alpha), another
+ * depth (8 bits), fewer than 2 or more than max_side pixels a side (the
+ * message gives the memory it would take), damaged data. */
+sessile_status sessile_read_png_grey16(const char *path, uint32_t max_side, sessile_image_in *out);
+/* A one-part scanline EXR of one float or half channel (any name): values
+ * as stored.  Refused: not an EXR, more parts or channels (the message
+ * names them), an integer channel, a size as for PNG, a non-finite value. */
+sessile_status sessile_read_exr_grey(const char *path, uint32_t max_side, sessile_image_in *out);
+void sessile_image_in_free(sessile_image_in *m); /* NULL-safe; leaves m zeroed */
 
 #ifdef __cplusplus
 }
