@@ -30,5 +30,7 @@ void reef_angles(const sessile_reef_entry *e, uint64_t *rng, double angle[3]);
 /* seabed.mesh of the scene (seabed_mesh.c): s->heights, res and extent. */
 struct rj_obj;
 sessile_status reef_seabed_mesh(const struct rj_obj *o, sessile_reef_scene *s);
+/* seabed.image (seabed_image.c): s->heights, res, extent, base, height_scale. */
+sessile_status reef_seabed_image(const struct rj_obj *o, sessile_reef_scene *s);
 sessile_status reef_push(sessile_reef_placements *pl, const sessile_reef_placement *p);
 #endif

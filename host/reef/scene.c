@@ -16,9 +16,13 @@ static sessile_status seabed(const rj_obj *root, sessile_reef_scene *s) {
   const cJSON *j = rj_get(root, "seabed");
   if (!j) return rj_fail(root, "seabed", "is required");
   SESSILE_CALL(rj_open(&sb, j, root->where, "seabed"));
-  SESSILE_CALL(rj_known(&sb, (const char *const[]){"noise", "mesh", NULL}));
-  if (!rj_get(&sb, "noise") == !rj_get(&sb, "mesh"))
-    return rj_fail(&sb, NULL, "needs one of \"noise\" and \"mesh\" (the seabed's kind)");
+  SESSILE_CALL(rj_known(&sb, (const char *const[]){"noise", "mesh", "image", NULL}));
+  if (!!rj_get(&sb, "noise") + !!rj_get(&sb, "mesh") + !!rj_get(&sb, "image") != 1)
+    return rj_fail(&sb, NULL, "needs one of \"noise\", \"mesh\" and \"image\" (the seabed's kind)");
+  if (rj_get(&sb, "image")) {
+    SESSILE_CALL(rj_open(&nz, rj_get(&sb, "image"), root->where, "seabed.image"));
+    return reef_seabed_image(&nz, s);
+  }
   if (rj_get(&sb, "mesh")) {
     SESSILE_CALL(rj_open(&nz, rj_get(&sb, "mesh"), root->where, "seabed.mesh"));
     return reef_seabed_mesh(&nz, s);
@@ -55,17 +59,19 @@ static sessile_status rotate_axes(const rj_obj *o, sessile_reef_entry *e) {
   return SESSILE_OK;
 }
 
-static sessile_status settings(const rj_obj *o, sessile_reef_entry *e) {
-  const cJSON *j = rj_get(o, "parameters");
+/* "parameters" ("name=value" strings, kv) or "arguments" (any strings). */
+static sessile_status strings(const rj_obj *o, const char *key, int kv, char ***out, int *count) {
+  const char *what = kv ? "\"name=value\" strings" : "strings";
+  const cJSON *j = rj_get(o, key);
   if (!j) return SESSILE_OK;
   int n = cJSON_IsArray(j) ? cJSON_GetArraySize(j) : -1;
-  if (n < 0 || n > 256) return rj_fail(o, "parameters", "must be an array of \"name=value\" strings (at most 256)");
-  e->settings = calloc((size_t)n + 1, sizeof *e->settings);
-  SESSILE_CHECK(e->settings, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if (n < 0 || n > 256) return rj_fail(o, key, "must be an array of %s (at most 256)", what);
+  *out = calloc((size_t)n + 1, sizeof **out);
+  SESSILE_CHECK(*out, SESSILE_ERR_NO_MEMORY, "out of host memory");
   for (const cJSON *a = j->child; a; a = a->next) {
-    if (!cJSON_IsString(a) || !strchr(a->valuestring, '=') || a->valuestring[0] == '=')
-      return rj_fail(o, "parameters", "entry %d must be a \"name=value\" string (as --set)", e->nsettings);
-    SESSILE_CHECK(e->settings[e->nsettings++] = strdup(a->valuestring), SESSILE_ERR_NO_MEMORY, "out of host memory");
+    if (!cJSON_IsString(a) || (kv && (!strchr(a->valuestring, '=') || a->valuestring[0] == '=')))
+      return rj_fail(o, key, "entry %d must be a %s", *count, kv ? "\"name=value\" string (as --set)" : "string");
+    SESSILE_CHECK((*out)[(*count)++] = strdup(a->valuestring), SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   return SESSILE_OK;
 }
@@ -75,11 +81,13 @@ static sessile_status entry(const char *where, const cJSON *j, int k, sessile_re
   char path[32];
   snprintf(path, sizeof path, "pool[%d]", k);
   SESSILE_CALL(rj_open(&o, j, where, path));
-  SESSILE_CALL(rj_known(&o, (const char *const[]){"name", "generator", "parameters", "colour", "roughness", "bias",
-                                                  "size", "follow_terrain", "rotate", "depth", NULL}));
+  SESSILE_CALL(rj_known(&o, (const char *const[]){"name", "generator", "parameters", "arguments", "colour",
+                                                  "roughness", "bias", "size", "follow_terrain", "rotate", "depth",
+                                                  NULL}));
   SESSILE_CALL(rj_str(&o, "name", 1, &e->name));
   SESSILE_CALL(rj_str(&o, "generator", 1, &e->generator));
-  SESSILE_CALL(settings(&o, e));
+  SESSILE_CALL(strings(&o, "parameters", 1, &e->settings, &e->nsettings));
+  SESSILE_CALL(strings(&o, "arguments", 0, &e->arguments, &e->narguments));
   double c[4] = {0.8, 0.5, 0.4, 1}, r = 0.7, size[2] = {0.2, 0.4};
   SESSILE_CALL(rj_nums(&o, "colour", 0, 4, 0, 1, c));
   SESSILE_CALL(rj_num(&o, "roughness", 0, 0, 1, &r));
@@ -214,7 +222,8 @@ void sessile_reef_scene_free(sessile_reef_scene *s) {
   for (int k = 0; s->entries && k < s->nentries; k++) {
     sessile_reef_entry *e = &s->entries[k];
     for (int i = 0; i < e->nsettings; i++) free(e->settings[i]);
-    free(e->settings), free(e->name), free(e->generator);
+    for (int i = 0; i < e->narguments; i++) free(e->arguments[i]);
+    free(e->settings), free(e->arguments), free(e->name), free(e->generator);
   }
   for (int k = 0; s->strokes && k < s->nstrokes; k++) free(s->strokes[k].pts);
   free(s->entries), free(s->strokes), free(s->currents), free(s->heights);
