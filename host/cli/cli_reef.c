@@ -103,7 +103,9 @@ static void extra_free(void *extra) {
 static sessile_status check(const void *params, const sessile_gen_setup *su) {
   const reef_args *a = su->extra;
   SESSILE_CHECK(a && a->parsed, SESSILE_ERR_USAGE, "needs a scene: sessile reef SCENE.json (docs/reef.md)");
-  for (int k = 0; k < a->scene.nentries; k++) SESSILE_CALL(cli_reef_check_entry(a->path, k, &a->scene.entries[k]));
+  int device = ((const reef_params *)params)->device_exposure;
+  for (int k = 0; k < a->scene.nentries; k++)
+    SESSILE_CALL(cli_reef_check_entry(a->path, k, &a->scene.entries[k], device));
   double estimate;
   SESSILE_CALL_AT(sessile_reef_check(&a->scene, &estimate), "%s", a->path);
   return SESSILE_OK;

@@ -14,14 +14,14 @@ typedef struct cli_reef_organisms {
   uint32_t made;      /* organisms generated so far */
 } cli_reef_organisms;
 
-/* Refuses a pool entry whose generator is unknown (or cannot be one) or
- * whose parameters its table refuses, naming the JSON path. */
-sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef_entry *e);
+/* Refuses a pool entry whose generator is unknown (or cannot be one), whose
+ * arguments or parameters its generator refuses, or that needs a device
+ * where the reef has none (device 0), naming the JSON path. */
+sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef_entry *e, int device);
 /* sessile_reef_organism_fn over the registered generators (ctx: a
  * cli_reef_organisms). */
-sessile_status cli_reef_organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                                 uint64_t seed, double exposure, sessile_surface *out,
-                                 sessile_reef_scalars *scalars);
+sessile_status cli_reef_organism(void *ctx, const sessile_reef_entry *e, uint64_t seed, double exposure,
+                                 sessile_surface *out, sessile_reef_scalars *scalars);
 /* Removes a temporary folder and everything in it (the organisms' runs,
  * bench reef's files). */
 void cli_reef_remove_tree(const char *dir);

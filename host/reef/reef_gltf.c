@@ -98,8 +98,7 @@ static sessile_status organisms(const sessile_reef_scene *s, const sessile_reef_
     }
     /* a standard entry's one mesh: the generator's default seed 1, no current */
     uint32_t m = g->scene.nmeshes;
-    st = fn(ctx, e->generator, (const char *const *)e->settings, e->nsettings, p->automatic ? p->seed : 1,
-            p->automatic ? p->exposure : 0, &g->surfaces[m], &g->scalars[m]);
+    st = fn(ctx, e, p->automatic ? p->seed : 1, p->automatic ? p->exposure : 0, &g->surfaces[m], &g->scalars[m]);
     if (st == SESSILE_OK) st = attribute_names(&g->scalars[m]);
     if (st != SESSILE_OK) { /* what the callback had made of mesh m, which nmeshes does not count */
       sessile_surface_free(&g->surfaces[m]), sessile_reef_scalars_free(&g->scalars[m]);

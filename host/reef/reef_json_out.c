@@ -18,7 +18,9 @@ static int one(cJSON *arr, const sessile_reef_scene *s, const sessile_reef_place
   if (!o || !cJSON_AddItemToArray(arr, o)) return cJSON_Delete(o), 0;
   char seed[24];
   snprintf(seed, sizeof seed, "%" PRIu64, p->seed);
-  cJSON *set = cJSON_CreateStringArray((const char *const *)e->settings, e->nsettings);
+  /* cJSON makes no array of no strings: an entry without parameters has [] */
+  cJSON *set = e->nsettings ? cJSON_CreateStringArray((const char *const *)e->settings, e->nsettings)
+                            : cJSON_CreateArray();
   int ok = cJSON_AddStringToObject(o, "entry", e->name) && cJSON_AddStringToObject(o, "generator", e->generator) &&
            set && cJSON_AddItemToObject(o, "parameters", set) && cJSON_AddStringToObject(o, "seed", seed) &&
            cJSON_AddStringToObject(o, "brush", p->stroke == UINT32_MAX ? "grown" : p->automatic ? "automatic"
@@ -28,6 +30,11 @@ static int one(cJSON *arr, const sessile_reef_scene *s, const sessile_reef_place
            cJSON_AddItemToObject(o, "rotation", numbers(p->angle, 3, 1)) && cJSON_AddNumberToObject(o, "size", p->size) &&
            cJSON_AddNumberToObject(o, "depth", p->depth) && cJSON_AddNumberToObject(o, "exposure", p->exposure);
   if (!set) return 0;
+  if (ok && e->narguments) { /* only where given: the placements of other scenes keep their bytes */
+    cJSON *args = cJSON_CreateStringArray((const char *const *)e->arguments, e->narguments);
+    ok = args && cJSON_AddItemToObject(o, "arguments", args);
+    if (!args) return 0;
+  }
   if (ok && g) {
     /* the node matrix maps the mesh (cm) to the scene in cm: rows x, y, z to metres */
     double m[16];

@@ -11,9 +11,9 @@ static int calls, fail_at = -1;
 /* A stand-in organism: an icosphere of radius 5 cm whose centre sits 3 cm off
  * in x, so the base-at-origin shift is seen, with one scalar "t.k" = the
  * vertex's index (as a PLY's vertex property). */
-static sessile_status organism(void *ctx, const char *generator, const char *const *settings, int nsettings,
-                               uint64_t seed, double exposure, sessile_surface *out, sessile_reef_scalars *sc) {
-  (void)ctx, (void)generator, (void)settings, (void)nsettings, (void)seed, (void)exposure;
+static sessile_status organism(void *ctx, const sessile_reef_entry *e, uint64_t seed, double exposure,
+                               sessile_surface *out, sessile_reef_scalars *sc) {
+  (void)ctx, (void)e, (void)seed, (void)exposure;
   if (calls++ == fail_at) return sessile_error_set(SESSILE_ERR_USAGE, "the stand-in fails");
   SESSILE_CALL(sessile_surface_icosphere(2, 5, (const double[3]){3, 0, 7}, out));
   sc->names = calloc(1, sizeof *sc->names), sc->values = calloc(1, sizeof *sc->values);

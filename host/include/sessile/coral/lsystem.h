@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "sessile/run/generator.h"
 #include "sessile/run/param_table.h"
 #include "sessile/run/run.h"
 #include "sessile/gpu/gpu.h"
@@ -165,6 +166,11 @@ sessile_status sessile_coral_lsystem_write(sessile_run *run, const sessile_coral
                                            const sessile_lsys *g, const char *grammar_name, const char *text,
                                            size_t len, const sessile_coral_lsystem_result *r,
                                            const sessile_gpu *gpu, const volatile sig_atomic_t *stop);
+
+/* The same on the run framework (lsystem_gen.c), for the reef's pool: the
+ * `grammar` parameter's shipped grammar, the run's iterations the derivation
+ * steps (0: the grammar's; schedule() makes them one loop iteration). */
+extern const sessile_generator sessile_gen_coral_lsystem;
 
 #ifdef __cplusplus
 }

@@ -37,6 +37,8 @@ typedef struct sessile_reef_entry {
   char *generator;  /* a registered generator ("coral venation") */
   char **settings;  /* "name=value" as --set */
   int nsettings;
+  char **arguments; /* the generator's own arguments, as on its command line ("limb", "--t-end", "2") */
+  int narguments;
   float rgba[4], roughness;
   double bias;         /* random bias, % (relative weight) */
   double size[2];      /* footprint radius range, m */
@@ -148,8 +150,8 @@ void sessile_reef_scalars_free(sessile_reef_scalars *s);
  * settings, seed and exposure (the callee maps exposure to the generator's
  * thickness parameter), and its per-vertex scalars (scalars arrives zeroed;
  * the callee may leave it so).  The CLI implements it. */
-typedef sessile_status (*sessile_reef_organism_fn)(void *ctx, const char *generator, const char *const *settings,
-                                                   int nsettings, uint64_t seed, double exposure, sessile_surface *out,
+typedef sessile_status (*sessile_reef_organism_fn)(void *ctx, const sessile_reef_entry *e, uint64_t seed,
+                                                   double exposure, sessile_surface *out,
                                                    sessile_reef_scalars *scalars);
 
 /* A reef's glTF scene: its meshes (the seabed as mesh 0, then one per
