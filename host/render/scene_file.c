@@ -186,8 +186,8 @@ cJSON *sessile_render_scene_json(const char *mesh_file, const sessile_render_par
   cJSON *root = cJSON_CreateObject(), *pa = cJSON_CreateArray(), *ia = cJSON_CreateArray();
   int ok = root && pa && ia && cJSON_AddStringToObject(root, "format", SCENE_FORMAT) &&
            cJSON_AddNumberToObject(root, "version", 1) && cJSON_AddStringToObject(root, "mesh", mesh_file);
-  if (ok) ok = cJSON_AddItemToObject(root, "parts", pa), pa = NULL;
-  if (ok) ok = cJSON_AddItemToObject(root, "instances", ia), ia = NULL;
+  if (ok && (ok = cJSON_AddItemToObject(root, "parts", pa))) pa = NULL; /* owned by root now */
+  if (ok && (ok = cJSON_AddItemToObject(root, "instances", ia))) ia = NULL;
   cJSON *parts_a = ok ? cJSON_GetObjectItemCaseSensitive(root, "parts") : NULL;
   cJSON *inst_a = ok ? cJSON_GetObjectItemCaseSensitive(root, "instances") : NULL;
   for (uint32_t p = 0; ok && p < nparts; p++) {
