@@ -1,8 +1,9 @@
 /* `sessile reef SCENE.json` (docs/reef.md): the reef generator's table on
  * the run framework.  Iteration 1 runs the brushes, iterations 2.. the
  * growth steps; finish computes the exposure to currents, generates the
- * organisms (cli_reef_organisms.c) and writes reef.glb, placements.json and
- * reef/reef.ply (the preview's mesh). */
+ * organisms (cli_reef_organisms.c) and writes reef.glb, placements.json,
+ * reef/reef.ply (every organism merged) and the preview's instanced scene
+ * (cli_reef_preview.c). */
 #include <stdlib.h>
 #include <string.h>
 #include "cli_reef.h"
@@ -162,7 +163,7 @@ static sessile_status restore(void *state, const sessile_ckpt *ck) {
   return sessile_ckpt_take(ck, "placements", r->pl.p, (size_t)r->count * sizeof *r->pl.p);
 }
 
-static sessile_status write_json(sessile_run *run, const char *rel, cJSON *j) {
+sessile_status cli_reef_write_json(sessile_run *run, const char *rel, cJSON *j) {
   char path[4096], *text = j ? cJSON_Print(j) : NULL;
   cJSON_Delete(j);
   SESSILE_CHECK(text, SESSILE_ERR_NO_MEMORY, "out of host memory for %s", rel);
@@ -174,10 +175,10 @@ static sessile_status write_json(sessile_run *run, const char *rel, cJSON *j) {
 
 static sessile_status snapshot(void *state, const char *rel) {
   reef *r = state;
-  return write_json(r->run, rel, sessile_reef_placements_json(&r->a->scene, &r->pl, NULL));
+  return cli_reef_write_json(r->run, rel, sessile_reef_placements_json(&r->a->scene, &r->pl, NULL));
 }
 
-/* Every placed organism in one mesh (cm, z up), for preview.png. */
+/* Every placed organism in one mesh (cm, z up): reef/reef.ply. */
 static sessile_status merged(const sessile_reef_gltf *g, sessile_surface *out) {
   uint64_t nv = 0, nf = 0;
   for (uint32_t k = 0; k < g->scene.nnodes; k++)
@@ -212,9 +213,10 @@ static sessile_status finish(void *state) {
   g.scene.generator = "sessile (reef)";
   st = sessile_run_file(r->run, "reef.glb", path, sizeof path);
   if (st == SESSILE_OK) st = sessile_gltf_write(path, &g.scene);
-  if (st == SESSILE_OK) st = write_json(r->run, "placements.json", sessile_reef_placements_json(s, &r->pl, &g));
+  if (st == SESSILE_OK) st = cli_reef_write_json(r->run, "placements.json", sessile_reef_placements_json(s, &r->pl, &g));
   if (st == SESSILE_OK) st = merged(&g, &all);
   if (st == SESSILE_OK) st = sessile_run_write_surface(r->run, "reef/reef.ply", &all, 0, NULL, NULL);
+  if (st == SESSILE_OK) st = cli_reef_preview_scene(r->run, &g);
   if (st == SESSILE_OK) {
     cJSON *m = cJSON_CreateObject();
     int ok = m && cJSON_AddItemToObject(sessile_run_manifest(r->run), "reef", m) &&
@@ -241,13 +243,14 @@ const sessile_generator sessile_gen_reef = {
     .about = "A reef from a scene file (docs/reef.md): a seeded seabed, brush strokes that\n"
     "place organisms of a pool of generators, reef growth and water currents\n"
     "(Liapis et al., Coralize, §4).  Writes reef.glb (one mesh per distinct\n"
-    "organism, a node per placement), placements.json, reef/reef.ply and\n"
-    "preview.png.  Iteration 1 runs the brushes, iterations 2.. the growth steps\n"
+    "organism, a node per placement), placements.json, reef/reef.ply, the\n"
+    "preview's scene (reef/scene.json, reef/meshes.ply) and preview.png.\n"
+    "Iteration 1 runs the brushes, iterations 2.. the growth steps\n"
     "(--iterations 0, the default: 1 + the scene's growth.steps).  Without\n"
     "SCENE.json: a small built-in scene.  usage: sessile reef [SCENE.json] [options]",
     .help = NULL,
     .seed_help = "the brushes", .out_default = "runs/reef", .table = &table,
-    .snapshot_name = "reef/placements_%04d.json", .preview = "reef/reef.ply", .iterations = 0, .every = 0,
+    .snapshot_name = "reef/placements_%04d.json", .preview = "reef/scene.json", .iterations = 0, .every = 0,
     .needs_device = needs_device, .check = check,
     .extra_size = sizeof(reef_args), .arg = arg, .defaults = defaults, .schedule = schedule, .config_write = config_write,
     .config_read = config_read, .extra_free = extra_free,

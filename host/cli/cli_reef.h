@@ -22,6 +22,11 @@ sessile_status cli_reef_check_entry(const char *where, int k, const sessile_reef
  * cli_reef_organisms). */
 sessile_status cli_reef_organism(void *ctx, const sessile_reef_entry *e, uint64_t seed, double exposure,
                                  sessile_surface *out, sessile_reef_scalars *scalars);
+/* Writes j (then deleted; NULL: out of memory) as the run's file rel, atomically. */
+sessile_status cli_reef_write_json(sessile_run *run, const char *rel, cJSON *j);
+/* reef/meshes.ply and reef/scene.json: the preview's instanced scene
+ * (cli_reef_preview.c). */
+sessile_status cli_reef_preview_scene(sessile_run *run, const sessile_reef_gltf *g);
 /* Removes a temporary folder and everything in it (the organisms' runs,
  * bench reef's files). */
 void cli_reef_remove_tree(const char *dir);

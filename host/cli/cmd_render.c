@@ -1,5 +1,5 @@
 /* `sessile render`: pictures of sessile's outputs (docs/render.md).
- * Meshes (.ply, .obj) are drawn through Vulkan and annotated with Cairo
+ * Meshes (.ply, .obj) and scenes (.json) are drawn through Vulkan and annotated with Cairo
  * (sessile/render/render_run.h); EXR slices by the 2-D renderer (sessile/render/render2d.h);
  * run directories by both (host/render/run_*.c). */
 #include <errno.h>
@@ -15,13 +15,14 @@
 #include "sessile/render/render2d.h"
 #include "sessile/render/render_mesh.h"
 #include "sessile/render/render_run.h"
+#include "sessile/render/render_scene.h"
 
 #define CMD "render"
 /* A name in a message: at most 60 characters and "...", the reason after it whole. */
 #define SHORT(name) cli_short((name), (char[CLI_SHORT_BUF]){0})
 
 static const char *help =
-    "usage: sessile render FILE.ply|FILE.obj -o OUT.png [options]\n"
+    "usage: sessile render FILE.ply|FILE.obj|SCENE.json -o OUT.png [options]\n"
     "       sessile render FILE.exr -o OUT.png [--channel C] [--outline FILE.ply]\n"
     "                      [--colormap NAME] [--range LO HI] [--size WxH]\n"
     "       sessile render RUN_DIR [-o DIR] [--size WxH]\n"
@@ -31,7 +32,9 @@ static const char *help =
     "smooth shading from per-vertex normals (computed, area-weighted, when the\n"
     "file has none) under a key and a fill light, a ground grid in cm below the\n"
     "mesh with its spacing written in the lower left corner, a camera fitted to\n"
-    "the bounds.  EXR slices (sessile grow's slices/*.exr) become a colour-mapped\n"
+    "the bounds.  A scene file (SCENE.json: a reef's reef/scene.json) draws the\n"
+    "parts of one PLY many times, each instance with its transform and colour.\n"
+    "EXR slices (sessile grow's slices/*.exr) become a colour-mapped\n"
     "picture with a colour bar, axes in cm and the sponge's outline.  A run\n"
     "directory gets renders/: the final mesh from the four views, a contact sheet\n"
     "of the snapshots, the slices, plots of records.jsonl (and of an SDS run's\n"
@@ -154,10 +157,12 @@ typedef struct render_cli {
   const char *mesh_only, *slice_only;
 } render_cli;
 
-static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_cli *c) {
+/* A mesh m, or a scene sc (m NULL), to the PNG(s). */
+static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const sessile_render_scene *sc, const render_cli *c) {
   sessile_mesh_renderer *r = NULL;
   double t0 = sessile_wall_seconds();
-  sessile_status s = sessile_mesh_renderer_create(g, m, &c->o, &r, NULL);
+  sessile_status s = m ? sessile_mesh_renderer_create(g, m, &c->o, &r, NULL)
+                       : sessile_scene_renderer_create(g, sc, &c->o, &r, NULL);
   if (s != SESSILE_OK) return fail(s);
   size_t bytes = (size_t)c->o.width * c->o.height * 4u;
   unsigned char *px = malloc(bytes);
@@ -197,8 +202,11 @@ static int draw_all(sessile_gpu *g, const sessile_render_mesh *m, const render_c
     }
     free(name);
   }
-  if (rc == EXIT_OK && !c->quiet)
+  if (rc == EXIT_OK && !c->quiet && m)
     printf("%u vertices, %u triangles; %.2f s\n", m->nv, m->nf, sessile_wall_seconds() - t0);
+  if (rc == EXIT_OK && !c->quiet && !m)
+    printf("%u instances of %u parts (%u vertices, %u triangles); %.2f s\n", sc->ninst, sc->nparts, sc->mesh->nv,
+           sc->mesh->nf, sessile_wall_seconds() - t0);
   free(px);
   sessile_mesh_renderer_destroy(r);
   return rc;
@@ -448,20 +456,21 @@ int cmd_render(int argc, char **argv, const cli_gpu_opts *global) {
   s = sessile_render_options_check(&c.o, NULL);
   if (s != SESSILE_OK) return fail(s);
   sessile_render_mesh *m = NULL;
-  s = sessile_render_mesh_read(c.in, &m);
-  if (s == SESSILE_OK) s = sessile_render_options_check(&c.o, m);
-  if (s != SESSILE_OK) {
-    sessile_render_mesh_destroy(m);
-    return fail(s);
-  }
+  sessile_render_scene *sc = NULL;
+  int scene = sessile_render_is_scene(c.in);
+  if (scene && c.o.color_by) return cli_usage_error(CMD, "--color-by is for meshes: a scene has its own colours");
+  s = scene ? sessile_render_scene_read(c.in, &sc) : sessile_render_mesh_read(c.in, &m);
+  if (s == SESSILE_OK && m) s = sessile_render_options_check(&c.o, m);
   sessile_gpu *g = NULL;
-  s = cli_gpu_create(&go, &g);
+  if (s == SESSILE_OK) s = cli_gpu_create(&go, &g);
   if (s != SESSILE_OK) {
     sessile_render_mesh_destroy(m);
+    sessile_render_scene_destroy(sc);
     return fail(s);
   }
-  rc = draw_all(g, m, &c);
+  rc = draw_all(g, m, sc, &c);
   sessile_render_mesh_destroy(m);
+  sessile_render_scene_destroy(sc);
   sessile_gpu_destroy(g);
   return cli_finish_stdout(rc);
 }

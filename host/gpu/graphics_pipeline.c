@@ -32,19 +32,21 @@ static sessile_status pipeline_init(sessile_gfx_target *t, const sessile_gfx_pip
        .stage = VK_SHADER_STAGE_VERTEX_BIT, .module = mod[0], .pName = "main"},
       {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
        .stage = VK_SHADER_STAGE_FRAGMENT_BIT, .module = mod[1], .pName = "main"}};
-  VkVertexInputBindingDescription bind = {0, d->stride, VK_VERTEX_INPUT_RATE_VERTEX};
+  VkVertexInputBindingDescription bind[2] = {{0, d->stride, VK_VERTEX_INPUT_RATE_VERTEX},
+                                             {1, d->instance_stride, VK_VERTEX_INPUT_RATE_INSTANCE}};
   VkVertexInputAttributeDescription attr[8];
   for (uint32_t i = 0; i < d->nattr; i++) {
     attr[i].location = i;
-    attr[i].binding = 0;
-    attr[i].format = d->attr[i].format == SESSILE_GFX_FLOAT3 ? VK_FORMAT_R32G32B32_SFLOAT
-                                                             : VK_FORMAT_R8G8B8A8_UNORM;
+    attr[i].binding = d->attr[i].binding;
+    attr[i].format = d->attr[i].format == SESSILE_GFX_FLOAT3   ? VK_FORMAT_R32G32B32_SFLOAT
+                     : d->attr[i].format == SESSILE_GFX_FLOAT4 ? VK_FORMAT_R32G32B32A32_SFLOAT
+                                                               : VK_FORMAT_R8G8B8A8_UNORM;
     attr[i].offset = d->attr[i].offset;
   }
   VkPipelineVertexInputStateCreateInfo vi = {
       .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-      .vertexBindingDescriptionCount = 1,
-      .pVertexBindingDescriptions = &bind,
+      .vertexBindingDescriptionCount = d->instance_stride ? 2u : 1u,
+      .pVertexBindingDescriptions = bind,
       .vertexAttributeDescriptionCount = d->nattr,
       .pVertexAttributeDescriptions = attr};
   VkPipelineInputAssemblyStateCreateInfo ia = {
@@ -96,6 +98,10 @@ sessile_status sessile_gfx_pipeline_create(sessile_gfx_target *t, const sessile_
   SESSILE_CHECK(d->nattr <= 8 && d->push_bytes <= 128 && d->push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
                 "graphics pipeline %s: %u attributes, %u push bytes (at most 8 and 128)", d->vert,
                 d->nattr, d->push_bytes);
+  for (uint32_t i = 0; i < d->nattr; i++)
+    SESSILE_CHECK(d->attr[i].binding == 0 || (d->attr[i].binding == 1 && d->instance_stride), SESSILE_ERR_INTERNAL,
+                  "graphics pipeline %s: attribute %u is per instance but the pipeline has no instance stride",
+                  d->vert, i);
   sessile_gfx_pipeline *p = calloc(1, sizeof *p);
   SESSILE_CHECK(p, SESSILE_ERR_NO_MEMORY, "out of host memory");
   p->gpu = t->gpu;

@@ -298,19 +298,21 @@ static sessile_status record_draws(sessile_gfx_target *t, VkCommandBuffer cb, co
   vkCmdBeginRenderPass(cb, &rb, VK_SUBPASS_CONTENTS_INLINE);
   for (uint32_t i = 0; i < ndraws; i++) {
     const sessile_gfx_draw *dr = &draws[i];
-    if (dr->count == 0) continue;
+    if (dr->count == 0 || (dr->instances && dr->ninstances == 0)) continue;
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, dr->pipeline->pipeline);
     if (dr->pipeline->push_bytes)
       vkCmdPushConstants(cb, dr->pipeline->layout,
                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                          dr->pipeline->push_bytes, dr->push);
-    VkDeviceSize off = 0;
-    vkCmdBindVertexBuffers(cb, 0, 1, &dr->vertices->buffer, &off);
+    VkDeviceSize off[2] = {0, 0};
+    VkBuffer bufs[2] = {dr->vertices->buffer, dr->instances ? dr->instances->buffer : VK_NULL_HANDLE};
+    vkCmdBindVertexBuffers(cb, 0, dr->instances ? 2u : 1u, bufs, off);
+    uint32_t n = dr->instances ? dr->ninstances : 1u, first = dr->instances ? dr->first_instance : 0u;
     if (dr->indices) {
       vkCmdBindIndexBuffer(cb, dr->indices->buffer, 0, VK_INDEX_TYPE_UINT32);
-      vkCmdDrawIndexed(cb, dr->count, 1, 0, 0, 0);
+      vkCmdDrawIndexed(cb, dr->count, n, dr->first_index, 0, first);
     } else {
-      vkCmdDraw(cb, dr->count, 1, 0, 0);
+      vkCmdDraw(cb, dr->count, n, 0, first);
     }
   }
   vkCmdEndRenderPass(cb);

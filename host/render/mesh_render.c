@@ -8,37 +8,6 @@
 #include "mesh_internal.h"
 #include "sessile/render/colormap.h"
 
-/* One vertex as the pipelines read it (28 bytes). */
-typedef struct vtx {
-  float p[3], n[3];
-  unsigned char c[4];
-} vtx;
-_Static_assert(sizeof(vtx) == 28, "vertex layout");
-
-/* shaders/render/mesh_push.glsl */
-typedef struct mesh_push {
-  float mvp[16];
-  float key[4], fill[4], eye[4], params[4];
-} mesh_push;
-_Static_assert(sizeof(mesh_push) == 128, "push layout");
-
-struct sessile_mesh_renderer {
-  sessile_gpu *gpu;
-  sessile_gfx_target *target;
-  sessile_gfx_pipeline *tris, *lines;
-  sessile_gfx_buffer *vbuf, *ibuf, *gbuf;
-  uint32_t nindex, ngrid;
-  float *fit;    /* the vertices (cm) and then the grid's 4 corners: what the camera frames */
-  size_t nfit;
-  sessile_render_options o;
-  char view[16];
-  double lo[3], hi[3];     /* mesh bounds, cm */
-  double glo[3], ghi[3];   /* grid box, cm */
-  double spacing;
-  double prop_min, prop_max;
-  char colormap[16]; /* the map used, "" without colouring */
-};
-
 void sessile_render_options_default(sessile_render_options *o) {
   memset(o, 0, sizeof *o);
   o->width = 1280;
@@ -124,7 +93,7 @@ static void color_vertices(sessile_mesh_renderer *r, const sessile_render_mesh *
 /* Grid lines on the plane just below the mesh: spacing 1-2-5 x 10^k cm for
  * about ten lines over the larger horizontal side, extended past the mesh
  * by 10 % of that side and snapped to whole spacings; the border darker. */
-static sessile_status grid_build(sessile_mesh_renderer *r) {
+sessile_status render_grid_build_(sessile_mesh_renderer *r) {
   double span = fmax(r->hi[0] - r->lo[0], r->hi[1] - r->lo[1]);
   if (!(span > 0)) span = fmax(r->hi[2] - r->lo[2], 1e-6);
   double s = render_grid_spacing_(span);
@@ -193,20 +162,14 @@ static sessile_status upload_mesh(sessile_mesh_renderer *r, const sessile_render
   return sessile_gfx_buffer_create(r->gpu, SESSILE_GFX_INDEX, m->tri, (size_t)r->nindex * 4, &r->ibuf);
 }
 
-static sessile_status renderer_init(sessile_mesh_renderer *r, const sessile_render_mesh *m,
-                                    double *t_upload) {
+sessile_status render_target_make_(sessile_mesh_renderer *r, uint64_t need, uint32_t nv, uint32_t nf,
+                                  int instanced) {
   const sessile_gpu_info *info = sessile_gpu_info_of(r->gpu);
-  uint64_t need = sessile_render_bytes(m, &r->o);
   SESSILE_CHECK(info->device_local_bytes == 0 || need <= info->device_local_bytes, SESSILE_ERR_TOO_LARGE,
                 "rendering %u vertices, %u triangles at %ux%u with %u samples needs about %.1f MiB "
                 "of device memory, but '%s' has %.1f MiB: use a smaller size or fewer samples",
-                m->nv, m->nf, r->o.width, r->o.height, r->o.samples, (double)need / 1048576.0,
+                nv, nf, r->o.width, r->o.height, r->o.samples, (double)need / 1048576.0,
                 info->name, (double)info->device_local_bytes / 1048576.0);
-  mesh_bounds_(m, r->lo, r->hi);
-  for (int k = 0; k < 3; k++) {
-    r->lo[k] *= r->o.units_cm;
-    r->hi[k] *= r->o.units_cm;
-  }
   SESSILE_CALL(sessile_gfx_target_create(r->gpu, r->o.width, r->o.height, r->o.samples, &r->target));
   sessile_gfx_pipeline_desc d = {.vert = "render/mesh.vert",
                                  .frag = "render/mesh.frag",
@@ -216,12 +179,36 @@ static sessile_status renderer_init(sessile_mesh_renderer *r, const sessile_rend
                                           {SESSILE_GFX_UNORM8X4, 24}},
                                  .topology = SESSILE_GFX_TRIANGLES,
                                  .push_bytes = sizeof(mesh_push)};
-  SESSILE_CALL(sessile_gfx_pipeline_create(r->target, &d, &r->tris));
+  if (!instanced) SESSILE_CALL(sessile_gfx_pipeline_create(r->target, &d, &r->tris));
   d.topology = SESSILE_GFX_LINES;
   SESSILE_CALL(sessile_gfx_pipeline_create(r->target, &d, &r->lines));
+  if (!instanced) return SESSILE_OK;
+  /* shaders/render/scene.vert: the instance's four matrix columns and its colour */
+  sessile_gfx_pipeline_desc di = {.vert = "render/scene.vert",
+                                  .frag = "render/mesh.frag",
+                                  .stride = sizeof(vtx),
+                                  .instance_stride = sizeof(render_inst),
+                                  .nattr = 7,
+                                  .attr = {{SESSILE_GFX_FLOAT3, 0, 0}, {SESSILE_GFX_FLOAT3, 12, 0},
+                                           {SESSILE_GFX_FLOAT4, 0, 1}, {SESSILE_GFX_FLOAT4, 16, 1},
+                                           {SESSILE_GFX_FLOAT4, 32, 1}, {SESSILE_GFX_FLOAT4, 48, 1},
+                                           {SESSILE_GFX_UNORM8X4, 64, 1}},
+                                  .topology = SESSILE_GFX_TRIANGLES,
+                                  .push_bytes = sizeof(mesh_push)};
+  return sessile_gfx_pipeline_create(r->target, &di, &r->tris);
+}
+
+static sessile_status renderer_init(sessile_mesh_renderer *r, const sessile_render_mesh *m,
+                                    double *t_upload) {
+  mesh_bounds_(m, r->lo, r->hi);
+  for (int k = 0; k < 3; k++) {
+    r->lo[k] *= r->o.units_cm;
+    r->hi[k] *= r->o.units_cm;
+  }
+  SESSILE_CALL(render_target_make_(r, sessile_render_bytes(m, &r->o), m->nv, m->nf, 0));
   double t0 = sessile_wall_seconds();
   SESSILE_CALL(upload_mesh(r, m));
-  SESSILE_CALL(grid_build(r));
+  SESSILE_CALL(render_grid_build_(r));
   if (t_upload) *t_upload = sessile_wall_seconds() - t0;
   return SESSILE_OK;
 }
@@ -251,11 +238,13 @@ sessile_status sessile_mesh_renderer_create(sessile_gpu *g, const sessile_render
 void sessile_mesh_renderer_destroy(sessile_mesh_renderer *r) {
   if (!r) return;
   sessile_gfx_buffer_destroy(r->gbuf);
+  sessile_gfx_buffer_destroy(r->instbuf);
   sessile_gfx_buffer_destroy(r->ibuf);
   sessile_gfx_buffer_destroy(r->vbuf);
   sessile_gfx_pipeline_destroy(r->lines);
   sessile_gfx_pipeline_destroy(r->tris);
   sessile_gfx_target_destroy(r->target);
+  free(r->groups);
   free(r->fit);
   free(r);
 }
@@ -293,12 +282,23 @@ sessile_status sessile_mesh_renderer_draw(sessile_mesh_renderer *r, double azimu
   p.params[1] = 1.0f;
   mesh_push pg = p;
   pg.params[1] = 0.0f;
-  sessile_gfx_draw d[2] = {{r->tris, r->vbuf, r->ibuf, r->nindex, &p},
-                           {r->lines, r->gbuf, NULL, r->ngrid, &pg}};
+  /* A scene: one instanced draw per part; a mesh: one draw.  Then the grid. */
+  uint32_t nd = r->ngroups ? r->ngroups : 1u;
+  sessile_gfx_draw *d = calloc((size_t)nd + 1, sizeof *d);
+  SESSILE_CHECK(d, SESSILE_ERR_NO_MEMORY, "out of host memory for %u draws", nd);
+  d[0] = (sessile_gfx_draw){.pipeline = r->tris, .vertices = r->vbuf, .indices = r->ibuf, .count = r->nindex, .push = &p};
+  for (uint32_t i = 0; i < r->ngroups; i++) {
+    const render_group *gr = &r->groups[i];
+    d[i] = (sessile_gfx_draw){r->tris, r->vbuf, r->ibuf, gr->count, &p, r->instbuf, gr->first_index,
+                              gr->first_instance, gr->ninstances};
+  }
+  d[nd] = (sessile_gfx_draw){.pipeline = r->lines, .vertices = r->gbuf, .count = r->ngrid, .push = &pg};
   float clear[4];
   for (int k = 0; k < 4; k++) clear[k] = (float)r->o.background[k] / 255.0f;
   double td = 0, tr = 0;
-  SESSILE_CALL(sessile_gfx_render(r->target, clear, d, r->o.grid ? 2u : 1u, rgba, &td, &tr));
+  sessile_status st = sessile_gfx_render(r->target, clear, d, nd + (r->o.grid ? 1u : 0u), rgba, &td, &tr);
+  free(d);
+  SESSILE_CALL(st);
   if (res) {
     memset(res, 0, sizeof *res);
     res->grid_spacing_cm = r->o.grid ? r->spacing : 0;

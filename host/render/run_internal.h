@@ -14,6 +14,7 @@ typedef struct rp_layout {
   int slices;              /* slices/iter_NNNN_PLANE.exr with FOLDER/iter_NNNN.ply as outline */
   const char *plots[2];    /* records.jsonl presets (render2d.h) */
   const char *steps_log;   /* FOLDER/steps.csv, the per-step log drawn as plot_step_times.png, or NULL */
+  const char *final_name;  /* the final mesh or scene in FOLDER; NULL: final.ply */
 } rp_layout;
 
 typedef struct rp_snap {
@@ -43,7 +44,7 @@ struct sessile_render_plan {
   int dfd;      /* the run folder (flocked when listed) */
   int running;  /* a run held the lock when planned (read-only plans only) */
   const rp_layout *lay;
-  char *final_mesh; /* FOLDER/final.ply, or the last snapshot when the run has none yet */
+  char *final_mesh; /* FOLDER/final.ply (a reef's scene.json), or the last snapshot when the run has none yet */
   int final_is_snapshot;
   rp_snap *snaps;
   int nsnaps;

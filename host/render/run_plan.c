@@ -20,12 +20,13 @@
 #include "run_internal.h"
 
 static const rp_layout layouts[] = {
-    {"grow", "sponge", "iter_", "iteration", 1, {"solver", "time"}, NULL},
-    {"sponge particles", "sponge", "iter_", "iteration", 0, {NULL, NULL}, NULL},
-    {"sphere", "sphere", "iter_", "iteration", 0, {NULL, NULL}, NULL},
-    {"coral lsystem", "coral", NULL, NULL, 0, {NULL, NULL}, NULL},
-    {"coral venation", "coral", "iter_", "iteration", 0, {NULL, NULL}, NULL},
-    {"sds", "sds", "frame_", "frame", 0, {"steps", NULL}, "steps.csv"},
+    {"grow", "sponge", "iter_", "iteration", 1, {"solver", "time"}, NULL, NULL},
+    {"sponge particles", "sponge", "iter_", "iteration", 0, {NULL, NULL}, NULL, NULL},
+    {"sphere", "sphere", "iter_", "iteration", 0, {NULL, NULL}, NULL, NULL},
+    {"coral lsystem", "coral", NULL, NULL, 0, {NULL, NULL}, NULL, NULL},
+    {"coral venation", "coral", "iter_", "iteration", 0, {NULL, NULL}, NULL, NULL},
+    {"sds", "sds", "frame_", "frame", 0, {"steps", NULL}, "steps.csv", NULL},
+    {"reef", "reef", NULL, NULL, 0, {NULL, NULL}, NULL, "scene.json"}, /* an instanced scene (render_scene.h) */
 };
 
 sessile_status rp_read_at(int dfd, const char *dir, const char *name, size_t max, char **text, size_t *len) {
@@ -291,20 +292,21 @@ sessile_status sessile_render_plan_make(const char *run_dir, const sessile_rende
     if (!p->lay)
       s = sessile_error_set(SESSILE_ERR_USAGE,
                             "'%s': a run of generator '%.40s', whose layout sessile render does not know (grow, "
-                            "sponge particles, sphere, coral lsystem, coral venation, sds)",
+                            "sponge particles, sphere, coral lsystem, coral venation, sds, reef)",
                             run_dir, cJSON_IsString(g) ? g->valuestring : "?");
   }
   if (s == SESSILE_OK) s = open_folder(p, p->lay->folder, &mfd);
   int have_final = 0;
-  if (s == SESSILE_OK && mfd >= 0) s = regular(p, mfd, p->lay->folder, "final.ply", &have_final);
+  const char *final_name = p->lay && p->lay->final_name ? p->lay->final_name : "final.ply";
+  if (s == SESSILE_OK && mfd >= 0) s = regular(p, mfd, p->lay->folder, final_name, &have_final);
   if (s == SESSILE_OK && mfd >= 0 && p->lay->snap_prefix) s = list_snapshots(p, mfd);
   if (s == SESSILE_OK && p->lay->slices) s = list_slices(p, mfd);
   if (s == SESSILE_OK && !have_final && p->nsnaps == 0)
-    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds nothing to draw yet (no %s/final.ply and no snapshots)",
-                          run_dir, p->lay->folder);
+    s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds nothing to draw yet (no %s/%s and no snapshots)",
+                          run_dir, p->lay->folder, final_name);
   if (s == SESSILE_OK) {
     p->final_is_snapshot = !have_final;
-    p->final_mesh = have_final ? path_join(run_dir, p->lay->folder, "final.ply") : strdup(p->snaps[p->nsnaps - 1].mesh);
+    p->final_mesh = have_final ? path_join(run_dir, p->lay->folder, final_name) : strdup(p->snaps[p->nsnaps - 1].mesh);
     if (!p->final_mesh) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   int have_records = 0;

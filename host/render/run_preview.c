@@ -1,18 +1,26 @@
-/* sessile render — one mesh file to one annotated PNG, and a run's
- * preview.png (render_run.h). */
+/* sessile render — one mesh (or scene) file to one annotated PNG, and a
+ * run's preview.png (render_run.h). */
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/io/png.h"
 #include "sessile/render/render_run.h"
+#include "sessile/render/render_scene.h"
 
 sessile_status sessile_render_mesh_png(sessile_gpu *g, const char *mesh_path, const sessile_render_options *o,
                                        const char *png_out, sessile_render_result *res) {
   sessile_render_mesh *m = NULL;
-  SESSILE_CALL(sessile_render_options_check(o, NULL));
-  SESSILE_CALL(sessile_render_mesh_read(mesh_path, &m));
-  sessile_status s = sessile_render_options_check(o, m);
+  sessile_render_scene *sc = NULL;
   sessile_mesh_renderer *r = NULL;
-  if (s == SESSILE_OK) s = sessile_mesh_renderer_create(g, m, o, &r, NULL);
+  SESSILE_CALL(sessile_render_options_check(o, NULL));
+  sessile_status s;
+  if (sessile_render_is_scene(mesh_path)) { /* a scene file (render_scene.h): the reef's preview */
+    s = sessile_render_scene_read(mesh_path, &sc);
+    if (s == SESSILE_OK) s = sessile_scene_renderer_create(g, sc, o, &r, NULL);
+  } else {
+    SESSILE_CALL(sessile_render_mesh_read(mesh_path, &m));
+    s = sessile_render_options_check(o, m);
+    if (s == SESSILE_OK) s = sessile_mesh_renderer_create(g, m, o, &r, NULL);
+  }
   unsigned char *px = NULL;
   sessile_render_result rr;
   memset(&rr, 0, sizeof rr);
@@ -27,6 +35,7 @@ sessile_status sessile_render_mesh_png(sessile_gpu *g, const char *mesh_path, co
   free(px);
   sessile_mesh_renderer_destroy(r);
   sessile_render_mesh_destroy(m);
+  sessile_render_scene_destroy(sc);
   return s;
 }
 

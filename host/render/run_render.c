@@ -19,6 +19,7 @@
 #include "sessile/io/io.h"
 #include "sessile/render/render2d.h"
 #include "sessile/render/render_mesh.h"
+#include "sessile/render/render_scene.h"
 
 static const char *const views[4] = {"oblique", "side", "top", "front"};
 
@@ -247,8 +248,10 @@ static sessile_status list_in_manifest(sessile_render_plan *p) {
 
 static sessile_status check_mesh(const char *path) {
   sessile_render_mesh *m = NULL;
-  sessile_status s = sessile_render_mesh_read(path, &m);
+  sessile_render_scene *sc = NULL;
+  sessile_status s = sessile_render_is_scene(path) ? sessile_render_scene_read(path, &sc) : sessile_render_mesh_read(path, &m);
   sessile_render_mesh_destroy(m);
+  sessile_render_scene_destroy(sc);
   return s;
 }
 

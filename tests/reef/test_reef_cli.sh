@@ -8,7 +8,8 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 SCENE="$(dirname "$0")/scene_small.json"
-same() { for f in placements.json reef/reef.ply reef/placements_0002.json checkpoint.bin preview.png reef.glb; do
+same() { for f in placements.json reef/reef.ply reef/scene.json reef/meshes.ply reef/placements_0002.json checkpoint.bin \
+                  preview.png reef.glb; do
   cmp -s "$1/$f" "$2/$f" || return 1; done; }
 
 run reef "$SCENE" --seed 5 --out "$T/a" --quiet
@@ -32,6 +33,44 @@ ok = ok and all(abs(q["transform"][12 + i] - q["position"][i]) < 1e-12 for q in 
 print(len(pl), "placements,", len(meshes), "organism meshes")
 sys.exit(0 if ok else 1)
 PYEOF
+# the preview's instanced scene (docs/reef.md, "Output"): a part per glTF
+# mesh, an instance per node with its material's colour (sRGB) and matrix;
+# preview.png shows each colour (pixels of its chromaticity: cosine > 0.999
+# with the colour; the uncoloured sand of before is 0.997 from "ball"), and
+# `sessile render` of the scene gives the preview's bytes
+"$S" render "$T/a/reef/scene.json" -o "$T/a_scene.png" --size 640x480 --quiet
+check "reef/scene.json: parts, instances, colours, matrices; preview.png in the pool's and the seabed's colours" \
+  env PNG_DECODE_DIR="$(cd "$(dirname "$0")/../common" && pwd)" "$PY" - "$T/a" "$SCENE" <<'PYEOF'
+import json, math, os, struct, sys
+sys.path.insert(0, os.environ["PNG_DECODE_DIR"])
+from png_decode import decode
+d = sys.argv[1]; sc = json.load(open(d + "/reef/scene.json")); pool = json.load(open(sys.argv[2]))["pool"]
+pl = json.load(open(d + "/placements.json"))["placements"]; m = json.load(open(d + "/manifest.json"))
+glb = open(d + "/reef.glb", "rb").read(); n, = struct.unpack("<I", glb[12:16]); g = json.loads(glb[20:20 + n])
+srgb = lambda c: round(255 * (12.92 * c if c <= 0.0031308 else 1.055 * c ** (1 / 2.4) - 0.055))
+rgb = lambda lin: [srgb(c) for c in lin[:3]]
+seabed = rgb(g["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"])
+colour = {e["name"]: rgb(e["colour"]) for e in pool}
+inst = sc["instances"]
+ok = sc["format"] == "sessile render scene" and sc["mesh"] == "meshes.ply"
+ok = ok and len(sc["parts"]) == m["reef"]["meshes"] and len(inst) == len(pl) + 1
+ok = ok and inst[0]["part"] == 0 and inst[0]["rgb"] == seabed
+for q, i in zip(pl, inst[1:]):
+    ok = ok and i["part"] == q["mesh"] and i["rgb"] == colour[q["entry"]]
+    ok = ok and all(abs(i["matrix"][k] - 100 * q["transform"][k]) <= 1e-9 * (1 + abs(i["matrix"][k])) for k in range(15))
+w, h, rows = decode(d + "/preview.png")
+px = [r[x:x + 3] for r in rows for x in range(0, 4 * w, 4)]
+def like(c):
+    n = math.sqrt(sum(v * v for v in c))
+    return sum(1 for p in px if sum(p) > 60 and sum(a * b for a, b in zip(p, c)) > 0.999 * n * math.sqrt(sum(v * v for v in p)))
+counts = {name: like(c) for name, c in list(colour.items()) + [("seabed", seabed)]}
+print("pixels of each colour's chromaticity:", counts)
+ok = ok and all(v >= 50 for v in counts.values())
+ok = ok and open(d + "/preview.png", "rb").read() == open(d + "/../a_scene.png", "rb").read()
+sys.exit(0 if ok else 1)
+PYEOF
+run render "$T/a" -o "$T/a_renders" --size 320x240 --quiet
+check "sessile render of the reef's run directory draws its scene" eval 'rc_is 0 && test -s "$T/a_renders/final_top.png"'
 # reef.glb by the readers of tests/io/test_gltf_readers.sh (a missing reader fails)
 . "$(dirname "$0")/../io/gltf_readers.sh"
 check "reef.glb is written and listed in the manifest" eval 'test -s "$T/a/reef.glb" && grep -q "\"reef.glb\"" "$T/a/manifest.json"'

@@ -38,18 +38,21 @@ typedef enum sessile_gfx_topology {
 } sessile_gfx_topology;
 
 typedef enum sessile_gfx_format {
-  SESSILE_GFX_FLOAT3 = 0,  /* vec3 from 3 floats */
-  SESSILE_GFX_UNORM8X4 = 1 /* vec4 from 4 bytes / 255 */
+  SESSILE_GFX_FLOAT3 = 0,   /* vec3 from 3 floats */
+  SESSILE_GFX_UNORM8X4 = 1, /* vec4 from 4 bytes / 255 */
+  SESSILE_GFX_FLOAT4 = 2    /* vec4 from 4 floats */
 } sessile_gfx_format;
 
 typedef struct sessile_gfx_attr {
   sessile_gfx_format format;
-  uint32_t offset; /* bytes into the vertex */
+  uint32_t offset;  /* bytes into the vertex (or the instance) */
+  uint32_t binding; /* 0: per vertex; 1: per instance (the draw's instance buffer) */
 } sessile_gfx_attr;
 
 typedef struct sessile_gfx_pipeline_desc {
   const char *vert, *frag; /* embedded SPIR-V names ("render/mesh.vert") */
   uint32_t stride;         /* bytes per vertex (binding 0) */
+  uint32_t instance_stride; /* bytes per instance (binding 1), 0: no per-instance attributes */
   uint32_t nattr;          /* locations 0..nattr-1 (at most 8) */
   sessile_gfx_attr attr[8];
   sessile_gfx_topology topology;
@@ -67,13 +70,17 @@ sessile_status sessile_gfx_buffer_create(sessile_gpu *g, sessile_gfx_usage usage
                                          size_t bytes, sessile_gfx_buffer **out);
 void sessile_gfx_buffer_destroy(sessile_gfx_buffer *b);
 
-/* One draw: `count` indices of `indices` (32-bit) or, when indices is NULL,
- * `count` vertices of `vertices`. */
+/* One draw: `count` indices of `indices` (32-bit) from first_index or, when
+ * indices is NULL, `count` vertices of `vertices`.  With `instances` (the
+ * pipeline's binding 1), ninstances instances from first_instance; without,
+ * one. */
 typedef struct sessile_gfx_draw {
   const sessile_gfx_pipeline *pipeline;
   const sessile_gfx_buffer *vertices, *indices;
   uint32_t count;
   const void *push; /* the pipeline's push_bytes */
+  const sessile_gfx_buffer *instances;
+  uint32_t first_index, first_instance, ninstances;
 } sessile_gfx_draw;
 
 /* Clears to `clear` (RGBA in [0, 1]) and depth 1, records the draws in

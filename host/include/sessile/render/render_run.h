@@ -26,7 +26,8 @@ sessile_status sessile_render_annotate(unsigned char *rgba, int w, int h, const 
                                        const char *color_by);
 
 /* A mesh file to one annotated PNG (read, check, draw one frame, annotate,
- * write).  res may be NULL. */
+ * write); a scene file (FILE.json, render_scene.h) is drawn instanced.
+ * res may be NULL. */
 sessile_status sessile_render_mesh_png(sessile_gpu *g, const char *mesh_path, const sessile_render_options *o,
                                        const char *png_out, sessile_render_result *res);
 
