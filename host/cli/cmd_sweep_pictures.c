@@ -196,7 +196,7 @@ static int png_size(const char *path, int *w, int *h) {
 /* The completed points' previews, in point order, one row per combination
  * when the seeds are several (a column per seed); a point without
  * preview.png (--no-preview, a device that could not draw) is left out and
- * counted.  A sheet is at most SESSILE_RENDER2D_MAX_SIZE a side: past that,
+ * counted.  One seed: a row of up to 4, else a square-ish grid.  A sheet is at most SESSILE_RENDER2D_MAX_SIZE a side: past that,
  * the first previews that fit. */
 static int sheet(const char *dir, const cJSON *plan, const unsigned char *completed) {
   const cJSON *pts = cJSON_GetObjectItemCaseSensitive(plan, "points"), *axes = cJSON_GetObjectItemCaseSensitive(plan, "axes");
@@ -228,7 +228,7 @@ static int sheet(const char *dir, const cJSON *plan, const unsigned char *comple
     printf("sweep: no completed point has a preview.png: no contact sheet\n");
   } else if (!rc) {
     enum { PAD = SESSILE_SHEET_PAD, MAX = SESSILE_RENDER2D_MAX_SIZE };
-    int cols = nseeds > 1 ? nseeds : (int)ceil(sqrt(n)), maxcols = (MAX - PAD) / (cw + PAD);
+    int cols = nseeds > 1 ? nseeds : n <= 4 ? n : (int)ceil(sqrt(n)), maxcols = (MAX - PAD) / (cw + PAD);
     int maxrows = (MAX - PAD) / (th + SESSILE_SHEET_CAPTION_H + PAD);
     if (cols > maxcols) cols = maxcols > 0 ? maxcols : 1;
     int fit = cols * maxrows < n ? cols * maxrows : n;

@@ -43,7 +43,7 @@ int main(void) {
   /* a known series: A = 10 x (blue), B = 100 - 10 x (orange) with a NaN at x = 3 */
   double x[11], ya[11], yb[11];
   for (int i = 0; i <= 10; i++) x[i] = i, ya[i] = 10 * i, yb[i] = i == 3 ? NAN : 100 - 10 * i;
-  sessile_plot p = {"two lines", "x (cm)", "y (s)", 2, {{"A", x, ya, 11, 0}, {"B", x, yb, 11, 0}}, NULL};
+  sessile_plot p = {"two lines", "x (cm)", "y (s)", 2, {{"A", x, ya, 11, 0, NULL, NULL}, {"B", x, yb, 11, 0, NULL, NULL}}, NULL};
   sessile_render2d_opts o;
   sessile_render2d_opts_default(&o);
   sessile_plot_layout L;
@@ -82,7 +82,7 @@ int main(void) {
   if (f) fprintf(f, "{\"frame\":5,\"cells\":2000,\"steps\":0,\"ms_per_step\":0}\n");
   if (f) fclose(f);
   t_ok("plot records preset steps", sessile_render_plot_records(P("records.jsonl"), "steps", &o, P("steps.png")));
-  sessile_plot ps = {"", "", "", 1, {{"", cells, ms, 5, 0}}, NULL};
+  sessile_plot ps = {"", "", "", 1, {{"", cells, ms, 5, 0, NULL, NULL}}, NULL};
   t_ok("layout of the same points", sessile_render_plot_layout(&ps, &o, &L));
   t_true("steps axes: cells [0, 4000], ms [0, 9 or 10]", L.x0 == 0 && L.x1 == 4000 && L.y0 == 0 && L.y1 >= 8.2 && L.y1 <= 10);
   img = t_png_read(P("steps.png"));
@@ -114,7 +114,7 @@ int main(void) {
            t_rgb_diff(px_at(&img, &L, 2, 44), blue) > 40 && t_rgb_diff(px_at(&img, &L, 3, 36), blue) > 40);
     free(img.px);
   } else t_true("bars PNG reads back", 0);
-  sessile_plot pnb = {"bars", "x", "y", 1, {{"mean", bx, by, 3, 0}}, NULL};
+  sessile_plot pnb = {"bars", "x", "y", 1, {{"mean", bx, by, 3, 0, NULL, NULL}}, NULL};
   t_ok("the same plot without bars", sessile_render_plot(&pnb, &o, P("nobars.png")));
   t_true("... differs from the plot with them", !t_same_bytes(P("bars.png"), P("nobars.png")));
 
@@ -132,7 +132,7 @@ int main(void) {
   bad("size 100000", sessile_render_plot(&p, &o, P("b6.png")), P("b6.png"), "100000");
   sessile_render2d_opts_default(&o);
   double nan1[1] = {NAN};
-  sessile_plot pn = {"", "", "", 1, {{"", nan1, nan1, 1, 0}}, NULL};
+  sessile_plot pn = {"", "", "", 1, {{"", nan1, nan1, 1, 0, NULL, NULL}}, NULL};
   bad("only NaN points", sessile_render_plot(&pn, &o, P("b7.png")), P("b7.png"), "nothing to plot");
   return t_finish(NULL);
 }
