@@ -76,5 +76,10 @@ int sweep_cmd_gather(int argc, char **argv);
  * tools did not answer. */
 int sweep_slurm_states(const char *dir, int npoints, char (*out)[24], char *job, size_t njob);
 
+/* gather's pictures: gather/plots/METRIC-vs-AXIS.png from stat (combinations
+ * x metrics x {n, mean, sd, ci95_lo, ci95_hi}) and gather/sheet.png from the
+ * completed points' previews (completed[i]: point i completed). */
+int sweep_gather_pictures(const char *dir, const cJSON *plan, const double *stat, const unsigned char *completed);
+
 int cmd_sweep(int argc, char **argv, const cli_gpu_opts *global);
 #endif

@@ -2,7 +2,7 @@
  * paths into its manifest) as DIR/gather/points.csv and points.jsonl, and per
  * combination of parameters over its seeds: n, mean, standard deviation and
  * the 95 % confidence interval of the mean (Student's t), as summary.csv and
- * summary.jsonl. */
+ * summary.jsonl; then the plots and the contact sheet (cmd_sweep_pictures.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,7 +82,9 @@ static int drop(FILE *a, FILE *b, char **ab, char **bb) {
 
 typedef struct table {
   int n, nm;
-  double *v; /* n x nm, NAN where missing or not completed */
+  double *v;           /* n x nm, NAN where missing or not completed */
+  unsigned char *done; /* n: 1 for a completed point */
+  double *stat;        /* combinations x nm x 5: n, mean, sd, ci95_lo, ci95_hi (NAN where undefined) */
 } table;
 
 /* One row per point: points.csv and points.jsonl; fills t. */
@@ -132,7 +134,7 @@ static int points(const char *dir, const cJSON *plan, table *t) {
     cJSON_Delete(row);
     cJSON_Delete(man);
     cJSON_Delete(rec);
-    done += s == PT_COMPLETED;
+    done += t->done[i] = s == PT_COMPLETED;
   }
   fclose(c), fclose(jf);
   int rc = save(dir, "points.csv", cb, cl);
@@ -142,7 +144,7 @@ static int points(const char *dir, const cJSON *plan, table *t) {
 }
 
 /* Over the completed seeds of each combination: n, mean, sd, 95 % interval. */
-static int summary(const char *dir, const cJSON *plan, const table *t) {
+static int summary(const char *dir, const cJSON *plan, table *t) {
   const cJSON *pts = cJSON_GetObjectItemCaseSensitive(plan, "points");
   const cJSON *metrics = cJSON_GetObjectItemCaseSensitive(plan, "metrics");
   int ncomb = cJSON_GetObjectItemCaseSensitive(plan, "combinations")->valueint;
@@ -180,6 +182,7 @@ static int summary(const char *dir, const cJSON *plan, const table *t) {
         if (isfinite(v[(size_t)r * t->nm])) ss += (v[(size_t)r * t->nm] - mean) * (v[(size_t)r * t->nm] - mean);
       double sd = n > 1 ? sqrt(ss / (n - 1)) : NAN, h = n > 1 ? t95(n - 1) * sd / sqrt(n) : NAN;
       double st[5] = {n, mean, sd, mean - h, mean + h};
+      memcpy(t->stat + ((size_t)cmb * t->nm + k) * 5, st, sizeof st);
       cJSON *o = cJSON_CreateObject();
       for (int s = 0; s < 5; s++) {
         fputc(',', c), csv_number(c, st[s]);
@@ -210,14 +213,18 @@ int sweep_cmd_gather(int argc, char **argv) {
   char path[4096];
   snprintf(path, sizeof path, "%s/gather", dir);
   table t = {cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "points")),
-             cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "metrics")), NULL};
-  t.v = calloc((size_t)t.n * (t.nm ? t.nm : 1), sizeof *t.v);
-  int rc = t.v ? EXIT_OK : sweep_oom("sweep gather");
+             cJSON_GetArraySize(cJSON_GetObjectItemCaseSensitive(plan, "metrics")), NULL, NULL, NULL};
+  size_t nm = t.nm ? (size_t)t.nm : 1;
+  t.v = calloc((size_t)t.n * nm, sizeof *t.v);
+  t.done = calloc((size_t)t.n, 1);
+  t.stat = calloc((size_t)cJSON_GetObjectItemCaseSensitive(plan, "combinations")->valueint * nm * 5, sizeof *t.stat);
+  int rc = t.v && t.done && t.stat ? EXIT_OK : sweep_oom("sweep gather");
   sessile_status ms = rc ? SESSILE_OK : sessile_mkdirs(path);
   if (ms != SESSILE_OK) rc = cli_fail_in("sweep gather", ms);
   if (!rc) rc = points(dir, plan, &t);
   if (!rc) rc = summary(dir, plan, &t);
-  free(t.v);
+  if (!rc) rc = sweep_gather_pictures(dir, plan, t.stat, t.done);
+  free(t.v), free(t.done), free(t.stat);
   cJSON_Delete(plan);
   return rc;
 }

@@ -1,6 +1,7 @@
 /* sessile render — line plots of number series (render2d.h): axes with
  * ticks by the 1-2-5 rule, the ranges extended to whole ticks, grid lines,
- * labels (with units), markers joined by lines, a legend above the plot,
+ * labels (with units), markers joined by lines, interval bars (confidence
+ * intervals) where a series has them, a legend above the plot,
  * and optionally a right-hand y axis for series of another scale. */
 #include <math.h>
 #include <stdio.h>
@@ -12,6 +13,7 @@
 #define MARGIN_T 62 /* title and legend */
 #define MARGIN_B 58
 #define MARKER_R 3.5
+#define BAR_CAP 5       /* half the width of an interval bar's caps */
 #define MAX_MARKERS 200 /* more points than this: lines only */
 #define TICK_GAP 8      /* from the frame to a tick label */
 #define LABEL_GAP 10    /* from the widest tick label to the axis label */
@@ -70,6 +72,11 @@ static sessile_status right_margin(const sessile_plot_layout *L, const sessile_p
   return SESSILE_OK;
 }
 
+/* Point i of a series has an interval bar (both bounds finite). */
+static int has_bar(const sessile_plot_series *ser, size_t i) {
+  return ser->ylo && ser->yhi && isfinite(ser->ylo[i]) && isfinite(ser->yhi[i]);
+}
+
 sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_render2d_opts *o,
                                           sessile_plot_layout *L) {
   sessile_render2d_opts def;
@@ -91,6 +98,7 @@ sessile_status sessile_render_plot_layout(const sessile_plot *p, const sessile_r
       if (isfinite(ser->x[i]) && isfinite(ser->y[i])) {
         xlo = fmin(xlo, ser->x[i]), xhi = fmax(xhi, ser->x[i]);
         ylo[a] = fmin(ylo[a], ser->y[i]), yhi[a] = fmax(yhi[a], ser->y[i]);
+        if (has_bar(ser, i)) ylo[a] = fmin(ylo[a], ser->ylo[i]), yhi[a] = fmax(yhi[a], ser->yhi[i]);
       }
   }
   SESSILE_CHECK(xlo <= xhi, SESSILE_ERR_USAGE, "nothing to plot: no series has a finite point");
@@ -215,6 +223,22 @@ static void draw_series(cairo_t *cr, const sessile_plot_layout *L, const sessile
       else cairo_move_to(cr, map_x(L, ser->x[i]), map_ys(L, ser, ser->y[i]));
       pen = 1;
     }
+    cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
+    cairo_set_line_width(cr, 1.5);
+    cairo_stroke(cr);
+  }
+  for (int s = 0; s < p->nseries; s++) { /* interval bars under the markers */
+    const sessile_plot_series *ser = &p->series[s];
+    int any = 0;
+    for (size_t i = 0; i < ser->n; i++)
+      if (isfinite(ser->x[i]) && isfinite(ser->y[i]) && has_bar(ser, i)) {
+        double x = floor(map_x(L, ser->x[i])) + 0.5, a = map_ys(L, ser, ser->ylo[i]), b = map_ys(L, ser, ser->yhi[i]);
+        cairo_move_to(cr, x, a), cairo_line_to(cr, x, b);
+        cairo_move_to(cr, x - BAR_CAP, a), cairo_line_to(cr, x + BAR_CAP, a);
+        cairo_move_to(cr, x - BAR_CAP, b), cairo_line_to(cr, x + BAR_CAP, b);
+        any = 1;
+      }
+    if (!any) continue;
     cairo_set_source_rgb(cr, series_rgb[s][0], series_rgb[s][1], series_rgb[s][2]);
     cairo_set_line_width(cr, 1.5);
     cairo_stroke(cr);

@@ -134,7 +134,7 @@ sessile_status sessile_render_plot_records(const char *records_jsonl, const char
   for (int k = 0; st == SESSILE_OK && k < ny; k++) { /* series absent from every record are left out */
     int any = 0;
     for (size_t i = 0; i < c.n && !any; i++) any = isfinite(c.v[0][i]) && isfinite(c.v[1 + k][i]);
-    if (any) p.series[p.nseries++] = (sessile_plot_series){pr->label[k], c.v[0], c.v[1 + k], c.n, 0};
+    if (any) p.series[p.nseries++] = (sessile_plot_series){pr->label[k], c.v[0], c.v[1 + k], c.n, 0, NULL, NULL};
   }
   if (st == SESSILE_OK && p.nseries == 0) {
     char keys[400] = "";

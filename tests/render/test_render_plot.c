@@ -1,7 +1,7 @@
 /* sessile_render_plot and sessile_render_plot_records: the 1-2-5 tick rule,
  * axis ranges extended to whole ticks, markers of a known series at the
  * pixels the axis transform puts them (checked by their colour), gaps at NaN,
- * the records presets, same bytes on rerun, bad input refused. */
+ * interval bars, the records presets, same bytes on rerun, bad input refused. */
 #include <math.h>
 #include "render/draw2d.h"
 #include "render2d_testutil.h"
@@ -43,7 +43,7 @@ int main(void) {
   /* a known series: A = 10 x (blue), B = 100 - 10 x (orange) with a NaN at x = 3 */
   double x[11], ya[11], yb[11];
   for (int i = 0; i <= 10; i++) x[i] = i, ya[i] = 10 * i, yb[i] = i == 3 ? NAN : 100 - 10 * i;
-  sessile_plot p = {"two lines", "x (cm)", "y (s)", 2, {{"A", x, ya, 11, 0}, {"B", x, yb, 11, 0}}, NULL};
+  sessile_plot p = {"two lines", "x (cm)", "y (s)", 2, {{"A", x, ya, 11, 0, NULL, NULL}, {"B", x, yb, 11, 0, NULL, NULL}}, NULL};
   sessile_render2d_opts o;
   sessile_render2d_opts_default(&o);
   sessile_plot_layout L;
@@ -82,7 +82,7 @@ int main(void) {
   if (f) fprintf(f, "{\"frame\":5,\"cells\":2000,\"steps\":0,\"ms_per_step\":0}\n");
   if (f) fclose(f);
   t_ok("plot records preset steps", sessile_render_plot_records(P("records.jsonl"), "steps", &o, P("steps.png")));
-  sessile_plot ps = {"", "", "", 1, {{"", cells, ms, 5, 0}}, NULL};
+  sessile_plot ps = {"", "", "", 1, {{"", cells, ms, 5, 0, NULL, NULL}}, NULL};
   t_ok("layout of the same points", sessile_render_plot_layout(&ps, &o, &L));
   t_true("steps axes: cells [0, 4000], ms [0, 9 or 10]", L.x0 == 0 && L.x1 == 4000 && L.y0 == 0 && L.y1 >= 8.2 && L.y1 <= 10);
   img = t_png_read(P("steps.png"));
@@ -96,6 +96,27 @@ int main(void) {
   } else t_true("steps PNG reads back", 0);
   t_ok("plot records by keys", sessile_render_plot_records(P("records.jsonl"), "time:cells,tets", &o, P("keys.png")));
   t_true("plot by keys wrote a PNG", t_exists(P("keys.png")));
+
+  /* interval bars: the y range covers them; the bar's pixels between the
+   * marker and its ends have the series' colour, pixels beyond its ends not */
+  double bx[3] = {1, 2, 3}, by[3] = {10, 20, 30}, blo[3] = {4, 18, NAN}, bhi[3] = {16, 42, NAN};
+  sessile_plot pb = {"bars", "x", "y", 1, {{"mean", bx, by, 3, 0, blo, bhi}}, NULL};
+  t_ok("plot with interval bars", sessile_render_plot(&pb, &o, P("bars.png")));
+  t_ok("layout with interval bars", sessile_render_plot_layout(&pb, &o, &L));
+  t_true("bars: the y range covers the intervals (4..42), not only the means (10..30)", L.y0 <= 4 && L.y1 >= 42 && L.y1 < 60);
+  img = t_png_read(P("bars.png"));
+  if (img.px) {
+    int worst = 0;
+    for (double y = 19; y <= 41; y += 2) worst = (int)fmax(worst, t_rgb_diff(px_at(&img, &L, 2, y), blue));
+    for (double y = 5; y <= 15; y += 2) worst = (int)fmax(worst, t_rgb_diff(px_at(&img, &L, 1, y), blue));
+    t_check("bars: blue all along both intervals (max level diff)", worst, 1);
+    t_true("bars: no bar past an interval's end (x = 2, y = 44) nor where the bounds are NaN (x = 3, y = 36)",
+           t_rgb_diff(px_at(&img, &L, 2, 44), blue) > 40 && t_rgb_diff(px_at(&img, &L, 3, 36), blue) > 40);
+    free(img.px);
+  } else t_true("bars PNG reads back", 0);
+  sessile_plot pnb = {"bars", "x", "y", 1, {{"mean", bx, by, 3, 0, NULL, NULL}}, NULL};
+  t_ok("the same plot without bars", sessile_render_plot(&pnb, &o, P("nobars.png")));
+  t_true("... differs from the plot with them", !t_same_bytes(P("bars.png"), P("nobars.png")));
 
   /* bad input */
   bad("missing records", sessile_render_plot_records(P("none.jsonl"), "steps", &o, P("b1.png")), P("b1.png"), "none.jsonl");
@@ -111,7 +132,7 @@ int main(void) {
   bad("size 100000", sessile_render_plot(&p, &o, P("b6.png")), P("b6.png"), "100000");
   sessile_render2d_opts_default(&o);
   double nan1[1] = {NAN};
-  sessile_plot pn = {"", "", "", 1, {{"", nan1, nan1, 1, 0}}, NULL};
+  sessile_plot pn = {"", "", "", 1, {{"", nan1, nan1, 1, 0, NULL, NULL}}, NULL};
   bad("only NaN points", sessile_render_plot(&pn, &o, P("b7.png")), P("b7.png"), "nothing to plot");
   return t_finish(NULL);
 }

@@ -74,6 +74,10 @@ typedef struct sessile_plot_series {
   const double *x, *y; /* n points; NaN points are skipped */
   size_t n;
   int axis2;           /* 0: y on the left axis; 1: on the right-hand axis (y2label) */
+  /* NULL, or each point's interval [ylo[i], yhi[i]] drawn as a vertical bar
+   * with caps (a confidence interval); the y range covers the bars.  A point
+   * whose bounds are not both finite has no bar. */
+  const double *ylo, *yhi;
 } sessile_plot_series;
 
 typedef struct sessile_plot {
@@ -98,8 +102,8 @@ typedef struct sessile_plot_layout {
   double y20, y21, y2step;
 } sessile_plot_layout;
 
-/* Points with markers joined by lines, one colour per series, axes with
- * ticks and labels, a legend.  With a right-hand axis the right margin
+/* Points with markers joined by lines, one colour per series, interval
+ * bars where a series has them, axes with ticks and labels, a legend.  With a right-hand axis the right margin
  * widens for its tick labels and label, the grid stays the left axis's, and
  * each axis's label takes the colour of its first series.  o may be NULL
  * (the defaults). */
