@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 #include "sessile/io/io.h"
+#include "sessile/run/generator.h"
 #include "sessile/coral/lsystem.h"
 #include "sessile/rng.h"
 #include "sessile/mesh/skeleton.h"
@@ -180,11 +181,15 @@ static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem
   }
   const char *names[1] = {"value"};
   const double *extra[1] = {r->vertex_value};
-  sessile_status s = sessile_run_file(run, "coral/final.ply", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_ply_stop(path, m, n, r->vertex_value ? 1 : 0, names, extra, stop);
+  /* PLY and .vtp coloured by the value (the height without one; docs/io.md) */
+  sessile_mesh_part part = {"surface", m->pos, m->nv, m->tri, m->nf, n, extra};
+  sessile_mesh_info mi;
+  sessile_run_mesh_info(run, &mi);
+  mi.iteration = r->iterations;
+  sessile_status s = sessile_run_write_mesh(run, "coral/final.ply", 1, &part, r->vertex_value ? 1 : 0, names, &mi, stop);
   if (s == SESSILE_OK) s = stopped(stop);
   if (s == SESSILE_OK) s = sessile_run_file(run, "coral/final.obj", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_obj_stop(path, m, n, stop);
+  if (s == SESSILE_OK) s = sessile_write_obj_info(path, m, n, &mi, stop);
   free(n);
   return s;
 }

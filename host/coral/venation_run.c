@@ -40,17 +40,19 @@ static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj
       s = sessile_skeleton_tubes(&sk, p->mesh_detail, &m, &val);
     }
   }
-  if (s == SESSILE_OK) s = sessile_run_file(g->run, rel, path, sizeof path);
+  sessile_mesh_info mi;
+  sessile_run_mesh_info(g->run, &mi);
   if (s == SESSILE_OK) {
     const char *names[1] = {"thickness_index"};
     const double *extra[1] = {val};
-    s = sessile_write_ply(path, &m, NULL, 1, names, extra);
+    sessile_mesh_part part = {"surface", m.pos, m.nv, m.tri, m.nf, NULL, extra};
+    s = sessile_run_write_mesh(g->run, rel, 1, &part, 1, names, &mi, NULL); /* PLY and .vtp */
   }
   if (s == SESSILE_OK && obj) {
     char orel[256];
     snprintf(orel, sizeof orel, "%.*s.obj", (int)(strlen(rel) - 4), rel);
     s = sessile_run_file(g->run, orel, path, sizeof path);
-    if (s == SESSILE_OK) s = sessile_write_obj(path, &m, NULL);
+    if (s == SESSILE_OK) s = sessile_write_obj_info(path, &m, NULL, &mi, NULL);
   }
   free(val);
   sessile_surface_free(&m);

@@ -98,11 +98,53 @@ static sessile_status run_path(grow_run *r, char *path, size_t n, const char *fm
   return sessile_run_file(r->o->run, rel, path, n);
 }
 
-sessile_status grow_write_snapshot(grow_run *r, int it) {
-  const double *normals = r->normals;
+/* The surface (PLY and .vtp, coloured by height) after iteration it, saying
+ * plainly which state it is: the fields and slices of iteration it were
+ * solved on the surface before it grew (docs/io.md, "One state per
+ * snapshot"). */
+static sessile_status write_surface(grow_run *r, const char *rel, int it) {
+  sessile_mesh_info mi;
+  sessile_run_mesh_info(r->o->run, &mi);
+  mi.iteration = it, mi.time = it, mi.time_unit = "iteration";
+  char state[256];
+  if (it > 0)
+    snprintf(state, sizeof state,
+             "surface after iteration %d (grown and remeshed); the nutrient and flow of iteration %d "
+             "(fields/iter_%04d.vtu, slices/iter_%04d_*.exr) were solved on the surface before it grew",
+             it, it, it, it);
+  else snprintf(state, sizeof state, "the initial surface (no iteration run)");
+  mi.state = state;
+  sessile_mesh_part part = {"surface", r->surf.pos, r->surf.nv, r->surf.tri, r->surf.nf, r->normals, NULL};
+  return sessile_run_write_mesh(r->o->run, rel, 1, &part, 0, NULL, &mi, NULL);
+}
+
+/* sponge/series.pvd: the surfaces written so far (the --every grid and
+ * iteration it), timestep = iteration, for ParaView to play; derived from the
+ * schedule, so a resume that removes an off-grid last snapshot rewrites it
+ * at its next snapshot. */
+static sessile_status write_surface_pvd(grow_run *r, int it) {
+  int *steps = malloc(((size_t)it + 1) * sizeof *steps), n = 0;
+  char **files = calloc((size_t)it + 1, sizeof *files);
+  sessile_status s = steps && files ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (int k = 1; s == SESSILE_OK && k <= it; k++) {
+    if (k < it && sessile_gen_snapshot_kind(r->su, k) != 1) continue;
+    files[n] = malloc(32);
+    if (!files[n]) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+    else snprintf(files[n], 32, "iter_%04d.vtp", k), steps[n++] = k;
+  }
   char path[4096];
-  SESSILE_CALL(run_path(r, path, sizeof path, "sponge/iter_%04d.ply", it));
-  SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
+  if (s == SESSILE_OK) s = sessile_run_file(r->o->run, "sponge/series.pvd", path, sizeof path);
+  if (s == SESSILE_OK) s = sessile_write_pvd(path, n, steps, (const char *const *)files);
+  for (int k = 0; files && k < n; k++) free(files[k]);
+  free(files), free(steps);
+  return s;
+}
+
+sessile_status grow_write_snapshot(grow_run *r, int it) {
+  char path[4096], rel[64];
+  snprintf(rel, sizeof rel, "sponge/iter_%04d.ply", it);
+  SESSILE_CALL(write_surface(r, rel, it));
+  if (r->o->run) SESSILE_CALL(write_surface_pvd(r, it));
   if (!r->nplanes && !r->o->fields) return SESSILE_OK;
 
   uint32_t nodes = sessile_box_nodes(&r->box);
@@ -175,6 +217,8 @@ sessile_status grow_forget_snapshot(grow_run *r, int it) {
   char rel[256];
   snprintf(rel, sizeof rel, "sponge/iter_%04d.ply", it);
   SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
+  snprintf(rel, sizeof rel, "sponge/iter_%04d.vtp", it);
+  SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
   for (int i = 0; i < r->nplanes; i++) {
     snprintf(rel, sizeof rel, "slices/iter_%04d_%s.exr", it, r->planes[i].name);
     SESSILE_CALL(sessile_run_remove_file(r->o->run, rel));
@@ -196,11 +240,12 @@ sessile_status grow_forget_snapshot(grow_run *r, int it) {
 }
 
 sessile_status grow_write_final(grow_run *r) {
-  const double *normals = r->normals;
   char path[4096];
-  SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.ply", path, sizeof path));
-  SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
+  SESSILE_CALL(write_surface(r, "sponge/final.ply", r->sum.iterations));
+  sessile_mesh_info mi;
+  sessile_run_mesh_info(r->o->run, &mi);
+  mi.iteration = r->sum.iterations;
   SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.obj", path, sizeof path));
-  SESSILE_CALL(sessile_write_obj(path, &r->surf, normals));
+  SESSILE_CALL(sessile_write_obj_info(path, &r->surf, r->normals, &mi, NULL));
   return SESSILE_OK;
 }

@@ -35,6 +35,61 @@ sessile_status io_printf(sessile_atomic_file *af, const char *fmt, ...)
 /* Writes s with XML's five special characters escaped (for attribute values). */
 sessile_status io_xml_escaped(sessile_atomic_file *af, const char *s);
 
+/* --- meshes being written (mesh_write.c) ------------------------------------- */
+/* Checks a list of parts (and nfields field arrays per part); on success
+ * *tv, *tf hold the union's vertex and face counts and *with_normals whether
+ * normals are written. */
+sessile_status io_check_parts(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
+                              const char *const *names, uint32_t *tv, uint32_t *tf, int *with_normals);
+
+/* --- mesh headers (mesh_info.c) -------------------------------------------- */
+/* Checks info (NULL: nothing to say) and finds its color_by among the field
+ * names: *main_field its index, -1 without colours. */
+sessile_status io_mesh_info_check(const char *path, const sessile_mesh_info *info, int nfields,
+                                  const char *const *names, int *main_field);
+/* The info's header lines, each starting with lead ("comment", "#"). */
+sessile_status io_mesh_info_lines(sessile_atomic_file *af, const char *lead, const sessile_mesh_info *info);
+/* Colours (3 tv bytes, caller frees) of the union's field `field` (tv
+ * vertices in all) through map (NULL: by the sign), with the map and range used. */
+typedef struct io_mesh_rgb_used {
+  const char *map;
+  double lo, hi;
+} io_mesh_rgb_used;
+sessile_status io_mesh_rgb(const char *path, int nparts, const sessile_mesh_part *parts, uint32_t tv, int field,
+                           const char *map, uint8_t **rgb, io_mesh_rgb_used *used);
+
+/* --- VTK XML arrays (vtu.c; vtp.c uses them too) ----------------------------- */
+/* What the mesh arrays are generated from: the structured box (its Kuhn
+ * tets, never stored), or explicit coordinates and tets. */
+typedef struct vtu_mesh {
+  const sessile_box *box;
+  const double *xyz;
+  const uint32_t *tets;
+} vtu_mesh;
+
+/* One appended array: ntuples tuples of tuple_bytes bytes, produced by fill. */
+typedef struct vtu_array {
+  const char *xml_type, *name; /* name may be NULL (Points) */
+  int components;
+  uint64_t ntuples;
+  size_t tuple_bytes;
+  void (*fill)(const struct vtu_array *a, uint64_t first, uint64_t count, uint8_t *dst);
+  const vtu_mesh *mesh;
+  const sessile_vtu_field *field;
+  int wide; /* Int64 connectivity / offsets */
+  /* result: header + compressed blocks */
+  uint8_t *blob;
+  size_t blob_bytes;
+  const void *user; /* what another writer's fill reads (vtp.c) */
+} vtu_array;
+
+/* Compresses array a into a->blob: the UInt64 header (blocks, block size,
+ * size of a partial last block or 0, compressed size of each block) followed
+ * by the zlib streams (vtkZLibDataCompressor, level 1). */
+sessile_status io_vtk_compress(const char *path, vtu_array *a);
+/* The array's <DataArray .../> tag, format appended at offset. */
+sessile_status io_vtk_array_tag(sessile_atomic_file *af, const vtu_array *a, uint64_t offset);
+
 /* --- reading (read_stream.c) ------------------------------------------------ */
 /* Opens path for reading: O_NONBLOCK (a FIFO or device cannot hang the
  * open), then refused unless fstat says a regular file; *size its length.

@@ -23,12 +23,8 @@ static const char *part_name(const sessile_mesh_part *p, int k, char buf[32]) {
   return buf;
 }
 
-/* Checks a list of parts (and nfields field arrays per part); on success
- * *tv, *tf hold the union's vertex and face counts and *with_normals whether
- * normals are written. */
-static sessile_status check_parts(const char *path, int nparts, const sessile_mesh_part *parts,
-                                  int nfields, const char *const *names, uint32_t *tv, uint32_t *tf,
-                                  int *with_normals) {
+sessile_status io_check_parts(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
+                              const char *const *names, uint32_t *tv, uint32_t *tf, int *with_normals) {
   SESSILE_CHECK(path && path[0], SESSILE_ERR_USAGE, "cannot write a mesh: no path given");
   SESSILE_CHECK(nparts >= 1 && parts, SESSILE_ERR_USAGE, "cannot write '%s': %d surface parts (1 or more needed)",
                 path, nparts);
@@ -94,19 +90,27 @@ static sessile_status stopped(const char *path, const volatile sig_atomic_t *sto
 }
 
 /* The PLY of a union: comment is the header's first comment line; with
- * part_comments, one more comment per part. */
+ * part_comments, one more comment per part; then info's lines, and with its
+ * main scalar, uchar red, green, blue after the floats. */
 static sessile_status write_ply_union(const char *path, const char *comment, int part_comments,
                                       int nparts, const sessile_mesh_part *parts, int nextra,
-                                      const char *const *extra_names, const volatile sig_atomic_t *stop) {
+                                      const char *const *extra_names, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop) {
   uint32_t tv, tf;
-  int normals;
-  SESSILE_CALL(check_parts(path, nparts, parts, nextra, extra_names, &tv, &tf, &normals));
+  int normals, main_field;
+  SESSILE_CALL(io_check_parts(path, nparts, parts, nextra, extra_names, &tv, &tf, &normals));
+  SESSILE_CALL(io_mesh_info_check(path, info, nextra, extra_names, &main_field));
+  uint8_t *rgb = NULL;
+  io_mesh_rgb_used used = {0};
+  if (main_field >= 0) SESSILE_CALL(io_mesh_rgb(path, nparts, parts, tv, main_field, info->colormap, &rgb, &used));
   int nfloat = 3 + (normals ? 3 : 0) + nextra;
-  size_t vbytes = (size_t)tv * 4 * (size_t)nfloat, fbytes = (size_t)tf * 13;
+  size_t vbytes = (size_t)tv * (4 * (size_t)nfloat + (rgb ? 3 : 0)), fbytes = (size_t)tf * 13;
   uint8_t *buf = malloc(vbytes + fbytes + 1);
+  if (!buf) free(rgb);
   SESSILE_CHECK(buf, SESSILE_ERR_NO_MEMORY, "out of memory writing '%s' (%zu bytes)", path,
                 vbytes + fbytes);
   uint8_t *w = buf;
+  const uint8_t *col = rgb;
   sessile_status st = SESSILE_OK;
   for (int k = 0; k < nparts && st == SESSILE_OK; k++) {
     const sessile_mesh_part *m = &parts[k];
@@ -115,8 +119,10 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
       if (normals)
         for (int a = 0; a < 3; a++) w = io_put_f32(w, m->normals[3 * (size_t)v + a]);
       for (int p = 0; p < nextra; p++) w = io_put_f32(w, m->fields[p][v]);
+      for (int a = 0; rgb && a < 3; a++) *w++ = *col++;
     }
   }
+  free(rgb);
   uint32_t base = 0;
   for (int k = 0; k < nparts && st == SESSILE_OK; k++) {
     const sessile_mesh_part *m = &parts[k];
@@ -142,12 +148,18 @@ static sessile_status write_ply_union(const char *path, const char *comment, int
     v0 += parts[k].nv;
     f0 += parts[k].nf;
   }
+  if (st == SESSILE_OK) st = io_mesh_info_lines(&af, "comment", info);
+  if (st == SESSILE_OK && main_field >= 0)
+    st = io_printf(&af, "comment colors red green blue: %s of %s over [%.9g, %.9g] (sessile render --color-by %s)\n",
+                   used.map, info->color_by, used.lo, used.hi, info->color_by);
   if (st == SESSILE_OK)
     st = io_printf(&af, "element vertex %u\nproperty float x\nproperty float y\nproperty float z\n", tv);
   if (st == SESSILE_OK && normals)
     st = io_printf(&af, "property float nx\nproperty float ny\nproperty float nz\n");
   for (int p = 0; p < nextra && st == SESSILE_OK; p++)
     st = io_printf(&af, "property float %s\n", extra_names[p]);
+  if (st == SESSILE_OK && main_field >= 0)
+    st = io_printf(&af, "property uchar red\nproperty uchar green\nproperty uchar blue\n");
   if (st == SESSILE_OK)
     st = io_printf(&af, "element face %u\nproperty list uchar uint vertex_indices\nend_header\n", tf);
   /* in 1 MiB blocks, so that a stop is seen within one; and before the fsync */
@@ -192,14 +204,20 @@ sessile_status sessile_write_ply_stop(const char *path, const sessile_surface *s
   for (int p = 0; p < nextra; p++)
     SESSILE_CHECK(ply_name_ok(extra_names[p]) && extra[p], SESSILE_ERR_USAGE,
                   "cannot write '%s': extra property %d needs a name without spaces and values", path, p);
-  return write_ply_union(path, "sessile sponge surface", 0, 1, &part, nextra, extra_names, stop);
+  return write_ply_union(path, "sessile sponge surface", 0, 1, &part, nextra, extra_names, NULL, stop);
 }
 
 sessile_status sessile_write_ply_parts(const char *path, int nparts, const sessile_mesh_part *parts,
                                        int nfields, const char *const *field_names) {
+  return sessile_write_ply_info(path, nparts, parts, nfields, field_names, NULL, NULL);
+}
+
+sessile_status sessile_write_ply_info(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
+                                      const char *const *field_names, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop) {
   char comment[64];
   snprintf(comment, sizeof comment, "sessile surface: %d parts", nparts);
-  return write_ply_union(path, comment, 1, nparts, parts, nfields, field_names, NULL);
+  return write_ply_union(path, comment, 1, nparts, parts, nfields, field_names, info, stop);
 }
 
 /* The shortest of %.15g..%.17g that reads back as the same double, so OBJ
@@ -239,14 +257,24 @@ sessile_status sessile_write_obj(const char *path, const sessile_surface *s, con
 
 sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
                                       const volatile sig_atomic_t *stop) {
+  return sessile_write_obj_info(path, s, normals, NULL, stop);
+}
+
+sessile_status sessile_write_obj_info(const char *path, const sessile_surface *s, const double *normals,
+                                      const sessile_mesh_info *info, const volatile sig_atomic_t *stop) {
   sessile_mesh_part part;
   SESSILE_CALL(surface_part(path, s, normals, NULL, &part));
   uint32_t tv, tf;
   int with_normals;
-  SESSILE_CALL(check_parts(path, 1, &part, 0, NULL, &tv, &tf, &with_normals));
+  SESSILE_CALL(io_check_parts(path, 1, &part, 0, NULL, &tv, &tf, &with_normals));
+  sessile_mesh_info lines = info ? *info : (sessile_mesh_info){0}; /* OBJ has no colours */
+  lines.color_by = NULL;
+  int no_field;
+  SESSILE_CALL(io_mesh_info_check(path, &lines, 0, NULL, &no_field));
   sessile_atomic_file af;
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "# sessile sponge surface: %u vertices, %u triangles\n", s->nv, s->nf);
+  if (st == SESSILE_OK && info) st = io_mesh_info_lines(&af, "#", &lines);
   if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, 0, stop);
   if (st == SESSILE_OK) st = stopped(path, stop, 0); /* before the fsync */
   if (st != SESSILE_OK) {
@@ -259,7 +287,7 @@ sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s
 sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessile_mesh_part *parts) {
   uint32_t tv, tf;
   int normals;
-  SESSILE_CALL(check_parts(path, nparts, parts, 0, NULL, &tv, &tf, &normals));
+  SESSILE_CALL(io_check_parts(path, nparts, parts, 0, NULL, &tv, &tf, &normals));
   sessile_atomic_file af;
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "# sessile surface: %d parts, %u vertices, %u triangles\n", nparts, tv, tf);

@@ -20,29 +20,6 @@
 
 enum { VTK_TETRA = 10, ZLEVEL = 1, BLOCK_TARGET = 1 << 18 /* bytes of raw data per block */ };
 
-/* What the mesh arrays are generated from: the structured box (its Kuhn
- * tets, never stored), or explicit coordinates and tets. */
-typedef struct vtu_mesh {
-  const sessile_box *box;
-  const double *xyz;
-  const uint32_t *tets;
-} vtu_mesh;
-
-/* One appended array: ntuples tuples of tuple_bytes bytes, produced by fill. */
-typedef struct vtu_array {
-  const char *xml_type, *name; /* name may be NULL (Points) */
-  int components;
-  uint64_t ntuples;
-  size_t tuple_bytes;
-  void (*fill)(const struct vtu_array *a, uint64_t first, uint64_t count, uint8_t *dst);
-  const vtu_mesh *mesh;
-  const sessile_vtu_field *field;
-  int wide; /* Int64 connectivity / offsets */
-  /* result: header + compressed blocks */
-  uint8_t *blob;
-  size_t blob_bytes;
-} vtu_array;
-
 static void fill_points_box(const vtu_array *a, uint64_t first, uint64_t count, uint8_t *dst) {
   for (uint64_t t = first; t < first + count; t++) {
     double p[3];
@@ -94,10 +71,7 @@ static void fill_field(const vtu_array *a, uint64_t first, uint64_t count, uint8
     dst = d->f64 ? io_put_f64(dst, d->f64[q]) : io_put_u32(dst, (uint32_t)d->i32[q]);
 }
 
-/* Compresses array a into a->blob: the UInt64 header (blocks, block size,
- * size of a partial last block or 0, compressed size of each block) followed
- * by the zlib streams. */
-static sessile_status compress_array(const char *path, vtu_array *a) {
+sessile_status io_vtk_compress(const char *path, vtu_array *a) {
   uint64_t per = (BLOCK_TARGET + a->tuple_bytes - 1) / a->tuple_bytes; /* tuples per block */
   uint64_t block_bytes = per * a->tuple_bytes, total = a->ntuples * a->tuple_bytes;
   uint64_t nb = (a->ntuples + per - 1) / per;
@@ -153,7 +127,7 @@ static sessile_status compress_array(const char *path, vtu_array *a) {
   return SESSILE_OK;
 }
 
-static sessile_status write_array_tag(sessile_atomic_file *af, const vtu_array *a, uint64_t offset) {
+sessile_status io_vtk_array_tag(sessile_atomic_file *af, const vtu_array *a, uint64_t offset) {
   SESSILE_CALL(io_printf(af, "        <DataArray type=\"%s\"", a->xml_type));
   if (a->name) {
     SESSILE_CALL(io_printf(af, " Name=\""));
@@ -186,17 +160,17 @@ static sessile_status write_vtu_file(const char *path, uint32_t npoints, int npf
                  "  <UnstructuredGrid>\n"
                  "    <Piece NumberOfPoints=\"%u\" NumberOfCells=\"%llu\">\n      <PointData>\n",
                  npoints, (unsigned long long)ncells);
-  for (int q = 0; q < npf && st == SESSILE_OK; q++) st = write_array_tag(&af, &arr[q], off[q]);
+  for (int q = 0; q < npf && st == SESSILE_OK; q++) st = io_vtk_array_tag(&af, &arr[q], off[q]);
   if (st == SESSILE_OK) st = io_printf(&af, "      </PointData>\n");
   if (ncf > 0 && st == SESSILE_OK) {
     st = io_printf(&af, "      <CellData>\n");
-    for (int q = npf; q < pts && st == SESSILE_OK; q++) st = write_array_tag(&af, &arr[q], off[q]);
+    for (int q = npf; q < pts && st == SESSILE_OK; q++) st = io_vtk_array_tag(&af, &arr[q], off[q]);
     if (st == SESSILE_OK) st = io_printf(&af, "      </CellData>\n");
   }
   if (st == SESSILE_OK) st = io_printf(&af, "      <Points>\n");
-  if (st == SESSILE_OK) st = write_array_tag(&af, &arr[pts], off[pts]);
+  if (st == SESSILE_OK) st = io_vtk_array_tag(&af, &arr[pts], off[pts]);
   if (st == SESSILE_OK) st = io_printf(&af, "      </Points>\n      <Cells>\n");
-  for (int q = pts + 1; q < narr && st == SESSILE_OK; q++) st = write_array_tag(&af, &arr[q], off[q]);
+  for (int q = pts + 1; q < narr && st == SESSILE_OK; q++) st = io_vtk_array_tag(&af, &arr[q], off[q]);
   if (st == SESSILE_OK)
     st = io_printf(&af, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
                         "  <AppendedData encoding=\"raw\">\n   _");
@@ -234,7 +208,7 @@ static sessile_status check_fields(const char *path, const char *kind, int n, co
 static vtu_array field_array(const sessile_vtu_field *d, uint64_t ntuples, const vtu_mesh *mesh) {
   size_t el = d->f64 ? 8 : d->i32 ? 4 : 1;
   return (vtu_array){d->f64 ? "Float64" : d->i32 ? "Int32" : "UInt8", d->name, d->components, ntuples,
-                     el * (size_t)d->components, fill_field, mesh, d, 0, NULL, 0};
+                     el * (size_t)d->components, fill_field, mesh, d, 0, NULL, 0, NULL};
 }
 
 /* The shared encoder: fields, then the mesh arrays from mesh (box or explicit). */
@@ -252,14 +226,14 @@ static sessile_status write_vtu_mesh(const char *path, const vtu_mesh *mesh, uin
   for (int q = 0; q < npf; q++) arr[k++] = field_array(&pf[q], nv, mesh);
   for (int q = 0; q < ncf; q++) arr[k++] = field_array(&cf[q], nt, mesh);
   arr[k++] = (vtu_array){"Float64", NULL, 3, nv, 24, mesh->box ? fill_points_box : fill_points_xyz,
-                         mesh, NULL, 0, NULL, 0};
+                         mesh, NULL, 0, NULL, 0, NULL};
   arr[k++] = (vtu_array){itype, "connectivity", 1, nt, 4 * isz,
-                         mesh->box ? fill_connectivity_box : fill_connectivity_tets, mesh, NULL, wide, NULL, 0};
-  arr[k++] = (vtu_array){itype, "offsets", 1, nt, isz, fill_offsets, mesh, NULL, wide, NULL, 0};
-  arr[k++] = (vtu_array){"UInt8", "types", 1, nt, 1, fill_types, mesh, NULL, 0, NULL, 0};
+                         mesh->box ? fill_connectivity_box : fill_connectivity_tets, mesh, NULL, wide, NULL, 0, NULL};
+  arr[k++] = (vtu_array){itype, "offsets", 1, nt, isz, fill_offsets, mesh, NULL, wide, NULL, 0, NULL};
+  arr[k++] = (vtu_array){"UInt8", "types", 1, nt, 1, fill_types, mesh, NULL, 0, NULL, 0, NULL};
 
   sessile_status st = SESSILE_OK;
-  for (int q = 0; q < narr && st == SESSILE_OK; q++) st = compress_array(path, &arr[q]);
+  for (int q = 0; q < narr && st == SESSILE_OK; q++) st = io_vtk_compress(path, &arr[q]);
   if (st == SESSILE_OK) st = write_vtu_file(path, nv, npf, ncf, arr, narr);
   for (int q = 0; q < narr; q++) free(arr[q].blob);
   free(arr);

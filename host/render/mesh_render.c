@@ -6,7 +6,8 @@
 #include <string.h>
 #include "sessile/gpu/graphics.h"
 #include "mesh_internal.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
+#include "sessile/io/mesh_colors.h"
 
 void sessile_render_options_default(sessile_render_options *o) {
   memset(o, 0, sizeof *o);
@@ -62,30 +63,13 @@ static void color_vertices(sessile_mesh_renderer *r, const sessile_render_mesh *
     }
     return;
   }
-  double lo = INFINITY, hi = -INFINITY;
-  for (uint32_t i = 0; i < m->nv; i++)
-    if (isfinite(prop[i])) {
-      lo = fmin(lo, prop[i]);
-      hi = fmax(hi, prop[i]);
-    }
-  if (!(lo <= hi)) lo = hi = 0;
-  int across = lo < 0 && hi > 0;
-  const char *map = r->o.colormap ? r->o.colormap : (across ? "coolwarm" : "viridis");
-  if (sessile_colormap_diverging(map) && across) {
-    double a = fmax(-lo, hi);
-    lo = -a;
-    hi = a;
-  }
+  double lo, hi;
+  const char *map = sessile_mesh_colors_range(prop, m->nv, r->o.colormap, &lo, &hi);
   r->prop_min = lo;
   r->prop_max = hi;
   snprintf(r->colormap, sizeof r->colormap, "%s", map);
   for (uint32_t i = 0; i < m->nv; i++) {
-    if (!isfinite(prop[i])) {
-      v[i].c[0] = v[i].c[1] = v[i].c[2] = 128;
-    } else {
-      double t = hi > lo ? (prop[i] - lo) / (hi - lo) : 0.5;
-      sessile_colormap(map, t, v[i].c);
-    }
+    sessile_mesh_color(map, lo, hi, prop[i], v[i].c);
     v[i].c[3] = 255;
   }
 }

@@ -57,6 +57,8 @@ struct sessile_run {
   int absent;             /* admitted a folder that does not exist yet */
   int started;            /* sessile_run_start succeeded: the folder is this run's */
   int wrote_lock;         /* this start wrote the lock's owner file */
+  int state_iteration;    /* the iteration whose state is being written, plus 1 (0: none; run_mesh.c) */
+  char seed_text[24];     /* a numeric configuration seed as text (run_mesh.c) */
 };
 
 /* Whether rel ends in a suffix of what runs write (.ply, .csv, ...). */

@@ -61,6 +61,10 @@ static sessile_status unsnapshot(const sessile_generator *g, void *state, sessil
   if (g->unsnapshot) return g->unsnapshot(state, k);
   char rel[256];
   SESSILE_CALL(snapshot_rel(g, k, rel, sizeof rel));
+  SESSILE_CALL(sessile_run_remove_file(run, rel));
+  size_t l = strlen(rel); /* a surface's .vtp beside its PLY (run_mesh.c) */
+  if (l <= 4 || strcmp(rel + l - 4, ".ply")) return SESSILE_OK;
+  memcpy(rel + l - 4, ".vtp", 4);
   return sessile_run_remove_file(run, rel);
 }
 
@@ -93,7 +97,10 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
   if (*snap) {
     char rel[256];
     SESSILE_CALL(snapshot_rel(g, it, rel, sizeof rel));
-    SESSILE_CALL_AT(g->snapshot(state, rel), "iteration %d: snapshot %s", it, rel);
+    sessile_run_set_iteration(su->run, it); /* what its mesh files say (run_mesh.c) */
+    sessile_status ss = g->snapshot(state, rel);
+    sessile_run_set_iteration(su->run, -1);
+    SESSILE_CALL_AT(ss, "iteration %d: snapshot %s", it, rel);
   }
   return SESSILE_OK;
 }
@@ -132,7 +139,10 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
                   "(--max-memory): its state is saved; resume it with a larger --max-memory, or "
                   "change the parameters that make it grow", it, rss / 1073741824.0, su->max_memory / 1073741824.0);
   }
-  SESSILE_CALL_AT(g->finish(state), "final outputs");
+  sessile_run_set_iteration(run, su->iterations);
+  sessile_status fs = g->finish(state);
+  sessile_run_set_iteration(run, -1);
+  SESSILE_CALL_AT(fs, "final outputs");
   return SESSILE_OK;
 }
 

@@ -160,7 +160,7 @@ static int listed(const cJSON *files, const char *rel);
 /* What a run writes (sessile_run_file and sessile_run_log refuse other
  * suffixes): a listed file with another suffix is not ours. */
 int run_output_name(const char *rel) {
-  static const char *const ours[] = {".ply", ".obj", ".mtl", ".vtu", ".pvd", ".exr", ".png",
+  static const char *const ours[] = {".ply", ".obj", ".mtl", ".vtu", ".vtp", ".pvd", ".exr", ".png",
                                      ".csv", ".json", ".jsonl", ".bin", ".sds", ".lsys", ".glb", ".gltf"};
   const char *dot = strrchr(rel, '.');
   for (size_t i = 0; dot && i < sizeof ours / sizeof *ours; i++)

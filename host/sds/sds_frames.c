@@ -40,8 +40,13 @@ sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const ch
     for (uint32_t k = 0; k < o->nstate; k++) names[2 + o->nmorph + k] = sessile_sds_model_state_name(s->model, (int)k);
     for (int k = 0; k < nf; k++) fp[k] = fields + (size_t)k * nv;
     sessile_mesh_part part = {"surface", pos, nv, tri, o->nfaces, NULL, fp};
-    st = sessile_run_file(run, ply_rel, path, sizeof path);
-    if (st == SESSILE_OK) st = sessile_write_ply_parts(path, 1, &part, nf, names);
+    /* the PLY and its .vtp: model units, the model's time, coloured by the
+     * first morphogen (the radius without one; docs/io.md) */
+    sessile_mesh_info mi;
+    sessile_run_mesh_info(run, &mi);
+    mi.length_unit = "u", mi.time_unit = "s", mi.time = s->time, mi.color_by = names[o->nmorph ? 2 : 0];
+    if (frame >= 0) mi.iteration = frame;
+    st = sessile_run_write_mesh(run, ply_rel, 1, &part, nf, names, &mi, NULL);
   }
   if (st == SESSILE_OK && frame >= 0) {
     /* the complex: every cell with its fields, tets with their volumes */

@@ -65,9 +65,20 @@ static sessile_status step(void *state, int it, cJSON *rec) {
   return SESSILE_OK;
 }
 
+/* The surface with each vertex's distance from the centre, its main scalar. */
 static sessile_status snapshot(void *state, const char *rel) {
   sphere *g = state;
-  return sessile_run_write_surface(g->run, rel, &g->s, 0, NULL, NULL);
+  double *r = malloc(((size_t)g->s.nv + 1) * sizeof *r);
+  SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (uint32_t v = 0; v < g->s.nv; v++) {
+    const double *x = g->s.pos + 3 * (size_t)v;
+    r[v] = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  }
+  const char *names[1] = {"radius"};
+  const double *extra[1] = {r};
+  sessile_status st = sessile_run_write_surface(g->run, rel, &g->s, 1, names, extra);
+  free(r);
+  return st;
 }
 
 static sessile_status finish(void *state) { return snapshot(state, "sphere/final.ply"); }

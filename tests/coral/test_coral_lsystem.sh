@@ -39,7 +39,8 @@ data = open(d + "/coral/final.ply", "rb").read()
 head, body = data.split(b"end_header\n", 1)
 props = [l.split()[2] for l in head.decode().splitlines() if l.startswith("property float")]
 nv = int([l for l in head.decode().splitlines() if l.startswith("element vertex")][0].split()[2])
-vals = [struct.unpack_from("<%df" % len(props), body, 4 * len(props) * i)[props.index("value")] for i in range(nv)]
+rec = 4 * len(props) + (3 if b"property uchar red" in head else 0)  # the colours follow the floats
+vals = [struct.unpack_from("<%df" % len(props), body, rec * i)[props.index("value")] for i in range(nv)]
 sides = m["parameters"]["mesh_detail"]["value"]
 ok = r["triangles"] == 4 * sides * r["segments"] and nv == r["vertices"] == (2 * sides + 2) * r["segments"]
 ok = ok and min(vals) == 0 and max(vals) == r["max_branch_order"] and all(v == int(v) for v in vals)

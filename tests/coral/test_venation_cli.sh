@@ -35,7 +35,8 @@ head = b[:h].decode()
 props = [l.split()[-1] for l in head.splitlines() if l.startswith("property float")]
 nv = int(head.split("element vertex ")[1].split()[0])
 k = props.index("thickness_index")
-vals = [struct.unpack_from("<%df" % len(props), b, h + 4 * len(props) * i)[k] for i in range(nv)]
+rec = 4 * len(props) + (3 if "property uchar red" in head else 0)  # the colours follow the floats
+vals = [struct.unpack_from("<%df" % len(props), b, h + rec * i)[k] for i in range(nv)]
 recs = [json.loads(l) for l in open(d + "/records.jsonl")]
 m = json.load(open(d + "/manifest.json"))
 ok = [r["iteration"] for r in recs] == list(range(1, 61)) and max(vals) == recs[-1]["nodes"]

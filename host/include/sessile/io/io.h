@@ -104,6 +104,44 @@ sessile_status sessile_write_ply_parts(const char *path, int nparts, const sessi
  * not written (OBJ has no per-vertex values). */
 sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessile_mesh_part *parts);
 
+/* --- what a mesh file says about itself (docs/io.md, "Mesh headers") --------- */
+/* Written as PLY "comment" lines, OBJ "#" lines and VTP field data; strings
+ * are one line each (no newline).  color_by names the main scalar, one of
+ * the fields: a PLY then carries uchar red, green, blue per vertex, that
+ * field through the colour map `sessile render --color-by` would use
+ * (sessile/io/mesh_colors.h). */
+typedef struct sessile_mesh_info {
+  const char *generator;   /* "grow", "sds run", ... (NULL: not said) */
+  const char *version;     /* sessile's version (NULL: not said) */
+  const char *commit;      /* the commit it was built from (NULL: unknown) */
+  const char *seed;        /* as text, 64 bits exact (NULL: none) */
+  const char *length_unit; /* of the coordinates: "cm", "u" (NULL: not said) */
+  const char *time_unit;   /* of time: "iteration", "s" (NULL: no time) */
+  double time;             /* the simulated time of this state, in time_unit */
+  int iteration;           /* the iteration (frame) of this state, -1: none */
+  const char *state;       /* which state the surface is, in words (NULL: none) */
+  const char *color_by;    /* the main scalar (NULL: no colours) */
+  const char *colormap;    /* NULL: viridis, or coolwarm for a range across 0 */
+} sessile_mesh_info;
+/* sessile_write_ply_parts with the info's header lines and colours (info
+ * NULL: exactly sessile_write_ply_parts' file); a color_by that names no
+ * field, or a string with a newline, is SESSILE_ERR_USAGE. */
+sessile_status sessile_write_ply_info(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
+                                      const char *const *field_names, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop);
+/* sessile_write_obj_stop with the info's header lines. */
+sessile_status sessile_write_obj_info(const char *path, const sessile_surface *s, const double *normals,
+                                      const sessile_mesh_info *info, const volatile sig_atomic_t *stop);
+/* The same union as VTK XML PolyData (.vtp, for ParaView and VTK): Float32
+ * points, "Normals" and every field as a Float32 point array (the PLY's very
+ * values), the main scalar as the active scalars, triangles as Polys (Int32
+ * connectivity and offsets, Int64 past 2^31-1), compressed like the .vtu;
+ * field data: TimeValue (the time, which VTK's readers take as the data
+ * set's time), iteration, and generator, version, commit, seed,
+ * length_unit, time_unit, state, main_scalar as strings. */
+sessile_status sessile_write_vtp(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
+                                 const char *const *field_names, const sessile_mesh_info *info);
+
 /* --- slices --------------------------------------------------------------------- */
 typedef enum sessile_axis { SESSILE_AXIS_X = 0, SESSILE_AXIS_Y = 1, SESSILE_AXIS_Z = 2 } sessile_axis;
 /* A slice: the axis-aligned plane axis = value through the box, sampled on

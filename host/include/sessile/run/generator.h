@@ -15,6 +15,7 @@
 #include "sessile/run/param_table.h"
 #include "sessile/run/run.h"
 #include "sessile/mesh/surface.h"
+#include "sessile/io/io.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -195,9 +196,28 @@ sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *
                                        sessile_gen_setup *su);
 
 /* Writes the run's file rel (".ply", or ".obj" by its suffix) from s with
- * its vertex normals and, in a PLY, nextra named per-vertex values. */
+ * its vertex normals and, in a PLY, nextra named per-vertex values: through
+ * sessile_run_write_mesh (a PLY gets its .vtp; the main scalar is the first
+ * value, or the height z without any). */
 sessile_status sessile_run_write_surface(sessile_run *run, const char *rel, const sessile_surface *s, int nextra,
                                          const char *const *names, const double *const *extra);
+
+/* --- mesh files (run_mesh.c; docs/io.md, "Mesh headers") ----------------- */
+/* The iteration whose state the files being written hold (-1: none): the
+ * loop sets it around each snapshot and the final outputs. */
+void sessile_run_set_iteration(sessile_run *run, int iteration);
+/* What the run's mesh files say about themselves: generator, version,
+ * commit, the configuration's seed, length unit cm, and the iteration set
+ * above as the time (time unit "iteration"); no main scalar. */
+void sessile_run_mesh_info(const sessile_run *run, sessile_mesh_info *info);
+/* The run's surface file rel (".ply") and the VTK PolyData beside it (rel
+ * with ".vtp"), both listed in the run: the parts with their nfields fields
+ * and info (NULL: sessile_run_mesh_info's).  With no main scalar named, the
+ * first field is it; with no field at all, "height" (z, in the length unit)
+ * is added as the main scalar, so that every surface carries colours. */
+sessile_status sessile_run_write_mesh(sessile_run *run, const char *rel, int nparts, const sessile_mesh_part *parts,
+                                      int nfields, const char *const *names, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,7 @@
 /* sessile — colour maps (256-entry tables from matplotlib's published data:
  * viridis and magma, perceptually uniform; coolwarm, diverging, for signed
- * ranges).  Shared by the mesh renderer and the 2-D pictures. */
+ * ranges).  In io so that the mesh writers colour vertices with the same
+ * maps as the mesh renderer and the 2-D pictures. */
 #ifndef SESSILE_COLORMAP_H
 #define SESSILE_COLORMAP_H
 
