@@ -303,6 +303,16 @@ static sessile_status skip_prop(ply *r, const elem *e, uint64_t k, const prop *p
   return SESSILE_OK;
 }
 
+/* uchar red/green/blue/alpha are display colours (sessile's own are a colour
+ * map of the main scalar, docs/io.md), not data: not kept as scalars */
+static int is_colour(const prop *p) {
+  static const char *const names[] = {"red", "green", "blue", "alpha"};
+  if (p->type != T_U8) return 0;
+  for (int i = 0; i < 4; i++)
+    if (!strcmp(p->name, names[i])) return 1;
+  return 0;
+}
+
 static sessile_status read_vertices(ply *r, const elem *e, sessile_mesh_in *m) {
   const char *path = r->in.path;
   int ix = find_prop(e, "x"), iy = find_prop(e, "y"), iz = find_prop(e, "z");
@@ -317,6 +327,7 @@ static sessile_status read_vertices(ply *r, const elem *e, sessile_mesh_in *m) {
       BAD("%s: vertex coordinate %s is a list", path, e->p[i].name);
     if (!r->o.keep_props || e->p[i].count_type != T_NONE || i == ix || i == iy || i == iz) continue;
     if (has_n && (i == in[0] || i == in[1] || i == in[2])) continue;
+    if (is_colour(&e->p[i])) continue;
     slot[i] = nkeep++;
   }
   size_t nv = (size_t)e->count;

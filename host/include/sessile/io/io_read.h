@@ -29,7 +29,7 @@ typedef struct sessile_mesh_in {
   double *pos;        /* 3 nv */
   uint32_t *tri;      /* 3 nf, indices < nv; polygons split into fans (0, k, k+1) */
   float *normal;      /* 3 nv when the file has nx ny nz (PLY, keep_props), else NULL */
-  int nprops;         /* other scalar vertex properties (PLY, keep_props) */
+  int nprops;         /* other scalar vertex properties (PLY, keep_props; uchar colours excluded) */
   char **prop_names;  /* nprops names */
   float **props;      /* props[p][v] */
 } sessile_mesh_in;
