@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-# Writes host/render/colormap.c: 256-entry tables of matplotlib's viridis,
+# Writes host/io/colormap.c: 256-entry tables of matplotlib's viridis,
 # magma and coolwarm (published data), rounded to 8 bits.  Not part of the
 # build; run from the repository root with Debian's python3-matplotlib when
 # a map is added.
@@ -15,7 +15,7 @@ out.append('''/* Colour maps for sessile's pictures: 256 entries each, 8-bit sRG
  * Visualization" (ISVC 2009).  Tables of published data, not code. */
 #include <math.h>
 #include <string.h>
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 ''' % matplotlib.__version__)
 for name in ["viridis","magma","coolwarm"]:
     cm=colormaps[name]
@@ -65,4 +65,4 @@ int sessile_colormap(const char *name, double t, unsigned char rgb[3]) {
   return 0;
 }
 ''')
-open("host/render/colormap.c","w").write("\n".join(out))
+open("host/io/colormap.c","w").write("\n".join(out))

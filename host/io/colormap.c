@@ -7,7 +7,7 @@
  * Visualization" (ISVC 2009).  Tables of published data, not code. */
 #include <math.h>
 #include <string.h>
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 
 static const unsigned char viridis_table[256][3] = {
     {68, 1, 84}, {68, 2, 86}, {69, 4, 87}, {69, 5, 89}, {70, 7, 90}, {70, 8, 92},

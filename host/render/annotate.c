@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "draw2d.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 #include "sessile/render/render_run.h"
 
 static void text_setup(cairo_t *cr) {

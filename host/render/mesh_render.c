@@ -6,7 +6,7 @@
 #include <string.h>
 #include "sessile/gpu/graphics.h"
 #include "mesh_internal.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 
 /* One vertex as the pipelines read it (28 bytes). */
 typedef struct vtx {

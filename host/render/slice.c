@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "draw2d.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 #include "slice_internal.h"
 
 #define MARGIN_L 72

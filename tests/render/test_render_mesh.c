@@ -17,7 +17,7 @@
 #include <string.h>
 #include "sessile/gpu/graphics.h"
 #include "render_shapes.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 #include "sessile/render/render_mesh.h"
 #include "testutil.h"
 

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <openexr.h>
 #include "render2d_testutil.h"
-#include "sessile/render/colormap.h"
+#include "sessile/io/colormap.h"
 #include "sessile/io/io.h"
 #include "sessile/render/render2d.h"
 #include "sessile/mesh/surface.h"
