@@ -27,6 +27,18 @@ static inline uint8_t *io_put_f64(uint8_t *p, double v) {
   return io_put_u64(p, u);
 }
 
+/* Reverses the order of the h rows of w floats, in place: the plane's
+ * rows (low v first) to an EXR slice's (top first) and back. */
+static inline void io_flip_rows(float *img, size_t w, size_t h) {
+  for (size_t j = 0; j < h / 2; j++) {
+    float *a = img + j * w, *b = img + (h - 1 - j) * w;
+    for (size_t x = 0; x < w; x++) {
+      float t = a[x];
+      a[x] = b[x], b[x] = t;
+    }
+  }
+}
+
 /* fwrite that records a SESSILE_ERR_IO naming the (final) file on failure. */
 sessile_status io_write(sessile_atomic_file *af, const void *data, size_t bytes);
 /* fprintf-like; same error reporting. */
