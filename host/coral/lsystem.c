@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 #include "sessile/io/io.h"
+#include "sessile/run/generator.h"
 #include "sessile/coral/lsystem.h"
 #include "sessile/rng.h"
 #include "sessile/mesh/skeleton.h"
@@ -183,8 +184,7 @@ static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem
   sessile_status s = sessile_run_file(run, "coral/final.ply", path, sizeof path);
   if (s == SESSILE_OK) s = sessile_write_ply_stop(path, m, n, r->vertex_value ? 1 : 0, names, extra, stop);
   if (s == SESSILE_OK) s = stopped(stop);
-  if (s == SESSILE_OK) s = sessile_run_file(run, "coral/final.obj", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_obj_stop(path, m, n, stop);
+  if (s == SESSILE_OK) s = sessile_run_write_obj(run, "coral/final.obj", m, n, stop);
   free(n);
   return s;
 }

@@ -49,8 +49,7 @@ static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj
   if (s == SESSILE_OK && obj) {
     char orel[256];
     snprintf(orel, sizeof orel, "%.*s.obj", (int)(strlen(rel) - 4), rel);
-    s = sessile_run_file(g->run, orel, path, sizeof path);
-    if (s == SESSILE_OK) s = sessile_write_obj(path, &m, NULL);
+    s = sessile_run_write_obj(g->run, orel, &m, NULL, NULL);
   }
   free(val);
   sessile_surface_free(&m);

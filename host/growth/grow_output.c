@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include "grow_internal.h"
 #include "sessile/io/io.h"
+#include "sessile/run/generator.h"
 
 /* Parses a --slices spec against the box's extent mx; bare axes go through
  * center.  Each plane once. */
@@ -200,7 +201,5 @@ sessile_status grow_write_final(grow_run *r) {
   char path[4096];
   SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.ply", path, sizeof path));
   SESSILE_CALL(sessile_write_ply(path, &r->surf, normals, 0, NULL, NULL));
-  SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.obj", path, sizeof path));
-  SESSILE_CALL(sessile_write_obj(path, &r->surf, normals));
-  return SESSILE_OK;
+  return sessile_run_write_obj(r->o->run, "sponge/final.obj", &r->surf, normals, NULL);
 }

@@ -39,6 +39,13 @@ static inline void io_flip_rows(float *img, size_t w, size_t h) {
   }
 }
 
+/* sessile (x, y, z), z up -> (x, z, -y), +Y up, right-handed: the frame of
+ * the glTF writer and of OBJ's y-up convention (a rotation: windings and
+ * handedness kept). */
+static inline void io_dir_yup(const double *v, double *o) {
+  o[0] = v[0], o[1] = v[2], o[2] = -v[1];
+}
+
 /* fwrite that records a SESSILE_ERR_IO naming the (final) file on failure. */
 sessile_status io_write(sessile_atomic_file *af, const void *data, size_t bytes);
 /* fprintf-like; same error reporting. */
@@ -46,6 +53,13 @@ sessile_status io_printf(sessile_atomic_file *af, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 /* Writes s with XML's five special characters escaped (for attribute values). */
 sessile_status io_xml_escaped(sessile_atomic_file *af, const char *s);
+
+/* --- OBJ conventions (obj_style.c) ------------------------------------------ */
+/* SESSILE_ERR_USAGE naming path for an unknown convention or a material
+ * name or mtllib that is empty or holds white space. */
+sessile_status io_obj_style_check(const char *path, const sessile_obj_style *st);
+/* The comment naming a y-up convention, and the mtllib and usemtl lines. */
+sessile_status io_obj_style_lines(sessile_atomic_file *af, const sessile_obj_style *st);
 
 /* --- reading (read_stream.c) ------------------------------------------------ */
 /* Opens path for reading: O_NONBLOCK (a FIFO or device cannot hang the

@@ -57,6 +57,9 @@ struct sessile_run {
   int absent;             /* admitted a folder that does not exist yet */
   int started;            /* sessile_run_start succeeded: the folder is this run's */
   int wrote_lock;         /* this start wrote the lock's owner file */
+  sessile_obj_axes obj_axes; /* how OBJ files are written (sessile_run_set_obj_style) */
+  char obj_material[64];  /* "": the default material */
+  float obj_rgb[3];
 };
 
 /* Whether rel ends in a suffix of what runs write (.ply, .csv, ...). */

@@ -75,6 +75,30 @@ sessile_status sessile_write_ply_stop(const char *path, const sessile_surface *s
 sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
                                       const volatile sig_atomic_t *stop);
 
+/* OBJ's axes and unit (docs/io.md "OBJ conventions").  ZUP_CM is sessile's
+ * own frame (z up, centimetres: the PLY's numbers).  YUP_M is for DCC tools
+ * (Blender, Maya, Houdini): +Y up, right-handed, metres, the glTF writer's
+ * frame: a point (x, y, z) cm is written (x, z, -y) / 100, a normal
+ * (x, z, -y); a rotation, so windings keep their orientation. */
+typedef enum sessile_obj_axes { SESSILE_OBJ_ZUP_CM = 0, SESSILE_OBJ_YUP_M = 1 } sessile_obj_axes;
+/* "zup-cm" or "yup-m" into *out: 0, else -1 (*out untouched). */
+int sessile_obj_axes_parse(const char *name, sessile_obj_axes *out);
+/* "zup-cm", "yup-m" (NULL for anything else). */
+const char *sessile_obj_axes_name(sessile_obj_axes axes);
+typedef struct sessile_obj_style {
+  sessile_obj_axes axes;
+  const char *mtllib;   /* NULL: no material; else "mtllib <mtllib>" (a .mtl beside the OBJ) */
+  const char *material; /* "usemtl <material>" (with mtllib) */
+} sessile_obj_style;
+/* sessile_write_obj_stop in a convention, with a material (style NULL:
+ * sessile_write_obj_stop's bytes).  Names holding white space, or empty,
+ * are SESSILE_ERR_USAGE. */
+sessile_status sessile_write_obj_styled(const char *path, const sessile_surface *s, const double *normals,
+                                        const sessile_obj_style *style, const volatile sig_atomic_t *stop);
+/* A material library of one material `name`: diffuse colour Kd = rgb
+ * (linear, 0..1, clamped), no specular highlight, opaque. */
+sessile_status sessile_write_mtl(const char *path, const char *name, const float rgb[3]);
+
 /* A surface made of several parts (e.g. the tubes of a branching coral),
  * written as one file: the parts' vertices are concatenated in order, and
  * each part's triangle indices (local to the part, 0..nv-1) are offset by the

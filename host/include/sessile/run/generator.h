@@ -194,10 +194,17 @@ cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const 
 sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *cfg, void *params,
                                        sessile_gen_setup *su);
 
-/* Writes the run's file rel (".ply", or ".obj" by its suffix) from s with
- * its vertex normals and, in a PLY, nextra named per-vertex values. */
+/* Writes the run's file rel (".ply", or ".obj" by its suffix through
+ * sessile_run_write_obj) from s with its vertex normals and, in a PLY,
+ * nextra named per-vertex values. */
 sessile_status sessile_run_write_surface(sessile_run *run, const char *rel, const sessile_surface *s, int nextra,
                                          const char *const *names, const double *const *extra);
+/* Writes the run's OBJ rel ("sponge/final.obj") from s with normals (NULL:
+ * none) in the run's OBJ style (sessile_run_set_obj_style), and first its
+ * material library beside it (rel with ".mtl"), both listed in the
+ * manifest; stop as for sessile_write_obj_stop (may be NULL). */
+sessile_status sessile_run_write_obj(sessile_run *run, const char *rel, const sessile_surface *s, const double *normals,
+                                     const volatile sig_atomic_t *stop);
 
 #ifdef __cplusplus
 }
