@@ -134,22 +134,29 @@ typedef enum sessile_axis { SESSILE_AXIS_X = 0, SESSILE_AXIS_Y = 1, SESSILE_AXIS
  * the box's own node grid of the other two axes (P1 interpolation between
  * node layers).  Channel values are float32, width = nodes along the first
  * remaining axis, height = along the second (x,y for a z-plane; x,z for a
- * y-plane; y,z for an x-plane), row 0 at the low end. */
+ * y-plane; y,z for an x-plane), row j counted from the low end of the
+ * second axis; the file stores rows top-down (EXR row 0 = the plane's row
+ * height - 1), so that axis points up in image tools. */
 typedef struct sessile_slice_channel {
   const char *name;     /* e.g. "c", "ux" */
   const double *field;  /* one value per box node */
 } sessile_slice_channel;
-/* Writes an EXR with float32 channels; header attributes "sessile:plane"
+/* Writes an EXR with float32 channels and a colour view of the first: half
+ * R, G, B through the map `render --color-by` picks, linear light (so R, G,
+ * B are refused as channel names); header attributes "sessile:plane"
  * (string, e.g. "z=3.5"), "sessile:origin" (v3f: the world position of pixel
- * (0,0)), "sessile:spacing" (v2f: cm per pixel along width, height),
- * "sessile:iteration" (int).  One scanline part named "slice", ZIP
+ * (0,0), the image's bottom-left), "sessile:spacing" (v2f: cm per pixel
+ * along width, height), "sessile:iteration" (int), "sessile:row_order"
+ * ("top-down"), "sessile:view_channel", "sessile:view_colormap" (strings),
+ * "sessile:view_range" (v2d).  One scanline part named "slice", ZIP
  * compression (level 6).  A plane outside the box is SESSILE_ERR_USAGE. */
 sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
                                        double value, int nchan, const sessile_slice_channel *chan,
                                        int iteration);
 
 /* A slice of any field on any plane: pixel (i, j) (i < width along u, j <
- * height along v, row 0 first) sits at origin + i spacing[0] u + j spacing[1] v,
+ * height along v; stored top-down: v points up in the image) sits at
+ * origin + i spacing[0] u + j spacing[1] v,
  * with u, v the unit vectors of axis_u, axis_v (which must be perpendicular,
  * |cos| <= 1e-6).  The header has the same attributes as the box slice
  * ("sessile:plane" holds label, or "plane" when label is NULL; "sessile:origin";
