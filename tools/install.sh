@@ -20,7 +20,7 @@ $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
   mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
   libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev libcairo2-dev fonts-dejavu-core zlib1g-dev libmuparser-dev \
-  $VTK_PY python3-meshio python3-numpy python3-scipy openimageio-tools man-db zsh assimp-utils >/dev/null
+  $VTK_PY python3-meshio python3-numpy python3-scipy openimageio-tools python3-openimageio man-db zsh assimp-utils >/dev/null
 /usr/bin/python3 -c "import vtkmodules.vtkIOXML, vtkmodules.vtkIOPLY, vtkmodules.vtkIOGeometry" ||
   echo "install.sh: warning: Python's vtkmodules do not import; the reader tests will fail" >&2
 # The .glb tests' readers: assimp (above) and the Khronos glTF validator

@@ -34,6 +34,8 @@ static void print_help(const sessile_generator *g) {
          "  --force         replace the earlier sessile run in DIR     --resume DIR  continue it\n"
          "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
          "  --glb           the final mesh as glTF 2.0 binary too (.glb beside the .ply; docs/io.md)\n"
+         "  --obj-axes A    OBJ files (where written) in zup-cm, sessile's z up and cm (default),\n"
+         "                  or yup-m, y up and metres for Blender and other DCC tools (docs/io.md)\n"
          "  --quiet         no progress and no summary line\n"
          "  --max-memory G  stop with the state saved once the process holds more than G GiB\n"
          "                  after an iteration (default: half the machine's memory; also with --resume)\n",
@@ -197,6 +199,7 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
     s = cfg ? sessile_run_set_config(run, cfg) : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   }
   if (s == SESSILE_OK) cli_run_note_device(run, gpu);
+  if (s == SESSILE_OK) cli_run_obj_style(name, &c->a, run);
   int done = 0;
   c->su.run = run, c->su.gpu = gpu, c->su.result = &c->result;
   int tty = isatty(STDERR_FILENO), show = !c->a.quiet && tty && !g->says_progress;

@@ -23,6 +23,19 @@ static const struct {
     {"sds run", {0.75f, 0.62f, 0.55f}},          /* tissue */
 };
 
+/* The command's colour, or a neutral grey. */
+static void organism_colour(const char *cmd, float rgb[3]) {
+  rgb[0] = rgb[1] = rgb[2] = 0.7f;
+  for (size_t k = 0; k < sizeof colours / sizeof *colours; k++)
+    if (!strcmp(cmd, colours[k].cmd)) memcpy(rgb, colours[k].rgb, sizeof colours[k].rgb);
+}
+
+void cli_run_obj_style(const char *cmd, const cli_run_args *a, sessile_run *run) {
+  float rgb[3];
+  organism_colour(cmd, rgb);
+  sessile_run_set_obj_style(run, a->obj_axes, cmd, rgb); /* "coral venation" -> material coral_venation */
+}
+
 sessile_status cli_run_glb(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel) {
   if (!a->glb || !run) return SESSILE_OK;
   size_t n = strlen(mesh_rel);
@@ -33,8 +46,7 @@ sessile_status cli_run_glb(const char *cmd, const cli_run_args *a, sessile_run *
   SESSILE_CALL(sessile_run_file(run, mesh_rel, ply, sizeof ply));
   SESSILE_CALL(sessile_run_file(run, rel, glb, sizeof glb));
   sessile_gltf_material m = {.name = cmd, .rgba = {0.7f, 0.7f, 0.7f, 1}, .metallic = 0, .roughness = 0.8f};
-  for (size_t k = 0; k < sizeof colours / sizeof *colours; k++)
-    if (!strcmp(cmd, colours[k].cmd)) memcpy(m.rgba, colours[k].rgb, sizeof colours[k].rgb);
+  organism_colour(cmd, m.rgba);
   snprintf(gen, sizeof gen, "sessile %s (%s)", SESSILE_VERSION, cmd);
   /* every organism is in centimetres (the SDS model's unit u is taken as one) */
   return sessile_gltf_write_ply(glb, ply, &m, 0.01, gen);

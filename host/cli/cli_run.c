@@ -24,6 +24,13 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
   if (!strcmp(opt, "--quiet")) return a->quiet = 1;
   if (!strcmp(opt, "--no-preview")) return a->no_preview = 1;
   if (!strcmp(opt, "--glb")) return a->glb = 1;
+  if (!strcmp(opt, "--obj-axes")) { /* like --glb: how this invocation writes, also with --resume */
+    const char *v = cli_value(cmd, argc, argv, i);
+    if (!v || cli_once(cmd, opt, opt)) return -1;
+    if (!sessile_obj_axes_parse(v, &a->obj_axes)) return 1;
+    cli_usage_error(cmd, "--obj-axes takes zup-cm (sessile's z up, cm) or yup-m (y up, metres), not '%.40s'", v);
+    return -1;
+  }
   if (!strcmp(opt, "--force")) return a->force = a->have_run_option = 1;
   static const char *valued[] = {"--config", "--set", "--out", "--resume", "--iterations", "--every", "--seed"};
   int k = 0;

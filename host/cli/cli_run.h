@@ -14,6 +14,7 @@ typedef struct cli_run_args {
   int print_config, force, quiet;
   int no_preview;               /* --no-preview: no preview.png at the end */
   int glb;                      /* --glb: the final mesh as .glb too (cli_glb.c) */
+  sessile_obj_axes obj_axes;    /* --obj-axes zup-cm|yup-m: how OBJ files are written */
   int have_iterations;          /* --iterations given */
   int have_run_option;          /* an option a resume must not change */
   unsigned long long seed;
@@ -53,6 +54,9 @@ void cli_run_preview(const char *cmd, const cli_run_args *a, sessile_run *run, c
  * with the command's material colour (docs/io.md "glTF").  A failure fails
  * the run: the user asked for the file. */
 sessile_status cli_run_glb(const char *cmd, const cli_run_args *a, sessile_run *run, const char *mesh_rel);
+/* The run's OBJ style: --obj-axes and the command's material colour (the
+ * --glb one), for the .mtl beside each OBJ (docs/io.md "OBJ conventions"). */
+void cli_run_obj_style(const char *cmd, const cli_run_args *a, sessile_run *run);
 /* The exit code after sessile_run_close returned s. */
 int cli_run_exit(const char *cmd, sessile_status s, const char *dir, const volatile sig_atomic_t *stop,
                  int iterations_done);

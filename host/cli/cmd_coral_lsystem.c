@@ -37,6 +37,8 @@ static const char *help =
     "  --force         replace the earlier run in DIR\n"
     "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
     "  --glb           coral/final.glb too: the mesh as glTF 2.0 binary (docs/io.md)\n"
+    "  --obj-axes A    coral/final.obj in zup-cm, sessile's z up and cm (default), or\n"
+    "                  yup-m, y up and metres for Blender and other DCC tools (docs/io.md)\n"
     "A derivation has no iterations to resume: --resume and --every are refused.\n"
     "Exit codes: 0 success, 1 runtime failure, 2 bad usage or input (one line on stderr).\n";
 
@@ -184,6 +186,7 @@ static int run_main(int argc, char **argv, const cli_gpu_opts *global, cli_run_a
       s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     }
   }
+  if (s == SESSILE_OK) cli_run_obj_style(CMD, a, run);
   if (s == SESSILE_OK) s = sessile_coral_lsystem_write(run, &p, g, gname, text, len, &r, gpu, stop);
   if (s == SESSILE_OK && !*stop) s = cli_run_glb(CMD, a, run, "coral/final.ply");
   if (s == SESSILE_OK && !*stop) cli_run_preview(CMD, a, run, "coral/final.ply", gpu, &go);

@@ -169,7 +169,6 @@ sessile_status sessile_coral_lsystem_build(const sessile_coral_lsystem_params *p
 
 static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem_result *r,
                                    const volatile sig_atomic_t *stop) {
-  char path[4096];
   const sessile_surface *m = &r->mesh;
   double *n = malloc((size_t)(m->nv ? m->nv : 1) * 3 * sizeof *n);
   SESSILE_CHECK(n, SESSILE_ERR_NO_MEMORY, "out of host memory for %u normals", m->nv);
@@ -188,8 +187,7 @@ static sessile_status write_meshes(sessile_run *run, const sessile_coral_lsystem
   mi.iteration = r->iterations;
   sessile_status s = sessile_run_write_mesh(run, "coral/final.ply", 1, &part, r->vertex_value ? 1 : 0, names, &mi, stop);
   if (s == SESSILE_OK) s = stopped(stop);
-  if (s == SESSILE_OK) s = sessile_run_file(run, "coral/final.obj", path, sizeof path);
-  if (s == SESSILE_OK) s = sessile_write_obj_info(path, m, n, &mi, stop);
+  if (s == SESSILE_OK) s = sessile_run_write_obj(run, "coral/final.obj", m, n, &mi, stop);
   free(n);
   return s;
 }

@@ -26,7 +26,6 @@ static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj
   sessile_skeleton sk = {0};
   sessile_surface m = {0};
   double *val = NULL;
-  char path[4096];
   sessile_status s = sessile_venation_skeleton(v, p, &sk);
   if (s == SESSILE_OK && sk.n == 0) s = sessile_error_set(SESSILE_ERR_INTERNAL, "no vein has grown");
   if (s == SESSILE_OK) {
@@ -51,8 +50,7 @@ static sessile_status write_mesh(const venation_gen *g, const char *rel, int obj
   if (s == SESSILE_OK && obj) {
     char orel[256];
     snprintf(orel, sizeof orel, "%.*s.obj", (int)(strlen(rel) - 4), rel);
-    s = sessile_run_file(g->run, orel, path, sizeof path);
-    if (s == SESSILE_OK) s = sessile_write_obj_info(path, &m, NULL, &mi, NULL);
+    s = sessile_run_write_obj(g->run, orel, &m, NULL, &mi, NULL);
   }
   free(val);
   sessile_surface_free(&m);

@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include "grow_internal.h"
 #include "sessile/io/io.h"
+#include "sessile/run/generator.h"
 
 /* Parses a --slices spec against the box's extent mx; bare axes go through
  * center.  Each plane once. */
@@ -240,12 +241,9 @@ sessile_status grow_forget_snapshot(grow_run *r, int it) {
 }
 
 sessile_status grow_write_final(grow_run *r) {
-  char path[4096];
   SESSILE_CALL(write_surface(r, "sponge/final.ply", r->sum.iterations));
   sessile_mesh_info mi;
   sessile_run_mesh_info(r->o->run, &mi);
   mi.iteration = r->sum.iterations;
-  SESSILE_CALL(sessile_run_file(r->o->run, "sponge/final.obj", path, sizeof path));
-  SESSILE_CALL(sessile_write_obj_info(path, &r->surf, r->normals, &mi, NULL));
-  return SESSILE_OK;
+  return sessile_run_write_obj(r->o->run, "sponge/final.obj", &r->surf, r->normals, &mi, NULL);
 }

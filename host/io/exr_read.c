@@ -69,6 +69,12 @@ static void read_attributes(sessile_exr_in *x) {
     h->axis_v[0] = av.x, h->axis_v[1] = av.y, h->axis_v[2] = av.z;
   }
   h->iteration = exr_attr_get_int(x->ctx, 0, "sessile:iteration", &it) == EXR_ERR_SUCCESS ? it : -1;
+  /* slices written before the row order was recorded are bottom-up */
+  const char *s = NULL;
+  int32_t n = 0;
+  h->top_down = exr_attr_get_string(x->ctx, 0, "sessile:row_order", &n, &s) == EXR_ERR_SUCCESS &&
+                n == 8 && !strncmp(s, "top-down", 8);
+  h->has_view = exr_attr_get_string(x->ctx, 0, "sessile:view_channel", &n, &s) == EXR_ERR_SUCCESS;
   if (exr_get_data_window(x->ctx, 0, &x->dw) == EXR_ERR_SUCCESS) {
     h->width = (int64_t)x->dw.max.x - x->dw.min.x + 1;
     h->height = (int64_t)x->dw.max.y - x->dw.min.y + 1;
@@ -143,11 +149,17 @@ int sessile_exr_find_channel(const sessile_exr_in *x, const char *name) {
   return -1;
 }
 
+/* Whether channel c is one of the colour view's R, G, B. */
+static int is_view(const sessile_exr_in *x, int c) {
+  const char *s = x->cl->entries[c].name.str;
+  return x->h.has_view && (!strcmp(s, "R") || !strcmp(s, "G") || !strcmp(s, "B"));
+}
+
 void sessile_exr_channel_list(const sessile_exr_in *x, char *buf, size_t n) {
   buf[0] = 0;
   for (int c = 0; x->cl && c < x->cl->num_channels; c++) {
     size_t len = strlen(buf);
-    snprintf(buf + len, n - len, "%s%s", c ? ", " : "", x->cl->entries[c].name.str);
+    if (!is_view(x, c)) snprintf(buf + len, n - len, "%s%s", len ? ", " : "", x->cl->entries[c].name.str);
   }
 }
 
@@ -183,7 +195,7 @@ sessile_status sessile_exr_read_channels(sessile_exr_in *x, int n, const char *c
     for (int k = 0; k < dec.channel_count; k++) {
       exr_coding_channel_info_t *ch = &dec.channels[k];
       float *d = target(n, names, dst, ch->channel_name);
-      /* EXR row 0 is the slice's row 0 (the low end of v) */
+      /* EXR rows in file order: a top-down file is flipped after */
       ch->decode_to_ptr = d ? (uint8_t *)(d + (size_t)(ci.start_y - x->dw.min.y) * (size_t)w) : NULL;
       ch->user_pixel_stride = 4;
       ch->user_line_stride = 4 * (int32_t)w;
@@ -196,6 +208,7 @@ sessile_status sessile_exr_read_channels(sessile_exr_in *x, int n, const char *c
   if (dec_live) exr_decoding_destroy(x->ctx, &dec);
   SESSILE_CHECK(r == EXR_ERR_SUCCESS, SESSILE_ERR_USAGE, "cannot decode '%s': %s", path,
                 exr_msg[0] ? exr_msg : exr_get_error_code_as_string(r));
+  for (int k = 0; x->h.top_down && k < n; k++) io_flip_rows(dst[k], (size_t)w, (size_t)h); /* row 0 at low v */
   return SESSILE_OK;
 }
 

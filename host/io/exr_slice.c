@@ -3,9 +3,13 @@
  * plane, given as a sampler callback or as precomputed pixels.  All three
  * share one encoder.
  *
- * One scanline part, float32 channels, ZIP compression (16 lines per zlib
- * block: lossless, deterministic, and read by every EXR tool).  The slice is
- * sampled on the box's own node grid, so between the two node layers the
+ * One scanline part, float32 data channels plus half R, G, B of the first
+ * channel through a colour map (exr_view.c), ZIP compression (16 lines per
+ * zlib block: lossless, deterministic, and read by every EXR tool).  Rows
+ * are stored top-down as EXR expects (row 0 is the top of the image), so
+ * the plane's v axis points up in every viewer; "sessile:row_order" says
+ * so.  The slice is sampled on the box's own node grid, so between the two
+ * node layers the
  * plane falls between the value is the linear blend of the layers; on the
  * Kuhn mesh the node-layer edges are tet edges, so this is exactly the P1
  * interpolant (sessile_box_interpolate) at those points.
@@ -17,6 +21,7 @@
 #include <openexr.h>
 #include <stdlib.h>
 #include <unistd.h>
+#include "exr_view.h"
 #include "io_internal.h"
 
 typedef struct exr_sink {
@@ -105,10 +110,33 @@ typedef struct exr_attrs {
   double axis_u[3], axis_v[3];
 } exr_attrs;
 
-/* The shared encoder: img[c][x + w y] (float32) for channels names[c], into
- * one ZIP scanline part "slice", atomically.  Takes ownership of nothing. */
-static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, int nchan,
-                                      const char *const *names, float *const *img, const exr_attrs *at) {
+/* nchan float images of w x h pixels (freed with free_images). */
+static float **alloc_images(const char *path, int nchan, uint32_t w, uint32_t h) {
+  float **img = calloc((size_t)nchan, sizeof *img);
+  for (int c = 0; img && c < nchan; c++) {
+    img[c] = malloc((size_t)w * h * sizeof(float));
+    if (!img[c]) {
+      for (int d = 0; d < c; d++) free(img[d]);
+      free(img);
+      img = NULL;
+    }
+  }
+  if (!img) sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
+  return img;
+}
+
+static void free_images(float **img, int nchan) {
+  for (int c = 0; img && c < nchan; c++) free(img[c]);
+  free(img);
+}
+
+/* The colour view's channels, after the data's; half is enough for colours. */
+static const char *const view_names[3] = {"R", "G", "B"};
+
+/* The file: nchan float channels names[c], then the three half view
+ * channels, from img[c] (rows already top-down). */
+static sessile_status encode(const char *path, uint32_t w, uint32_t h, int nchan, const char *const *names,
+                             float *const *img, const exr_attrs *at, const exr_view *view) {
   sessile_status st = SESSILE_OK;
   exr_sink sink = {-1, 0};
   exr_context_t ctx = NULL;
@@ -133,8 +161,9 @@ static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, 
           "initialize_required_attr");
   /* explicit level: the library default can be changed process-wide */
   EXR_TRY(exr_set_zip_compression_level(ctx, part, 6), "set_zip_compression_level");
-  for (int c = 0; c < nchan; c++)
-    EXR_TRY(exr_add_channel(ctx, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1),
+  for (int c = 0; c < nchan + 3; c++)
+    EXR_TRY(exr_add_channel(ctx, part, names[c], c < nchan ? EXR_PIXEL_FLOAT : EXR_PIXEL_HALF,
+                            EXR_PERCEPTUALLY_LINEAR, 1, 1),
             "add_channel");
   EXR_TRY(exr_attr_set_string(ctx, part, "sessile:plane", at->plane), "set sessile:plane");
   exr_attr_v3f_t origin = {.x = (float)at->origin[0], .y = (float)at->origin[1], .z = (float)at->origin[2]};
@@ -142,6 +171,11 @@ static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, 
   exr_attr_v2f_t spacing = {.x = (float)at->spacing[0], .y = (float)at->spacing[1]};
   EXR_TRY(exr_attr_set_v2f(ctx, part, "sessile:spacing", &spacing), "set sessile:spacing");
   EXR_TRY(exr_attr_set_int(ctx, part, "sessile:iteration", at->iteration), "set sessile:iteration");
+  EXR_TRY(exr_attr_set_string(ctx, part, "sessile:row_order", "top-down"), "set sessile:row_order");
+  EXR_TRY(exr_attr_set_string(ctx, part, "sessile:view_channel", names[0]), "set sessile:view_channel");
+  EXR_TRY(exr_attr_set_string(ctx, part, "sessile:view_colormap", view->map), "set sessile:view_colormap");
+  exr_attr_v2d_t range = {.x = view->lo, .y = view->hi};
+  EXR_TRY(exr_attr_set_v2d(ctx, part, "sessile:view_range", &range), "set sessile:view_range");
   if (at->has_axes) {
     exr_attr_v3f_t au = {.x = (float)at->axis_u[0], .y = (float)at->axis_u[1], .z = (float)at->axis_u[2]};
     exr_attr_v3f_t av = {.x = (float)at->axis_v[0], .y = (float)at->axis_v[1], .z = (float)at->axis_v[2]};
@@ -162,8 +196,8 @@ static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, 
     for (int k = 0; k < enc.channel_count; k++) {
       exr_coding_channel_info_t *ch = &enc.channels[k];
       int c = 0;
-      while (c < nchan && strcmp(names[c], ch->channel_name) != 0) c++;
-      if (c == nchan) {
+      while (c < nchan + 3 && strcmp(names[c], ch->channel_name) != 0) c++;
+      if (c == nchan + 3) {
         st = sessile_error_set(SESSILE_ERR_INTERNAL, "writing '%s': OpenEXR reports channel '%s'",
                                path, ch->channel_name);
         goto done;
@@ -196,24 +230,30 @@ done:
   return st;
 }
 
-/* nchan float images of w x h pixels (freed with free_images). */
-static float **alloc_images(const char *path, int nchan, uint32_t w, uint32_t h) {
-  float **img = calloc((size_t)nchan, sizeof *img);
-  for (int c = 0; img && c < nchan; c++) {
-    img[c] = malloc((size_t)w * h * sizeof(float));
-    if (!img[c]) {
-      for (int d = 0; d < c; d++) free(img[d]);
-      free(img);
-      img = NULL;
-    }
+/* The shared encoder: img[c][x + w j] (float32, row j = 0 at the plane's
+ * low v) for channels names[c], plus the colour view of img[0], into one
+ * ZIP scanline part "slice", top row first, atomically.  Flips img's rows. */
+static sessile_status write_exr_image(const char *path, uint32_t w, uint32_t h, int nchan,
+                                      const char *const *names, float *const *img, const exr_attrs *at) {
+  float **all = calloc((size_t)nchan + 3, sizeof *all), **rgb = NULL;
+  if (all) rgb = alloc_images(path, 3, w, h);
+  if (!rgb) {
+    free(all);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
   }
-  if (!img) sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of memory writing '%s'", path);
-  return img;
-}
-
-static void free_images(float **img, int nchan) {
-  for (int c = 0; img && c < nchan; c++) free(img[c]);
-  free(img);
+  exr_view view;
+  exr_view_pick(img[0], (size_t)w * h, &view);
+  exr_view_fill(&view, img[0], (size_t)w * h, rgb[0], rgb[1], rgb[2]);
+  const char *nm[64 + 3];
+  for (int c = 0; c < nchan + 3; c++) {
+    all[c] = c < nchan ? img[c] : rgb[c - nchan];
+    nm[c] = c < nchan ? names[c] : view_names[c - nchan];
+    io_flip_rows(all[c], w, h); /* plane row j to EXR row h - 1 - j */
+  }
+  sessile_status st = encode(path, w, h, nchan, nm, all, at, &view);
+  free_images(rgb, 3);
+  free(all);
+  return st;
 }
 
 /* Channel names: 1..64, non-empty, unique. */
@@ -223,6 +263,8 @@ static sessile_status check_channels(const char *path, int nchan, const char *co
   for (int c = 0; c < nchan; c++) {
     SESSILE_CHECK(names[c] && names[c][0], SESSILE_ERR_USAGE, "cannot write '%s': channel %d needs a name",
                   path, c);
+    SESSILE_CHECK(strcmp(names[c], "R") && strcmp(names[c], "G") && strcmp(names[c], "B"), SESSILE_ERR_USAGE,
+                  "cannot write '%s': channel names R, G and B are the colour view's", path);
     for (int d = 0; d < c; d++)
       SESSILE_CHECK(strcmp(names[c], names[d]) != 0, SESSILE_ERR_USAGE,
                     "cannot write '%s': channel name '%s' appears twice", path, names[c]);

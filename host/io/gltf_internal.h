@@ -4,15 +4,15 @@
 #define SESSILE_GLTF_INTERNAL_H
 #include <cjson/cJSON.h>
 #include <stdint.h>
+#include "io_internal.h"
 #include "sessile/io/gltf.h"
 
 /* glTF's componentType and bufferView target codes. */
 enum { GLTF_FLOAT = 5126, GLTF_UINT = 5125, GLTF_ARRAY_BUFFER = 34962, GLTF_ELEMENT_ARRAY_BUFFER = 34963 };
 
-/* sessile (x, y, z), z up -> glTF (x, z, -y), +Y up; positions also scaled. */
-static inline void gltf_dir(const double *v, double *o) {
-  o[0] = v[0], o[1] = v[2], o[2] = -v[1];
-}
+/* sessile (x, y, z), z up -> glTF (x, z, -y), +Y up; positions also
+ * scaled.  The OBJ writer's y-up convention uses the same rotation. */
+static inline void gltf_dir(const double *v, double *o) { io_dir_yup(v, o); }
 
 /* Where mesh k's arrays lie in the BIN chunk: POSITION, NORMAL, the
  * scalars, then the indices, each 4-byte aligned by construction.  Every

@@ -27,6 +27,25 @@ static inline uint8_t *io_put_f64(uint8_t *p, double v) {
   return io_put_u64(p, u);
 }
 
+/* Reverses the order of the h rows of w floats, in place: the plane's
+ * rows (low v first) to an EXR slice's (top first) and back. */
+static inline void io_flip_rows(float *img, size_t w, size_t h) {
+  for (size_t j = 0; j < h / 2; j++) {
+    float *a = img + j * w, *b = img + (h - 1 - j) * w;
+    for (size_t x = 0; x < w; x++) {
+      float t = a[x];
+      a[x] = b[x], b[x] = t;
+    }
+  }
+}
+
+/* sessile (x, y, z), z up -> (x, z, -y), +Y up, right-handed: the frame of
+ * the glTF writer and of OBJ's y-up convention (a rotation: windings and
+ * handedness kept). */
+static inline void io_dir_yup(const double *v, double *o) {
+  o[0] = v[0], o[1] = v[2], o[2] = -v[1];
+}
+
 /* fwrite that records a SESSILE_ERR_IO naming the (final) file on failure. */
 sessile_status io_write(sessile_atomic_file *af, const void *data, size_t bytes);
 /* fprintf-like; same error reporting. */
@@ -89,6 +108,13 @@ typedef struct vtu_array {
 sessile_status io_vtk_compress(const char *path, vtu_array *a);
 /* The array's <DataArray .../> tag, format appended at offset. */
 sessile_status io_vtk_array_tag(sessile_atomic_file *af, const vtu_array *a, uint64_t offset);
+
+/* --- OBJ conventions (obj_style.c) ------------------------------------------ */
+/* SESSILE_ERR_USAGE naming path for an unknown convention or a material
+ * name or mtllib that is empty or holds white space. */
+sessile_status io_obj_style_check(const char *path, const sessile_obj_style *st);
+/* The comment naming a y-up convention, and the mtllib and usemtl lines. */
+sessile_status io_obj_style_lines(sessile_atomic_file *af, const sessile_obj_style *st);
 
 /* --- reading (read_stream.c) ------------------------------------------------ */
 /* Opens path for reading: O_NONBLOCK (a FIFO or device cannot hang the

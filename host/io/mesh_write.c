@@ -229,17 +229,28 @@ static void fmt_exact(char *out, size_t n, double v) {
   }
 }
 
+/* The three coordinates of p as OBJ text in the convention: sessile's own
+ * (z up, cm), or y up in metres through the glTF writer's rotation. */
+static void fmt_vec(char x[3][32], const double *p, sessile_obj_axes axes, double scale) {
+  double q[3] = {p[0], p[1], p[2]};
+  if (axes == SESSILE_OBJ_YUP_M) {
+    io_dir_yup(p, q);
+    for (int a = 0; a < 3; a++) q[a] = q[a] / scale + 0.0; /* + 0.0: no "-0" for -y = -0 */
+  }
+  for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], q[a]);
+}
+
 /* One part's v, vn and f lines; base: vertices written before it. */
-static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part *m, int normals,
+static sessile_status obj_part(sessile_atomic_file *af, const sessile_mesh_part *m, int normals, sessile_obj_axes axes,
                                uint64_t base, const volatile sig_atomic_t *stop) {
   sessile_status st = SESSILE_OK;
   char x[3][32];
   for (uint32_t v = 0; v < m->nv && st == SESSILE_OK && (st = stopped(af->path, stop, v)) == SESSILE_OK; v++) {
-    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->pos[3 * (size_t)v + a]);
+    fmt_vec(x, m->pos + 3 * (size_t)v, axes, 100); /* cm to m */
     st = io_printf(af, "v %s %s %s\n", x[0], x[1], x[2]);
   }
   for (uint32_t v = 0; normals && v < m->nv && st == SESSILE_OK; v++) {
-    for (int a = 0; a < 3; a++) fmt_exact(x[a], sizeof x[a], m->normals[3 * (size_t)v + a]);
+    fmt_vec(x, m->normals + 3 * (size_t)v, axes, 1);
     st = io_printf(af, "vn %s %s %s\n", x[0], x[1], x[2]);
   }
   for (uint32_t f = 0; f < m->nf && st == SESSILE_OK && (st = stopped(af->path, stop, f)) == SESSILE_OK; f++) {
@@ -257,16 +268,25 @@ sessile_status sessile_write_obj(const char *path, const sessile_surface *s, con
 
 sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
                                       const volatile sig_atomic_t *stop) {
-  return sessile_write_obj_info(path, s, normals, NULL, stop);
+  return sessile_write_obj_styled(path, s, normals, NULL, stop);
+}
+
+sessile_status sessile_write_obj_styled(const char *path, const sessile_surface *s, const double *normals,
+                                        const sessile_obj_style *style, const volatile sig_atomic_t *stop) {
+  return sessile_write_obj_info(path, s, normals, style, NULL, stop);
 }
 
 sessile_status sessile_write_obj_info(const char *path, const sessile_surface *s, const double *normals,
-                                      const sessile_mesh_info *info, const volatile sig_atomic_t *stop) {
+                                      const sessile_obj_style *style, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop) {
   sessile_mesh_part part;
   SESSILE_CALL(surface_part(path, s, normals, NULL, &part));
   uint32_t tv, tf;
   int with_normals;
   SESSILE_CALL(io_check_parts(path, 1, &part, 0, NULL, &tv, &tf, &with_normals));
+  sessile_obj_style plain = {SESSILE_OBJ_ZUP_CM, NULL, NULL};
+  if (!style) style = &plain;
+  SESSILE_CALL(io_obj_style_check(path, style));
   sessile_mesh_info lines = info ? *info : (sessile_mesh_info){0}; /* OBJ has no colours */
   lines.color_by = NULL;
   int no_field;
@@ -275,7 +295,8 @@ sessile_status sessile_write_obj_info(const char *path, const sessile_surface *s
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "# sessile sponge surface: %u vertices, %u triangles\n", s->nv, s->nf);
   if (st == SESSILE_OK && info) st = io_mesh_info_lines(&af, "#", &lines);
-  if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, 0, stop);
+  if (st == SESSILE_OK) st = io_obj_style_lines(&af, style);
+  if (st == SESSILE_OK) st = obj_part(&af, &part, normals != NULL, style->axes, 0, stop);
   if (st == SESSILE_OK) st = stopped(path, stop, 0); /* before the fsync */
   if (st != SESSILE_OK) {
     sessile_atomic_abort(&af);
@@ -296,7 +317,7 @@ sessile_status sessile_write_obj_parts(const char *path, int nparts, const sessi
     char nb[32];
     const char *name = part_name(&parts[k], k, nb);
     st = io_printf(&af, "o %s\ng %s\n", name, name);
-    if (st == SESSILE_OK) st = obj_part(&af, &parts[k], normals, base, NULL);
+    if (st == SESSILE_OK) st = obj_part(&af, &parts[k], normals, SESSILE_OBJ_ZUP_CM, base, NULL);
     base += parts[k].nv;
   }
   if (st != SESSILE_OK) {

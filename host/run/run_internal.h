@@ -59,6 +59,9 @@ struct sessile_run {
   int wrote_lock;         /* this start wrote the lock's owner file */
   int state_iteration;    /* the iteration whose state is being written, plus 1 (0: none; run_mesh.c) */
   char seed_text[24];     /* a numeric configuration seed as text (run_mesh.c) */
+  sessile_obj_axes obj_axes; /* how OBJ files are written (sessile_run_set_obj_style) */
+  char obj_material[64];  /* "": the default material */
+  float obj_rgb[3];
 };
 
 /* Whether rel ends in a suffix of what runs write (.ply, .csv, ...). */

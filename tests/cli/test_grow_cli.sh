@@ -58,7 +58,7 @@ check "an unwritable output folder: exit 2, one line" eval 'rc_is 2 && one_line_
 # A short run writes every promised file, atomically.
 run grow --out "$T/r1" $COARSE --preset crella --seed 7 --iterations 2 --every 1
 check "a 2-iteration crella run succeeds" rc_is 0
-for f in manifest.json records.jsonl checkpoint.bin sponge/iter_0001.ply sponge/iter_0002.ply sponge/final.ply sponge/final.obj \
+for f in manifest.json records.jsonl checkpoint.bin sponge/iter_0001.ply sponge/iter_0002.ply sponge/final.ply sponge/final.obj sponge/final.mtl \
          slices/iter_0002_x.exr slices/iter_0002_y.exr slices/iter_0002_z.exr \
          fields/iter_0001.vtu fields/iter_0002.vtu fields/series.pvd; do
   check "run directory holds $f" test -s "$T/r1/$f"

@@ -30,7 +30,10 @@
  *   plane.exr        an oblique plane: origin (-0.5, 0.25, 1), u along
  *                    (1, 1, 0), v along z, spacing (0.125, 0.25), 8 x 4
  *                    pixels, label "oblique", iteration 4; channels
- *                    c = 1 + 2x + 3y + 4z and d = x - y from a sampler */
+ *                    c = 1 + 2x + 3y + 4z and d = x - y from a sampler
+ *   signed.exr       the same plane, label "signed", one channel s = (i - 2)
+ *                    (j + 1) at pixel (i, j) (-8..20: the colour view's
+ *                    coolwarm), NaN at (7, 0) (the view's grey) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -249,5 +252,14 @@ int main(int argc, char **argv) {
   const char *enames[2] = {"c", "d"};
   snprintf(path, sizeof path, "%s/plane.exr", dir);
   CALL(sessile_write_plane_exr(path, &pl, "oblique", 2, enames, plane_sample, NULL, 4));
+
+  /* signed.exr */
+  double sv[32];
+  for (int j = 0; j < 4; j++)
+    for (int i = 0; i < 8; i++) sv[i + 8 * j] = i == 7 && j == 0 ? NAN : (i - 2.0) * (j + 1);
+  const char *sname[1] = {"s"};
+  const double *const svals[1] = {sv};
+  snprintf(path, sizeof path, "%s/signed.exr", dir);
+  CALL(sessile_write_plane_exr_values(path, &pl, "signed", 1, sname, svals, 0));
   return 0;
 }

@@ -299,9 +299,19 @@ static void check_slice(const char *path, const sessile_box *box, sessile_axis a
   t_true("EXR compression is ZIP", comp == EXR_COMPRESSION_ZIP);
   const exr_attr_chlist_t *cl = NULL;
   exr_get_channels(ctx, 0, &cl);
-  int types_ok = cl && cl->num_channels == 2;
-  for (int c = 0; types_ok && c < cl->num_channels; c++) types_ok &= cl->entries[c].pixel_type == EXR_PIXEL_FLOAT;
-  t_true("EXR has 2 FLOAT channels", types_ok);
+  /* sorted by name: the view's B, G, R (half), then c and ux (float) */
+  int types_ok = cl && cl->num_channels == 5;
+  for (int c = 0; types_ok && c < cl->num_channels; c++)
+    types_ok &= cl->entries[c].pixel_type == (c < 3 ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT) &&
+                !strcmp(cl->entries[c].name.str, (const char *[]){"B", "G", "R", "c", "ux"}[c]);
+  t_true("EXR has HALF channels B, G, R and FLOAT channels c, ux", types_ok);
+  const char *order = NULL, *vch = NULL;
+  int32_t olen = 0, vlen = 0;
+  t_true("EXR: sessile:row_order top-down, sessile:view_channel ux (the first given)",
+         exr_attr_get_string(ctx, 0, "sessile:row_order", &olen, &order) == EXR_ERR_SUCCESS && olen == 8 &&
+             !strncmp(order, "top-down", 8) &&
+             exr_attr_get_string(ctx, 0, "sessile:view_channel", &vlen, &vch) == EXR_ERR_SUCCESS && vlen == 2 &&
+             !strncmp(vch, "ux", 2));
 
   const char *plane = NULL;
   int32_t len = 0, it = -1;
@@ -332,8 +342,8 @@ static void check_slice(const char *path, const sessile_box *box, sessile_axis a
     else if (ok) ok = exr_decoding_update(ctx, 0, &ci, &dec) == EXR_ERR_SUCCESS;
     for (int k = 0; ok && k < dec.channel_count; k++) {
       exr_coding_channel_info_t *ch = &dec.channels[k];
-      int which = strcmp(ch->channel_name, "c") == 0 ? 0 : 1;
-      ch->decode_to_ptr = (uint8_t *)(img[which] + (size_t)y * w);
+      int which = !strcmp(ch->channel_name, "c") ? 0 : !strcmp(ch->channel_name, "ux") ? 1 : -1;
+      ch->decode_to_ptr = which < 0 ? NULL : (uint8_t *)(img[which] + (size_t)y * w);
       ch->user_pixel_stride = 4;
       ch->user_line_stride = 4 * w;
       ch->user_bytes_per_element = 4;
@@ -345,14 +355,15 @@ static void check_slice(const char *path, const sessile_box *box, sessile_axis a
   if (live) exr_decoding_destroy(ctx, &dec);
   exr_finish(&ctx);
   t_true("EXR pixels decode", ok);
-  /* reference: the P1 interpolant at each pixel's world position */
+  /* reference: the P1 interpolant at each pixel's world position; EXR row
+   * y is the plane's row h - 1 - y (the top row holds the highest v) */
   double err = 0, scale = 0;
   for (int y = 0; y < h; y++)
     for (int x = 0; x < w; x++) {
       double p[3];
       p[axis] = value;
       p[u] = box->origin[u] + box->h * x;
-      p[v] = box->origin[v] + box->h * y;
+      p[v] = box->origin[v] + box->h * (h - 1 - y);
       double rc = sessile_box_interpolate(box, fc, p), ru = sessile_box_interpolate(box, fu, p);
       err = fmax(err, fmax(fabs(img[0][(size_t)y * w + x] - rc), fabs(img[1][(size_t)y * w + x] - ru)));
       scale = fmax(scale, fmax(fabs(rc), fabs(ru)));
@@ -599,7 +610,9 @@ static void test_parts(void) {
 }
 
 /* --- EXR on any plane -------------------------------------------------------- */
-/* Reads float channels names[0..nchan) of a one-part EXR into img (w x h). */
+/* Reads float channels names[0..nchan) of a one-part EXR into img (w x h),
+ * other channels skipped; the file's rows are top-down, img's the plane's
+ * (row 0 at the low end of v). */
 static int read_exr(const char *path, int nchan, const char *const *names, float **img, int w, int h) {
   exr_context_t ctx = NULL;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -620,9 +633,9 @@ static int read_exr(const char *path, int nchan, const char *const *names, float
       exr_coding_channel_info_t *ch = &dec.channels[k];
       int c = 0;
       while (c < nchan && strcmp(names[c], ch->channel_name)) c++;
-      ok = c < nchan && ch->data_type == EXR_PIXEL_FLOAT;
+      ch->decode_to_ptr = c < nchan ? (uint8_t *)(img[c] + (size_t)y * w) : NULL;
+      ok = c == nchan || ch->data_type == EXR_PIXEL_FLOAT;
       if (!ok) break;
-      ch->decode_to_ptr = (uint8_t *)(img[c] + (size_t)y * w);
       ch->user_pixel_stride = 4;
       ch->user_line_stride = 4 * w;
       ch->user_bytes_per_element = 4;
@@ -633,6 +646,13 @@ static int read_exr(const char *path, int nchan, const char *const *names, float
   }
   if (live) exr_decoding_destroy(ctx, &dec);
   exr_finish(&ctx);
+  for (int c = 0; ok && c < nchan; c++)
+    for (int j = 0; j < h / 2; j++)
+      for (int i = 0; i < w; i++) {
+        float t = img[c][(size_t)j * w + i];
+        img[c][(size_t)j * w + i] = img[c][(size_t)(h - 1 - j) * w + i];
+        img[c][(size_t)(h - 1 - j) * w + i] = t;
+      }
   return ok;
 }
 
@@ -736,7 +756,8 @@ static void test_plane_exr(const sessile_box *box, const double *fc, const doubl
   } bad[] = {{"width 0", "pixels", 0},         {"a NaN origin", "not finite", 1},
              {"parallel axes", "perpendicular", 2}, {"a zero axis", "non-zero", 3},
              {"spacing 0", "spacing", 4},      {"a repeated channel name", "appears twice", 5},
-             {"no sampler", "no sampler", 6},   {"no channels", "channels", 7}};
+             {"no sampler", "no sampler", 6},   {"no channels", "channels", 7},
+             {"a channel named R (the colour view's)", "colour view", 8}};
   for (size_t q = 0; q < sizeof bad / sizeof bad[0]; q++) {
     sessile_plane b = pl;
     const char *nm[2] = {"s", "d"};
@@ -750,6 +771,7 @@ static void test_plane_exr(const sessile_box *box, const double *fc, const doubl
     if (bad[q].k == 5) nm[1] = "s";
     if (bad[q].k == 6) fn = NULL;
     if (bad[q].k == 7) nc = 0;
+    if (bad[q].k == 8) nm[1] = "R";
     sessile_status st = sessile_write_plane_exr(P("planes/bad.exr"), &b, NULL, nc, nm, fn, &pu, 0);
     printf("     message: %s\n", sessile_error_message());
     char what[160];

@@ -158,11 +158,12 @@ static void test_exr_round_trip(void) {
     t_true("the header: plane, origin, spacing, axes, iteration, size, channels",
            !strcmp(h->plane, "test plane") && h->has_origin && h->origin[1] == 2 && h->has_spacing &&
                h->spacing[1] == 0.25 && h->has_axes && h->axis_v[2] == 1 && h->iteration == 5 && h->width == 13 &&
-               h->height == 7 && h->nchannels == 2 && h->scanline);
+               h->height == 7 && h->nchannels == 5 && h->scanline && h->top_down && h->has_view);
     char list[64];
     sessile_exr_channel_list(x, list, sizeof list);
-    t_true("the channel list", !strcmp(list, "c, w") && sessile_exr_find_channel(x, "w") == 1 &&
-                                   sessile_exr_find_channel(x, "q") == -1 && sessile_exr_channel_is_float(x, 0));
+    t_true("the channel list: the data's, not the view's R, G, B",
+           !strcmp(list, "c, w") && sessile_exr_find_channel(x, "w") == 4 && sessile_exr_find_channel(x, "R") == 2 &&
+               sessile_exr_find_channel(x, "q") == -1 && sessile_exr_channel_is_float(x, 3));
     float *got[2] = {malloc(13 * 7 * sizeof(float)), malloc(13 * 7 * sizeof(float))};
     const char *want[2] = {"w", "c"};
     float *const dst[2] = {got[1], got[0]};
@@ -170,7 +171,7 @@ static void test_exr_round_trip(void) {
     int same = 1;
     for (int c = 0; c < 2; c++)
       for (int i = 0; i < 13 * 7 && same; i++) same = got[c][i] == (float)v[c][i];
-    t_true("every pixel of both channels as written (row 0 first)", same);
+    t_true("every pixel of both channels as written (row 0 at the low end of v, the file top-down)", same);
     free(got[0]), free(got[1]);
     sessile_exr_close(x);
   }

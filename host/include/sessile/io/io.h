@@ -75,6 +75,30 @@ sessile_status sessile_write_ply_stop(const char *path, const sessile_surface *s
 sessile_status sessile_write_obj_stop(const char *path, const sessile_surface *s, const double *normals,
                                       const volatile sig_atomic_t *stop);
 
+/* OBJ's axes and unit (docs/io.md "OBJ conventions").  ZUP_CM is sessile's
+ * own frame (z up, centimetres: the PLY's numbers).  YUP_M is for DCC tools
+ * (Blender, Maya, Houdini): +Y up, right-handed, metres, the glTF writer's
+ * frame: a point (x, y, z) cm is written (x, z, -y) / 100, a normal
+ * (x, z, -y); a rotation, so windings keep their orientation. */
+typedef enum sessile_obj_axes { SESSILE_OBJ_ZUP_CM = 0, SESSILE_OBJ_YUP_M = 1 } sessile_obj_axes;
+/* "zup-cm" or "yup-m" into *out: 0, else -1 (*out untouched). */
+int sessile_obj_axes_parse(const char *name, sessile_obj_axes *out);
+/* "zup-cm", "yup-m" (NULL for anything else). */
+const char *sessile_obj_axes_name(sessile_obj_axes axes);
+typedef struct sessile_obj_style {
+  sessile_obj_axes axes;
+  const char *mtllib;   /* NULL: no material; else "mtllib <mtllib>" (a .mtl beside the OBJ) */
+  const char *material; /* "usemtl <material>" (with mtllib) */
+} sessile_obj_style;
+/* sessile_write_obj_stop in a convention, with a material (style NULL:
+ * sessile_write_obj_stop's bytes).  Names holding white space, or empty,
+ * are SESSILE_ERR_USAGE. */
+sessile_status sessile_write_obj_styled(const char *path, const sessile_surface *s, const double *normals,
+                                        const sessile_obj_style *style, const volatile sig_atomic_t *stop);
+/* A material library of one material `name`: diffuse colour Kd = rgb
+ * (linear, 0..1, clamped), no specular highlight, opaque. */
+sessile_status sessile_write_mtl(const char *path, const char *name, const float rgb[3]);
+
 /* A surface made of several parts (e.g. the tubes of a branching coral),
  * written as one file: the parts' vertices are concatenated in order, and
  * each part's triangle indices (local to the part, 0..nv-1) are offset by the
@@ -129,9 +153,11 @@ typedef struct sessile_mesh_info {
 sessile_status sessile_write_ply_info(const char *path, int nparts, const sessile_mesh_part *parts, int nfields,
                                       const char *const *field_names, const sessile_mesh_info *info,
                                       const volatile sig_atomic_t *stop);
-/* sessile_write_obj_stop with the info's header lines. */
+/* sessile_write_obj_styled with the info's header lines (info NULL:
+ * exactly sessile_write_obj_styled's file). */
 sessile_status sessile_write_obj_info(const char *path, const sessile_surface *s, const double *normals,
-                                      const sessile_mesh_info *info, const volatile sig_atomic_t *stop);
+                                      const sessile_obj_style *style, const sessile_mesh_info *info,
+                                      const volatile sig_atomic_t *stop);
 /* The same union as VTK XML PolyData (.vtp, for ParaView and VTK): Float32
  * points, "Normals" and every field as a Float32 point array (the PLY's very
  * values), the main scalar as the active scalars, triangles as Polys (Int32
@@ -148,22 +174,29 @@ typedef enum sessile_axis { SESSILE_AXIS_X = 0, SESSILE_AXIS_Y = 1, SESSILE_AXIS
  * the box's own node grid of the other two axes (P1 interpolation between
  * node layers).  Channel values are float32, width = nodes along the first
  * remaining axis, height = along the second (x,y for a z-plane; x,z for a
- * y-plane; y,z for an x-plane), row 0 at the low end. */
+ * y-plane; y,z for an x-plane), row j counted from the low end of the
+ * second axis; the file stores rows top-down (EXR row 0 = the plane's row
+ * height - 1), so that axis points up in image tools. */
 typedef struct sessile_slice_channel {
   const char *name;     /* e.g. "c", "ux" */
   const double *field;  /* one value per box node */
 } sessile_slice_channel;
-/* Writes an EXR with float32 channels; header attributes "sessile:plane"
+/* Writes an EXR with float32 channels and a colour view of the first: half
+ * R, G, B through the map `render --color-by` picks, linear light (so R, G,
+ * B are refused as channel names); header attributes "sessile:plane"
  * (string, e.g. "z=3.5"), "sessile:origin" (v3f: the world position of pixel
- * (0,0)), "sessile:spacing" (v2f: cm per pixel along width, height),
- * "sessile:iteration" (int).  One scanline part named "slice", ZIP
+ * (0,0), the image's bottom-left), "sessile:spacing" (v2f: cm per pixel
+ * along width, height), "sessile:iteration" (int), "sessile:row_order"
+ * ("top-down"), "sessile:view_channel", "sessile:view_colormap" (strings),
+ * "sessile:view_range" (v2d).  One scanline part named "slice", ZIP
  * compression (level 6).  A plane outside the box is SESSILE_ERR_USAGE. */
 sessile_status sessile_write_slice_exr(const char *path, const sessile_box *box, sessile_axis axis,
                                        double value, int nchan, const sessile_slice_channel *chan,
                                        int iteration);
 
 /* A slice of any field on any plane: pixel (i, j) (i < width along u, j <
- * height along v, row 0 first) sits at origin + i spacing[0] u + j spacing[1] v,
+ * height along v; stored top-down: v points up in the image) sits at
+ * origin + i spacing[0] u + j spacing[1] v,
  * with u, v the unit vectors of axis_u, axis_v (which must be perpendicular,
  * |cos| <= 1e-6).  The header has the same attributes as the box slice
  * ("sessile:plane" holds label, or "plane" when label is NULL; "sessile:origin";

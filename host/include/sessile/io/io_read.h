@@ -70,7 +70,9 @@ typedef struct sessile_slice_header {
   double axis_u[3], axis_v[3];  /* sessile:axis_u/axis_v (a general plane) */
   int iteration;                /* sessile:iteration, -1 when absent */
   int64_t width, height;        /* the data window */
-  int nchannels;
+  int nchannels;                /* every channel, the colour view's R, G, B included */
+  int top_down;                 /* sessile:row_order "top-down" (absent: an older, bottom-up file) */
+  int has_view;                 /* sessile:view_channel: R, G, B are a colour view, not data */
 } sessile_slice_header;
 /* Opens path (regular files only, never blocking) and reads its header
  * through OpenEXR's C API; anything but a sessile slice is refused. */
@@ -81,11 +83,13 @@ const char *sessile_exr_channel_name(const sessile_exr_in *x, int c);
 int sessile_exr_channel_is_float(const sessile_exr_in *x, int c);
 /* Index of channel `name`, or -1. */
 int sessile_exr_find_channel(const sessile_exr_in *x, const char *name);
-/* "a, b, c" (cut to n - 1 characters). */
+/* The data channels "a, b, c" (cut to n - 1 characters): the colour view's
+ * R, G, B left out. */
 void sessile_exr_channel_list(const sessile_exr_in *x, char *buf, size_t n);
-/* Decodes the n channels `names` into dst[k] (width * height floats each,
- * row 0 of the data window first); a slice over 65536 a side or 2^28 pixels
- * is refused. */
+/* Decodes the n channels `names` into dst[k] (width * height floats each)
+ * in the plane's order: row 0 at the low end of v, whichever order the file
+ * stores (top-down since sessile:row_order, bottom-up before); a slice over
+ * 65536 a side or 2^28 pixels is refused. */
 sessile_status sessile_exr_read_channels(sessile_exr_in *x, int n, const char *const *names, float *const *dst);
 void sessile_exr_close(sessile_exr_in *x); /* NULL-safe */
 

@@ -195,12 +195,20 @@ cJSON *sessile_gen_config(const sessile_generator *g, const void *params, const 
 sessile_status sessile_gen_config_read(const sessile_generator *g, const cJSON *cfg, void *params,
                                        sessile_gen_setup *su);
 
-/* Writes the run's file rel (".ply", or ".obj" by its suffix) from s with
- * its vertex normals and, in a PLY, nextra named per-vertex values: through
- * sessile_run_write_mesh (a PLY gets its .vtp; the main scalar is the first
- * value, or the height z without any). */
+/* Writes the run's file rel (".ply", or ".obj" by its suffix through
+ * sessile_run_write_obj) from s with its vertex normals and, in a PLY,
+ * nextra named per-vertex values: through sessile_run_write_mesh (a PLY
+ * gets its .vtp; the main scalar is the first value, or the height z
+ * without any). */
 sessile_status sessile_run_write_surface(sessile_run *run, const char *rel, const sessile_surface *s, int nextra,
                                          const char *const *names, const double *const *extra);
+/* Writes the run's OBJ rel ("sponge/final.obj") from s with normals (NULL:
+ * none) in the run's OBJ style (sessile_run_set_obj_style), with info's
+ * header lines (NULL: sessile_run_mesh_info's), and first its material
+ * library beside it (rel with ".mtl"), both listed in the manifest; stop as
+ * for sessile_write_obj_stop (may be NULL). */
+sessile_status sessile_run_write_obj(sessile_run *run, const char *rel, const sessile_surface *s, const double *normals,
+                                     const sessile_mesh_info *info, const volatile sig_atomic_t *stop);
 
 /* --- mesh files (run_mesh.c; docs/io.md, "Mesh headers") ----------------- */
 /* The iteration whose state the files being written hold (-1: none): the

@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <cjson/cJSON.h>
 #include <stdint.h>
+#include "sessile/io/io.h"
 #include "sessile/run/param_table.h"
 #include "sessile/status.h"
 
@@ -91,6 +92,13 @@ sessile_status sessile_run_write_manifest(sessile_run *r);
 sessile_status sessile_run_file(sessile_run *r, const char *rel, char *path, size_t n);
 /* Removes a file of the run and its listing (absent: not an error). */
 sessile_status sessile_run_remove_file(sessile_run *r, const char *rel);
+
+/* How the run writes OBJ files (sessile_run_write_obj; docs/io.md "OBJ
+ * conventions"): the axes and unit, and the one material of the .mtl beside
+ * each (its name: characters other than letters, digits, '-' and '_'
+ * become '_', at most 63; rgb linear 0..1).  Unset: zup-cm, "sessile", a
+ * neutral grey (0.7). */
+void sessile_run_set_obj_style(sessile_run *r, sessile_obj_axes axes, const char *material, const float rgb[3]);
 
 /* Appends one record (a line of records.jsonl); takes no ownership. */
 sessile_status sessile_run_record(sessile_run *r, const cJSON *rec);
