@@ -51,6 +51,7 @@ typedef struct sds_sim {
   double step_t0;             /* the time at the start of the step being made */
   double t_end;               /* resolved: the option or the model's */
   int frames;
+  double *frame_time;         /* the simulated time of each frame written (frames + 1 entries) */
   char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
   size_t steplog_len, steplog_cap;
 } sds_sim;
@@ -88,7 +89,7 @@ sessile_status sds_inversions(sds_sim *s, int *handled, double *frac);
 /* sds_frames.c: a frame's surface (PLY) and complex (VTU), the PVD series,
  * one record per frame interval. */
 sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const char *ply_rel);
-sessile_status sds_write_pvd(sessile_run *run, int nframes);
+sessile_status sds_write_pvd(sessile_run *run, int nframes, const double *times);
 sessile_status sds_record(sds_sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps);
 sessile_status sds_record_fill(sds_sim *s, cJSON *r, int frame, double ms_per_step, uint64_t steps);
 
@@ -134,6 +135,7 @@ sessile_status sds_run_length(const sessile_sds_model *m, double t_end_in, int f
 sessile_status sds_gen_setup(sds_gen_state *g, const sessile_sds_run_params *params);
 sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck);
 sessile_status sds_gpu_create(sds_gen_state *g);
+double sds_frame_time(const sds_sim *s, int k);
 sessile_status sds_frame_steps(sds_gen_state *g);
 sessile_status sds_sections(sds_gen_state *g, sessile_ckpt_section *sec, int *n);
 void sds_teardown(sds_sim *s);
