@@ -200,7 +200,7 @@ static sessile_status step(sds_sim *s) {
 /* Frame k's time, t_end x (k / frames): k / frames first, so that frames
  * at the same fraction of t_end in runs of other --frames have the same
  * time to the bit (1/5 and 10/50 round alike); the last is t_end itself. */
-double sds_frame_time(const sds_sim *s, int k) { return s->t_end * ((double)k / s->frames); }
+static double frame_time(const sds_sim *s, int k) { return s->t_end * ((double)k / s->frames); }
 
 /* Steps up to frame s->frame: the steps go on until the first whose end is
  * at or past the frame's time (none when an earlier step passed it), so the
@@ -211,7 +211,7 @@ sessile_status sds_frame_steps(sds_gen_state *g) {
   sds_sim *s = &g->s;
   sessile_run *run = g->su->run;
   const sds_gen_args *a = g->su->extra;
-  double next_frame = sds_frame_time(s, s->frame);
+  double next_frame = frame_time(s, s->frame);
   while (s->time < next_frame) {
     SESSILE_CHECK(s->o.ncells <= a->max_cells, SESSILE_ERR_NO_MEMORY,
                   "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, a->max_cells);

@@ -135,7 +135,6 @@ sessile_status sds_run_length(const sessile_sds_model *m, double t_end_in, int f
 sessile_status sds_gen_setup(sds_gen_state *g, const sessile_sds_run_params *params);
 sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck);
 sessile_status sds_gpu_create(sds_gen_state *g);
-double sds_frame_time(const sds_sim *s, int k);
 sessile_status sds_frame_steps(sds_gen_state *g);
 sessile_status sds_sections(sds_gen_state *g, sessile_ckpt_section *sec, int *n);
 void sds_teardown(sds_sim *s);
