@@ -288,20 +288,26 @@ sessile_status sessile_write_vtu_tets(const char *path, const double *xyz, uint3
   return write_vtu_mesh(path, &mesh, nv, nt, npoint, pf, ncell, cf);
 }
 
-sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
-                                 const char *const *files) {
-  SESSILE_CHECK(n >= 0 && (n == 0 || (timesteps && files)), SESSILE_ERR_USAGE,
+/* The collection: integer steps (steps) or simulated times (times, exact in
+ * %.17g; an integer prints as %d would print it). */
+static sessile_status write_pvd(const char *path, int n, const int *steps, const double *times,
+                                const char *const *files) {
+  SESSILE_CHECK(n >= 0 && (n == 0 || ((steps || times) && files)), SESSILE_ERR_USAGE,
                 "cannot write '%s': %d entries", path, n);
-  for (int q = 0; q < n; q++)
+  for (int q = 0; q < n; q++) {
     SESSILE_CHECK(files[q] && files[q][0], SESSILE_ERR_USAGE, "cannot write '%s': entry %d has no file",
                   path, q);
+    SESSILE_CHECK(!times || isfinite(times[q]), SESSILE_ERR_USAGE,
+                  "cannot write '%s': entry %d's time is not finite", path, q);
+  }
   sessile_atomic_file af;
   SESSILE_CALL(sessile_atomic_open(path, &af));
   sessile_status st = io_printf(&af, "<?xml version=\"1.0\"?>\n"
                                      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
                                      "  <Collection>\n");
   for (int q = 0; q < n && st == SESSILE_OK; q++) {
-    st = io_printf(&af, "    <DataSet timestep=\"%d\" group=\"\" part=\"0\" file=\"", timesteps[q]);
+    if (times) st = io_printf(&af, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", times[q]);
+    else st = io_printf(&af, "    <DataSet timestep=\"%d\" group=\"\" part=\"0\" file=\"", steps[q]);
     if (st == SESSILE_OK) st = io_xml_escaped(&af, files[q]);
     if (st == SESSILE_OK) st = io_printf(&af, "\"/>\n");
   }
@@ -311,4 +317,14 @@ sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
     return st;
   }
   return sessile_atomic_commit(&af);
+}
+
+sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
+                                 const char *const *files) {
+  return write_pvd(path, n, timesteps, NULL, files);
+}
+
+sessile_status sessile_write_pvd_times(const char *path, int n, const double *times,
+                                       const char *const *files) {
+  return write_pvd(path, n, NULL, times, files);
 }

@@ -30,7 +30,7 @@ uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, co
 
 /* The organism's sizes, then one section per array (name, where, bytes). */
 enum { NSEC = 20 };
-_Static_assert(NSEC + 3 == SDS_CKPT_NSECTIONS, "sds_checkpoint.h");
+_Static_assert(NSEC + 4 == SDS_CKPT_NSECTIONS, "sds_checkpoint.h");
 typedef struct counts {
   uint64_t ncells, ntets, nedges, nfaces, nmorph, nstate;
 } counts;
@@ -64,7 +64,7 @@ static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *
 }
 
 int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double *retry_at, const uint64_t *sliver,
-                      uint64_t counts_store[6], sessile_ckpt_section *s) {
+                      const double *frame_times, uint64_t counts_store[6], sessile_ckpt_section *s) {
   counts c = {o->ncells, o->ntets, o->nedges, o->nfaces, o->nmorph, o->nstate};
   memcpy(counts_store, &c, sizeof c);
   layout(o, &c, s, NULL);
@@ -72,7 +72,8 @@ int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double
   s[NSEC] = (sessile_ckpt_section){"sds_loop", l, sizeof *l};
   s[NSEC + 1] = (sessile_ckpt_section){"retry_at", retry_at, l->retry_cap * sizeof(double)};
   s[NSEC + 2] = (sessile_ckpt_section){"slivers", sliver, 3 * l->nsliver * sizeof(uint64_t)};
-  return NSEC + 3;
+  s[NSEC + 3] = (sessile_ckpt_section){"frame_times", frame_times, (size_t)l->frame * sizeof(double)};
+  return NSEC + 4;
 }
 
 static sessile_status damaged(const char *what) {

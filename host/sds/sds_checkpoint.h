@@ -27,7 +27,7 @@ typedef struct sds_ckpt_loop {
   uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_inversions.c, repair) */
 } sds_ckpt_loop;
 
-#define SDS_CKPT_VERSION 5u /* 5: the step control keeps no counter (2026-11-24) */
+#define SDS_CKPT_VERSION 6u /* 6: frames do not cut steps, their times kept (5: the step control keeps no counter) */
 
 /* A 64-bit FNV-1a over the model text and the options that shape the
  * outputs (seed, t_end, frames, cell limit). */
@@ -40,11 +40,11 @@ uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, co
 
 /* The state as checkpoint sections (SDS_CKPT_NSECTIONS of them, into s):
  * the organism's arrays, counts (kept in counts_store), the loop's
- * scalars, the deferred divisions and the repairs' backoff.  Returns how
- * many. */
-#define SDS_CKPT_NSECTIONS 23
+ * scalars, the deferred divisions, the repairs' backoff and the times of
+ * the l->frame frames written ("frame_times").  Returns how many. */
+#define SDS_CKPT_NSECTIONS 24
 int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double *retry_at, const uint64_t *sliver,
-                      uint64_t counts_store[6], sessile_ckpt_section *s);
+                      const double *frame_times, uint64_t counts_store[6], sessile_ckpt_section *s);
 
 /* Reads it back: o (freed first) gets every array, l the scalars, *retry_at
  * a new array of l->retry_cap entries and *sliver one of 3 l->nsliver words

@@ -80,26 +80,30 @@ sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const ch
   return st;
 }
 
-sessile_status sds_write_pvd(sessile_run *run, int nframes) {
+/* The series: each frame with its simulated time, that of the first step at
+ * or past the frame's nominal time (docs/sds.md, "The loop"). */
+sessile_status sds_write_pvd(sessile_run *run, int nframes, const double *times) {
   char path[4096];
-  int *steps = malloc(((size_t)nframes + 1) * sizeof *steps);
   char **files = calloc((size_t)nframes + 1, sizeof *files);
-  sessile_status st = steps && files ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  sessile_status st = files ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
   for (int i = 0; st == SESSILE_OK && i < nframes; i++) {
-    steps[i] = i;
     files[i] = malloc(32);
     if (!files[i]) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
     else snprintf(files[i], 32, "frame_%04d.vtu", i);
   }
   if (st == SESSILE_OK) st = sessile_run_file(run, "sds/series.pvd", path, sizeof path);
-  if (st == SESSILE_OK) st = sessile_write_pvd(path, nframes, steps, (const char *const *)files);
+  if (st == SESSILE_OK) st = sessile_write_pvd_times(path, nframes, times, (const char *const *)files);
   for (int i = 0; files && i < nframes; i++) free(files[i]);
-  free(files), free(steps);
+  free(files);
   return st;
 }
 
 sessile_status sds_record_fill(sds_sim *s, cJSON *r, int frame, double ms_per_step, uint64_t steps) {
-  int ok = cJSON_AddNumberToObject(r, "frame", frame) && cJSON_AddNumberToObject(r, "time", s->time) &&
+  /* the frame's time to the bit, as the series and the step log print it
+   * (cJSON's own printer may drop the last bit) */
+  char time[32];
+  snprintf(time, sizeof time, "%.17g", s->time);
+  int ok = cJSON_AddNumberToObject(r, "frame", frame) && cJSON_AddRawToObject(r, "time", time) &&
            cJSON_AddNumberToObject(r, "cells", s->o.ncells) && cJSON_AddNumberToObject(r, "tets", s->o.ntets) &&
            cJSON_AddNumberToObject(r, "steps", (double)steps) &&
            cJSON_AddNumberToObject(r, "ms_per_step", ms_per_step) && cJSON_AddNumberToObject(r, "dt", s->dt) &&

@@ -38,8 +38,12 @@ static const char help[] =
     "  --config FILE   a JSON object of parameters over the model's ({\"dt\": 0.002})\n"
     "  --set KEY=VALUE one parameter over the model's and the configs'\n"
     "  --print-config  print every parameter (value, unit, range, source, meaning) and exit\n"
-    "  --t-end T       simulated time to reach (default: the model's t_end)\n"
-    "  --frames N      frames over t_end (default: the model's frames)\n"
+    "  --t-end T       simulated time to reach: the run ends at the first step at or past it\n"
+    "                  (default: the model's t_end)\n"
+    "  --frames N      frames over t_end, each the state at the first step at or past its\n"
+    "                  time, that time in sds/series.pvd; steps are never cut to land on a\n"
+    "                  frame, so --frames and --t-end do not change the steps (default: the\n"
+    "                  model's frames)\n"
     "  --max-cells N   stop with an error past N cells (default 200000)\n"
     "  --max-steps N   refuse a run whose estimate at the starting organism's stable step\n"
     "                  exceeds N steps (default 10000000)\n"
@@ -216,7 +220,8 @@ static sessile_status sds_create(const void *params, const sessile_gen_setup *su
     if (st == SESSILE_OK) st = sds_write_frame(s, su->run, 0, "sds/frame_0000.ply");
     if (st == SESSILE_OK) st = sds_record(s, su->run, 0, 0, 0);
     s->st->frames = s->frame = 1;
-    if (st == SESSILE_OK) st = sds_write_pvd(su->run, 1);
+    s->frame_time[0] = s->time;
+    if (st == SESSILE_OK) st = sds_write_pvd(su->run, 1, s->frame_time);
     sessile_ckpt_section sec[SDS_CKPT_NSECTIONS];
     int n = 0;
     if (st == SESSILE_OK) st = sds_sections(g, sec, &n);
@@ -247,6 +252,7 @@ static sessile_status sds_step(void *state, int it, cJSON *rec) {
   double now = sessile_wall_seconds();
   uint64_t n = s->steps_frame;
   SESSILE_CALL(sds_record_fill(s, rec, s->frame, 1e3 * (now - g->tf) / (double)(n ? n : 1), n));
+  s->frame_time[s->frame] = s->time;
   s->st->frames = ++s->frame;
   g->tf = now, s->steps_frame = 0;
   return SESSILE_OK;
@@ -255,7 +261,7 @@ static sessile_status sds_step(void *state, int it, cJSON *rec) {
 static sessile_status sds_snapshot(void *state, const char *rel) {
   sds_gen_state *g = state;
   SESSILE_CALL(sds_write_frame(&g->s, g->su->run, g->s.frame - 1, rel));
-  return sds_write_pvd(g->su->run, g->s.frame);
+  return sds_write_pvd(g->su->run, g->s.frame, g->s.frame_time);
 }
 
 static sessile_status sds_gen_sections(void *state, sessile_ckpt_section *sec, int *n) {
@@ -264,7 +270,7 @@ static sessile_status sds_gen_sections(void *state, sessile_ckpt_section *sec, i
 
 static sessile_status sds_finish(void *state) {
   sds_gen_state *g = state;
-  SESSILE_CALL(sds_write_pvd(g->su->run, g->s.frame));
+  SESSILE_CALL(sds_write_pvd(g->su->run, g->s.frame, g->s.frame_time));
   SESSILE_CALL(sds_steplog_flush(&g->s, g->su->run));
   return sds_write_frame(&g->s, g->su->run, -1, "sds/final.ply");
 }

@@ -157,8 +157,7 @@ sessile_status sessile_sds_gpu_advance(sessile_sds_gpu *s, uint32_t steps, doubl
     SESSILE_CALL(step_mode(s, h, 2, &mv));
     SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], 0, hc, 2));
     /* the step taken: the one asked when the device took it (an fp32 device
-     * returns it rounded to float, and a time short of a frame by that
-     * rounding would ask a step below dt_min next), else its cap */
+     * returns it rounded to float), else its cap */
     if (hc[0] != dev_real(s, h)) h = hc[0];
     if (!isfinite(mv))
       return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", h);

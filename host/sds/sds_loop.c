@@ -47,6 +47,8 @@ static sessile_status restore(sds_sim *s, const sessile_ckpt *ck) {
   if (!s->retry_cap) free(s->retry_at), s->retry_at = NULL;
   SESSILE_CHECK(s->frame >= 1 && s->frame <= s->frames + 1 && isfinite(s->time) && s->dt > 0 && s->size0 > 0,
                 SESSILE_ERR_IO, "the checkpoint's loop section does not fit this run (damaged?)");
+  /* the times of the frames written so far (the series lists them) */
+  SESSILE_CALL(sessile_ckpt_take(ck, "frame_times", s->frame_time, (size_t)s->frame * sizeof *s->frame_time));
   s->resumed = 1;
   return SESSILE_OK;
 }
@@ -68,6 +70,8 @@ static sessile_status setup(sds_gen_state *g, const sessile_sds_run_params *para
   SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &own));
   s->key = sds_ckpt_key_params(s->key, &own, &s->prm);
   int nm = sessile_sds_model_nmorph(s->model), ns = sessile_sds_model_nstate(s->model);
+  s->frame_time = calloc((size_t)s->frames + 1, sizeof *s->frame_time);
+  SESSILE_CHECK(s->frame_time, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
   s->tip_state = sessile_sds_model_state_index(s->model, "tip");
   s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
   if (sessile_run_checkpoint_loaded(g->su->run)) return SESSILE_OK;
@@ -93,6 +97,7 @@ void sds_teardown(sds_sim *s) {
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
   free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog);
+  free(s->frame_time);
 }
 
 /* --- the loop --------------------------------------------------------------- */
@@ -149,17 +154,16 @@ static sessile_status check_cells(sds_sim *s) {
   return SESSILE_OK;
 }
 
-/* One step (docs/sds.md, "The loop"). */
-static sessile_status step(sds_sim *s, double next_frame) {
+/* One step (docs/sds.md, "The loop"): of the step the control proposed,
+ * never cut to land on a frame or t_end, so that the outputs asked for do
+ * not change the trajectory. */
+static sessile_status step(sds_sim *s) {
   free(s->xprev);
   s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
   SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
   memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
-  double dt = s->dt, elapsed = 0;
+  double try_dt = s->dt, elapsed = 0;
   s->step_t0 = s->time;
-  int clamped = s->time + dt > next_frame;
-  if (clamped) dt = fmax(next_frame - s->time, 1e-12);
-  double try_dt = dt;
   sessile_status st = sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed);
   if (st == SESSILE_ERR_NUMERIC) {
     /* a non-finite state or a step below dt_min: the integrator's verdict */
@@ -170,9 +174,8 @@ static sessile_status step(sds_sim *s, double next_frame) {
   }
   SESSILE_CALL(st);
   /* step control across calls (one step per call, so that an inversion is
-   * rewound over one step): the integrator proposes the next step; a step cut
-   * short to land on a frame keeps the step it had, unless it was undone */
-  if (!clamped || elapsed < dt * (1 - 1e-12)) s->dt = try_dt;
+   * rewound over one step): the integrator proposes the next step */
+  s->dt = try_dt;
   SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
   SESSILE_CALL(check_motion(s));
   int handled = 0;
@@ -194,24 +197,30 @@ static sessile_status step(sds_sim *s, double next_frame) {
   return SESSILE_OK;
 }
 
-/* Steps up to the end of frame s->frame (the same step boundaries as one
- * loop over the whole run: a step cut short lands on the frame), or
- * SESSILE_ERR_INTERRUPTED after a step when a stop is asked; the state
- * after any step resumes exactly (every step ends with an upload). */
+/* Frame k's time, t_end x (k / frames): k / frames first, so that frames
+ * at the same fraction of t_end in runs of other --frames have the same
+ * time to the bit (1/5 and 10/50 round alike); the last is t_end itself. */
+static double frame_time(const sds_sim *s, int k) { return s->t_end * ((double)k / s->frames); }
+
+/* Steps up to frame s->frame: the steps go on until the first whose end is
+ * at or past the frame's time (none when an earlier step passed it), so the
+ * step boundaries are those of one loop over the whole run, whatever the
+ * frames; or SESSILE_ERR_INTERRUPTED after a step when a stop is asked; the
+ * state after any step resumes exactly (every step ends with an upload). */
 sessile_status sds_frame_steps(sds_gen_state *g) {
   sds_sim *s = &g->s;
   sessile_run *run = g->su->run;
   const sds_gen_args *a = g->su->extra;
-  double next_frame = s->frame * (s->t_end / s->frames);
-  while (s->time < s->t_end * (1 - 1e-12)) {
+  double next_frame = frame_time(s, s->frame);
+  while (s->time < next_frame) {
     SESSILE_CHECK(s->o.ncells <= a->max_cells, SESSILE_ERR_NO_MEMORY,
                   "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, a->max_cells);
     double t0 = s->time, w0 = sessile_wall_seconds();
     uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
-    SESSILE_CALL(step(s, next_frame));
+    SESSILE_CALL(step(s));
     SESSILE_CALL(sds_steplog_row(s, run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
                                  s->st->inversions - i0));
-    if (s->time >= next_frame * (1 - 1e-12)) break;
+    if (s->time >= next_frame) break;
     int stop = sessile_run_stop_requested(run);
     if (stop) return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
   }
@@ -224,7 +233,7 @@ sessile_status sds_sections(sds_gen_state *g, sessile_ckpt_section *sec, int *n)
   sds_sim *s = &g->s;
   SESSILE_CALL(sds_steplog_flush(s, g->su->run));
   loop_scalars(s, &g->loop);
-  *n = sds_ckpt_sections(&s->o, &g->loop, s->retry_at, s->sliver, g->counts, sec);
+  *n = sds_ckpt_sections(&s->o, &g->loop, s->retry_at, s->sliver, s->frame_time, g->counts, sec);
   return SESSILE_OK;
 }
 

@@ -51,6 +51,7 @@ typedef struct sds_sim {
   double step_t0;             /* the time at the start of the step being made */
   double t_end;               /* resolved: the option or the model's */
   int frames;
+  double *frame_time;         /* the simulated time of each frame written (frames + 1 entries) */
   char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
   size_t steplog_len, steplog_cap;
 } sds_sim;
@@ -88,7 +89,7 @@ sessile_status sds_inversions(sds_sim *s, int *handled, double *frac);
 /* sds_frames.c: a frame's surface (PLY) and complex (VTU), the PVD series,
  * one record per frame interval. */
 sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const char *ply_rel);
-sessile_status sds_write_pvd(sessile_run *run, int nframes);
+sessile_status sds_write_pvd(sessile_run *run, int nframes, const double *times);
 sessile_status sds_record(sds_sim *s, sessile_run *run, int frame, double ms_per_step, uint64_t steps);
 sessile_status sds_record_fill(sds_sim *s, cJSON *r, int frame, double ms_per_step, uint64_t steps);
 

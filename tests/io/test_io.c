@@ -416,6 +416,19 @@ static void test_vtu_pvd(const sessile_box *box, const double *fc, const double 
          b && strstr(b, "timestep=\"0\" group=\"\" part=\"0\" file=\"a.vtu\"") &&
              strstr(b, "timestep=\"5\" group=\"\" part=\"0\" file=\"b.vtu\""));
   free(b);
+  /* simulated times: exact (the double reads back), integers as %d prints them */
+  double tt[2] = {0, 0.1 + 0.2}, nan_t[2] = {0, NAN};
+  t_ok("write a PVD of times", sessile_write_pvd_times(P("fields/times.pvd"), 2, tt, files));
+  b = (char *)slurp(P("fields/times.pvd"), &n);
+  const char *at = b ? strstr(b, "file=\"b.vtu\"") : NULL;
+  const char *ts1 = b ? strstr(b, "timestep=\"0.30000000000000004\"") : NULL;
+  t_true("PVD of times: 0 as \"0\", 0.1 + 0.2 exactly, with its file",
+         b && strstr(b, "timestep=\"0\" group=\"\" part=\"0\" file=\"a.vtu\"") && ts1 && at && ts1 < at &&
+             strtod(ts1 + 10, NULL) == tt[1]);
+  free(b);
+  t_true("PVD with a non-finite time is refused",
+         sessile_write_pvd_times(P("fields/nan.pvd"), 2, nan_t, files) == SESSILE_ERR_USAGE &&
+             !exists(P("fields/nan.pvd")));
   sessile_point_data bad = {"v", fc, NULL, 2};
   t_true("VTU with 2 components is refused", sessile_write_vtu(P("fields/c.vtu"), box, 1, &bad) == SESSILE_ERR_USAGE &&
                                                  !exists(P("fields/c.vtu")));

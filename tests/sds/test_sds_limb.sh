@@ -9,8 +9,9 @@
 # W(100) <= 0.25 L(100); and the tip leads it: the tip cell (PLY property
 # tip = 1, one surface cell) is within two of its radii of the front in every
 # frame.  Measured (docs/sds_rules.md, "What the limb model grows"): L =
-# 0.17, 0.50, 0.87, 1.27, 1.60 at t = 20..100, W(100) = 0.00 (viscosity 1;
-# nearly undamped, 0.001: L(100) = 1.45, W = 0.10).
+# 0.17, 0.50, 0.80, 1.16, 1.26 at t = 20..100, W(100) = 0.00 (viscosity 1;
+# 1.60 at t = 100 while frames cut steps; nearly undamped, 0.001, then:
+# L(100) = 1.45, W = 0.10).
 # Usage: test_sds_limb.sh SESSILE [--precision 32|64]: the fp32 kernels of a
 # device without shaderFloat64 must grow the same limb (the manifest's device
 # is checked to have run at the precision asked).

@@ -259,6 +259,9 @@ sessile_status sessile_write_vtu_tets(const char *path, const double *xyz, uint3
 /* ParaView collection listing (timestep, file) pairs; files relative to the .pvd. */
 sessile_status sessile_write_pvd(const char *path, int n, const int *timesteps,
                                  const char *const *files);
+/* The same with each entry's simulated time as its timestep (exact: %.17g). */
+sessile_status sessile_write_pvd_times(const char *path, int n, const double *times,
+                                       const char *const *files);
 
 #ifdef __cplusplus
 }
