@@ -86,4 +86,10 @@ void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);
 int run_open_cut(int dfd, const char *name, uint64_t keep, int refuse_short, const char **why);
 void run_logs_sync(const sessile_run *r);
 void run_logs_close(sessile_run *r);
+
+/* The run loop's progress (run_progress.c): iteration it begins, and ends
+ * (measured by its kind, reported when su->meter has a reporter). */
+#include "sessile/run/generator.h"
+void run_progress_begin(const sessile_gen_setup *su, int it);
+void run_progress_end(const sessile_gen_setup *su, int it);
 #endif
