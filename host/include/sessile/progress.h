@@ -27,7 +27,8 @@ typedef void (*sessile_progress_fn)(void *user, const sessile_progress *p);
 static inline void sessile_progress_count(sessile_progress_fn fn, void *user, const char *stage, int step, int steps,
                                           int ended) {
   if (!fn) return;
-  sessile_progress p = {stage, step, steps, steps > 0 ? (double)step / steps : 0, -1, 0, ended, 0};
+  double f = steps > 0 ? (double)step / steps : 0;
+  sessile_progress p = {stage, step, steps, f < 1 ? f : 1, -1, 0, ended, 0};
   fn(user, &p);
 }
 
