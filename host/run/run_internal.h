@@ -92,4 +92,7 @@ void run_logs_close(sessile_run *r);
 #include "sessile/run/generator.h"
 void run_progress_begin(const sessile_gen_setup *su, int it);
 void run_progress_end(const sessile_gen_setup *su, int it);
+/* The final outputs begin (ended 0) or are written (1): a stage of its own
+ * (a reef's organisms are grown there). */
+void run_progress_finish(const sessile_gen_setup *su, int ended);
 #endif

@@ -131,7 +131,9 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
                   "(--max-memory): its state is saved; resume it with a larger --max-memory, or "
                   "change the parameters that make it grow", it, rss / 1073741824.0, su->max_memory / 1073741824.0);
   }
+  run_progress_finish(su, 0);
   SESSILE_CALL_AT(g->finish(state), "final outputs");
+  run_progress_finish(su, 1);
   return SESSILE_OK;
 }
 

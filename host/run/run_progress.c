@@ -68,3 +68,10 @@ void run_progress_end(const sessile_gen_setup *su, int it) {
   m->sum[k] += sessile_wall_seconds() - m->t_it, m->n[k]++;
   if (m->fn) report(su, m->unit, 1, 1);
 }
+
+void run_progress_finish(const sessile_gen_setup *su, int ended) {
+  const sessile_gen_meter *m = su->meter;
+  if (!m->fn) return;
+  sessile_progress p = {.stage = "final outputs", .fraction = 1, .left_s = ended ? 0 : -1, .ended = ended};
+  m->fn(m->user, &p);
+}
