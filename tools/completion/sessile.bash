@@ -13,7 +13,7 @@ _sessile_takes_value() {
     --device|--precision|--set|--config|--out|-o|--resume|--seed|--iterations|--every|--preset|\
     --grammar|--define|--max-memory|--slices|--t-end|--frames|--max-cells|--max-steps|--size|\
     --view|--turntable|--samples|--background|--color-by|--colormap|--units|--channel|--outline|\
-    --range|--sheet|--caption|--repeat|--mg) return 0 ;;
+    --range|--sheet|--caption|--repeat|--mg|--progress|-j|--jobs) return 0 ;;
   esac
   return 1
 }
@@ -51,6 +51,9 @@ _sessile() {
       return ;;
     --precision)
       COMPREPLY=($(compgen -W "32 64" -- "$cur"))
+      return ;;
+    --progress)
+      COMPREPLY=($(compgen -W "auto tty lines json none" -- "$cur"))
       return ;;
   esac
   _sessile_takes_value "$prev" && return
