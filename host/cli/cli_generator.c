@@ -5,9 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 #include "cli_generator.h"
-#include "cli_monitor.h"
+#include "cli_progress.h"
 #include "cli_run.h"
 
 static void print_help(const sessile_generator *g) {
@@ -19,8 +18,9 @@ static void print_help(const sessile_generator *g) {
   char out[512];
   snprintf(out, sizeof out, g->out_default, g->presets ? g->presets->fallback : ""); /* "runs/%s": the preset's */
   printf("usage: sessile %s%s [--config FILE.json]... [--set KEY=VALUE]... [--seed N]\n"
-         "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n",
-         g->name, g->presets ? " [--preset NAME]" : "", pad, "");
+         "%*s[--iterations N] [--every K] [--out DIR] [--force] [--print-config]\n"
+         "%*s[--quiet] [--progress auto|tty|lines|json|none]\n",
+         g->name, g->presets ? " [--preset NAME]" : "", pad, "", pad, "");
   for (int k = 0; k < g->noptions; k++) printf("%*s[%s %s]\n", pad, "", g->options[k].option, g->options[k].metavar);
   for (int k = 0; k < g->nflags; k++) printf("%*s[%s]\n", pad, "", g->flags[k].option);
   if (g->needs_device) printf("%*s[--device D] [--precision 32|64]\n", pad, "");
@@ -37,9 +37,10 @@ static void print_help(const sessile_generator *g) {
          "  --obj-axes A    OBJ files (where written) in zup-cm, sessile's z up and cm (default),\n"
          "                  or yup-m, y up and metres for Blender and other DCC tools (docs/io.md)\n"
          "  --quiet         no progress and no summary line\n"
+         "%s"
          "  --max-memory G  stop with the state saved once the process holds more than G GiB\n"
          "                  after an iteration (default: half the machine's memory; also with --resume)\n",
-         g->seed_help, g->iterations, g->every, out);
+         g->seed_help, g->iterations, g->every, out, cli_progress_help);
   for (int k = 0; k < g->noptions; k++) {
     char head[64];
     snprintf(head, sizeof head, "%s %s", g->options[k].option, g->options[k].metavar);
@@ -48,14 +49,6 @@ static void print_help(const sessile_generator *g) {
   for (int k = 0; k < g->nflags; k++) printf("  %-15s %s\n", g->flags[k].option, g->flags[k].help);
   if (g->needs_device) printf("  --device D      the device, when the configuration needs one (sessile --help)\n");
   printf("Exit codes: 0 success, 1 runtime failure, 2 bad usage or input, 130/143 interrupted.\n");
-}
-
-/* Progress on a terminal only: logs and pipes get the records instead. */
-static void progress(void *user, int it, int total, double seconds) {
-  const char *name = user;
-  double left = it > 0 ? seconds / it * (total - it) : 0;
-  fprintf(stderr, "\r%s: iteration %d/%d, %.1f s, ~%.0f s left ", name, it, total, seconds, left);
-  if (it == total) fputc('\n', stderr);
 }
 
 typedef struct gen_cmd {
@@ -202,11 +195,11 @@ static int run_generator(gen_cmd *c, int argc, char **argv) {
   if (s == SESSILE_OK) cli_run_obj_style(name, &c->a, run);
   int done = 0;
   c->su.run = run, c->su.gpu = gpu, c->su.result = &c->result;
-  int tty = isatty(STDERR_FILENO), show = !c->a.quiet && tty && !g->says_progress;
-  cli_monitor mon = {.cmd = name, .quiet = c->a.quiet, .tty = tty};
-  c->su.say = cli_monitor_line, c->su.say_user = &mon;
-  if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, show ? progress : NULL, (void *)name, &done);
-  cli_monitor_end(&mon);
+  cli_progress mon;
+  cli_progress_start(&mon, name, c->a.progress, c->a.quiet);
+  c->su.say = cli_progress_say, c->su.say_user = &mon;
+  if (s == SESSILE_OK) s = sessile_run_loop(g, c->params, &c->su, cli_progress_report, &mon, &done);
+  cli_progress_end(&mon);
   if (s == SESSILE_OK && g->preview) s = cli_run_glb(name, &c->a, run, g->preview);
   if (s == SESSILE_OK && g->preview) cli_run_preview(name, &c->a, run, g->preview, gpu, &c->go);
   s = sessile_run_close(run, s);

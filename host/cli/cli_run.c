@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "cli_progress.h"
 #include "cli_run.h"
 
 int cli_run_args_init(cli_run_args *a, int argc, unsigned long long seed, int iterations, int every) {
@@ -32,6 +33,8 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
     return -1;
   }
   if (!strcmp(opt, "--force")) return a->force = a->have_run_option = 1;
+  int r = cli_progress_option(cmd, argc, argv, i, &a->progress);
+  if (r) return r;
   static const char *valued[] = {"--config", "--set", "--out", "--resume", "--iterations", "--every", "--seed"};
   int k = 0;
   while (k < 7 && strcmp(opt, valued[k])) k++;
@@ -62,7 +65,7 @@ int cli_run_option(const char *cmd, int argc, char **argv, int *i, cli_run_args 
 int cli_run_args_check(const char *cmd, const cli_run_args *a) {
   if (a->resume && a->have_run_option)
     return cli_usage_error(cmd, "--resume continues a run with its own configuration: only "
-                                "--iterations, --quiet and device options go with it");
+                                "--iterations, --quiet, --progress and device options go with it");
   return -1;
 }
 

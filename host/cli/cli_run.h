@@ -1,6 +1,6 @@
 /* The options every generator's command shares (--config, --set,
  * --print-config, --seed, --iterations, --every, --out, --force, --resume,
- * --quiet) and the run directory's life around the generator: open (lock,
+ * --quiet, --progress) and the run directory's life around the generator: open (lock,
  * replace or resume), close, and the exit code (130/143 when interrupted). */
 #ifndef SESSILE_CLI_RUN_H
 #define SESSILE_CLI_RUN_H
@@ -15,6 +15,7 @@ typedef struct cli_run_args {
   int no_preview;               /* --no-preview: no preview.png at the end */
   int glb;                      /* --glb: the final mesh as .glb too (cli_glb.c) */
   sessile_obj_axes obj_axes;    /* --obj-axes zup-cm|yup-m: how OBJ files are written */
+  int progress;                 /* --progress MODE (cli_progress.h; 0: not given) */
   int have_iterations;          /* --iterations given */
   int have_run_option;          /* an option a resume must not change */
   unsigned long long seed;

@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include "cli.h"
+#include "cli_progress.h"
 #include "sessile/io/png.h"
 #include "sessile/render/render2d.h"
 #include "sessile/render/render_mesh.h"
@@ -25,7 +26,7 @@ static const char *help =
     "usage: sessile render FILE.ply|FILE.obj|SCENE.json -o OUT.png [options]\n"
     "       sessile render FILE.exr -o OUT.png [--channel C] [--outline FILE.ply]\n"
     "                      [--colormap NAME] [--range LO HI] [--size WxH]\n"
-    "       sessile render RUN_DIR [-o DIR] [--size WxH]\n"
+    "       sessile render RUN_DIR [-o DIR] [--size WxH] [--progress MODE]\n"
     "       sessile render --sheet COLS -o OUT.png A.png [--caption TEXT] B.png ...\n"
     "\n"
     "Meshes are drawn offscreen through Vulkan (any device; lavapipe on a CPU):\n"
@@ -69,6 +70,9 @@ static const char *help =
     "  -o, --out DIR         the folder (default RUN_DIR/renders, listed in the run's\n"
     "                        manifest; refused while a run is writing RUN_DIR)\n"
     "  --size WxH            the final mesh's views (default 1280x960)\n"
+    "  --progress MODE       pictures done on stderr: auto (a status line on a terminal,\n"
+    "                        else a line a tenth), tty, lines, json or none (default\n"
+    "                        auto; none with --quiet; docs/run.md \"Progress\")\n"
     "Contact sheets (no device; the options below only):\n"
     "  --sheet COLS          tile the PNGs given, in order, in rows of COLS (1..1000);\n"
     "                        each cell is the largest picture's size plus a 22-pixel\n"
@@ -148,6 +152,7 @@ typedef struct render_cli {
   const char *in, *out;
   unsigned turntable;
   int quiet, no_annotate, have_size;
+  int progress; /* --progress (cli_progress.h): a run directory's pictures */
   sessile_render_options o;
   /* slices */
   const char *channel, *outline;
@@ -266,7 +271,8 @@ static int parse_args(int argc, char **argv, render_cli *c, cli_gpu_opts *go) {
     else if (!strcmp(a, "--no-grid")) c->o.grid = 0, c->mesh_only = a;
     else if (!strcmp(a, "--quiet")) c->quiet = 1;
     else {
-      int r = cli_gpu_option(CMD, argc, argv, &i, go);
+      int r = cli_progress_option(CMD, argc, argv, &i, &c->progress);
+      if (r == 0) r = cli_gpu_option(CMD, argc, argv, &i, go);
       if (r < 0) return EXIT_USAGE;
       if (r > 0) continue;
       if (a[0] == '-' && a[1]) return cli_usage_error(CMD, "unknown option '%.60s'", a);
@@ -354,7 +360,9 @@ static int render_run(const render_cli *c, const cli_gpu_opts *go) {
                            c->mesh_only ? c->mesh_only : c->slice_only);
   if (c->out && ends_with(c->out, ".png"))
     return cli_usage_error(CMD, "-o '%s': a run directory's pictures go into a folder", SHORT(c->out));
-  sessile_render_run_opts o = {.out_dir = c->out, .quiet = c->quiet};
+  cli_progress pr;
+  cli_progress_start(&pr, CMD, c->progress, c->quiet);
+  sessile_render_run_opts o = {.out_dir = c->out, .quiet = c->quiet, .progress = cli_progress_report, .progress_user = &pr};
   if (c->have_size) o.width = c->o.width, o.height = c->o.height;
   sessile_render_plan *p = NULL;
   sessile_status s = sessile_render_plan_make(c->in, &o, &p);
@@ -363,6 +371,7 @@ static int render_run(const render_cli *c, const cli_gpu_opts *go) {
   s = cli_gpu_create(go, &g);
   double t0 = sessile_wall_seconds();
   if (s == SESSILE_OK) s = sessile_render_plan_run(p, g, stdout);
+  cli_progress_end(&pr);
   sessile_gpu_destroy(g);
   sessile_render_plan_destroy(p);
   if (s != SESSILE_OK) return fail(s);

@@ -290,7 +290,9 @@ static int cmd_plan(int argc, char **argv) {
 
 static const char usage[] =
     "usage: sessile sweep plan SWEEP.json --out DIR   expand a sweep file into a sweep folder\n"
-    "       sessile sweep run DIR [-j N]               run its points here, N at once (default 1)\n"
+    "       sessile sweep run DIR [-j N]               run its points here, N at once (default 1);\n"
+    "                 [--quiet] [--progress MODE]     points done on stderr (auto, tty, lines, json,\n"
+    "                                                 none; docs/run.md \"Progress\")\n"
     "       sessile sweep task DIR INDEX               run one point (what a Slurm array task calls)\n"
     "       sessile sweep submit DIR [--partition P] [--time T] [--gpus-per-task G]\n"
     "                            [--max-parallel M] [--sbatch-arg A]...   one Slurm job array\n"

@@ -14,6 +14,7 @@
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+#include "cli_progress.h"
 #include "cmd_sweep.h"
 #include "sessile/io/io.h"
 
@@ -143,9 +144,20 @@ typedef struct running {
   int index;
 } running;
 
-static int parse_run(int argc, char **argv, const char **dir, int *jobs) {
+/* --quiet: no line of a point that completed, no summary of a sweep that did */
+static int quiet;
+
+static int parse_run(int argc, char **argv, const char **dir, int *jobs, int *progress) {
   for (int i = 1; i < argc; i++) {
     const char *v = NULL;
+    if (cli_stray_value("sweep run", argv, i)) return EXIT_USAGE;
+    int r = cli_progress_option("sweep run", argc, argv, &i, progress);
+    if (r < 0) return EXIT_USAGE;
+    if (r > 0) continue;
+    if (!strcmp(argv[i], "--quiet")) {
+      quiet = 1;
+      continue;
+    }
     if (!strcmp(argv[i], "-j") || !strcmp(argv[i], "--jobs")) {
       if (!(v = cli_value("sweep run", argc, argv, &i))) return EXIT_USAGE;
     } else if (!strncmp(argv[i], "-j", 2)) v = argv[i] + 2;
@@ -155,7 +167,7 @@ static int parse_run(int argc, char **argv, const char **dir, int *jobs) {
     if (v && cli_parse_uint("sweep run", "-j", v, 1, 1024, &u)) return EXIT_USAGE;
     if (v) *jobs = (int)u;
   }
-  return *dir ? -1 : cli_usage_error("sweep run", "usage: sessile sweep run DIR [-j N]");
+  return *dir ? -1 : cli_usage_error("sweep run", "usage: sessile sweep run DIR [-j N] [--quiet] [--progress MODE]");
 }
 
 /* One finished child: its state, one line, the engine's record; 1
@@ -167,7 +179,9 @@ static int finished(const char *dir, int width, int index, int status) {
   last_line(dir, index, width, line, sizeof line);
   record(dir, index, width, rc, stopped, line);
   sweep_state s = sweep_point_state(dir, index, width, err, sizeof err);
-  if (s == PT_COMPLETED && rc == 0) printf("sweep: %0*d completed\n", width, index);
+  if (s == PT_COMPLETED && rc == 0) {
+    if (!quiet) printf("sweep: %0*d completed\n", width, index);
+  }
   else if (stopped) printf("sweep: %0*d interrupted (exit %d); its state is saved\n", width, index, rc);
   else printf("sweep: %0*d failed (exit %d): %s\n", width, index, rc, line[0] ? line : err);
   fflush(stdout);
@@ -176,7 +190,7 @@ static int finished(const char *dir, int width, int index, int status) {
 
 int sweep_cmd_run(int argc, char **argv) {
   const char *dir = NULL;
-  int jobs = 1, rc = parse_run(argc, argv, &dir, &jobs);
+  int jobs = 1, mode = 0, rc = parse_run(argc, argv, &dir, &jobs, &mode);
   if (rc >= 0) return rc;
   cJSON *plan = sweep_load_plan(dir);
   char exe[4096];
@@ -200,9 +214,14 @@ int sweep_cmd_run(int argc, char **argv) {
   sa.sa_handler = on_signal; /* no SA_RESTART: the loop below polls */
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, NULL), sigaction(SIGTERM, &sa, NULL);
-  printf("sweep: %d points: %d completed before, %d to run (%d at once)%s\n", n, done_before, nq, jobs,
-         elsewhere ? "; some run elsewhere" : "");
+  if (!quiet)
+    printf("sweep: %d points: %d completed before, %d to run (%d at once)%s\n", n, done_before, nq, jobs,
+           elsewhere ? "; some run elsewhere" : "");
   fflush(stdout);
+  /* progress: points finished (completed or failed) of all the sweep's */
+  cli_progress pr;
+  cli_progress_start(&pr, "sweep run", mode, quiet);
+  sessile_progress_count(cli_progress_report, &pr, "point", done_before, n, 0);
   int next = 0;
   while (next < nq || nrun > 0) {
     while (!signals_seen && nrun < jobs && next < nq) {
@@ -227,6 +246,7 @@ int sweep_cmd_run(int argc, char **argv) {
         if (run[k].pid == pid) {
           int f = finished(dir, width, run[k].index, status);
           ok += f > 0, bad += f == 0;
+          if (f >= 0) sessile_progress_count(cli_progress_report, &pr, "point", done_before + ok + bad, n, 1);
           run[k] = run[--nrun];
           break;
         }
@@ -236,13 +256,15 @@ int sweep_cmd_run(int argc, char **argv) {
     } else break; /* no children left */
     if (signals_seen && next < nq) nq = next; /* start nothing more */
   }
+  cli_progress_end(&pr);
   if (signals_seen) {
     fprintf(stderr, "sessile sweep run: interrupted (signal %d); 'sessile sweep run %s' goes on\n", (int)last_signal, dir);
     rc = cli_signal_exit_code((int)last_signal);
   } else {
-    printf("sweep: %d completed now, %d before, %d failed%s\n", ok, done_before, bad,
-           elsewhere ? ", some still running elsewhere" : "");
     rc = bad || elsewhere ? EXIT_RUNTIME : EXIT_OK;
+    if (!quiet || rc != EXIT_OK)
+      printf("sweep: %d completed now, %d before, %d failed%s\n", ok, done_before, bad,
+             elsewhere ? ", some still running elsewhere" : "");
   }
   free(queue), free(run);
   cJSON_Delete(plan);

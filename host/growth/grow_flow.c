@@ -211,7 +211,7 @@ sessile_status grow_flow_iteration(grow_run *r, int it, cJSON *rec, int snap) {
   if (!(advect || r->p->fluid_every_iteration || (snap && r->o->run && r->p->fluid_at_snapshots)))
     return SESSILE_OK;
   if (snap_flow && snap == 2) SESSILE_CALL(grow_flow_keep(r, &r->saved)); /* put back after the snapshot */
-  grow_progress(r, it, "fluid", 0);
+  grow_progress(r, "fluid", 0.3);
   sessile_status fs = grow_flow_solve(r, it, rec);
   if (fs == SESSILE_OK || advect) return fs;
   /* Diffusion limited: the flow is output only, so its failure costs the

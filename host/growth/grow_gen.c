@@ -51,7 +51,6 @@ static sessile_status create(const void *params, const sessile_gen_setup *su, vo
   if (call) r->opts = *call->o, r->final_out = call->final, r->summary_out = call->summary;
   else options_from(su, &r->opts);
   r->o = &r->opts, r->p = params, r->gpu = su->gpu, r->su = su;
-  r->first_it = 1;
   r->t_start = sessile_wall_seconds();
   sessile_growth_params_from(r->p, &r->gp);
   SESSILE_CALL(grow_setup(r));
@@ -61,9 +60,7 @@ static sessile_status create(const void *params, const sessile_gen_setup *su, vo
 
 static sessile_status restore(void *state, const sessile_ckpt *ck) {
   grow_run *r = state;
-  SESSILE_CALL(grow_checkpoint_restore(r, ck));
-  r->first_it = sessile_ckpt_iteration(ck) + 1;
-  return SESSILE_OK;
+  return grow_checkpoint_restore(r, ck);
 }
 
 static sessile_status step(void *state, int it, cJSON *rec) {
@@ -157,7 +154,6 @@ const sessile_generator sessile_gen_grow = {
     .options = options,
     .noptions = 1,
     .presets = &presets,
-    .says_progress = 1,
     .unsnapshot = unsnapshot,
 };
 

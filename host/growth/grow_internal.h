@@ -66,7 +66,6 @@ typedef struct grow_run {
   sessile_advdiff *ad;
   uint8_t *nmask, *nsolid;
   double *nval, *nc;
-  int first_it;               /* the first iteration this process runs (1, or after the checkpoint) */
   int warned_degenerate;
   double t_start;
   sessile_grow_summary sum;
@@ -94,7 +93,7 @@ void grow_teardown(grow_run *r);
  * (grow_flow.c), uptake, translocation and growth (grow_step.c), the
  * remesh (grow_remesh.c); r->normals are the new surface's at the end. */
 sessile_status grow_iterate(grow_run *r, int it, cJSON *rec, int snap);
-void grow_progress(grow_run *r, int it, const char *stage, int done);
+void grow_progress(grow_run *r, const char *stage, double part);
 sessile_status grow_classify(grow_run *r);
 sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessile_vec **probe_field);
 sessile_status grow_flow_iteration(grow_run *r, int it, cJSON *rec, int snap);
@@ -129,10 +128,8 @@ void grow_fluid_params(const grow_run *r, sessile_fluid_params *fp);
  * rejected the surface; then nothing else changed. */
 sessile_status grow_flow_conforming(grow_run *r, sessile_fluid_result *res, cJSON *fl, int *fell_back);
 
-/* A line to the caller's monitor (grow_monitor.c); warnings also go to the
- * iteration's record by the caller. */
-void grow_monitor(const grow_run *r, sessile_monitor_kind kind, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
+/* A warning to the caller's monitor (grow_monitor.c); warnings also go to
+ * the iteration's record by the caller. */
 void grow_warn(const grow_run *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* The manifest's growth members (parameters, device, box, ...), and the

@@ -1,5 +1,5 @@
-/* The growth loop's lines for its caller: the library prints nothing; the
- * CLI's monitor decides where progress and warnings go. */
+/* The growth loop's warnings for its caller: the library prints nothing; the
+ * CLI decides where they go (progress is the run loop's report). */
 #include <stdarg.h>
 #include <stdio.h>
 #include "grow_internal.h"
@@ -19,13 +19,6 @@ static void say_line(void *user, const char *line) {
 static void vsay(const grow_run *r, sessile_monitor_kind kind, const char *fmt, va_list ap) {
   say_to t = {r, kind};
   sessile_monitor_vprintf(r->o->monitor ? say_line : NULL, &t, fmt, ap);
-}
-
-void grow_monitor(const grow_run *r, sessile_monitor_kind kind, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsay(r, kind, fmt, ap);
-  va_end(ap);
 }
 
 void grow_warn(const grow_run *r, const char *fmt, ...) {

@@ -54,6 +54,9 @@ struct sessile_render_plan {
   int has_steps_log; /* FOLDER/steps.csv is there (a regular file) */
   uint32_t width, height;
   int quiet;
+  sessile_progress_fn progress;
+  void *progress_user;
+  int npictures; /* planned, for progress (the slices' counted by check_inputs) */
   char **written; /* names written into out_dir */
   int nwritten;
 };

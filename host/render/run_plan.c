@@ -269,6 +269,7 @@ sessile_status sessile_render_plan_make(const char *run_dir, const sessile_rende
   p->width = o && o->width ? o->width : 1280;
   p->height = o && o->height ? o->height : 960;
   p->quiet = o ? o->quiet : 0;
+  if (o) p->progress = o->progress, p->progress_user = o->progress_user;
   sessile_status s = SESSILE_OK;
   char *text = NULL;
   size_t len = 0;

@@ -23,8 +23,9 @@
 
 static const char *const views[4] = {"oblique", "side", "top", "front"};
 
-/* out_dir/name (remembered for the manifest) */
+/* out_dir/name (remembered for the manifest); the pictures before it are done */
 static sessile_status out_path(sessile_render_plan *p, const char *name, char **path) {
+  sessile_progress_count(p->progress, p->progress_user, "picture", p->nwritten, p->npictures, p->nwritten > 0);
   size_t n = strlen(p->out_dir) + strlen(name) + 2;
   *path = malloc(n);
   char *keep = strdup(name);
@@ -110,6 +111,7 @@ static sessile_status draw_slice(sessile_render_plan *p, const rp_slice *sl, con
   sessile_render2d_opts_default(&o);
   if (check) {
     sessile_slice_layout lay;
+    p->npictures++;
     return sessile_render_slice_layout(sl->exr, channel, &o, &lay);
   }
   o.outline_ply = sl->outline;
@@ -261,6 +263,8 @@ static sessile_status check_mesh(const char *path) {
 static sessile_status check_inputs(sessile_render_plan *p) {
   SESSILE_CALL(check_mesh(p->final_mesh));
   int n = tile_count(p);
+  p->npictures = 4 + n + (n > 0) + (p->lay->steps_log != NULL);
+  for (int k = 0; k < 2 && p->lay->plots[k]; k++) p->npictures++;
   for (int k = 0; k < n; k++) SESSILE_CALL(check_mesh(p->snaps[tile_snap(p, k, n)].mesh));
   for (int i = 0; i < p->nslices; i++)
     if (p->slices[i].outline) SESSILE_CALL(check_mesh(p->slices[i].outline));
@@ -286,6 +290,7 @@ sessile_status sessile_render_plan_run(sessile_render_plan *p, sessile_gpu *g, F
   if (s == SESSILE_OK) s = draw_slices(p, log, 0);
   if (s == SESSILE_OK) s = draw_plots(p, log);
   if (s == SESSILE_OK) s = draw_step_times(p, log);
+  if (s == SESSILE_OK) sessile_progress_count(p->progress, p->progress_user, "picture", p->npictures, p->npictures, 1);
   /* what was written is listed even after a failure, so --force removes it */
   if (p->listed && p->nwritten) {
     sessile_status ls = list_in_manifest(p);

@@ -91,4 +91,13 @@ void run_logs_to_keep(const sessile_run *r, run_log_len *out, int *n);
 int run_open_cut(int dfd, const char *name, uint64_t keep, int refuse_short, const char **why);
 void run_logs_sync(const sessile_run *r);
 void run_logs_close(sessile_run *r);
+
+/* The run loop's progress (run_progress.c): iteration it begins, and ends
+ * (measured by its kind, reported when su->meter has a reporter). */
+#include "sessile/run/generator.h"
+void run_progress_begin(const sessile_gen_setup *su, int it);
+void run_progress_end(const sessile_gen_setup *su, int it);
+/* The final outputs begin (ended 0) or are written (1): a stage of its own
+ * (a reef's organisms are grown there). */
+void run_progress_finish(const sessile_gen_setup *su, int ended);
 #endif

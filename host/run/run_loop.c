@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "sessile/run/generator.h"
+#include "run_internal.h"
 
 int sessile_gen_snapshot_kind(const sessile_gen_setup *su, int it) {
   if (su->every > 0 && it % su->every == 0) return 1;
@@ -105,8 +105,7 @@ static sessile_status one_iteration(const sessile_generator *g, void *state, con
   return SESSILE_OK;
 }
 
-static sessile_status loop(const sessile_generator *g, void *state, const sessile_gen_setup *su,
-                           sessile_progress_fn progress, void *user, int *done) {
+static sessile_status loop(const sessile_generator *g, void *state, const sessile_gen_setup *su, int *done) {
   sessile_run *run = su->run;
   const sessile_ckpt *ck = run ? sessile_run_checkpoint_loaded(run) : NULL;
   int first = 1;
@@ -120,9 +119,9 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
     /* the old last iteration was a snapshot only because it was the last */
     if (k < su->iterations && sessile_gen_snapshot_kind(su, k) != 1) SESSILE_CALL(unsnapshot(g, state, run, k));
   }
-  double t0 = sessile_wall_seconds();
   for (int it = first; it <= su->iterations; it++) {
     int snap = 0;
+    run_progress_begin(su, it);
     SESSILE_CALL(one_iteration(g, state, su, it, &snap));
     *done = it;
     int stop = run ? sessile_run_stop_requested(run) : 0;
@@ -131,7 +130,7 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
     double rss = su->max_memory > 0 && run ? sessile_process_memory() : 0;
     int over = rss > su->max_memory && su->max_memory > 0 && run && it < su->iterations;
     if (snap || stop || over) SESSILE_CALL_AT(checkpoint(g, state, run, it), "checkpoint at iteration %d", it);
-    if (progress) progress(user, it, su->iterations, sessile_wall_seconds() - t0);
+    run_progress_end(su, it);
     if (stop && it < su->iterations)
       return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d after iteration %d", stop, it);
     SESSILE_CHECK(!over, SESSILE_ERR_TOO_LARGE,
@@ -140,14 +139,22 @@ static sessile_status loop(const sessile_generator *g, void *state, const sessil
                   "change the parameters that make it grow", it, rss / 1073741824.0, su->max_memory / 1073741824.0);
   }
   sessile_run_set_iteration(run, su->iterations);
+  run_progress_finish(su, 0);
   sessile_status fs = g->finish(state);
   sessile_run_set_iteration(run, -1);
   SESSILE_CALL_AT(fs, "final outputs");
+  run_progress_finish(su, 1);
   return SESSILE_OK;
 }
 
-sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
+sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *setup,
                                 sessile_progress_fn progress, void *user, int *done) {
+  /* the generator keeps su until destroy, within this call: a copy that
+   * carries this loop's meter */
+  sessile_gen_meter meter = {.fn = progress, .user = user, .unit = g->progress_unit ? g->progress_unit : "iteration"};
+  sessile_gen_setup own = *setup;
+  own.meter = &meter;
+  const sessile_gen_setup *su = &own;
   *done = 0;
   SESSILE_CALL(sessile_params_check(g->table, params));
   if (su->run) {
@@ -163,7 +170,7 @@ sessile_status sessile_run_loop(const sessile_generator *g, const void *params, 
     g->destroy(state);
     return sessile_error_pass(s, "setting up");
   }
-  s = loop(g, state, su, progress, user, done);
+  s = loop(g, state, su, done);
   if (g->end) s = g->end(state, s, su->result);
   g->destroy(state);
   return s;

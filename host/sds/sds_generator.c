@@ -13,8 +13,8 @@
 static const char help[] =
     "usage: sessile sds run MODEL [--config FILE.json]... [--set KEY=VALUE]... [--print-config]\n"
     "                           [--t-end T] [--frames N] [--max-cells N] [--max-steps N] [--seed N]\n"
-    "                           [--out DIR] [--force] [--quiet] [--device D]\n"
-    "       sessile sds run [MODEL] --resume DIR [--quiet] [--device D]\n"
+    "                           [--out DIR] [--force] [--quiet] [--progress MODE] [--device D]\n"
+    "       sessile sds run [MODEL] --resume DIR [--quiet] [--progress MODE] [--device D]\n"
     "       sessile sds models         list the shipped models\n"
     "\n"
     "Grows a form with SDS (Porter & McCormack): a tetrahedral complex whose\n"
@@ -52,6 +52,9 @@ static const char help[] =
     "  --out DIR       run directory (default runs/sds-MODEL); must be new or empty\n"
     "  --force         replace the earlier run in DIR\n"
     "  --no-preview    no preview.png at the end of the run (docs/render.md)\n"
+    "  --quiet         no progress and no summary line\n"
+    "  --progress M    progress on stderr (percent of t_end, time left): auto, tty, lines, json\n"
+    "                  or none (default auto; docs/run.md \"Progress\")\n"
     "  --resume DIR    continue the run in DIR from its checkpoint (written at every frame\n"
     "                  and when SIGINT/SIGTERM stops it) with its own model and options; the\n"
     "                  outputs are the same bytes as a run that never stopped (same device).\n"
@@ -384,6 +387,7 @@ const sessile_generator sessile_gen_sds = {
     .extra_free = sds_extra_free,
     .out_dir = sds_out_dir,
     .end = sds_end,
+    .progress_unit = "frame",
 };
 
 sessile_status sessile_sds_run(const sessile_sds_run_options *opt, sessile_sds_run_stats *st) {

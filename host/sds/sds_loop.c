@@ -221,6 +221,7 @@ sessile_status sds_frame_steps(sds_gen_state *g) {
     SESSILE_CALL(sds_steplog_row(s, run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
                                  s->st->inversions - i0));
     if (s->time >= next_frame) break;
+    sessile_gen_progress(g->su, "steps", 1 - (next_frame - s->time) / (s->t_end / s->frames), NULL);
     int stop = sessile_run_stop_requested(run);
     if (stop) return sessile_error_set(SESSILE_ERR_INTERRUPTED, "stopped by signal %d at t = %g", stop, s->time);
   }

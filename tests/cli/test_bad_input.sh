@@ -378,6 +378,19 @@ cases=$(cat <<'CASES'
 2 | render: error: --size given twice | - | render $F/prevrun/sphere/final.ply --out=a.png --size=8x8 --size 9x9
 2 | --range needs two values: LO HI | - | render x.exr -o a.png --range=1
 2 | sds run: error: --t-end: 'inf' is not a decimal number | - | sds run limb --t-end=inf
+# --progress MODE (docs/run.md "Progress"), both forms, on every command that takes it
+2 | grow: error: --progress: 'bogus' is not auto, tty, lines, json or none | - | grow --progress=bogus --print-config
+2 | sphere: error: --progress: 'JSON' is not auto | - | sphere --progress JSON --print-config
+2 | sphere: error: --progress needs a value | - | sphere --progress
+2 | sphere: error: --progress: '' is not auto | - | sphere --progress= --print-config
+2 | sphere: error: --progress given twice | - | sphere --progress=json --progress json --print-config
+2 | sds run: error: --progress: 'x' is not auto | - | sds run limb --progress=x
+2 | coral lsystem: error: --progress: 'x' is not auto | - | coral lsystem --progress=x
+2 | coral venation: error: --progress: 'x' is not auto | - | coral venation --progress=x
+2 | sponge particles: error: --progress: 'x' is not auto | - | sponge particles --progress=x
+2 | render: error: --progress: 'x' is not auto | - | render $F/prevrun --progress=x
+2 | sweep run: error: --progress: 'x' is not auto | - | sweep run $F/nosweep --progress=x
+2 | sweep run: error: --quiet takes no value | - | sweep run $F/nosweep --quiet=1
 2 | sds run: error: --frames given twice | - | sds run limb --frames=1 --frames=2
 2 | sds models: error: takes no arguments | - | sds models --x=1
 2 | coral lsystem: error: --grammar given twice | - | coral lsystem --grammar=flat --grammar flat

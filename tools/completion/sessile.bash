@@ -13,7 +13,7 @@ _sessile_takes_value() {
     --device|--precision|--set|--config|--out|-o|--resume|--seed|--iterations|--every|--preset|\
     --grammar|--define|--max-memory|--slices|--t-end|--frames|--max-cells|--max-steps|--size|\
     --view|--turntable|--samples|--background|--color-by|--colormap|--units|--channel|--outline|\
-    --range|--sheet|--caption|--repeat|--mg|--obj-axes) return 0 ;;
+    --range|--sheet|--caption|--repeat|--mg|--obj-axes|--progress|-j|--jobs) return 0 ;;
   esac
   return 1
 }
@@ -54,6 +54,9 @@ _sessile() {
       return ;;
     --obj-axes)
       COMPREPLY=($(compgen -W "zup-cm yup-m" -- "$cur"))
+      return ;;
+    --progress)
+      COMPREPLY=($(compgen -W "auto tty lines json none" -- "$cur"))
       return ;;
   esac
   _sessile_takes_value "$prev" && return

@@ -10,6 +10,7 @@
 #ifndef SESSILE_RENDER_RUN_H
 #define SESSILE_RENDER_RUN_H
 #include <stdio.h>
+#include "sessile/progress.h"
 #include "sessile/render/render_mesh.h"
 
 #ifdef __cplusplus
@@ -42,6 +43,8 @@ typedef struct sessile_render_run_opts {
   const char *out_dir; /* NULL: RUN_DIR/renders (listed in the run's manifest) */
   uint32_t width, height; /* the final mesh's views (default 1280 x 960) */
   int quiet;
+  sessile_progress_fn progress; /* pictures done of those planned (NULL: none) */
+  void *progress_user;
 } sessile_render_run_opts;
 
 typedef struct sessile_render_plan sessile_render_plan;

@@ -12,6 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "sessile/gpu/gpu.h"
+#include "sessile/progress.h"
 #include "sessile/run/param_table.h"
 #include "sessile/run/run.h"
 #include "sessile/mesh/surface.h"
@@ -30,6 +31,20 @@ typedef void (*sessile_gen_say_fn)(void *user, sessile_monitor_kind kind, const 
 
 #define SESSILE_GEN_MAX_OPTIONS 8
 
+/* The run loop's progress: where its reports go and what it measured for
+ * the estimate of time left (run_progress.c; docs/run.md "Progress").  A
+ * generator reports within an iteration through sessile_gen_progress. */
+typedef struct sessile_gen_meter {
+  sessile_progress_fn fn;  /* NULL: nothing is reported */
+  void *user;
+  const char *unit;        /* the stage of an iteration's end: "iteration", "frame" */
+  int it;                  /* the iteration running */
+  double t_it;             /* its start (wall clock) */
+  double sum[2];           /* seconds of the iterations measured, without [0] and with [1] a snapshot */
+  int n[2];
+  char detail[160];        /* what the iteration made, for the report of its end */
+} sessile_gen_meter;
+
 /* What a generator is given besides its parameters. */
 typedef struct sessile_gen_setup {
   sessile_run *run;      /* the run directory (NULL in the checks before it opens; NULL in a
@@ -46,6 +61,7 @@ typedef struct sessile_gen_setup {
   sessile_gen_say_fn say; /* status, iteration and warning lines (NULL: silent) */
   void *say_user;
   const void *caller;    /* a library caller's own options for this generator (NULL from the CLI) */
+  sessile_gen_meter *meter; /* the run loop's own (set by it; NULL outside the loop) */
 } sessile_gen_setup;
 
 /* What a generator's end() reports to the command around it. */
@@ -151,7 +167,7 @@ typedef struct sessile_generator {
   const sessile_gen_option *options;
   int noptions;
   const sessile_gen_presets *presets;
-  int says_progress; /* 1: its own progress lines through su->say; no generic progress line */
+  const char *progress_unit; /* what an iteration is called in progress reports (NULL: "iteration") */
   /* On a resume past an old last iteration k off the --every grid: removes
    * that final-only snapshot (every file of it).  NULL: the loop removes
    * the snapshot_name file. */
@@ -169,8 +185,11 @@ typedef struct sessile_generator {
  * 2 only because it is the last (a resume that goes on removes it). */
 int sessile_gen_snapshot_kind(const sessile_gen_setup *su, int it);
 
-/* Progress after each iteration (the CLI prints it; NULL: silent). */
-typedef void (*sessile_progress_fn)(void *user, int iteration, int iterations, double seconds);
+/* Within iteration it of the loop: the stage running now and the part of
+ * the iteration done (0..1); detail (NULL: none) is kept for the report of
+ * the iteration's end (stage NULL: only that).  Nothing outside the loop
+ * or without a reporter. */
+void sessile_gen_progress(const sessile_gen_setup *su, const char *stage, double part, const char *detail);
 
 /* Runs the generator in su->run from its checkpoint (if any) to
  * su->iterations: the manifest's parameters, records, snapshots,
@@ -179,7 +198,9 @@ typedef void (*sessile_progress_fn)(void *user, int iteration, int iterations, d
  * after an iteration it checkpoints and fails with SESSILE_ERR_TOO_LARGE.
  * A failure's message names where it passed ("iteration 12: ...").  *done:
  * iterations complete.  su->run NULL (a library caller): the iterations and
- * finish only, no records, snapshots or checkpoints. */
+ * finish only, no records, snapshots or checkpoints.  progress (NULL:
+ * none) hears of each iteration's end and of the generator's reports within
+ * it, with an estimate of the time left. */
 sessile_status sessile_run_loop(const sessile_generator *g, const void *params, const sessile_gen_setup *su,
                                 sessile_progress_fn progress, void *user, int *done);
 
