@@ -45,7 +45,9 @@ sessile_status sds_write_frame(sds_sim *s, sessile_run *run, int frame, const ch
     sessile_mesh_info mi;
     sessile_run_mesh_info(run, &mi);
     mi.length_unit = "u", mi.time_unit = "s", mi.time = s->time, mi.color_by = names[o->nmorph ? 2 : 0];
-    if (frame >= 0) mi.iteration = frame;
+    /* a frame is known by its exact time, not its index: frame k of 5 and
+     * frame 10 k of 50 are one state and the same bytes (docs/sds.md) */
+    mi.iteration = -1;
     st = sessile_run_write_mesh(run, ply_rel, 1, &part, nf, names, &mi, NULL);
   }
   if (st == SESSILE_OK && frame >= 0) {

@@ -442,7 +442,7 @@ cases=$(cat <<'CASES'
 2 | -o 'in\.png' is the input 'in\.png' | png | render --sheet 1 -o in.png in.png
 2 | -o 'link\.png' is the input 'in\.png' | png | render --sheet 2 -o link.png other.png in.png
 # render RUN reads every input before it writes: a damaged one leaves no renders/
-2 | final\.ply: .*bytes follow | truncrun | render prev
+2 | final\.ply: .*the file ends | truncrun | render prev
 # device options
 2 | no device name contains "nosuchdevice" | - | coral venation --device nosuchdevice --out v
 2 | no device name contains "nosuchdevice" | - | sponge particles --device nosuchdevice --out p
@@ -491,7 +491,7 @@ while IFS= read -r line; do
   emptydir) mkdir "$d/e" ;;
   file) echo "not a folder" >"$d/file" ;;
   png) cp "$F/prevrun/preview.png" "$d/in.png" && cp "$d/in.png" "$d/other.png" && ln -s in.png "$d/link.png" ;;
-  truncrun) cp -a "$F/prevrun" "$d/prev" && truncate -s 300 "$d/prev/sphere/final.ply" ;;
+  truncrun) cp -a "$F/prevrun" "$d/prev" && truncate -s -100 "$d/prev/sphere/final.ply" ;;
   esac
   before=$(listing "$d")
   eval "set -- $args"

@@ -86,7 +86,8 @@ def field_strings(fd):
     out = {}
     for i in range(fd.GetNumberOfArrays()):
         a = fd.GetAbstractArray(i)
-        out[a.GetName()] = a.GetVariantValue(0).ToString()
+        # numbers exactly (a variant's text keeps 6 digits), strings as they are
+        out[a.GetName()] = repr(a.GetTuple1(0)) if a.IsNumeric() else a.GetVariantValue(0).ToString()
     return out
 
 

@@ -38,6 +38,8 @@ gen "coral lsystem" ls "" coral lsystem --iterations 3
 gen "coral venation" vn "" coral venation --iterations 20 --every 10
 gen "sds run limb" sds "sds/series.pvd" sds run limb --t-end 2 --frames 2
 check "sds: model units and time in the header" \
-  eval 'grep -aq "^comment units length u time s$" "$T/sds/sds/frame_0001.ply" && grep -aq "^comment time 1$" "$T/sds/sds/frame_0001.ply"'
+  eval 'grep -aq "^comment units length u time s$" "$T/sds/sds/frame_0001.ply" &&
+        t=$(sed -n "s/^comment time //p" "$T/sds/sds/frame_0001.ply" | head -1) && [ -n "$t" ] &&
+        grep -q "timestep=\"$t\" .*file=\"frame_0001.vtu\"" "$T/sds/sds/series.pvd"'
 gen "reef" reef "" reef "$(dirname "$0")/../reef/scene_small.json" --seed 5
 finish

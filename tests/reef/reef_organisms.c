@@ -65,7 +65,8 @@ int main(void) {
   t_must("sphere, exposure 0", cli_reef_organism(&ctx, &es, 7, 0, &a, &sa));
   t_must("sphere, exposure 1", cli_reef_organism(&ctx, &es, 7, 1, &b, &sb));
   t_must("sphere, exposure 0 again", cli_reef_organism(&ctx, &es, 7, 0, &c, &sc));
-  t_true("a sphere's PLY has no scalars", sa.n == 0 && sb.n == 0 && sc.n == 0);
+  t_true("a sphere's PLY has one scalar, its radius (docs/io.md), and no colours", sa.n == 1 && sb.n == 1 &&
+         sc.n == 1 && !strcmp(sa.names[0], "radius"));
   sessile_reef_scalars_free(&sa), sessile_reef_scalars_free(&sb), sessile_reef_scalars_free(&sc);
   t_true("the same seed, the same mesh", a.nv == c.nv && !memcmp(a.pos, c.pos, 3 * (size_t)a.nv * sizeof *a.pos));
   t_check("exposure 1 doubles the sphere's radius", fabs(max_radius(&b) / max_radius(&a) - 2), 1e-9);

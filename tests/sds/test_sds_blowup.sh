@@ -33,7 +33,7 @@ ok = m["state"] == "failed" and m["sds"]["status"] == "blow-up" and re.search(ca
 ok = ok and [r["frame"] for r in recs] == list(range(n)) and n >= 2 and b["last_good_frame"] == n - 1
 ok = ok and b["time"] >= recs[-1]["time"] and b["step"] > 0 and "blow-up" in m["error"]
 files = sorted(f for f in os.listdir(d + "/sds") if f.startswith("frame_"))
-ok = ok and files == sorted(["frame_%04d.%s" % (i, e) for i in range(n) for e in ("ply", "vtu")])
+ok = ok and files == sorted(["frame_%04d.%s" % (i, e) for i in range(n) for e in ("ply", "vtp", "vtu")])
 ok = ok and not os.path.exists(d + "/sds/final.ply")
 pvd = open(d + "/sds/series.pvd").read()
 ok = ok and pvd.count("<DataSet") == n and ("frame_%04d.vtu" % (n - 1)) in pvd
@@ -44,8 +44,12 @@ for i in range(n):
     nv = int([l for l in h if l.startswith("element vertex")][0].split()[2])
     nf = int([l for l in h if l.startswith("element face")][0].split()[2])
     props = [l for l in h if l.startswith("property float")]
-    size = nv * 4 * len(props) + nf * 13
-    xs = struct.unpack_from("<%df" % (nv * len(props)), body)
+    rgb = [l for l in h if l.startswith("property uchar")]  # the colour view: red green blue
+    size = nv * (4 * len(props) + len(rgb)) + nf * 13
+    xs = [] if rgb else struct.unpack_from("<%df" % (nv * len(props)), body)
+    if rgb:  # floats then 3 bytes per vertex
+        rec = struct.Struct("<%df%dB" % (len(props), len(rgb)))
+        xs = [x for k in range(nv) for x in rec.unpack_from(body, k * rec.size)[:len(props)]]
     ok = ok and h[0] == "ply" and nv > 0 and nf > 0 and len(body) == size and all(x == x and abs(x) < 1e30 for x in xs)
 print("frames", n, "blow-up at t", b.get("time"), "step", b.get("step"), ":", b.get("cause"))
 sys.exit(0 if ok else 1)

@@ -16,14 +16,16 @@ def read_ply(path):
     head = data[:end].decode().splitlines()
     assert "format binary_little_endian 1.0" in head, head[:3]
     nv = int([h for h in head if h.startswith("element vertex")][0].split()[2])
-    props, invert = [], False
+    fields, invert = [], False  # (name, numpy type); the colours are uchar
+    types = {"float": "<f4", "uchar": "u1"}
     for h in head:
         if h.startswith("element vertex"): invert = True
         elif h.startswith("element face"): invert = False
-        elif invert and h.startswith("property float "): props.append(h.split()[2])
+        elif invert and h.startswith("property") and h.split()[1] in types:
+            fields.append((h.split()[2], types[h.split()[1]]))
         elif invert and h.startswith("property"): raise SystemExit("unexpected vertex property " + h)
-    v = np.frombuffer(data, dtype="<f4", count=nv * len(props), offset=end).reshape(nv, len(props))
-    return {p: v[:, i].astype(float) for i, p in enumerate(props)}
+    v = np.frombuffer(data, dtype=np.dtype(fields), count=nv, offset=end)
+    return {p: v[p].astype(float) for p, t in fields if t == "<f4"}
 
 
 def measure(sds_dir, nframes, r0=1.0):
