@@ -12,33 +12,13 @@ S="$1"
 . "$(dirname "$0")/../common/harness.sh"
 PY=/usr/bin/python3
 
-# PNG -> "W H NONBLACK" (8-bit RGBA, any of the five row filters)
-cat >"$T/png.py" <<'PYEOF'
-import struct, sys, zlib
-d = open(sys.argv[1], "rb").read()
-assert d[:8] == b"\x89PNG\r\n\x1a\n"
-at, idat, w = 8, b"", 0
-while at < len(d):
-    n, = struct.unpack(">I", d[at:at + 4]); kind = d[at + 4:at + 8]; body = d[at + 8:at + 8 + n]
-    if kind == b"IHDR":
-        w, h, depth, ctype = struct.unpack(">IIBB", body[:10]); assert depth == 8 and ctype == 6
-    elif kind == b"IDAT":
-        idat += body
-    at += 12 + n
-raw = zlib.decompress(idat); stride = 4 * w; prev = bytearray(stride); count = 0
-for y in range(h):
-    f = raw[y * (stride + 1)]; line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-    for i in range(stride):
-        a = line[i - 4] if i >= 4 else 0; b = prev[i]; c = prev[i - 4] if i >= 4 else 0
-        if f == 1: line[i] = (line[i] + a) & 255
-        elif f == 2: line[i] = (line[i] + b) & 255
-        elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-        elif f == 4:
-            p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-            line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-    count += sum(1 for x in range(w) if line[4 * x] or line[4 * x + 1] or line[4 * x + 2])
-    prev = line
-print(w, h, count)
+# PNG -> "W H NONBLACK" (8-bit RGBA, any of the five row filters: tests/common/png_decode.py)
+cat >"$T/png.py" <<PYEOF
+import sys
+sys.path.insert(0, "$(cd "$(dirname "$0")/../common" && pwd)")
+from png_decode import decode
+w, h, rows = decode(sys.argv[1])
+print(w, h, sum(1 for line in rows for x in range(w) if line[4 * x] or line[4 * x + 1] or line[4 * x + 2]))
 PYEOF
 
 cat >"$T/cube.obj" <<'OBJ'
