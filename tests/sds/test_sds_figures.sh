@@ -1,0 +1,163 @@
+#!/usr/bin/env bash
+# The figures tool (tools/sds/figures.py, issue 33) measures what it claims:
+# on synthetic frames of a known shape (a limb of rings of cells with a neck
+# and a bulb, one interior cell per ring; two limbs with stripes at known
+# places; cell counts linear and exponential in time) its metrics are the
+# shape's own, and its criteria fail where the shape breaks them (a bulb
+# 1.5x the neck, the tip two radii behind the front, cells growing
+# exponentially).  Then it runs on real frames (the limb and rock models to a
+# few time units) and its slices account for every cell of the frame.
+set -u
+S="$1"
+. "$(dirname "$0")/../common/harness.sh"
+PY=/usr/bin/python3
+FIG="$(dirname "$0")/../../tools/sds/figures.py"
+
+check "synthetic frames: the limb's widths, neck, tip lead and length; stripes counted and spaced; R^2 of a line" \
+  "$PY" -B - "$T" "$FIG" <<'PYEOF'
+import json, os, subprocess, sys, zlib
+import numpy as np
+T, FIG = sys.argv[1], sys.argv[2]
+
+def write_vtu(path, x, fields, tets):
+    """sessile's VTU layout: appended raw, one zlib block per array, UInt64 headers."""
+    arrays, blobs, off = [], b"", 0
+    def add(kind, typ, name, comps, a):
+        nonlocal blobs, off
+        raw = np.ascontiguousarray(a).tobytes()
+        z = zlib.compress(raw)
+        b = np.array([1, len(raw), len(raw), len(z)], "<u8").tobytes() + z
+        arrays.append((kind, '<DataArray type="%s"%s NumberOfComponents="%d" format="appended" offset="%d"/>'
+                       % (typ, ' Name="%s"' % name if name else "", comps, off)))
+        blobs += b
+        off += len(b)
+    for k, v in fields.items():
+        add("PointData", "UInt8" if k == "surface" else "Float64", k, 1, v.astype("u1" if k == "surface" else "<f8"))
+    add("Points", "Float64", None, 3, x.astype("<f8"))
+    add("Cells", "Int32", "connectivity", 1, tets.astype("<i4"))
+    body = "".join("<%s>\n%s\n</%s>\n" % (k, a, k) for k, a in arrays)
+    head = ('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" '
+            'header_type="UInt64" compressor="vtkZLibDataCompressor">\n<UnstructuredGrid>\n'
+            '<Piece NumberOfPoints="%d" NumberOfCells="%d">\n%s</Piece>\n</UnstructuredGrid>\n'
+            '  <AppendedData encoding="raw">\n   _' % (len(x), len(tets), body))
+    with open(path, "wb") as f:
+        f.write(head.encode() + blobs + b"\n  </AppendedData>\n</VTKFile>\n")
+
+def chain(n):  # tets of four consecutive cells: every cell used, a path along the order
+    return np.array([[i, i + 1, i + 2, i + 3] for i in range(n - 3)])
+
+def limb_run(d, neck, bulb, tip_back):
+    """A unit sphere of cells (and one inside), and along +x rings of 8 surface cells round one
+    interior cell every 0.2 u from x = 1 to 3: radius `neck` up to x = 2,
+    `bulb` after; the tip on the axis, tip_back behind the front."""
+    ring = lambda x, r: [(x, r * np.cos(a), r * np.sin(a)) for a in np.arange(8) * np.pi / 4]
+    pts = [(1.0, 0, 0), (-1.0, 0, 0)]  # the body: poles and rings (symmetric: its centre on the axis)
+    for th in np.arange(1, 8) * np.pi / 8:
+        pts += ring(np.cos(th), np.sin(th))
+    surf = [1] * len(pts)
+    pts.append((0, 0, 0)); surf.append(0)
+    for x in np.arange(1.1, 3.0, 0.2):
+        rr = neck if x < 2 else bulb
+        pts += ring(x, rr); surf += [1] * 8
+        pts.append((x, 0, 0)); surf.append(0)
+    pts.append((3.0, 0, 0)); surf.append(1)  # the front cell
+    pts.append((3.0 - tip_back, 0.0, 0.0)); surf.append(1)  # the tip (radius 0.1)
+    x = np.array(pts, float)
+    n = len(x)
+    tip = np.zeros(n); tip[-1] = 1
+    os.makedirs(d + "/sds", exist_ok=True)
+    for k, xx in enumerate((x, x)):  # frame 0 gives the axis: the tip's direction
+        write_vtu("%s/sds/frame_%04d.vtu" % (d, k), xx, {"radius": np.full(n, 0.1), "surface": np.array(surf),
+                  "tip": tip}, chain(n))
+    return n
+
+def fig(*a):
+    out = subprocess.run([sys.executable, "-B", FIG] + list(a), capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    print(out.stdout.splitlines()[-1][:400])
+    return json.loads(out.stdout.splitlines()[-1])
+
+ok = True
+def expect(what, cond):
+    global ok
+    print(("ok   " if cond else "FAIL ") + what)
+    ok &= bool(cond)
+
+ncells = limb_run(T + "/good", 0.5, 0.55, 0.05)
+m = fig("limb", T + "/good", "--slice", "0.2")
+expect("a straight limb: distal / neck = 0.55 / 0.5", abs(m["distal_over_neck"] - 1.1) < 1e-9)
+expect("... the neck one cell thick inside", m["neck_interior"] == 1)
+expect("... length 2 (3 - (-1) - 2 R0), 2 / neck width 1", abs(m["length"] - 2) < 1e-9 and abs(m["length_over_neck"] - 2) < 1e-9)
+expect("... the tip 0.05 behind the front, within its radius", abs(m["tip_behind_front"] - 0.05) < 1e-9
+       and m["criteria"]["tip_within_one_radius_of_front"] and m["criteria"]["distal_at_most_1.2_neck"])
+expect("... length < 3 necks: that criterion fails", not m["criteria"]["length_at_least_3_necks"])
+expect("... every used cell in one slice", sum(r["cells"] for r in m["profile"]) == ncells)
+limb_run(T + "/bulb", 0.3, 0.45, 0.2)
+m = fig("limb", T + "/bulb", "--slice", "0.2")
+expect("a bulb 1.5x the neck, the tip 2 radii back: both criteria fail, length / neck = 2 / 0.6",
+       abs(m["distal_over_neck"] - 1.5) < 1e-9 and not m["criteria"]["distal_at_most_1.2_neck"]
+       and not m["criteria"]["tip_within_one_radius_of_front"] and m["criteria"]["length_at_least_3_necks"])
+
+# stripes: limb +x with stripe cells at 1.0-1.2, 2.0-2.2, 3.0-3.2 from the tip; limb -x at 0.5-0.7, 1.0-1.2
+d = T + "/stripes"
+os.makedirs(d + "/sds")
+s = np.arange(80) * 0.05
+x = np.concatenate([np.stack([5 - s, 0 * s, 0 * s], 1), np.stack([-5 + s[:-2][::-1], 0 * s[:-2], 0 * s[:-2]], 1)])
+dist = np.concatenate([s, s[:-2][::-1]])
+n = len(x)
+on = np.where(dist[:len(s)] % 1.0 < 0.2 - 1e-9, 1.0, 0.0) * (s >= 1 - 1e-9)
+on2 = np.where(dist[len(s):] % 0.5 < 0.2 - 1e-9, 1.0, 0.0) * (dist[len(s):] >= 0.5 - 1e-9) * (dist[len(s):] < 1.5)
+tip = np.zeros(n); tip[0] = 1; tip[len(s) + len(s) - 3] = 1
+tets = np.concatenate([chain(len(s)), chain(len(s) - 2) + len(s)])
+write_vtu(d + "/sds/frame_0000.vtu", x, {"radius": np.full(n, 0.025), "surface": np.ones(n),
+          "tip": tip, "stripe": np.concatenate([on, on2])}, tets)
+m = fig("stripes", d, "--bin", "0.1")
+a, b = m["limbs"]
+expect("limb +x: 3 stripes 1.0 apart", a["stripes"] == 3 and abs(a["spacing"] - 1.0) < 1e-9)
+expect("limb -x: 2 stripes 0.5 apart", b["stripes"] == 2 and abs(b["spacing"] - 0.5) < 1e-9)
+expect("... so not three per limb", not m["criteria"]["three_stripes_per_limb"] and m["stripes_min"] == 2)
+
+for name, f in (("line", lambda t: 100 + 5 * t), ("exp", lambda t: 100 * 2 ** (t / 40))):
+    os.makedirs("%s/%s" % (T, name))
+    with open("%s/%s/records.jsonl" % (T, name), "w") as fh:
+        for k in range(81):
+            fh.write(json.dumps({"frame": k, "time": 5 * k + 0.01, "cells": int(f(5 * k))}) + "\n")
+m = fig("cells", T + "/line")
+expect("cells linear in time: R^2 > 0.9999, slope 5, 61 frames in [100, 400]",
+       m["r2"] > 0.9999 and abs(m["slope"] - 5) < 0.01 and m["points"] == 61 and m["criteria"]["linear_r2_at_least_0.98"])
+m = fig("cells", T + "/exp")
+expect("cells doubling every 40: R^2 < 0.98", m["r2"] < 0.98 and not m["criteria"]["linear_r2_at_least_0.98"])
+sys.exit(0 if ok else 1)
+PYEOF
+
+run sds run limb --t-end 10 --frames 2 --out "$T/l" --quiet
+check "the limb model runs to t = 10" rc_is 0
+run sds run rock --t-end 2 --frames 1 --out "$T/r" --quiet
+check "the rock model runs to t = 2" rc_is 0
+check "real frames: the limb's slices hold every cell and interior cell, its length limb.py's; six limbs hold the rock's cells" \
+  "$PY" -B - "$T" "$FIG" <<'PYEOF'
+import json, os, subprocess, sys
+T, FIG = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.dirname(os.path.abspath(FIG)))
+import figures, limb
+def fig(*a):
+    out = subprocess.run([sys.executable, "-B", FIG] + list(a), capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout.splitlines()[-1])
+m = fig("limb", T + "/l", "--axis", "1", "0", "0")  # limb.py's axis
+c = figures.load_frame(T + "/l", 2)
+used, interior = int(c["used"].sum()), int((c["used"] & ~c["surface"]).sum())
+L = limb.measure(T + "/l/sds", 2)[-1][0]
+print("limb at t = %.2f: %d cells (%d interior), L = %.4f (limb.py %.4f), tip %.3f behind the front" % (
+    m["time"], used, interior, m["length"], L, m["tip_behind_front"]))
+ok = sum(r["cells"] for r in m["profile"]) == used and sum(r["interior"] for r in m["profile"]) == interior
+ok &= interior > 0 and abs(m["length"] - L) < 1e-5 and m["time"] >= 10
+r = fig("stripes", T + "/r")
+c = figures.load_frame(T + "/r", 1)
+print("rock at t = %.2f: %d limbs, %s cells" % (r["time"], len(r["limbs"]), [l["cells"] for l in r["limbs"]]))
+ok &= len(r["limbs"]) == 6 and sum(l["cells"] for l in r["limbs"]) == int(c["used"].sum())
+n = fig("cells", T + "/r", "--from", "0", "--to", "2")
+ok &= n["points"] == 2
+sys.exit(0 if ok else 1)
+PYEOF
+finish

@@ -1,0 +1,306 @@
+"""The paper's figures as measured outcomes (issue 33), from a run's own output.
+
+  figures.py limb RUN_DIR [--frame K | --time T] [--axis X Y Z] [--slice H]
+      Figure 7: the profile along the limb's axis (width and interior cells
+      per slice), distal width / neck width, the tip's lead, length / neck.
+  figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H]
+      Figures 9, 12: per limb, the stripe state along the limb (graph distance
+      from its tip through the complex), stripes counted and their spacing.
+  figures.py cells RUN_DIR [--from T0] [--to T1]
+      Figure 12: cells against time from records.jsonl, a line fitted over
+      [T0, T1] and its R^2.
+
+Each prints a small table, then one JSON line (the last line) with the
+metrics and the acceptance criteria of issue 33.  The definitions and the
+reasons for them are in docs/sds.md, "Figures as measured outcomes".  Reads
+sessile's frames: sds/frame_NNNN.vtu (every cell, its `surface` flag and
+fields) and, without a VTU, sds/frame_NNNN.ply (the surface alone: no
+interior counts)."""
+import argparse
+import heapq
+import json
+import os
+import re
+import sys
+import zlib
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import limb  # noqa: E402  (the PLY reader)
+
+VTK_TYPES = {"Float64": "<f8", "Float32": "<f4", "UInt8": "u1", "Int32": "<i4", "Int64": "<i8"}
+
+
+def read_vtu(path):
+    """sessile's VTU (appended raw, vtkZLibDataCompressor, UInt64 headers):
+    {'x': points (n, 3), 'tets': (m, 4), point fields by name}."""
+    with open(path, "rb") as f:
+        data = f.read()
+    mark = data.index(b'<AppendedData encoding="raw">')
+    base = data.index(b"_", mark) + 1
+    head = data[:mark].decode()
+    assert 'header_type="UInt64"' in head and "vtkZLibDataCompressor" in head, path
+
+    def blob(dtype, offset):
+        nb, _, _ = np.frombuffer(data, "<u8", 3, base + offset)
+        sizes = np.frombuffer(data, "<u8", int(nb), base + offset + 24)
+        p, raw = base + offset + 24 + 8 * int(nb), b""
+        for s in sizes:
+            raw += zlib.decompress(data[p:p + int(s)])
+            p += int(s)
+        return np.frombuffer(raw, dtype)
+
+    out, section = {}, None
+    for line in head.splitlines():
+        tag = re.match(r"\s*<(\w+)", line)
+        if tag and tag.group(1) in ("PointData", "CellData", "Points", "Cells"):
+            section = tag.group(1)
+        if not (tag and tag.group(1) == "DataArray"):
+            continue
+        a = dict(re.findall(r'(\w+)="([^"]*)"', line))
+        v = blob(VTK_TYPES[a["type"]], int(a["offset"]))
+        k = int(a["NumberOfComponents"])
+        if section == "Points":
+            out["x"] = v.reshape(-1, 3).astype(float)
+        elif section == "Cells" and a["Name"] == "connectivity":
+            out["tets"] = v.reshape(-1, 4).astype(np.int64)
+        elif section == "PointData":
+            out[a["Name"]] = v.reshape(-1, k).astype(float) if k > 1 else v.astype(float)
+    return out
+
+
+def load_frame(run, k):
+    """Frame k's cells: x, surface (bool), radius, tip and the model's fields;
+    'complex' says whether the interior is known (the VTU) or not (a PLY)."""
+    vtu = "%s/sds/frame_%04d.vtu" % (run, k)
+    if os.path.exists(vtu):
+        c = read_vtu(vtu)
+        used = np.zeros(len(c["x"]), bool)
+        used[c["tets"].ravel()] = True  # cells of no tet are not part of the body
+        c.update(surface=c["surface"] > 0, used=used, complex=True)
+        return c
+    p = limb.read_ply("%s/sds/frame_%04d.ply" % (run, k))
+    p["x"] = np.stack([p["x"], p["y"], p["z"]], 1)
+    p.update(surface=np.ones(len(p["x"]), bool), used=np.ones(len(p["x"]), bool), complex=False)
+    return p
+
+
+def frames(run):
+    """[(frame, time)] from records.jsonl (frame 0 at t = 0 when it has none)."""
+    out = {}
+    path = run + "/records.jsonl"
+    if os.path.exists(path):
+        for line in open(path):
+            r = json.loads(line)
+            if "frame" in r and "time" in r:
+                out[int(r["frame"])] = float(r["time"])
+    if not out:  # a synthetic run: the files alone
+        names = sorted(f for f in os.listdir(run + "/sds") if re.match(r"frame_\d{4}\.(ply|vtu)$", f))
+        out = {int(f[6:10]): float(f[6:10]) for f in names}
+    return sorted(out.items())
+
+
+def pick_frame(run, args):
+    fr = frames(run)
+    if args.frame is not None:
+        return [f for f in fr if f[0] == args.frame][0]
+    if args.time is not None:
+        return min(fr, key=lambda f: abs(f[1] - args.time))
+    return fr[-1]
+
+
+def model_value(run, key, default):
+    """A plain key of the run's model (sds/model.sds), e.g. sphere_radius."""
+    try:
+        for line in open(run + "/sds/model.sds"):
+            m = re.match(r"\s*%s\s*=\s*([-+0-9.eE]+)" % key, line)
+            if m:
+                return float(m.group(1))
+    except OSError:
+        pass
+    return default
+
+
+def diameter(p):
+    """The largest distance between two of the points (0 for fewer than 2)."""
+    if len(p) < 2:
+        return 0.0
+    d = p[:, None, :] - p[None, :, :]
+    return float(np.sqrt((d * d).sum(-1)).max())
+
+
+def limb_profile(c, axis, origin, r0, h=None):
+    """Figure 7's metrics of one frame (docs/sds.md, "Figures as measured outcomes")."""
+    keep = c["used"]
+    x, surf, rad = c["x"][keep], c["surface"][keep], c["radius"][keep]
+    tips = np.flatnonzero(c["tip"][keep] >= 0.5)
+    assert len(tips) == 1, "one tip cell, found %d" % len(tips)
+    u = (x - origin) @ axis
+    perp = (x - origin) - np.outer(u, axis)
+    h = h or 2 * float(np.median(rad))  # one cell thick
+    front, tu, rt = u.max(), u[tips[0]], rad[tips[0]]
+    length = float(np.ptp(u) - 2 * r0)  # limb.py's L: the extent less the starting diameter
+    rows = []  # slices from the front backwards: [front - (i + 1) h, front - i h)
+    for i in range(int(np.ceil(np.ptp(u) / h))):
+        lo, hi = front - (i + 1) * h, front - i * h
+        s = (u >= lo) & ((u < hi) | (i == 0))
+        rows.append({"u": float(hi - h / 2), "cells": int(s.sum()), "width": diameter(perp[s]),
+                     "interior": int((s & ~surf).sum()) if c["complex"] else None,
+                     "limb": bool(hi - h / 2 >= front - length)})
+    limb_rows = [r for r in rows if r["limb"]]
+    # the distal half (nearer the tip) and the proximal half (nearer the body)
+    distal = [r for r in limb_rows if r["u"] >= front - length / 2]
+    proximal = [r for r in limb_rows if r["u"] < front - length / 2]
+    m = {"slice": h, "front": float(front), "tip_u": float(tu), "tip_radius": float(rt),
+         "tip_behind_front": float(front - tu), "length": length}
+    if distal and proximal:
+        neck = min(proximal, key=lambda r: r["width"])
+        m.update(neck_u=neck["u"], neck_width=neck["width"], neck_interior=neck["interior"],
+                 distal_width=max(r["width"] for r in distal))
+        m["distal_over_neck"] = m["distal_width"] / neck["width"] if neck["width"] > 0 else None
+        m["length_over_neck"] = length / neck["width"] if neck["width"] > 0 else None
+    else:  # a limb shorter than two slices has no neck to measure
+        m.update(neck_u=None, neck_width=None, neck_interior=None, distal_width=None,
+                 distal_over_neck=None, length_over_neck=None)
+    m["criteria"] = {  # issue 33's acceptance for Figure 7 (t = 200)
+        "distal_at_most_1.2_neck": m["distal_over_neck"] is not None and m["distal_over_neck"] <= 1.2,
+        "tip_within_one_radius_of_front": bool(m["tip_behind_front"] <= rt),
+        "length_at_least_3_necks": m["length_over_neck"] is not None and m["length_over_neck"] >= 3}
+    return m, rows
+
+
+def cmd_limb(args):
+    k, t = pick_frame(args.run, args)
+    c = load_frame(args.run, k)
+    c0 = load_frame(args.run, frames(args.run)[0][0])
+    origin = c0["x"][c0["used"]].mean(0)
+    if args.axis:
+        axis = np.array(args.axis, float)
+    else:  # the tip's starting direction from the starting body's centre
+        axis = c0["x"][np.flatnonzero(c0["tip"] >= 0.5)[0]] - origin
+    axis /= np.linalg.norm(axis)
+    m, rows = limb_profile(c, axis, origin, model_value(args.run, "sphere_radius", 1.0), args.slice)
+    print("frame %d, t = %.3f; slices of %.3f u along the axis, from the front back" % (k, t, m["slice"]))
+    print("%8s %6s %8s %9s %5s" % ("u", "cells", "width", "interior", "limb"))
+    for r in rows:
+        print("%8.3f %6d %8.3f %9s %5s" % (r["u"], r["cells"], r["width"],
+                                           "-" if r["interior"] is None else r["interior"], "*" if r["limb"] else ""))
+    print(json.dumps(dict(figure=7, frame=k, time=t, axis=axis.tolist(), profile=rows, **m)))
+
+
+def graph_distance(x, tets, sources):
+    """Distance through the complex's edges from the nearest source, and which."""
+    n = len(x)
+    nb = [set() for _ in range(n)]
+    for t in tets:
+        for a in t:
+            nb[a].update(int(b) for b in t if b != a)
+    dist, owner = np.full(n, np.inf), np.full(n, -1)
+    heap = [(0.0, int(s), i) for i, s in enumerate(sources)]
+    while heap:
+        d, a, i = heapq.heappop(heap)
+        if d >= dist[a]:
+            continue
+        dist[a], owner[a] = d, i
+        for b in nb[a]:
+            nd = d + float(np.linalg.norm(x[a] - x[b]))
+            if nd < dist[b]:
+                heapq.heappush(heap, (nd, b, i))
+    return dist, owner
+
+
+def stripe_runs(frac, centres, threshold):
+    """Stripes: maximal runs of bins whose stripe fraction passes the threshold;
+    each stripe's place is the mean of its bins' centres weighted by fraction."""
+    out, run = [], []
+    for f, s in list(zip(frac, centres)) + [(0.0, None)]:
+        if f >= threshold:
+            run.append((f, s))
+        elif run:
+            w = np.array([r[0] for r in run])
+            out.append(float((w * np.array([r[1] for r in run])).sum() / w.sum()))
+            run = []
+    return out
+
+
+def cmd_stripes(args):
+    k, t = pick_frame(args.run, args)
+    c = load_frame(args.run, k)
+    assert c["complex"], "stripes need the VTU frames (the complex's edges)"
+    assert args.field in c, "no field %r in frame %d" % (args.field, k)
+    tips = np.flatnonzero((c["tip"] >= 0.5) & c["used"])
+    dist, owner = graph_distance(c["x"], c["tets"], tips)
+    h = args.bin or 2 * float(np.median(c["radius"][c["used"]]))
+    limbs = []
+    print("frame %d, t = %.3f; field %s > %.3g, bins of %.3f u from each tip; a stripe: fraction >= %.2f"
+          % (k, t, args.field, args.on, h, args.threshold))
+    for i, tip in enumerate(tips):
+        mine = (owner == i) & c["used"]
+        s, on = dist[mine], c[args.field][mine] > args.on
+        nb = int(np.ceil((s.max() + 1e-12) / h))
+        idx = np.minimum(np.floor(s / h + 1e-9).astype(int), nb - 1)  # a cell on a bin's edge: the upper bin
+        cnt = np.bincount(idx, minlength=nb)
+        frac = np.bincount(idx, weights=on, minlength=nb) / np.maximum(cnt, 1)
+        centres = (np.arange(nb) + 0.5) * h
+        places = stripe_runs(frac, centres, args.threshold)
+        sp = np.diff(places)
+        limbs.append({"tip_cell": int(tip), "tip": c["x"][tip].tolist(), "cells": int(mine.sum()),
+                      "profile": [round(float(f), 4) for f in frac], "stripes": len(places),
+                      "places": places, "spacing": float(sp.mean()) if len(sp) else None})
+        print("limb %d (tip cell %d, %d cells): %d stripes at %s; spacing %s" % (
+            i, tip, mine.sum(), len(places), " ".join("%.2f" % p for p in places),
+            "%.3f" % sp.mean() if len(sp) else "-"))
+        print("  profile: " + " ".join("%.2f" % f for f in frac))
+    sps = [l["spacing"] for l in limbs if l["spacing"] is not None]
+    m = {"figure": 9, "frame": k, "time": t, "field": args.field, "on": args.on, "threshold": args.threshold,
+         "bin": h, "limbs": limbs, "stripes_min": min((l["stripes"] for l in limbs), default=0),
+         "spacing_mean": float(np.mean(sps)) if sps else None,
+         "criteria": {"three_stripes_per_limb": bool(limbs) and all(l["stripes"] >= 3 for l in limbs)}}
+    print(json.dumps(m))
+
+
+def cmd_cells(args):
+    rec = [json.loads(line) for line in open(args.run + "/records.jsonl")]
+    tc = np.array([(float(r["time"]), r["cells"]) for r in rec if "time" in r and "cells" in r])
+    w = (tc[:, 0] >= args.t0 - 1e-9) & (tc[:, 0] <= args.t1 + 1.0)  # a frame is up to one step late
+    print("%10s %7s" % ("t", "cells"))
+    for ti, n in tc:
+        print("%10.3f %7d%s" % (ti, n, "" if (ti >= args.t0 - 1e-9 and ti <= args.t1 + 1.0) else "  (outside)"))
+    m = {"figure": 12, "from": args.t0, "to": args.t1, "points": int(w.sum()), "slope": None, "intercept": None,
+         "r2": None}
+    if w.sum() >= 3:
+        tt, nn = tc[w, 0], tc[w, 1]
+        slope, icpt = np.polyfit(tt, nn, 1)
+        res = nn - (slope * tt + icpt)
+        ss = ((nn - nn.mean()) ** 2).sum()
+        m.update(slope=float(slope), intercept=float(icpt), r2=float(1 - (res ** 2).sum() / ss) if ss > 0 else None)
+    m["criteria"] = {"linear_r2_at_least_0.98": m["r2"] is not None and m["r2"] >= 0.98}
+    print(json.dumps(m))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    for name in ("limb", "stripes"):
+        p = sub.add_parser(name)
+        p.add_argument("run")
+        p.add_argument("--frame", type=int)
+        p.add_argument("--time", type=float, help="the frame nearest this time (default: the last)")
+    sub.choices["limb"].add_argument("--axis", type=float, nargs=3, help="default: the tip's starting direction")
+    sub.choices["limb"].add_argument("--slice", type=float, help="slice thickness (default: the median cell diameter)")
+    st = sub.choices["stripes"]
+    st.add_argument("--field", default="stripe", help="the stripe state or morphogen (default: stripe)")
+    st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")
+    st.add_argument("--threshold", type=float, default=0.5, help="a stripe: bins with at least this fraction on")
+    st.add_argument("--bin", type=float, help="bin width along the limb (default: the median cell diameter)")
+    p = sub.add_parser("cells")
+    p.add_argument("run")
+    p.add_argument("--from", dest="t0", type=float, default=100)
+    p.add_argument("--to", dest="t1", type=float, default=400)
+    args = ap.parse_args(argv)
+    {"limb": cmd_limb, "stripes": cmd_stripes, "cells": cmd_cells}[args.cmd](args)
+
+
+if __name__ == "__main__":
+    main()
