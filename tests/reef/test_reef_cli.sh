@@ -126,16 +126,8 @@ check "bench reef --quick runs and prints its lines" eval 'rc_is 0 && grep -q "l
 run bench reef --quick --organisms 0
 check "bench reef --organisms 0: exit 2" rc_is 2
 
-bad() { # description, JSON path in the message, python edit of the scene d
-  "$PY" - "$SCENE" "$T/bad.json" "$3" <<'PYEOF'
-import json, sys
-d = json.load(open(sys.argv[1])); exec(sys.argv[3]); json.dump(d, open(sys.argv[2], "w"))
-PYEOF
-  run reef "$T/bad.json" --out "$T/never"
-  want="$2"
-  check "$1: exit 2, one line naming $2, nothing written" eval \
-    'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ] && grep -qF "$want" "$T/err" && [ ! -e "$T/never" ]'
-}
+. "$(dirname "$0")/bad_scene.sh"
+bad() { bad_scene "$SCENE" "$@"; } # description, JSON path in the message, edit of d
 bad "unknown generator" "pool[1].generator" "d['pool'][1]['generator'] = 'nope'"
 bad "unknown parameter" "pool[0].parameters[3]" "d['pool'][0]['parameters'].append('bogus=3')"
 bad "parameter out of range" "pool[0].parameters[0]" "d['pool'][0]['parameters'][0] = 'level=99'"

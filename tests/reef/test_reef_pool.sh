@@ -44,16 +44,8 @@ check "python: each entry's mesh equals its own command's PLY (vertices, triangl
   "$PY" "$(dirname "$0")/reef_glb_check.py" "$T/a" "$T/pool.json" stony="$T/stony/coral/final.ply" \
   limb="$T/limb/sds/final.ply" sponge="$T/sponge/sponge/final.ply"
 
-bad() { # description, JSON path in the message, python edit of the scene d
-  "$PY" - "$T/pool.json" "$T/bad.json" "$3" <<'PYEOF'
-import json, sys
-d = json.load(open(sys.argv[1])); exec(sys.argv[3]); json.dump(d, open(sys.argv[2], "w"))
-PYEOF
-  run reef "$T/bad.json" --out "$T/never"
-  want="$2"
-  check "$1: exit 2, one line naming $2, nothing written" eval \
-    'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ] && grep -qF "$want" "$T/err" && [ ! -e "$T/never" ]'
-}
+. "$(dirname "$0")/bad_scene.sh"
+bad() { bad_scene "$T/pool.json" "$@"; } # description, JSON path in the message, edit of d
 bad "an unknown SDS model" "pool[1].arguments: no shipped model" "d['pool'][1]['arguments'][0] = 'nosuchmodel'"
 bad "an SDS option twice" "pool[1].arguments[5]: --t-end given twice" "d['pool'][1]['arguments'] += ['--t-end', '2']"
 bad "SDS without a model" "pool[1].arguments" "del d['pool'][1]['arguments']"
