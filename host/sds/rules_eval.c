@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "rules_internal.h"
+#include "rules_vm.h"
 
 void sessile_sds_actions_free(sessile_sds_actions *a) {
   if (!a) return;
@@ -51,9 +52,15 @@ static sessile_status push_divide(sessile_sds_actions *a, sessile_sds_divide d) 
   return SESSILE_OK;
 }
 
-sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile_morph_cells *cl, const double *phi,
-                                      const double *state, double time, sessile_sds_actions *out) {
+/* An expression by muparser, or (vm) by the bytecode at pc. */
+static double expr(const sessile_sds_model *m, int vm, const sds_expr *e, uint32_t pc) {
+  return vm ? sds_vm_run(m->prog, pc, m->slot) : sessile_expr_eval(e);
+}
+
+static sessile_status eval(const sessile_sds_model *cm, const sessile_morph_cells *cl, const double *phi,
+                           const double *state, double time, sessile_sds_actions *out, int vm) {
   sessile_sds_model *m = (sessile_sds_model *)cm; /* the slots are scratch */
+  const uint32_t *w = vm ? m->prog->w : NULL;
   SESSILE_CHECK(cl->ncells >= 0 && (m->nmorph == 0 || phi) && (m->nstate == 0 || state), SESSILE_ERR_USAGE,
                 "rules: missing morphogen or state arrays");
   SESSILE_CALL(reset(out, cl->ncells, m->nmorph));
@@ -68,7 +75,8 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
     int divided = 0;
     for (int r = 0; r < m->nrules; r++) {
       const sds_rule *R = &m->rules[r];
-      double v = sessile_expr_eval(&R->cond);
+      uint32_t rec = vm ? w[1 + r] : 0;
+      double v = expr(m, vm, &R->cond, vm ? w[rec] : 0);
       SESSILE_CHECK(!isnan(v), SESSILE_ERR_NUMERIC, "%s:%d: rule %s: the condition is NaN at cell %d", m->file,
                     R->line, R->name, c);
       if (v == 0) continue;
@@ -77,7 +85,7 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
         const sds_action *A = &R->act[i];
         double x = 0;
         if (A->kind != SESSILE_SDS_DIVIDE && A->kind != SESSILE_SDS_RESET) {
-          x = sessile_expr_eval(&A->value);
+          x = expr(m, vm, &A->value, vm ? w[rec + 3 + 2 * i] : 0);
           SESSILE_CHECK(isfinite(x), SESSILE_ERR_NUMERIC, "%s:%d: rule %s: action %d gives %g at cell %d", m->file,
                         R->line, R->name, i + 1, x, c);
         }
@@ -109,6 +117,23 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *cm, const sessile
     }
   }
   return SESSILE_OK;
+}
+
+sessile_status sessile_sds_rules_eval(const sessile_sds_model *m, const sessile_morph_cells *cl, const double *phi,
+                                      const double *state, double time, sessile_sds_actions *out) {
+  return eval(m, cl, phi, state, time, out, 0);
+}
+
+sessile_status sessile_sds_rules_eval_vm(const sessile_sds_model *m, const sessile_morph_cells *cl,
+                                         const double *phi, const double *state, double time,
+                                         sessile_sds_actions *out) {
+  SESSILE_CHECK(m->prog, SESSILE_ERR_USAGE, "%s", m->prog_why);
+  return eval(m, cl, phi, state, time, out, 1);
+}
+
+const char *sessile_sds_model_bytecode_refusal(const sessile_sds_model *m, int device) {
+  if (!m->prog) return m->prog_why;
+  return device && !m->prog->device ? m->prog->why : NULL;
 }
 
 void sessile_sds_actions_apply(const sessile_sds_model *m, const sessile_sds_actions *a, double dt, double *radius,

@@ -29,12 +29,14 @@ typedef sessile_expr sds_expr; /* a constant, or a compiled muparser handle */
 typedef struct sds_action {
   int kind, target, sign; /* sign: +1 toward grad, -1 away (divide) */
   sds_expr value;
+  char *text; /* the value's text, kept for the bytecode compiler until load ends */
 } sds_action;
 
 typedef struct sds_rule {
   char name[SESSILE_SDS_NAME];
   int line;
   sds_expr cond;
+  char *text; /* the condition's text, as the action's */
   int nact;
   sds_action act[SDS_MAX_ACTIONS];
 } sds_rule;
@@ -53,6 +55,8 @@ struct sessile_sds_model {
   double tips[SDS_MAX_TIPS][3];
   sds_rule rules[SDS_MAX_RULES];
   double slot[SDS_SLOTS];
+  struct sds_prog *prog; /* the rules as bytecode (rules_vm.h); NULL when they do not compile */
+  char prog_why[320];    /* why prog is NULL */
 };
 
 #endif

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "rules_internal.h"
+#include "rules_vm.h"
 #include "sessile/io/io.h"
 
 typedef struct cur {
@@ -118,8 +119,9 @@ static sessile_status check_names(cur *c, int col0, const char *text) {
   return SESSILE_OK;
 }
 
-/* Compiles text (columns from col0) into e, its variables bound to the model's slots. */
-static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e) {
+/* Compiles text (columns from col0) into e, its variables bound to the
+ * model's slots; the text is kept in *keep for the bytecode compiler. */
+static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e, char **keep) {
   sessile_sds_model *m = (sessile_sds_model *)c->m;
   e->h = NULL, e->c = 0;
   int lead = 0;
@@ -141,6 +143,8 @@ static sessile_status compile(cur *c, int col0, const char *text, sds_expr *e) {
     if (pos < 0 || pos > len) pos = len;
     return fail(c, col0 + pos, "bad expression: %s", one);
   }
+  *keep = strdup(text);
+  SESSILE_CHECK(*keep, SESSILE_ERR_NO_MEMORY, "out of host memory for an expression");
   return SESSILE_OK;
 }
 
@@ -194,7 +198,7 @@ static sessile_status action(cur *c, const char *text, int col0, sds_action *a) 
   const sessile_sds_model *m = c->m;
   ws(&t);
   int wc = t.p;
-  a->sign = 1, a->value.h = NULL, a->value.c = 0, a->target = -1;
+  a->sign = 1, a->value.h = NULL, a->value.c = 0, a->target = -1, a->text = NULL;
   if (!ident(&t, word)) return fail(c, col0 + wc, "expected an action (set, produce, grow, divide, reset)");
   if (!strcmp(word, "set") || !strcmp(word, "produce")) {
     int nc = (ws(&t), t.p);
@@ -208,11 +212,11 @@ static sessile_status action(cur *c, const char *text, int col0, sds_action *a) 
       a->kind = k >= 0 ? SESSILE_SDS_SET_MORPH : SESSILE_SDS_SET_STATE, a->target = k >= 0 ? k : s;
       if (!lit(&t, "=")) return fail(c, col0 + t.p, "expected '=' after 'set %s'", name);
     }
-    return compile(c, col0 + t.p, text + t.p, &a->value);
+    return compile(c, col0 + t.p, text + t.p, &a->value, &a->text);
   }
   if (!strcmp(word, "grow")) {
     a->kind = SESSILE_SDS_GROW;
-    return compile(c, col0 + t.p, text + t.p, &a->value);
+    return compile(c, col0 + t.p, text + t.p, &a->value, &a->text);
   }
   if (!strcmp(word, "reset")) {
     int nc = (ws(&t), t.p);
@@ -266,7 +270,7 @@ static sessile_status rule_line(cur *c) {
   int a = c->p, b = (int)(arrow - c->s);
   snprintf(buf, sizeof buf, "%.*s", b - a, c->s + a);
   m->nrules++; /* counted now so destroy frees what compiles below */
-  SESSILE_CALL(compile(c, a, buf, &r->cond));
+  SESSILE_CALL(compile(c, a, buf, &r->cond, &r->text));
   int p = b + 2;
   for (;;) {
     const char *semi = strchr(c->s + p, ';');
@@ -363,6 +367,13 @@ static sessile_status line(cur *c) {
               word);
 }
 
+static void free_texts(sessile_sds_model *m) {
+  for (int i = 0; i < m->nrules; i++) {
+    free(m->rules[i].text), m->rules[i].text = NULL;
+    for (int a = 0; a < m->rules[i].nact; a++) free(m->rules[i].act[a].text), m->rules[i].act[a].text = NULL;
+  }
+}
+
 sessile_status sessile_sds_model_parse(const char *text, const char *file, sessile_sds_model **out) {
   *out = NULL;
   SESSILE_CHECK(text, SESSILE_ERR_USAGE, "no model text");
@@ -401,6 +412,9 @@ sessile_status sessile_sds_model_parse(const char *text, const char *file, sessi
     sessile_sds_model_destroy(m);
     return st;
   }
+  /* the bytecode, from the texts muparser accepted; then the texts go */
+  m->prog = sds_prog_compile(m, m->prog_why, sizeof m->prog_why);
+  free_texts(m);
   *out = m;
   return SESSILE_OK;
 }
@@ -421,6 +435,8 @@ void sessile_sds_model_destroy(sessile_sds_model *m) {
     sessile_expr_free(&m->rules[i].cond);
     for (int a = 0; a < m->rules[i].nact; a++) sessile_expr_free(&m->rules[i].act[a].value);
   }
+  free_texts(m);
+  sds_prog_free(m->prog);
   free(m);
 }
 

@@ -185,6 +185,16 @@ sessile_status sessile_sds_rules_eval(const sessile_sds_model *m, const sessile_
                                       const double *phi, const double *state, double time,
                                       sessile_sds_actions *out);
 
+/* The same through the rules' bytecode (docs/sds_rules.md, "Bytecode"),
+ * compiled at load: the same actions, bit for bit.  SESSILE_ERR_USAGE when
+ * the model's rules did not compile (sessile_sds_model_bytecode_refusal). */
+sessile_status sessile_sds_rules_eval_vm(const sessile_sds_model *m, const sessile_morph_cells *cells,
+                                         const double *phi, const double *state, double time,
+                                         sessile_sds_actions *out);
+/* NULL when the rules compiled to bytecode (device = 1: and every operation
+ * has a device version); else why not, "file:line: rule NAME: ...". */
+const char *sessile_sds_model_bytecode_refusal(const sessile_sds_model *m, int device);
+
 /* Applies sets (values clamped to [0, vol] for capped morphogens, >= 0 for
  * timers) and radius growth r += dt * grow.  Sources go to the morphogen
  * step, divisions to the organism. */

@@ -1,0 +1,129 @@
+/* The rules' bytecode (host/sds/rules_compile.c, rules_vm.c) against the
+ * host's muparser evaluator: for every shipped model and for a model of
+ * expressions that exercises each operator, function and muparser
+ * optimisation the compiler rebuilds, on seeded random cell states, the
+ * actions (growth, sources, sets, divisions) must be the same doubles, bit
+ * for bit.  Refusals name the rule; the device check comes with
+ * test_rules_vm_gpu.c's kernel. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "rules_vm_cells.h"
+#include "sessile/rng.h"
+#include "testutil.h"
+
+/* Expressions over radius, volume, time, surface, phi, tip, s0.. and the
+ * constants K and H: the optimiser's patterns (x*c*c, c*x/c, x+x, x*x,
+ * x^0..4, 2*(3*x+1)), folding (of && too), signs, ?: nested, every
+ * function. */
+static const char *const exprs[] = {
+    "radius * 3 * 5", "3 * radius * 5", "radius * 0.1 / 3", "4 * radius / 2", "radius + radius",
+    "radius - radius", "2 * radius - radius", "radius * radius", "radius ^ 2", "radius^3", "radius^4",
+    "radius^0", "radius^1", "-radius^2", "-radius*3", "-(radius+1)*3", "1 + 2*3 - 4/5",
+    "phi > K*volume && tip == 0 || radius < 0.3", "tip ? radius : volume", "tip == 1 ? 2 : phi > 0.5 ? 3 : 4",
+    "(tip ? 1 : 2) + 3", "min(radius, volume, phi)", "max(radius, 2)", "sum(radius, phi, 1)",
+    "avg(radius, volume)", "abs(phi - 0.5)", "sign(phi - 0.5)", "rint(radius*10)", "sqrt(volume)",
+    "_pi * radius^2", "_e + 2.5e-1 * radius", ".5*radius", "0.5 && 1", "0.5 && radius", "0.5 || 0",
+    "+radius", "-(-radius)", "radius - -1", "1 - radius + 2", "(radius + 1) * 2", "2 * (3 * radius + 1)",
+    "(radius * 3 + 1) / 2", "surface * 2 + time", "K * volume + phi * 2 - 1", "radius >= 0.5 != (phi <= 0.1)",
+    "H * phi * H", "phi / H / 3", "1 / (phi + 1)", "volume - phi * H + K", "tip * 2 + tip", "phi*K - phi",
+    "min(phi)", "max(tip, phi, radius, volume)", "K ? radius : 2", "0 ? 1 : radius", "abs(-0)", "exp(1) * radius",
+    /* on the host only: no fp64 version on the device */
+    "exp(-radius)", "phi^0.5", "2^(-radius)", "log(volume)", "sin(time) + cos(time)", "atan2(radius, phi)", "tan(phi) * sinh(phi)",
+    "cosh(phi) - tanh(phi) + asin(phi / (phi + 1)) + acos(phi / (phi + 1)) + atan(phi)",
+    "asinh(radius) + acosh(radius + 1) + atanh(phi / (phi + 2))",
+    "log2(volume) + log10(volume) + ln(volume)", "radius ^ phi"};
+enum { NEXPR = sizeof exprs / sizeof *exprs, NDEVICE = 57 /* the first NDEVICE have device versions */ };
+
+static char *expr_model(int nexpr) {
+  size_t cap = 32768, n = 0;
+  char *t = t_xalloc(cap);
+  n += (size_t)snprintf(t + n, cap - n, "const K = 0.03\nconst H = 1.7\nmorphogen phi diffusion=0.1 decay=0.1\n"
+                                        "state tip = 0\n");
+  for (int s = 0; s < 24; s++) n += (size_t)snprintf(t + n, cap - n, "state s%d = 0\n", s);
+  for (int i = 0; i < nexpr; i += 8) {
+    n += (size_t)snprintf(t + n, cap - n, "rule q%d: 1 ->", i / 8);
+    for (int j = i; j < nexpr && j < i + 8; j++)
+      n += (size_t)snprintf(t + n, cap - n, "%s set s%d = %s", j > i ? ";" : "", j % 24, exprs[j]);
+    n += (size_t)snprintf(t + n, cap - n, "\n");
+  }
+  n += (size_t)snprintf(t + n, cap - n, "rule g: phi > 0.2 -> grow radius * 0.01 + phi; produce phi K * tip\n");
+  n += (size_t)snprintf(t + n, cap - n, "rule d: tip == 0 && radius > 0.5 -> divide away grad(phi)\n");
+  return t;
+}
+
+int main(void) {
+  char root[512];
+  snprintf(root, sizeof root, "%s", __FILE__);
+  char *cut = strstr(root, "/tests/sds/");
+  if (cut) *cut = 0;
+  const char *names[] = {"limb.sds", "six_limbs_box.sds", "rock.sds", "attractor.sds", "budded.sds"};
+  for (int i = 0; i < 5; i++) {
+    char path[700];
+    snprintf(path, sizeof path, "%s/host/sds/models/%s", root, names[i]);
+    sessile_sds_model *m = NULL;
+    t_must(names[i], sessile_sds_model_load(path, &m));
+    char what[200];
+    snprintf(what, sizeof what, "%s: the rules compile, every operation with a device version", names[i]);
+    t_true(what, !sessile_sds_model_bytecode_refusal(m, 1));
+    for (int seed = 1; seed <= 3; seed++) {
+      rvm_cells C = rvm_cells_make(m, 9, 8, 7, (uint64_t)seed);
+      snprintf(what, sizeof what, "%s: seed %d, %d cells: the bytecode's actions are muparser's, bit for bit",
+               names[i], seed, C.n);
+      t_true(what, rvm_same_actions(m, &C, 0.5 * seed));
+      rvm_cells_free(&C);
+    }
+    sessile_sds_model_destroy(m);
+  }
+
+  char *text = expr_model(NEXPR);
+  sessile_sds_model *m = NULL;
+  t_must("the expression model", sessile_sds_model_parse(text, "exprs.sds", &m));
+  t_true("the expression model compiles to bytecode", !sessile_sds_model_bytecode_refusal(m, 0));
+  const char *why = sessile_sds_model_bytecode_refusal(m, 1);
+  printf("  its device refusal: %s\n", why ? why : "(none)");
+  t_true("... and is refused on the device, naming the rule of exp(-radius)", why && strstr(why, "rule q7:") && strstr(why, "'exp'"));
+  for (int seed = 1; seed <= 4; seed++) {
+    rvm_cells C = rvm_cells_make(m, 6, 5, 4, 100 + (uint64_t)seed);
+    char what[200];
+    snprintf(what, sizeof what, "%d expressions, seed %d: the bytecode's values are muparser's, bit for bit", NEXPR,
+             seed);
+    t_true(what, rvm_same_actions(m, &C, 1.25 * seed));
+    rvm_cells_free(&C);
+  }
+  sessile_sds_model_destroy(m);
+  free(text);
+
+  /* what it does not rebuild stays on the host, with the rule named */
+  m = NULL;
+  t_must("a model with an assignment", sessile_sds_model_parse("state tip\nrule zz: (tip = 1) -> grow 1\n", "as.sds", &m));
+  why = sessile_sds_model_bytecode_refusal(m, 0);
+  printf("  %s\n", why ? why : "(none)");
+  t_true("an assignment is refused, naming file, line and rule", why && strstr(why, "as.sds:2: rule zz") && strstr(why, "assignment"));
+  sessile_sds_actions a = {0};
+  rvm_cells C = rvm_cells_make(m, 2, 2, 2, 1);
+  sessile_morph_cells cl = rvm_morph_cells(&C);
+  t_true("... and its bytecode evaluation refused", sessile_sds_rules_eval_vm(m, &cl, C.phi, C.state, 0, &a) == SESSILE_ERR_USAGE);
+  sessile_sds_actions_free(&a);
+  rvm_cells_free(&C);
+  sessile_sds_model_destroy(m);
+
+  /* a value that is not finite stops both the same way */
+  m = NULL;
+  t_must("a model dividing by zero", sessile_sds_model_parse("morphogen p diffusion=0 decay=0\nrule r: 1 -> grow 1 / (p - p)\n", "z.sds", &m));
+  C = rvm_cells_make(m, 2, 2, 2, 1);
+  cl = rvm_morph_cells(&C);
+  sessile_status s1 = sessile_sds_rules_eval(m, &cl, C.phi, C.state, 0, &a);
+  char m1[400];
+  snprintf(m1, sizeof m1, "%s", sessile_error_message());
+  sessile_sds_actions_free(&a);
+  sessile_status s2 = sessile_sds_rules_eval_vm(m, &cl, C.phi, C.state, 0, &a);
+  sessile_sds_actions_free(&a);
+  t_true("1/0 stops both with SESSILE_ERR_NUMERIC and the same message",
+         s1 == SESSILE_ERR_NUMERIC && s2 == s1 && !strcmp(m1, sessile_error_message()));
+  rvm_cells_free(&C);
+  sessile_sds_model_destroy(m);
+  printf("%d passed, %d failed\n", t_passed, t_failed);
+  return t_failed ? 1 : 0;
+}
