@@ -8,6 +8,7 @@
 #define SESSILE_SDS_RULES_VM_H
 #include <stddef.h>
 #include <stdint.h>
+#include "sds_kernels.h"
 
 /* One instruction is two words: op | a << 8, then b. */
 enum sds_vm_op {
@@ -40,9 +41,9 @@ enum sds_vm_fun {
   VM_F_COUNT
 };
 
-/* The stack an expression may use: checked by the compiler, so neither
- * interpreter checks it at run time (the kernel's array has this size). */
-#define SDS_VM_STACK 16
+/* SDS_VM_STACK (shaders/sds/kernels.def): the stack an expression may use,
+ * checked by the compiler, so neither interpreter checks it at run time
+ * (the kernel's array has this size). */
 #define SDS_VM_SLOTS 52 /* SDS_SLOTS: radius, volume, time, surface, 16 morphogens, 32 states */
 
 /* prog[0] = rules; prog[1 + r] = where rule r's record starts:

@@ -60,6 +60,8 @@ struct sessile_sds_gpu {
   size_t nsub, nsub_surf, sub_cap;
   int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
   int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
+  struct sds_gpu_rules *rules; /* the rules on the device, borrowed (sds_gpu_rules.h; NULL: on the host) */
+  double rules_dt;             /* the step of the last sds_gpu_rules_record */
 };
 
 /* A real as the device stores it (r, m kept on the host: rm). */

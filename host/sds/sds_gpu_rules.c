@@ -1,0 +1,151 @@
+/* The rules on the device: buffers and dispatches of
+ * shaders/sds/rules_vm.comp (sds_gpu_rules.h; docs/sds_rules.md,
+ * "Bytecode").  The bytecode and its constants go up once, at create; the
+ * cells after each topology change. */
+#include <stdlib.h>
+#include <string.h>
+#include "rules_internal.h"
+#include "rules_vm.h"
+#include "sds_gpu_internal.h"
+#include "sds_gpu_rules.h"
+
+enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ,
+       R_EVENT, R_COUNT };
+
+struct sds_gpu_rules {
+  sessile_gpu *gpu;
+  sessile_kernel *k;
+  sessile_buffer *b[R_COUNT];
+  uint32_t ncells, nmorph, nstate;
+  double density;
+};
+
+static sessile_status ensure(sds_gpu_rules *r, int i, size_t bytes) {
+  return sessile_buffer_reserve(r->gpu, &r->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
+}
+
+sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, sds_gpu_rules **out) {
+  *out = NULL;
+  const char *why = sessile_sds_model_bytecode_refusal(m, 1);
+  SESSILE_CHECK(!why, SESSILE_ERR_USAGE, "the rules on the device: %s", why);
+  SESSILE_CHECK(sessile_gpu_info_of(g)->precision == 64, SESSILE_ERR_USAGE,
+                "the rules on the device need fp64 (they equal the host's doubles)");
+  sds_gpu_rules *r = calloc(1, sizeof *r);
+  SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory for the rules on the device");
+  r->gpu = g, r->nmorph = (uint32_t)m->nmorph, r->nstate = (uint32_t)m->nstate;
+  const sds_prog *p = m->prog;
+  double mc[2 * SDS_MAX_MORPH];
+  for (int k = 0; k < m->nmorph; k++) mc[2 * k] = m->capped[k] ? 1 : 0, mc[2 * k + 1] = m->mstart[k];
+  sessile_status st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, &r->k);
+  if (st == SESSILE_OK) st = ensure(r, R_PROG, (size_t)p->nw * 4);
+  if (st == SESSILE_OK) st = ensure(r, R_KONST, (size_t)p->nk * 8);
+  if (st == SESSILE_OK) st = ensure(r, R_MCOEF, sizeof mc);
+  if (st == SESSILE_OK) st = ensure(r, R_EVENT, SDS_EV_COUNT * 4);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(r->b[R_PROG], 0, p->w, (size_t)p->nw * 4);
+  if (st == SESSILE_OK && p->nk) st = sessile_buffer_upload_reals(r->b[R_KONST], 0, p->k, p->nk);
+  if (st == SESSILE_OK && m->nmorph) st = sessile_buffer_upload_reals(r->b[R_MCOEF], 0, mc, 2 * (size_t)m->nmorph);
+  if (st != SESSILE_OK) {
+    sds_gpu_rules_destroy(r);
+    return st;
+  }
+  *out = r;
+  return SESSILE_OK;
+}
+
+void sds_gpu_rules_destroy(sds_gpu_rules *r) {
+  if (!r) return;
+  for (int i = 0; i < R_COUNT; i++) sessile_buffer_destroy(r->b[i]);
+  sessile_kernel_destroy(r->k);
+  free(r);
+}
+
+sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cells *cl, const double *phi,
+                                       const double *state, double density) {
+  SESSILE_CHECK(cl->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: no cells");
+  size_t n = (size_t)cl->ncells, ne = cl->nbr_off[n], nm = r->nmorph, ns = r->nstate;
+  double *rm = malloc(2 * n * sizeof *rm);
+  uint32_t *surf = malloc(n * sizeof *surf);
+  sessile_status st = rm && surf ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
+  for (size_t c = 0; st == SESSILE_OK && c < n; c++)
+    rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
+  const int sized[] = {R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ};
+  const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
+                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8};
+  for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(r->b[R_OFF], 0, cl->nbr_off, (n + 1) * 4);
+  if (st == SESSILE_OK && ne) st = sessile_buffer_upload(r->b[R_NBR], 0, cl->nbr, ne * 4);
+  if (st == SESSILE_OK) st = sessile_buffer_upload(r->b[R_SURF], 0, surf, n * 4);
+  if (st == SESSILE_OK && nm) st = sessile_buffer_upload_reals(r->b[R_PHI], 0, phi, n * nm);
+  if (st == SESSILE_OK && ns) st = sessile_buffer_upload_reals(r->b[R_STATE], 0, state, n * ns);
+  free(rm), free(surf);
+  SESSILE_CALL(st);
+  r->ncells = (uint32_t)n, r->density = density;
+  return SESSILE_OK;
+}
+
+sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
+  static const uint32_t zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0}; /* BAD starts above every cell */
+  return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, zero, sizeof zero);
+}
+
+static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                               double time, double dt, uint32_t mode) {
+  SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
+  sds_rules_push p;
+  memset(&p, 0, sizeof p);
+  p.time = sessile_push_real_of(time, 8), p.dt = sessile_push_real_of(dt, 8);
+  p.density = sessile_push_real_of(r->density, 8);
+  p.ncells = r->ncells, p.nmorph = r->nmorph, p.nstate = r->nstate, p.mode = mode;
+  sessile_buffer *b[R_COUNT];
+  for (int i = 0; i < R_COUNT; i++) b[i] = r->b[i];
+  if (pos) b[R_POS] = pos;
+  if (rm) b[R_RM] = rm;
+  uint32_t l = sessile_kernel_local_size(r->k);
+  return sessile_cmd_dispatch(cmd, r->k, (r->ncells + l - 1) / l, b, &p);
+}
+
+sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                                         double time) {
+  return dispatch(r, cmd, pos, rm, time, 0, 0);
+}
+
+sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                                          double dt) {
+  return dispatch(r, cmd, pos, rm, 0, dt, 1);
+}
+
+sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which) {
+  static const int map[] = {R_PHI, R_STATE, R_SRC, R_EVENT, R_DIVREQ, R_POS, R_RM};
+  return which >= 0 && which < (int)(sizeof map / sizeof *map) ? r->b[map[which]] : NULL;
+}
+
+static int by_cell(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[5], double *req, uint32_t *nreq) {
+  SESSILE_CALL(sessile_buffer_download(r->b[R_EVENT], 0, ev, SDS_EV_COUNT * 4));
+  *nreq = ev[SDS_EV_NREQ] < r->ncells ? ev[SDS_EV_NREQ] : r->ncells;
+  if (!*nreq) return SESSILE_OK;
+  SESSILE_CALL(sessile_buffer_download_reals(r->b[R_DIVREQ], 0, req, (size_t)SDS_REQ * *nreq));
+  qsort(req, *nreq, SDS_REQ * sizeof *req, by_cell); /* one request per cell: the host's order */
+  return SESSILE_OK;
+}
+
+void sds_gpu_rules_attach(sessile_sds_gpu *s, sds_gpu_rules *r) { s->rules = r; }
+
+sessile_status sds_gpu_rules_record(sessile_sds_gpu *s, double time, double dt) {
+  SESSILE_CHECK(s->rules && sessile_cmd_recording(s->cmd), SESSILE_ERR_USAGE,
+                "the rules on the device: none attached, or no open recording");
+  s->rules_dt = dt;
+  return sds_gpu_rules_record_eval(s->rules, s->cmd, s->b[B_X0 + s->cur], s->b[B_RM], time);
+}
+
+sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s) {
+  SESSILE_CHECK(s->rules && sessile_cmd_recording(s->cmd), SESSILE_ERR_USAGE,
+                "the rules on the device: none attached, or no open recording");
+  return sds_gpu_rules_record_apply(s->rules, s->cmd, s->b[B_X0 + s->cur], s->b[B_RM], s->rules_dt);
+}

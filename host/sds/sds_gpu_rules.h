@@ -1,0 +1,53 @@
+/* The rules on the device (docs/sds_rules.md, "Bytecode"): the model's
+ * bytecode run per cell by shaders/sds/rules_vm.comp, equal to the host's
+ * evaluator and actions (tests/sds/test_rules_vm.c).
+ *
+ * A step records mode 0 (evaluate, reading the amounts before the morphogen
+ * step: sources into SRC, pending sets and growth, division requests into
+ * DIVREQ with their count in EVENT), then the morphogen step (amounts PHI,
+ * sources SRC), then mode 1 (apply: r += dt grow, the sets clamped as
+ * sessile_sds_actions_apply clamps them, m = density 4/3 pi r^3 into rm).
+ * EVENT (uint, SDS_EV_COUNT words, sds_kernels.h): FLAGS bit 0 a division
+ * requested, bit 1 a value not finite (BAD: the smallest such cell; the host
+ * evaluator then gives the message); once FLAGS is set, mode 1 sets STOP and
+ * every later step of the batch does nothing, so a batched loop wakes the
+ * host at the first topology event.  Requests (SDS_REQ reals: cell, rule,
+ * unit direction or 0) are in the order the atomics gave: sort by cell. */
+#ifndef SESSILE_SDS_GPU_RULES_H
+#define SESSILE_SDS_GPU_RULES_H
+#include "sessile/gpu/gpu.h"
+#include "sessile/sds/sds.h"
+#include "sessile/sds/sds_process.h"
+
+typedef struct sds_gpu_rules sds_gpu_rules;
+enum { SDS_RULES_PHI, SDS_RULES_STATE, SDS_RULES_SRC, SDS_RULES_EVENT, SDS_RULES_DIVREQ, SDS_RULES_POS, SDS_RULES_RM };
+
+/* Refuses (SESSILE_ERR_USAGE, the rule named) a model whose bytecode has an
+ * operation without a device version, and an fp32 context. */
+sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, sds_gpu_rules **out);
+void sds_gpu_rules_destroy(sds_gpu_rules *r);
+/* Uploads cells (after a topology change): positions and radii into its own
+ * POS and RM (for runs that do not bind the physics'), neighbours, surface
+ * flags, amounts and states; density for the masses. */
+sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cells *cells, const double *phi,
+                                       const double *state, double density);
+/* Records into cmd: the event words cleared (a batch's start), mode 0 at
+ * `time`, mode 1 with step dt.  pos and rm NULL: its own POS and RM. */
+sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd);
+sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                                         double time);
+sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                                          double dt);
+sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which);
+/* The event words and the requests (sorted by cell; *nreq of them, at most
+ * the cell count), read after the submission ran.  req: SDS_REQ per request. */
+sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[5], double *req, uint32_t *nreq);
+
+/* The batched loop's entry (issue 33): with r attached to s, record mode 0
+ * into s's open recording, reading s's positions and r, m (which mode 1 then
+ * writes: the device owns them between topology events), and keep dt for
+ * sds_gpu_rules_record_apply_s, recorded after the morphogen step. */
+void sds_gpu_rules_attach(sessile_sds_gpu *s, sds_gpu_rules *r);
+sessile_status sds_gpu_rules_record(sessile_sds_gpu *s, double time, double dt);
+sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s);
+#endif
