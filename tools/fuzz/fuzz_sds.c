@@ -5,7 +5,10 @@
  * an accepted one is evaluated on a 3x3x3 lattice of cells (random amounts
  * and states) and every action must be well-formed: targets in range,
  * finite values, unit or zero division directions, at most one division per
- * cell.  Anything else aborts.  Built with driver.c (-DFUZZ_WORDS) by CMake's
+ * cell.  The rules' bytecode (docs/sds_rules.md, "Bytecode") must give the
+ * same status and, when it evaluates, the same actions bit for bit; a model
+ * it does not compile must say why in one line naming fuzz.sds.  Anything
+ * else aborts.  Built with driver.c (-DFUZZ_WORDS) by CMake's
  * fuzz_sds_short, or with libFuzzer like the other targets. */
 #include <math.h>
 #include <stdint.h>
@@ -33,6 +36,36 @@ static void check_refusal(const char *text) {
   if (line < 1 || line > lines || col < 1 || tail != ':') fail("a refusal's line or column outside the input");
 }
 
+static int same_bits(const double *x, const double *y, size_t n) { return !n || !memcmp(x, y, n * sizeof *x); }
+
+/* The bytecode's evaluation of the same cells against muparser's (status s,
+ * actions a): the same status, message and actions. */
+static void same_as_bytecode(const sessile_sds_model *m, const sessile_morph_cells *cl, const double *phi,
+                             const double *state, sessile_status s, const sessile_sds_actions *a) {
+  const char *why = sessile_sds_model_bytecode_refusal(m, 0);
+  if (why) {
+    if (strncmp(why, "fuzz.sds:", 9) || strchr(why, '\n') || !strstr(why, ": rule ")) fail("a bytecode refusal without file, line and rule");
+    return;
+  }
+  char host_msg[512];
+  snprintf(host_msg, sizeof host_msg, "%s", sessile_error_message());
+  sessile_sds_actions b = {0};
+  sessile_status t = sessile_sds_rules_eval_vm(m, cl, phi, state, 1.5, &b);
+  if (t != s) fail("the bytecode's status differs from muparser's");
+  if (s != SESSILE_OK && strcmp(host_msg, sessile_error_message())) fail("the bytecode's message differs from muparser's");
+  if (s == SESSILE_OK) {
+    int nm = sessile_sds_model_nmorph(m), ok = a->nsets == b.nsets && a->ndivides == b.ndivides && a->fired == b.fired;
+    ok = ok && same_bits(a->grow, b.grow, (size_t)cl->ncells) && same_bits(a->produce, b.produce, (size_t)cl->ncells * nm);
+    for (size_t i = 0; ok && i < a->nsets; i++)
+      ok = a->sets[i].cell == b.sets[i].cell && a->sets[i].target == b.sets[i].target &&
+           a->sets[i].kind == b.sets[i].kind && same_bits(&a->sets[i].value, &b.sets[i].value, 1);
+    for (size_t i = 0; ok && i < a->ndivides; i++)
+      ok = a->divides[i].cell == b.divides[i].cell && same_bits(a->divides[i].dir, b.divides[i].dir, 3);
+    if (!ok) fail("the bytecode's actions differ from muparser's");
+  }
+  sessile_sds_actions_free(&b);
+}
+
 static void evaluate(const sessile_sds_model *m) {
   enum { N = 27 };
   double pos[3 * N], radius[N], phi[N * 16], state[N * 32];
@@ -58,6 +91,7 @@ static void evaluate(const sessile_sds_model *m) {
   sessile_sds_actions a = {0};
   sessile_status s = sessile_sds_rules_eval(m, &cl, phi, state, 1.5, &a);
   if (s != SESSILE_OK && s != SESSILE_ERR_NUMERIC) fail("an unexpected status from the evaluation");
+  same_as_bytecode(m, &cl, phi, state, s, &a);
   if (s == SESSILE_OK) {
     for (size_t i = 0; i < a.nsets; i++) {
       const sessile_sds_set *q = &a.sets[i];

@@ -5,6 +5,9 @@ static const char *const tokens[] = {
     "->", ":", ";", "=", "(", ")", "#", "\n", "\"", "0", "1", "-1", "0.5", "1e308", "-1e308", "1e-308", "nan",
     "inf", "1e999", "0x10", "1/0", "0/0", "phi", "tip", "clock", "K", "radius", "volume", "time", "_pi",
     "&&", "||", "==", "!=", "<=", ">=", "<", ">", "+", "-", "*", "/", "^", "?", "sqrt(", "min(", "log(-1)",
+    /* the bytecode compiler's cases: muparser's optimiser patterns, ?:, variadic functions, signs */
+    ",", "max(", "sum(", "avg(", "abs(", "sign(", "rint(", "exp(", "atan2(", "_e", "^2", "^3", "^0", "*2*3",
+    "/2", "+radius", "-(", "? 1 : 0", "radius*radius", "2*(3*radius+1)", ".5", "2.5e-3", "=", "surface",
     "(((", ")))", " ", "\t", "\r\n", "grad(phi)", "grad(", "toward", "away", "-grad(phi)", "diffusion=",
     "decay=", "start=", "capped=", "capped=2"};
 static const char *const words[] = {
