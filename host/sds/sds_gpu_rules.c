@@ -65,7 +65,8 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   size_t n = (size_t)cl->ncells, ne = cl->nbr_off[n], nm = r->nmorph, ns = r->nstate;
   double *rm = malloc(2 * n * sizeof *rm);
   uint32_t *surf = malloc(n * sizeof *surf);
-  sessile_status st = rm && surf ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
+  sessile_status st =
+      rm && surf ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
   for (size_t c = 0; st == SESSILE_OK && c < n; c++)
     rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
   const int sized[] = {R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ};
@@ -90,8 +91,8 @@ sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
   return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, zero, sizeof zero);
 }
 
-static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
-                               double time, double dt, uint32_t mode) {
+static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm, double time,
+                               double dt, uint32_t mode) {
   SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
   sds_rules_push p;
   memset(&p, 0, sizeof p);

@@ -54,9 +54,12 @@ static inline rvm_cells rvm_cells_make(const sessile_sds_model *m, int nx, int n
     for (int k = 0; k < C.ns; k++) {
       const char *nm = sessile_sds_model_state_name(m, k);
       double u = sessile_rng_range(&s, 0, 1);
-      if (!strcmp(nm, "birth_radius")) C.state[c * C.ns + k] = C.r[c] / (1 + 0.5 * u);
-      else if (nm[0] == 's' && nm[1] >= '0' && nm[1] <= '9') C.state[c * C.ns + k] = 4 * u - 1;
-      else C.state[c * C.ns + k] = u < 0.3; /* tip, stripe, budcell */
+      if (!strcmp(nm, "birth_radius"))
+        C.state[c * C.ns + k] = C.r[c] / (1 + 0.5 * u);
+      else if (nm[0] == 's' && nm[1] >= '0' && nm[1] <= '9')
+        C.state[c * C.ns + k] = 4 * u - 1;
+      else
+        C.state[c * C.ns + k] = u < 0.3; /* tip, stripe, budcell */
     }
   }
   return C;
@@ -93,7 +96,8 @@ static inline int rvm_same_actions(const sessile_sds_model *m, const rvm_cells *
   if (!ok && a.nsets == b.nsets)
     for (size_t i = 0; i < a.nsets; i++)
       if (memcmp(&a.sets[i].value, &b.sets[i].value, sizeof(double))) {
-        printf("  first: cell %d target %d: %a against %a\n", a.sets[i].cell, a.sets[i].target, a.sets[i].value, b.sets[i].value);
+        printf("  first: cell %d target %d: %a against %a\n", a.sets[i].cell, a.sets[i].target, a.sets[i].value,
+               b.sets[i].value);
         break;
       }
   for (size_t i = 0; ok && i < a.ndivides; i++)

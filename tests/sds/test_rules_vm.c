@@ -61,7 +61,8 @@ static void device_run(sessile_gpu *g, const sessile_sds_model *m, const char *n
     t_must("events", sds_gpu_rules_read_events(r, ev, req, &nreq));
     ok = nreq == a.ndivides;
     for (uint32_t i = 0; ok && i < nreq; i++)
-      ok = req[SDS_REQ * i] == a.divides[i].cell && !memcmp(&req[SDS_REQ * i + 2], a.divides[i].dir, 3 * sizeof(double));
+      ok =
+          req[SDS_REQ * i] == a.divides[i].cell && !memcmp(&req[SDS_REQ * i + 2], a.divides[i].dir, 3 * sizeof(double));
     divisions += nreq;
     sessile_buffer *bphi = sds_gpu_rules_buffer(r, SDS_RULES_PHI);
     if (nm) {
@@ -84,8 +85,10 @@ static void device_run(sessile_gpu *g, const sessile_sds_model *m, const char *n
     sessile_sds_actions_free(&a);
   }
   char what[300];
-  snprintf(what, sizeof what, "%s: %d steps of rules, morphogens and actions, host and kernel: the same radii, "
-           "amounts, states and division requests every step (%d the same; %zu requests)", name, steps, same_steps, divisions);
+  snprintf(what, sizeof what,
+           "%s: %d steps of rules, morphogens and actions, host and kernel: the same radii, "
+           "amounts, states and division requests every step (%d the same; %zu requests)",
+           name, steps, same_steps, divisions);
   t_true(what, ok && same_steps == steps);
   free(tmp), free(src), free(rm), free(req);
   sessile_cmd_destroy(cmd);
@@ -143,15 +146,18 @@ static void device_check(sessile_gpu *g, const sessile_sds_model *m, const char 
     mass_exact += rm[2 * c + 1] == mh;
   }
   char what[300];
-  snprintf(what, sizeof what, "%s, seed %d, %zu cells, %d step(s): the kernel's sources, division requests, radii, "
-           "amounts and states are the host's, bit for bit (%zu requests; %s)", name, (int)seed, n, steps, a.ndivides,
-           steps > 1 && a.ndivides ? "the second step stopped" : "one step");
+  snprintf(what, sizeof what,
+           "%s, seed %d, %zu cells, %d step(s): the kernel's sources, division requests, radii, "
+           "amounts and states are the host's, bit for bit (%zu requests; %s)",
+           name, (int)seed, n, steps, a.ndivides, steps > 1 && a.ndivides ? "the second step stopped" : "one step");
   t_true(what, ok);
-  if (steps > 1 && a.ndivides) t_true("... the batch's second step found STOP and skipped", ev[SDS_EV_STOP] == 1 && ev[SDS_EV_SKIP] == 1);
+  if (steps > 1 && a.ndivides)
+    t_true("... the batch's second step found STOP and skipped", ev[SDS_EV_STOP] == 1 && ev[SDS_EV_SKIP] == 1);
   /* the kernel rounds r^3 once (Dekker); glibc 2.36's pow(r, 3) is one ulp
    * off for about 1 radius in 1 200, which the product with density 4/3 pi
    * can make two */
-  snprintf(what, sizeof what, "%s: masses within 2 ulps of density 4/3 pi pow(r, 3) (%zu of %zu exact)", name, mass_exact, n);
+  snprintf(what, sizeof what, "%s: masses within 2 ulps of density 4/3 pi pow(r, 3) (%zu of %zu exact)", name,
+           mass_exact, n);
   t_check(what, mass_ulp, 2);
   sessile_sds_actions_free(&a);
   free(src), free(phi), free(st), free(rm), free(req);
@@ -165,22 +171,22 @@ static void device_check(sessile_gpu *g, const sessile_sds_model *m, const char 
  * x^0..4, 2*(3*x+1)), folding (of && too), signs, ?: nested, every
  * function. */
 static const char *const exprs[] = {
-    "radius * 3 * 5", "3 * radius * 5", "radius * 0.1 / 3", "4 * radius / 2", "radius + radius",
-    "radius - radius", "2 * radius - radius", "radius * radius", "radius ^ 2", "radius^3", "radius^4",
-    "radius^0", "radius^1", "-radius^2", "-radius*3", "-(radius+1)*3", "1 + 2*3 - 4/5",
-    "phi > K*volume && tip == 0 || radius < 0.3", "tip ? radius : volume", "tip == 1 ? 2 : phi > 0.5 ? 3 : 4",
-    "(tip ? 1 : 2) + 3", "min(radius, volume, phi)", "max(radius, 2)", "sum(radius, phi, 1)",
-    "avg(radius, volume)", "abs(phi - 0.5)", "sign(phi - 0.5)", "rint(radius*10)", "sqrt(volume)",
-    "_pi * radius^2", "_e + 2.5e-1 * radius", ".5*radius", "0.5 && 1", "0.5 && radius", "0.5 || 0",
-    "+radius", "-(-radius)", "radius - -1", "1 - radius + 2", "(radius + 1) * 2", "2 * (3 * radius + 1)",
-    "(radius * 3 + 1) / 2", "surface * 2 + time", "K * volume + phi * 2 - 1", "radius >= 0.5 != (phi <= 0.1)",
-    "H * phi * H", "phi / H / 3", "1 / (phi + 1)", "volume - phi * H + K", "tip * 2 + tip", "phi*K - phi",
-    "min(phi)", "max(tip, phi, radius, volume)", "K ? radius : 2", "0 ? 1 : radius", "abs(-0)", "exp(1) * radius",
+    "radius * 3 * 5", "3 * radius * 5", "radius * 0.1 / 3", "4 * radius / 2", "radius + radius", "radius - radius",
+    "2 * radius - radius", "radius * radius", "radius ^ 2", "radius^3", "radius^4", "radius^0", "radius^1", "-radius^2",
+    "-radius*3", "-(radius+1)*3", "1 + 2*3 - 4/5", "phi > K*volume && tip == 0 || radius < 0.3",
+    "tip ? radius : volume", "tip == 1 ? 2 : phi > 0.5 ? 3 : 4", "(tip ? 1 : 2) + 3", "min(radius, volume, phi)",
+    "max(radius, 2)", "sum(radius, phi, 1)", "avg(radius, volume)", "abs(phi - 0.5)", "sign(phi - 0.5)",
+    "rint(radius*10)", "sqrt(volume)", "_pi * radius^2", "_e + 2.5e-1 * radius", ".5*radius", "0.5 && 1",
+    "0.5 && radius", "0.5 || 0", "+radius", "-(-radius)", "radius - -1", "1 - radius + 2", "(radius + 1) * 2",
+    "2 * (3 * radius + 1)", "(radius * 3 + 1) / 2", "surface * 2 + time", "K * volume + phi * 2 - 1",
+    "radius >= 0.5 != (phi <= 0.1)", "H * phi * H", "phi / H / 3", "1 / (phi + 1)", "volume - phi * H + K",
+    "tip * 2 + tip", "phi*K - phi", "min(phi)", "max(tip, phi, radius, volume)", "K ? radius : 2", "0 ? 1 : radius",
+    "abs(-0)", "exp(1) * radius",
     /* on the host only: no fp64 version on the device */
-    "exp(-radius)", "phi^0.5", "2^(-radius)", "log(volume)", "sin(time) + cos(time)", "atan2(radius, phi)", "tan(phi) * sinh(phi)",
-    "cosh(phi) - tanh(phi) + asin(phi / (phi + 1)) + acos(phi / (phi + 1)) + atan(phi)",
-    "asinh(radius) + acosh(radius + 1) + atanh(phi / (phi + 2))",
-    "log2(volume) + log10(volume) + ln(volume)", "radius ^ phi"};
+    "exp(-radius)", "phi^0.5", "2^(-radius)", "log(volume)", "sin(time) + cos(time)", "atan2(radius, phi)",
+    "tan(phi) * sinh(phi)", "cosh(phi) - tanh(phi) + asin(phi / (phi + 1)) + acos(phi / (phi + 1)) + atan(phi)",
+    "asinh(radius) + acosh(radius + 1) + atanh(phi / (phi + 2))", "log2(volume) + log10(volume) + ln(volume)",
+    "radius ^ phi"};
 enum { NEXPR = sizeof exprs / sizeof *exprs, NDEVICE = 57 /* the first NDEVICE have device versions */ };
 
 static char *expr_model_text;
@@ -188,8 +194,9 @@ static char *expr_model_text;
 static char *expr_model(int nexpr) {
   size_t cap = 32768, n = 0;
   char *t = t_xalloc(cap);
-  n += (size_t)snprintf(t + n, cap - n, "const K = 0.03\nconst H = 1.7\nmorphogen phi diffusion=0.1 decay=0.1\n"
-                                        "state tip = 0\n");
+  n += (size_t)snprintf(t + n, cap - n,
+                        "const K = 0.03\nconst H = 1.7\nmorphogen phi diffusion=0.1 decay=0.1\n"
+                        "state tip = 0\n");
   for (int s = 0; s < 24; s++) n += (size_t)snprintf(t + n, cap - n, "state s%d = 0\n", s);
   for (int i = 0; i < nexpr; i += 8) {
     n += (size_t)snprintf(t + n, cap - n, "rule q%d: 1 ->", i / 8);
@@ -218,8 +225,8 @@ int main(void) {
     t_true(what, !sessile_sds_model_bytecode_refusal(m, 1));
     for (int seed = 1; seed <= 3; seed++) {
       rvm_cells C = rvm_cells_make(m, 9, 8, 7, (uint64_t)seed);
-      snprintf(what, sizeof what, "%s: seed %d, %d cells: the bytecode's actions are muparser's, bit for bit",
-               names[i], seed, C.n);
+      snprintf(what, sizeof what, "%s: seed %d, %d cells: the bytecode's actions are muparser's, bit for bit", names[i],
+               seed, C.n);
       t_true(what, rvm_same_actions(m, &C, 0.5 * seed));
       rvm_cells_free(&C);
     }
@@ -232,7 +239,8 @@ int main(void) {
   t_true("the expression model compiles to bytecode", !sessile_sds_model_bytecode_refusal(m, 0));
   const char *why = sessile_sds_model_bytecode_refusal(m, 1);
   printf("  its device refusal: %s\n", why ? why : "(none)");
-  t_true("... and is refused on the device, naming the rule of exp(-radius)", why && strstr(why, "rule q7:") && strstr(why, "'exp'"));
+  t_true("... and is refused on the device, naming the rule of exp(-radius)",
+         why && strstr(why, "rule q7:") && strstr(why, "'exp'"));
   for (int seed = 1; seed <= 4; seed++) {
     rvm_cells C = rvm_cells_make(m, 6, 5, 4, 100 + (uint64_t)seed);
     char what[200];
@@ -246,21 +254,25 @@ int main(void) {
 
   /* what it does not rebuild stays on the host, with the rule named */
   m = NULL;
-  t_must("a model with an assignment", sessile_sds_model_parse("state tip\nrule zz: (tip = 1) -> grow 1\n", "as.sds", &m));
+  t_must("a model with an assignment",
+         sessile_sds_model_parse("state tip\nrule zz: (tip = 1) -> grow 1\n", "as.sds", &m));
   why = sessile_sds_model_bytecode_refusal(m, 0);
   printf("  %s\n", why ? why : "(none)");
-  t_true("an assignment is refused, naming file, line and rule", why && strstr(why, "as.sds:2: rule zz") && strstr(why, "assignment"));
+  t_true("an assignment is refused, naming file, line and rule",
+         why && strstr(why, "as.sds:2: rule zz") && strstr(why, "assignment"));
   sessile_sds_actions a = {0};
   rvm_cells C = rvm_cells_make(m, 2, 2, 2, 1);
   sessile_morph_cells cl = rvm_morph_cells(&C);
-  t_true("... and its bytecode evaluation refused", sessile_sds_rules_eval_vm(m, &cl, C.phi, C.state, 0, &a) == SESSILE_ERR_USAGE);
+  t_true("... and its bytecode evaluation refused",
+         sessile_sds_rules_eval_vm(m, &cl, C.phi, C.state, 0, &a) == SESSILE_ERR_USAGE);
   sessile_sds_actions_free(&a);
   rvm_cells_free(&C);
   sessile_sds_model_destroy(m);
 
   /* a value that is not finite stops both the same way */
   m = NULL;
-  t_must("a model dividing by zero", sessile_sds_model_parse("morphogen p diffusion=0 decay=0\nrule r: 1 -> grow 1 / (p - p)\n", "z.sds", &m));
+  t_must("a model dividing by zero",
+         sessile_sds_model_parse("morphogen p diffusion=0 decay=0\nrule r: 1 -> grow 1 / (p - p)\n", "z.sds", &m));
   C = rvm_cells_make(m, 2, 2, 2, 1);
   cl = rvm_morph_cells(&C);
   sessile_status s1 = sessile_sds_rules_eval(m, &cl, C.phi, C.state, 0, &a);

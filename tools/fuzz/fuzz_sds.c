@@ -44,7 +44,8 @@ static void same_as_bytecode(const sessile_sds_model *m, const sessile_morph_cel
                              const double *state, sessile_status s, const sessile_sds_actions *a) {
   const char *why = sessile_sds_model_bytecode_refusal(m, 0);
   if (why) {
-    if (strncmp(why, "fuzz.sds:", 9) || strchr(why, '\n') || !strstr(why, ": rule ")) fail("a bytecode refusal without file, line and rule");
+    if (strncmp(why, "fuzz.sds:", 9) || strchr(why, '\n') || !strstr(why, ": rule "))
+      fail("a bytecode refusal without file, line and rule");
     return;
   }
   char host_msg[512];
@@ -52,10 +53,12 @@ static void same_as_bytecode(const sessile_sds_model *m, const sessile_morph_cel
   sessile_sds_actions b = {0};
   sessile_status t = sessile_sds_rules_eval_vm(m, cl, phi, state, 1.5, &b);
   if (t != s) fail("the bytecode's status differs from muparser's");
-  if (s != SESSILE_OK && strcmp(host_msg, sessile_error_message())) fail("the bytecode's message differs from muparser's");
+  if (s != SESSILE_OK && strcmp(host_msg, sessile_error_message()))
+    fail("the bytecode's message differs from muparser's");
   if (s == SESSILE_OK) {
     int nm = sessile_sds_model_nmorph(m), ok = a->nsets == b.nsets && a->ndivides == b.ndivides && a->fired == b.fired;
-    ok = ok && same_bits(a->grow, b.grow, (size_t)cl->ncells) && same_bits(a->produce, b.produce, (size_t)cl->ncells * nm);
+    ok = ok && same_bits(a->grow, b.grow, (size_t)cl->ncells) &&
+         same_bits(a->produce, b.produce, (size_t)cl->ncells * nm);
     for (size_t i = 0; ok && i < a->nsets; i++)
       ok = a->sets[i].cell == b.sets[i].cell && a->sets[i].target == b.sets[i].target &&
            a->sets[i].kind == b.sets[i].kind && same_bits(&a->sets[i].value, &b.sets[i].value, 1);
