@@ -130,11 +130,12 @@ expect("cells linear in time: R^2 > 0.9999, slope 5, 61 frames in [100, 400]",
 m = fig("cells", T + "/exp")
 expect("cells doubling every 40: R^2 < 0.98", m["r2"] < 0.98 and not m["criteria"]["linear_r2_at_least_0.98"])
 
-# Figures 8, 10, 11: six tips on the axes of a body centred at 0 (frame 0),
-# then frame 1 where they have grown out (2 u), straight or each turned 30
-# degrees (toward another axis, so the centroid stays at 0), or each moved
-# 0.5 u toward the point (0, 0, 5); buds of 4 cells that appear in frame 1
-# (radius 0.1) and grow (radius 0.15: volume x 3.375) or do not by frame 2.
+# Figures 8, 10, 11: six limbs along the axes, straight or each turned 30
+# degrees at its middle (and the bent organism turned as a whole); six tips
+# on the axes of a body centred at 0 (frame 0), then frame 1 where they have
+# grown out (2 u), straight or each moved 0.5 u toward the point (0, 0, 5);
+# buds of 4 cells that appear in frame 1 (radius 0.1) and grow (radius 0.15:
+# volume x 3.375) or do not by frame 2.
 D6 = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
 P6 = np.array([[0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0]], float)
 PT = np.array([0.0, 0.0, 5.0])
@@ -149,17 +150,38 @@ def six_run(d, tips_by_frame, bud_r=None):
             f["budcell"] = np.r_[np.zeros(6), np.ones(4) * (bud_r[k] > 0), np.zeros(n - 10)]
             f["radius"][6:10] = bud_r[k] or 0.1
         write_vtu("%s/sds/frame_%04d.vtu" % (d, k), x, f, chain(n))
-c30, s30 = np.cos(np.pi / 6), np.sin(np.pi / 6)
 six_run(T + "/straight", [D6, 2 * D6])
-six_run(T + "/bent", [D6, 2 * (c30 * D6 + s30 * P6)])
-m = fig("bend", T + "/bent", "--ref", T + "/straight")
-expect("Figure 8: every tip turned 30 deg, the reference straight: mean 30, excess 30, bent",
-       np.allclose(m["deflection_deg"], 30) and abs(m["excess_deg"] - 30) < 1e-9 and m["criteria"]["limbs_bent"])
-m = fig("bend", T + "/bent", "--ref", T + "/bent")
-expect("... against a reference bent as much: excess 0, not bent", abs(m["excess_deg"]) < 1e-9
+def limbs_run(d, turn, spin=0.0):
+    """Six limbs of 21 cells 0.1 u apart from the centre out along the axes,
+    each a chain of tets of its own; past its 11th cell each turns by `turn`
+    (toward another axis: the centroid stays at 0); the whole turned by
+    `spin` about z."""
+    ct, st = np.cos(np.radians(turn)), np.sin(np.radians(turn))
+    cs, ss = np.cos(np.radians(spin)), np.sin(np.radians(spin))
+    rot = np.array([[cs, -ss, 0], [ss, cs, 0], [0, 0, 1]])
+    xs, tets, tipv = [], [], []
+    for i in range(6):
+        pts = [0.1 * k * D6[i] for k in range(11)]
+        pts += [pts[10] + 0.1 * k * (ct * D6[i] + st * P6[i]) for k in range(1, 11)]
+        tets.append(chain(21) + 21 * i)
+        xs += pts
+        tipv += [0] * 20 + [1]
+    x = np.array(xs) @ rot.T
+    n = len(x)
+    os.makedirs(d + "/sds")
+    write_vtu(d + "/sds/frame_0000.vtu", x, {"radius": np.full(n, 0.05), "surface": np.ones(n),
+              "tip": np.array(tipv, float)}, np.concatenate(tets))
+limbs_run(T + "/l_straight", 0)
+limbs_run(T + "/l_bent", 30)
+limbs_run(T + "/l_bent_spun", 30, spin=40)
+m = fig("bend", T + "/l_bent", "--ref", T + "/l_straight")
+expect("Figure 8: every limb turned 30 deg at its middle, the reference straight: turns 30, excess 30, bent",
+       np.allclose(m["turn_deg"], 30) and abs(m["excess_deg"] - 30) < 1e-9 and m["criteria"]["limbs_bent"])
+m = fig("bend", T + "/l_bent_spun", "--ref", T + "/l_bent")
+expect("... the same organism turned 40 deg about z against it: excess 0, not bent", abs(m["excess_deg"]) < 1e-9
        and not m["criteria"]["limbs_bent"])
-m = fig("bend", T + "/straight")
-expect("... straight limbs without a reference: deflection 0, not bent", abs(m["mean_deflection_deg"]) < 1e-6
+m = fig("bend", T + "/l_straight")
+expect("... straight limbs without a reference: turn 0, not bent", abs(m["mean_turn_deg"]) < 1e-6
        and not m["criteria"]["limbs_bent"])
 to = PT - 2 * D6
 six_run(T + "/drawn", [D6, 2 * D6 + 0.5 * to / np.linalg.norm(to, axis=1)[:, None]])
@@ -214,9 +236,9 @@ n = fig("cells", T + "/r", "--from", "0", "--to", "2")
 ok &= n["points"] == 2
 b = fig("bend", T + "/r", "--ref", T + "/r")
 a = fig("attract", T + "/r", "--point", "0", "0", "5")
-print("rock at t = %.2f: tip deflections %s deg, tips %.3f u from (0, 0, 5)" % (
-    b["time"], ["%.2f" % d for d in b["deflection_deg"]], a["mean_distance"]))
-ok &= len(b["deflection_deg"]) == 6 and b["excess_deg"] == 0 and len(a["distance"]) == 6
+print("rock at t = %.2f: the limbs' turns %s deg, tips %.3f u from (0, 0, 5)" % (
+    b["time"], ["%.2f" % d for d in b["turn_deg"]], a["mean_distance"]))
+ok &= len(b["turn_deg"]) == 6 and b["excess_deg"] == 0 and len(a["distance"]) == 6
 sys.exit(0 if ok else 1)
 PYEOF
 finish

@@ -10,8 +10,8 @@
       Figure 12: cells against time from records.jsonl, a line fitted over
       [T0, T1] and its R^2.
   figures.py bend RUN_DIR [--ref REF_DIR] [--frame K | --time T] [--min-bend DEG]
-      Figure 8: each tip's deflection from its starting direction (from the
-      body's centroid), against the same in an unboxed run REF_DIR.
+      Figure 8: the angle each limb turns between its middle and its tip,
+      against the same in an unboxed run REF_DIR.
   figures.py attract RUN_DIR [--ref REF_DIR] [--frame K | --time T] [--point X Y Z]
       Figure 10: the tips' mean distance to the attraction point, against the
       same in a run without the attraction (REF_DIR) or at the start.
@@ -303,29 +303,45 @@ def tips_now_and_then(run, args):
     return k, t, c["x"][i], c0["x"][i0], c["x"][c["used"]].mean(0), c0["x"][c0["used"]].mean(0)
 
 
-def deflections(run, args):
-    """Per tip the angle (degrees) between its direction from the body's
-    centroid now and at the start: 0 for a limb that grew straight out."""
-    k, t, tp, tp0, ctr, ctr0 = tips_now_and_then(run, args)
-    a, b = tp - ctr, tp0 - ctr0
-    cosv = (a * b).sum(1) / np.linalg.norm(a, axis=1) / np.linalg.norm(b, axis=1)
-    return k, t, np.degrees(np.arccos(np.clip(cosv, -1, 1)))
+def limb_turns(run, args):
+    """Per tip the angle (degrees) its limb turns: between the direction from
+    the body's centroid to the limb's middle and from the middle to the tip.
+    The limb is the cells nearest its tip through the complex (as `stripes`);
+    its middle is the mean of those within half a cell diameter of half the
+    tip's graph distance to the one nearest the centroid (a cross-section).  0 for a straight limb, whatever its direction;
+    a turn of the whole organism does not change it."""
+    k, t = pick_frame(run, args)
+    c = load_frame(run, k)
+    assert c["complex"], "bend needs the VTU frames (the complex's edges)"
+    tips = tip_cells(c)
+    dist, owner = graph_distance(c["x"], c["tets"], tips)
+    ctr = c["x"][c["used"]].mean(0)
+    h = 2 * float(np.median(c["radius"][c["used"]]))
+    out = []
+    for i, tip in enumerate(tips):
+        mine = np.flatnonzero((owner == i) & c["used"])
+        base = mine[np.argmin(np.linalg.norm(c["x"][mine] - ctr, axis=1))]
+        band = mine[np.abs(dist[mine] - dist[base] / 2) <= h / 2]  # a cross-section: its mean is on the axis
+        mid = c["x"][band].mean(0) if len(band) else c["x"][mine[np.argmin(np.abs(dist[mine] - dist[base] / 2))]]
+        a, b = mid - ctr, c["x"][tip] - mid
+        cosv = a @ b / (np.linalg.norm(a) * np.linalg.norm(b))
+        out.append(float(np.degrees(np.arccos(np.clip(cosv, -1, 1)))))
+    return k, t, np.array(out)
 
 
 def cmd_bend(args):
-    k, t, dev = deflections(args.run, args)
-    m = {"figure": 8, "frame": k, "time": t, "deflection_deg": dev.tolist(), "mean_deflection_deg": float(dev.mean())}
-    ref = 0.0  # a straight limb's deflection
+    k, t, dev = limb_turns(args.run, args)
+    m = {"figure": 8, "frame": k, "time": t, "turn_deg": dev.tolist(), "mean_turn_deg": float(dev.mean())}
+    ref = 0.0  # a straight limb's turn
+    print("frame %d, t = %.3f: the limbs' turns (deg): %s; mean %.1f" % (k, t, " ".join("%.1f" % d for d in dev),
+                                                                           dev.mean()))
     if args.ref:
-        rk, rt, rdev = deflections(args.ref, args)
+        rk, rt, rdev = limb_turns(args.ref, args)
         ref = float(rdev.mean())
-        m.update(ref_frame=rk, ref_time=rt, ref_deflection_deg=rdev.tolist())
-    m["ref_mean_deflection_deg"] = ref
-    m["excess_deg"] = m["mean_deflection_deg"] - ref
-    print("frame %d, t = %.3f: tip deflections from their starting directions (deg): %s; mean %.1f" % (
-        k, t, " ".join("%.1f" % d for d in dev), dev.mean()))
-    if args.ref:
+        m.update(ref_frame=rk, ref_time=rt, ref_turn_deg=rdev.tolist())
         print("reference frame %d, t = %.3f: %s; mean %.1f" % (rk, rt, " ".join("%.1f" % d for d in rdev), ref))
+    m["ref_mean_turn_deg"] = ref
+    m["excess_deg"] = m["mean_turn_deg"] - ref
     m["criteria"] = {"limbs_bent": bool(m["excess_deg"] >= args.min_bend)}
     print(json.dumps(m))
 
@@ -405,7 +421,7 @@ def main(argv=None):
     for name in ("bend", "attract"):
         sub.choices[name].add_argument("--ref", help="the same model without the box / the attraction")
     sub.choices["bend"].add_argument("--min-bend", type=float, default=10,
-                                     help="degrees the mean deflection must exceed the reference's by (default 10)")
+                                     help="degrees the mean turn must exceed the reference's by (default 10)")
     sub.choices["attract"].add_argument("--point", type=float, nargs=3, help="default: the model's attractor")
     sub.choices["buds"].add_argument("--field", default="budcell", help="the bud state (default: budcell)")
     sub.choices["buds"].add_argument("--min-growth", type=float, default=2,
