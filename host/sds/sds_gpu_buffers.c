@@ -104,6 +104,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   s->p = *p;
   double v[SP_COUNT] = {0};
   v[SP_K_EDGE] = p->k_edge, v[SP_K_VOL] = p->k_vol, v[SP_SURF] = p->surface_mult;
+  v[SP_UNIFORM] = p->uniform_stiffness ? 1 : 0;
   v[SP_DAMP_VISC] = p->damp_visc, v[SP_DAMP_VOL] = p->damp_vol, v[SP_GRAVITY] = p->gravity;
   for (int i = 0; i < 3; i++) v[SP_LO + i] = p->box_lo[i], v[SP_HI + i] = p->box_hi[i];
   v[SP_K_WALL] = p->k_wall, v[SP_K_ATTRACT] = p->k_attract;

@@ -43,8 +43,8 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
 /* A bound on the stable step of semi-implicit Euler.  For one mode
  * x'' = -omega^2 x - gamma x' the scheme is stable when
  * (omega dt)^2 + 2 gamma dt < 4.  Per cell, Gershgorin's theorem on M^-1 H
- * at rest bounds omega^2: its edges give 2 K_e (K_e = d2E/dL2 =
- * k_e (m_a + m_b) / R'), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
+ * at rest bounds omega^2: its edges give 2 K_e (K_e = d2E/dL2 = s_k / R'^2:
+ * k_e (m_a + m_b) / R', or k_e / R'^2 with uniform stiffness), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
  * walls k_wall; gamma likewise from the volume damping (damp_vol in place of
  * k_vol) plus the viscous c; a surface cell adds k_contact when
  * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells. */
@@ -54,7 +54,8 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
   for (uint32_t e = 0; e < o->nedges; e++) {
     const uint32_t *q = o->edge + 2 * (size_t)e;
     double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);
-    double K = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0) * (o->m[q[0]] + o->m[q[1]]) / R;
+    double ks = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0);
+    double K = p->uniform_stiffness ? ks / (R * R) : ks * (o->m[q[0]] + o->m[q[1]]) / R; /* s_k / R'^2 */
     lam[2 * q[0]] += 2 * K, lam[2 * q[1]] += 2 * K;
   }
   for (uint32_t t = 0; t < o->ntets; t++) {
@@ -67,7 +68,7 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
     for (int i = 0; i < 3; i++) g[0][i] = -(g[1][i] + g[2][i] + g[3][i]);
     for (int k = 0; k < 4; k++) gl[k] = sqrt(sds_dot(g[k], g[k])) / 6.0, gs += gl[k];
     double R = o->tet_sm[t] * sessile_sds_tet_rest_of(o, t);
-    double s = sds_tet_scale(o, t) / (R * R);
+    double s = sds_tet_scale(o, p, t) / (R * R);
     double ks = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * s, ds = p->damp_vol * s;
     for (int k = 0; k < 4; k++) lam[2 * q[k]] += ks * gl[k] * gs, lam[2 * q[k] + 1] += ds * gl[k] * gs;
   }

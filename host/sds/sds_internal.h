@@ -29,9 +29,10 @@ static inline double sds_vol4(const double *p0, const double *p1, const double *
 }
 
 /* The stiffness scales (docs/sds.md, "Physics"): per edge k R' (m_a + m_b),
- * per tet k (sum r / 2) (sum m / 2), times surface_mult on surface elements. */
-double sds_edge_scale(const sessile_sds *o, uint32_t e);
-double sds_tet_scale(const sessile_sds *o, uint32_t t);
+ * per tet k (sum r / 2) (sum m / 2), times surface_mult on surface elements;
+ * 1 for both with p->uniform_stiffness (the paper's uniform springs). */
+double sds_edge_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t e);
+double sds_tet_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t t);
 
 /* Gravity, box penalty and attraction acceleration of a cell at x, and
  * their potential per unit mass (host reference of the GPU's; the contacts

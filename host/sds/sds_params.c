@@ -31,6 +31,8 @@ static const sessile_param_desc descs[] = {
      "prototype", "edge spring stiffness k_edge (paper 3.2), scaled per edge by R'(m_a + m_b)", NULL},
     {"volume_stiffness", SESSILE_PT_REAL, OFF(volume_stiffness), 2, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "u/s^2",
      "prototype", "tet (volume) spring stiffness k_vol (paper 3.2)", NULL},
+    {"uniform_stiffness", SESSILE_PT_BOOL, OFF(uniform_stiffness), 0, 0, 1, 0, "", "paper 3.2",
+     "true: every spring's stiffness is k_edge, k_vol itself (energies, m u^2/s^2), the paper's; false: the prototype's scaling", NULL},
     {"surface_multiplier", SESSILE_PT_REAL, OFF(surface_multiplier), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "",
      "prototype", "stiffness of surface springs over internal ones (paper 3.2)", NULL},
     {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",

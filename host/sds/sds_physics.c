@@ -24,12 +24,14 @@ void sessile_sds_params_default(sessile_sds_params *p) {
   p->stable_safety = 0.8;
 }
 
-double sds_edge_scale(const sessile_sds *o, uint32_t e) {
+double sds_edge_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t e) {
+  if (p->uniform_stiffness) return 1.0;
   uint32_t a = o->edge[2 * (size_t)e], b = o->edge[2 * (size_t)e + 1];
   return o->edge_sm[e] * (o->r[a] + o->r[b]) * (o->m[a] + o->m[b]);
 }
 
-double sds_tet_scale(const sessile_sds *o, uint32_t t) {
+double sds_tet_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t t) {
+  if (p->uniform_stiffness) return 1.0;
   const uint32_t *q = o->tet + 4 * (size_t)t;
   double rs = 0, ms = 0;
   for (int i = 0; i < 4; i++) rs += o->r[q[i]], ms += o->m[q[i]];
@@ -82,12 +84,12 @@ void sessile_sds_energy_of(const sessile_sds *o, const sessile_sds_params *p, se
     double d[3];
     sds_sub(o->x + 3 * (size_t)q[0], o->x + 3 * (size_t)q[1], d);
     double R = o->edge_sm[k] * (o->r[q[0]] + o->r[q[1]]), s = (sqrt(sds_dot(d, d)) - R) / R;
-    double kk = p->k_edge * (o->edge_surface[k] ? p->surface_mult : 1.0) * sds_edge_scale(o, k);
+    double kk = p->k_edge * (o->edge_surface[k] ? p->surface_mult : 1.0) * sds_edge_scale(o, p, k);
     e->edge += 0.5 * kk * s * s;
   }
   for (uint32_t t = 0; t < o->ntets; t++) {
     double R = o->tet_sm[t] * sessile_sds_tet_rest_of(o, t), s = (sessile_sds_tet_volume(o, t) - R) / R;
-    double kk = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * sds_tet_scale(o, t);
+    double kk = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * sds_tet_scale(o, p, t);
     e->vol += 0.5 * kk * s * s;
   }
   sessile_sds_contact *ct = contacts_of(o, p);
@@ -115,7 +117,7 @@ static void edge_force(const sessile_sds *o, const sessile_sds_params *p, uint32
   sds_sub(o->x + 3 * (size_t)q[0], o->x + 3 * (size_t)q[1], d);
   double L = sqrt(sds_dot(d, d));
   double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);
-  double kk = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0) * sds_edge_scale(o, e);
+  double kk = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0) * sds_edge_scale(o, p, e);
   double g = kk * (L - R) / (R * R) / L; /* dE/dx_b = g d */
   double sg = which ? -g : g;
   for (int i = 0; i < 3; i++) f[i] = sg * d[i];
@@ -137,7 +139,7 @@ static void tet_force(const sessile_sds *o, const sessile_sds_params *p, uint32_
     g[0][i] = -(g[1][i] + g[2][i] + g[3][i]);
   }
   double V = sds_dot(a, g[1]);
-  double R = o->tet_sm[t] * sessile_sds_tet_rest_of(o, t), sc = sds_tet_scale(o, t);
+  double R = o->tet_sm[t] * sessile_sds_tet_rest_of(o, t), sc = sds_tet_scale(o, p, t);
   double coef = p->k_vol * (o->tet_surface[t] ? p->surface_mult : 1.0) * sc * (V - R) / (R * R);
   if (with_damping && p->damp_vol > 0) {
     double vdot = 0;

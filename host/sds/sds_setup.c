@@ -23,6 +23,7 @@ static sessile_status read_physics(sds_sim *s, const char *where) {
   s->p.k_edge = q->edge_stiffness;
   s->p.k_vol = q->volume_stiffness;
   s->p.surface_mult = q->surface_multiplier;
+  s->p.uniform_stiffness = q->uniform_stiffness;
   s->p.damp_vol = q->damping;
   s->p.damp_visc = q->viscosity;
   s->p.gravity = q->gravity;

@@ -1,6 +1,7 @@
 // One tetrahedron per invocation: the forces of the volume spring
 // E = k/2 ((V - R')/R')^2, R' = s_m R (Appendix A), k = k_vol (sum r/2)(sum m/2)
-// (times the surface multiplier on surface tets), on its 4 cells, and with
+// (k = k_vol alone with uniform stiffness, sp[SP_UNIFORM] = 1, the damping's
+// scale 1 too), times the surface multiplier on surface tets, on its 4 cells, and with
 // damping the volume-rate term -c (sum r/2)(sum m/2) (dV/dt)/R'^2 grad V.
 // In mode 2 it also writes each corner's terms of the stable bound
 // (stable.glsl), k s/R'^2 |grad_k V| sum_j |grad_j V| with k = k_vol (times
@@ -39,7 +40,7 @@ void main() {
   REAL R = LD_SM(t) * tet_rest(R_OF(q[0]), R_OF(q[1]), R_OF(q[2]), R_OF(q[3]));
   REAL rs = REAL(0), ms = REAL(0);
   for (int i = 0; i < 4; i++) rs += R_OF(q[i]), ms += M_OF(q[i]);
-  REAL sc = REAL(0.5) * rs * REAL(0.5) * ms;
+  REAL sc = sp[SP_UNIFORM] != REAL(0) ? REAL(1) : REAL(0.5) * rs * REAL(0.5) * ms;
   REAL coef = sp[SP_K_VOL] * (LD_TOPO(o_tsurf() + t) != 0u ? sp[SP_SURF] : REAL(1)) * sc * (V - R) / (R * R);
   if (pc.damping != 0u && sp[SP_DAMP_VOL] > REAL(0)) {
     REAL vdot = REAL(0);

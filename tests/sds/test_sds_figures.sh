@@ -5,7 +5,9 @@
 # places; cell counts linear and exponential in time) its metrics are the
 # shape's own, and its criteria fail where the shape breaks them (a bulb
 # 1.5x the neck, the tip two radii behind the front, cells growing
-# exponentially).  Then it runs on real frames (the limb and rock models to a
+# exponentially); the same for Figures 8, 10 and 11 (tips turned 30 degrees
+# against straight ones, tips drawn 0.5 u toward a point, buds that grow
+# 3.375x in volume against buds that keep their size).  Then it runs on real frames (the limb and rock models to a
 # few time units) and its slices account for every cell of the frame.
 set -u
 S="$1"
@@ -127,6 +129,80 @@ expect("cells linear in time: R^2 > 0.9999, slope 5, 61 frames in [100, 400]",
        m["r2"] > 0.9999 and abs(m["slope"] - 5) < 0.01 and m["points"] == 61 and m["criteria"]["linear_r2_at_least_0.98"])
 m = fig("cells", T + "/exp")
 expect("cells doubling every 40: R^2 < 0.98", m["r2"] < 0.98 and not m["criteria"]["linear_r2_at_least_0.98"])
+
+# Figures 8, 10, 11: six limbs along the axes, straight or each turned 30
+# degrees at its middle (and the bent organism turned as a whole); six tips
+# on the axes of a body centred at 0 (frame 0), then frame 1 where they have
+# grown out (2 u), straight or each moved 0.5 u toward the point (0, 0, 5);
+# buds of 4 cells that appear in frame 1 (radius 0.1) and grow (radius 0.15:
+# volume x 3.375) or do not by frame 2.
+D6 = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+P6 = np.array([[0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1], [1, 0, 0], [-1, 0, 0]], float)
+PT = np.array([0.0, 0.0, 5.0])
+def six_run(d, tips_by_frame, bud_r=None):
+    os.makedirs(d + "/sds")
+    for k, tp in enumerate(tips_by_frame):
+        body = np.concatenate([0.5 * D6, [[0, 0, 0]]])  # symmetric: the centroid is the tips' mean
+        x = np.concatenate([tp, body])
+        n = len(x)
+        f = {"radius": np.full(n, 0.1), "surface": np.ones(n), "tip": np.r_[np.ones(6), np.zeros(n - 6)]}
+        if bud_r is not None:  # bud cells: the body's first four, radius bud_r[k] (0: none yet)
+            f["budcell"] = np.r_[np.zeros(6), np.ones(4) * (bud_r[k] > 0), np.zeros(n - 10)]
+            f["radius"][6:10] = bud_r[k] or 0.1
+        write_vtu("%s/sds/frame_%04d.vtu" % (d, k), x, f, chain(n))
+six_run(T + "/straight", [D6, 2 * D6])
+def limbs_run(d, turn, spin=0.0):
+    """Six limbs of 21 cells 0.1 u apart from the centre out along the axes,
+    each a chain of tets of its own; past its 11th cell each turns by `turn`
+    (toward another axis: the centroid stays at 0); the whole turned by
+    `spin` about z."""
+    ct, st = np.cos(np.radians(turn)), np.sin(np.radians(turn))
+    cs, ss = np.cos(np.radians(spin)), np.sin(np.radians(spin))
+    rot = np.array([[cs, -ss, 0], [ss, cs, 0], [0, 0, 1]])
+    xs, tets, tipv = [], [], []
+    for i in range(6):
+        pts = [0.1 * k * D6[i] for k in range(11)]
+        pts += [pts[10] + 0.1 * k * (ct * D6[i] + st * P6[i]) for k in range(1, 11)]
+        tets.append(chain(21) + 21 * i)
+        xs += pts
+        tipv += [0] * 20 + [1]
+    x = np.array(xs) @ rot.T
+    n = len(x)
+    os.makedirs(d + "/sds")
+    write_vtu(d + "/sds/frame_0000.vtu", x, {"radius": np.full(n, 0.05), "surface": np.ones(n),
+              "tip": np.array(tipv, float)}, np.concatenate(tets))
+limbs_run(T + "/l_straight", 0)
+limbs_run(T + "/l_bent", 30)
+limbs_run(T + "/l_bent_spun", 30, spin=40)
+m = fig("bend", T + "/l_bent", "--ref", T + "/l_straight")
+expect("Figure 8: every limb turned 30 deg at its middle, the reference straight: turns 30, excess 30, bent",
+       np.allclose(m["turn_deg"], 30) and abs(m["excess_deg"] - 30) < 1e-9 and m["criteria"]["limbs_bent"])
+m = fig("bend", T + "/l_bent_spun", "--ref", T + "/l_bent")
+expect("... the same organism turned 40 deg about z against it: excess 0, not bent", abs(m["excess_deg"]) < 1e-9
+       and not m["criteria"]["limbs_bent"])
+m = fig("bend", T + "/l_straight")
+expect("... straight limbs without a reference: turn 0, not bent", abs(m["mean_turn_deg"]) < 1e-6
+       and not m["criteria"]["limbs_bent"])
+to = PT - 2 * D6
+six_run(T + "/drawn", [D6, 2 * D6 + 0.5 * to / np.linalg.norm(to, axis=1)[:, None]])
+m = fig("attract", T + "/drawn", "--ref", T + "/straight", "--point", "0", "0", "5")
+expect("Figure 10: each tip 0.5 u nearer the point than the reference's: closer by 0.5, drawn",
+       abs(m["closer_by"] - 0.5) < 1e-9 and m["criteria"]["tips_drawn_to_point"])
+m = fig("attract", T + "/straight", "--ref", T + "/straight", "--point", "0", "0", "5")
+expect("... the reference against itself: closer by 0, not drawn", abs(m["closer_by"]) < 1e-12
+       and not m["criteria"]["tips_drawn_to_point"])
+six_run(T + "/buds", [D6, D6, D6], bud_r=[0, 0.1, 0.15])
+six_run(T + "/nobuds", [D6, D6, D6], bud_r=[0, 0.1, 0.1])
+m = fig("buds", T + "/buds")
+expect("Figure 11: 4 bud cells from frame 1, radius 0.1 -> 0.15: volume x 3.375, they expand",
+       m["first_frame"] == 1 and m["bud_cells"] == 4 and abs(m["growth"] - 3.375) < 1e-9
+       and m["criteria"]["buds_expand"])
+m = fig("buds", T + "/nobuds")
+expect("... buds that keep their size: growth 1, they do not", abs(m["growth"] - 1) < 1e-12
+       and not m["criteria"]["buds_expand"])
+m = fig("buds", T + "/buds", "--frame", "0")
+expect("... before any bud cell: no growth to measure, not expanding", m["growth"] is None
+       and not m["criteria"]["buds_expand"])
 sys.exit(0 if ok else 1)
 PYEOF
 
@@ -158,6 +234,11 @@ print("rock at t = %.2f: %d limbs, %s cells" % (r["time"], len(r["limbs"]), [l["
 ok &= len(r["limbs"]) == 6 and sum(l["cells"] for l in r["limbs"]) == int(c["used"].sum())
 n = fig("cells", T + "/r", "--from", "0", "--to", "2")
 ok &= n["points"] == 2
+b = fig("bend", T + "/r", "--ref", T + "/r")
+a = fig("attract", T + "/r", "--point", "0", "0", "5")
+print("rock at t = %.2f: the limbs' turns %s deg, tips %.3f u from (0, 0, 5)" % (
+    b["time"], ["%.2f" % d for d in b["turn_deg"]], a["mean_distance"]))
+ok &= len(b["turn_deg"]) == 6 and b["excess_deg"] == 0 and len(a["distance"]) == 6
 sys.exit(0 if ok else 1)
 PYEOF
 finish

@@ -35,6 +35,16 @@ static void edge_analytic(void) {
          bound, exact);
   t_check("one edge: the power iteration's critical step = 2/sqrt(4k/R') (rel)", fabs(crit - exact) / exact, 1e-6);
   t_check("one edge: Gershgorin is exact for one spring (rel)", fabs(bound - exact) / exact, 1e-12);
+  /* uniform stiffness: s_k = k itself, K_e = k / R'^2; with k = R' (m_a + m_b)
+   * (the prototype's scale of this edge) the same spring as above */
+  p.uniform_stiffness = 1, p.k_edge = 2.0 * 2 * o.m[0];
+  double ures = 0, ucrit = sessile_sds_critical_dt(&o, &p, 50, &ures), ubound = sessile_sds_stable_dt(&o, &p);
+  printf("one edge, uniform stiffness k = R'(m_a + m_b): critical step %.15g, bound %.15g\n", ucrit, ubound);
+  t_check("uniform stiffness, one edge: the critical step the prototype's (rel)", fabs(ucrit - exact) / exact, 1e-6);
+  t_check("uniform stiffness, one edge: the bound the prototype's (rel)", fabs(ubound - exact) / exact, 1e-12);
+  p.k_edge = 1;
+  double ubound1 = sessile_sds_stable_dt(&o, &p), exact1 = 2 / sqrt(p.k_edge / 4.0 * 2 / o.m[0]);
+  t_check("uniform stiffness k = 1: 2/sqrt((k/R'^2) (1/m_a + 1/m_b)) (rel)", fabs(ubound1 - exact1) / exact1, 1e-12);
   sessile_sds_free(&o);
 }
 

@@ -9,6 +9,15 @@
   figures.py cells RUN_DIR [--from T0] [--to T1]
       Figure 12: cells against time from records.jsonl, a line fitted over
       [T0, T1] and its R^2.
+  figures.py bend RUN_DIR [--ref REF_DIR] [--frame K | --time T] [--min-bend DEG]
+      Figure 8: the angle each limb turns between its middle and its tip,
+      against the same in an unboxed run REF_DIR.
+  figures.py attract RUN_DIR [--ref REF_DIR] [--frame K | --time T] [--point X Y Z]
+      Figure 10: the tips' mean distance to the attraction point, against the
+      same in a run without the attraction (REF_DIR) or at the start.
+  figures.py buds RUN_DIR [--frame K | --time T] [--field NAME] [--min-growth F]
+      Figure 11: the bud cells' total volume, at the frame chosen against
+      the first frame that has bud cells.
 
 Each prints a small table, then one JSON line (the last line) with the
 metrics and the acceptance criteria of issue 33.  The definitions and the
@@ -279,10 +288,125 @@ def cmd_cells(args):
     print(json.dumps(m))
 
 
+def tip_cells(c):
+    """The tip cells of a frame, in index order (a tip keeps its index: the
+    loop gives a dividing tip's index to the daughter that stays the tip)."""
+    return np.flatnonzero((c["tip"] >= 0.5) & c["used"])
+
+
+def tips_now_and_then(run, args):
+    """(frame, time, tips at that frame, tips at frame 0, centroid now, centroid at frame 0)."""
+    k, t = pick_frame(run, args)
+    c, c0 = load_frame(run, k), load_frame(run, frames(run)[0][0])
+    i, i0 = tip_cells(c), tip_cells(c0)
+    assert len(i) == len(i0) and (i == i0).all(), "the tips changed index between frame 0 and frame %d" % k
+    return k, t, c["x"][i], c0["x"][i0], c["x"][c["used"]].mean(0), c0["x"][c0["used"]].mean(0)
+
+
+def limb_turns(run, args):
+    """Per tip the angle (degrees) its limb turns: between the direction from
+    the body's centroid to the limb's middle and from the middle to the tip.
+    The limb is the cells nearest its tip through the complex (as `stripes`);
+    its middle is the mean of those within half a cell diameter of half the
+    tip's graph distance to the one nearest the centroid (a cross-section).  0 for a straight limb, whatever its direction;
+    a turn of the whole organism does not change it."""
+    k, t = pick_frame(run, args)
+    c = load_frame(run, k)
+    assert c["complex"], "bend needs the VTU frames (the complex's edges)"
+    tips = tip_cells(c)
+    dist, owner = graph_distance(c["x"], c["tets"], tips)
+    ctr = c["x"][c["used"]].mean(0)
+    h = 2 * float(np.median(c["radius"][c["used"]]))
+    out = []
+    for i, tip in enumerate(tips):
+        mine = np.flatnonzero((owner == i) & c["used"])
+        base = mine[np.argmin(np.linalg.norm(c["x"][mine] - ctr, axis=1))]
+        band = mine[np.abs(dist[mine] - dist[base] / 2) <= h / 2]  # a cross-section: its mean is on the axis
+        mid = c["x"][band].mean(0) if len(band) else c["x"][mine[np.argmin(np.abs(dist[mine] - dist[base] / 2))]]
+        a, b = mid - ctr, c["x"][tip] - mid
+        cosv = a @ b / (np.linalg.norm(a) * np.linalg.norm(b))
+        out.append(float(np.degrees(np.arccos(np.clip(cosv, -1, 1)))))
+    return k, t, np.array(out)
+
+
+def cmd_bend(args):
+    k, t, dev = limb_turns(args.run, args)
+    m = {"figure": 8, "frame": k, "time": t, "turn_deg": dev.tolist(), "mean_turn_deg": float(dev.mean())}
+    ref = 0.0  # a straight limb's turn
+    print("frame %d, t = %.3f: the limbs' turns (deg): %s; mean %.1f" % (k, t, " ".join("%.1f" % d for d in dev),
+                                                                           dev.mean()))
+    if args.ref:
+        rk, rt, rdev = limb_turns(args.ref, args)
+        ref = float(rdev.mean())
+        m.update(ref_frame=rk, ref_time=rt, ref_turn_deg=rdev.tolist())
+        print("reference frame %d, t = %.3f: %s; mean %.1f" % (rk, rt, " ".join("%.1f" % d for d in rdev), ref))
+    m["ref_mean_turn_deg"] = ref
+    m["excess_deg"] = m["mean_turn_deg"] - ref
+    m["criteria"] = {"limbs_bent": bool(m["excess_deg"] >= args.min_bend)}
+    print(json.dumps(m))
+
+
+def attractor_point(run):
+    """The model's `attractor = x y z strength` line (sds/model.sds)."""
+    for line in open(run + "/sds/model.sds"):
+        f = re.match(r"\s*attractor\s*=\s*([-+0-9.eE\s]+)", line)
+        if f:
+            return np.array([float(v) for v in f.group(1).split()[:3]])
+    raise SystemExit("%s: the model has no attractor; give --point" % run)
+
+
+def cmd_attract(args):
+    point = np.array(args.point, float) if args.point else attractor_point(args.run)
+    k, t, tp, tp0, _, _ = tips_now_and_then(args.run, args)
+    d, d0 = np.linalg.norm(tp - point, axis=1), np.linalg.norm(tp0 - point, axis=1)
+    m = {"figure": 10, "frame": k, "time": t, "point": point.tolist(), "distance": d.tolist(),
+         "mean_distance": float(d.mean()), "start_mean_distance": float(d0.mean())}
+    print("frame %d, t = %.3f: tips' distances to (%g, %g, %g): %s; mean %.3f (at the start %.3f)" % (
+        k, t, *point, " ".join("%.2f" % v for v in d), d.mean(), d0.mean()))
+    if args.ref:
+        rk, rt, rp, _, _, _ = tips_now_and_then(args.ref, args)
+        rd = np.linalg.norm(rp - point, axis=1)
+        m.update(ref_frame=rk, ref_time=rt, ref_distance=rd.tolist(), ref_mean_distance=float(rd.mean()))
+        print("reference frame %d, t = %.3f: %s; mean %.3f" % (rk, rt, " ".join("%.2f" % v for v in rd), rd.mean()))
+    base = m.get("ref_mean_distance", m["start_mean_distance"])
+    m["closer_by"] = base - m["mean_distance"]
+    m["criteria"] = {"tips_drawn_to_point": bool(m["closer_by"] > 0)}
+    print(json.dumps(m))
+
+
+def bud_volume(c, field):
+    on = (c[field] >= 0.5) & c["used"]
+    return int(on.sum()), float((4.0 / 3.0 * np.pi * c["radius"][on] ** 3).sum())
+
+
+def cmd_buds(args):
+    k, t = pick_frame(args.run, args)
+    c = load_frame(args.run, k)
+    assert args.field in c, "no field %r in frame %d" % (args.field, k)
+    n, vol = bud_volume(c, args.field)
+    first = None
+    for fk, ft in frames(args.run):
+        if fk > k:
+            break
+        n0, v0 = bud_volume(load_frame(args.run, fk), args.field)
+        if n0:
+            first = (fk, ft, n0, v0)
+            break
+    m = {"figure": 11, "frame": k, "time": t, "field": args.field, "bud_cells": n, "bud_volume": vol,
+         "first_frame": None, "first_time": None, "first_bud_cells": 0, "first_bud_volume": 0.0, "growth": None}
+    if first:
+        m.update(first_frame=first[0], first_time=first[1], first_bud_cells=first[2], first_bud_volume=first[3],
+                 growth=vol / first[3])
+    print("frame %d, t = %.3f: %d bud cells, volume %.4f; first buds at %s" % (
+        k, t, n, vol, "frame %d, t = %.3f: %d cells, volume %.4f" % first if first else "no frame"))
+    m["criteria"] = {"buds_expand": m["growth"] is not None and m["growth"] >= args.min_growth}
+    print(json.dumps(m))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
-    for name in ("limb", "stripes"):
+    for name in ("limb", "stripes", "bend", "attract", "buds"):
         p = sub.add_parser(name)
         p.add_argument("run")
         p.add_argument("--frame", type=int)
@@ -294,12 +418,21 @@ def main(argv=None):
     st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")
     st.add_argument("--threshold", type=float, default=0.5, help="a stripe: bins with at least this fraction on")
     st.add_argument("--bin", type=float, help="bin width along the limb (default: the median cell diameter)")
+    for name in ("bend", "attract"):
+        sub.choices[name].add_argument("--ref", help="the same model without the box / the attraction")
+    sub.choices["bend"].add_argument("--min-bend", type=float, default=10,
+                                     help="degrees the mean turn must exceed the reference's by (default 10)")
+    sub.choices["attract"].add_argument("--point", type=float, nargs=3, help="default: the model's attractor")
+    sub.choices["buds"].add_argument("--field", default="budcell", help="the bud state (default: budcell)")
+    sub.choices["buds"].add_argument("--min-growth", type=float, default=2,
+                                     help="the bud volume's growth over its first frame (default 2)")
     p = sub.add_parser("cells")
     p.add_argument("run")
     p.add_argument("--from", dest="t0", type=float, default=100)
     p.add_argument("--to", dest="t1", type=float, default=400)
     args = ap.parse_args(argv)
-    {"limb": cmd_limb, "stripes": cmd_stripes, "cells": cmd_cells}[args.cmd](args)
+    {"limb": cmd_limb, "stripes": cmd_stripes, "cells": cmd_cells, "bend": cmd_bend, "attract": cmd_attract,
+     "buds": cmd_buds}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -174,6 +174,10 @@ typedef struct sessile_sds_params {
   double dt_min, dt_max;
   double max_move;     /* largest step move of a cell, as a fraction of its radius */
   double stable_safety; /* steps stay below this fraction of sessile_sds_stable_dt (0.5) */
+  /* 1: the paper's "same stiffnesses throughout" (§3.2): s_k = k_edge, k_vol
+   * (an energy) for every spring and the tets' damping unscaled; 0 (default):
+   * the prototype's per-spring scaling (docs/sds.md, "Physics") */
+  int uniform_stiffness;
 } sessile_sds_params;
 
 /* The prototype's values above; no box, no obstacle, no attraction;
