@@ -13,6 +13,7 @@ void sessile_growth_gpu_destroy(sessile_growth_gpu *g) {
                             g->len, g->dir, g->col_off[0], g->col_off[1], g->col_off[2],
                             g->col_tri[0], g->col_tri[1], g->col_tri[2], g->theta_dummy};
   for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) sessile_buffer_destroy(bufs[i]);
+  free(g->host_nbr_off), free(g->host_nbr);
   free(g);
 }
 
@@ -92,6 +93,8 @@ sessile_status sessile_growth_gpu_set_surface(sessile_growth_gpu *g, const sessi
     *all[i] = NULL;
   }
   g->nv = g->nf = 0;
+  free(g->host_nbr_off), free(g->host_nbr);
+  g->host_nbr_off = g->host_nbr = NULL;
   uint32_t *vf_off = NULL, *vf = NULL, *nb_off = NULL, *nb = NULL;
   sessile_status st = sessile_surface_vertex_faces(s, &vf_off, &vf);
   if (st == SESSILE_OK) st = sessile_surface_vertex_neighbours(s, &nb_off, &nb);
@@ -119,8 +122,12 @@ sessile_status sessile_growth_gpu_set_surface(sessile_growth_gpu *g, const sessi
     }
   }
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(g->pos, 0, s->pos, 3 * nv);
-  free(vf_off), free(vf), free(nb_off), free(nb);
-  if (st != SESSILE_OK) return st;
+  free(vf_off), free(vf);
+  if (st != SESSILE_OK) {
+    free(nb_off), free(nb);
+    return st;
+  }
+  g->host_nbr_off = nb_off, g->host_nbr = nb;
   g->nv = s->nv;
   g->nf = s->nf;
   return SESSILE_OK;

@@ -22,6 +22,8 @@ struct sessile_growth_gpu {
   uint32_t nv, nf;
   sessile_buffer *pos, *tri, *vf_off, *vf, *nbr_off, *nbr;
   sessile_buffer *nrm, *probed, *ctr[2], *new_pos, *len, *dir;
+  /* the vertex adjacency on the host too, for the sequential translocation */
+  uint32_t *host_nbr_off, *host_nbr;
   /* classify bins per line axis (grown as needed), and the placeholder
    * bound as the fraction buffer when only the mask is wanted */
   sessile_buffer *col_off[3], *col_tri[3], *theta_dummy;

@@ -21,6 +21,7 @@ void sessile_growth_params_from(const sessile_grow_params *p, sessile_growth_par
   g->probe_samples = (uint32_t)p->probe_samples;
   g->t_give = p->t_give;
   g->translocate_passes = p->translocate_passes;
+  g->translocate_sequential = p->translocate_mode == SESSILE_TRANSLOCATE_SEQUENTIAL;
   g->nutrient_threshold = p->nutrient_threshold;
   g->growth_threshold = p->growth_threshold;
   g->growth_rate = p->growth_rate;
@@ -233,6 +234,10 @@ sessile_status sessile_growth_ref_step(const sessile_box *box, const sessile_sur
   if (probed) memcpy(probed, a, (size_t)nv * sizeof *a);
   double cmax = sessile_growth_translocate_cmax(p);
   for (int sweep = 0; sweep < p->translocate_passes; sweep++) {
+    if (p->translocate_sequential) {
+      sessile_growth_ref_translocate_sequential(off, nbr, nv, p->t_give, cmax, a);
+      continue;
+    }
     for (int q = 0; q < SESSILE_TRANSLOCATE_SWEEP; q++) {
       sessile_growth_ref_translocate_pass(off, nbr, nv, p->t_give, cmax, a, b);
       double *t = a;

@@ -12,6 +12,7 @@ static const char *const domain_names[] = {"immersed", "conforming", NULL};
 static const char *const probe_names[] = {"flux", "paper", NULL};
 static const char *const far_names[] = {"height", "walls", NULL};
 static const char *const solver_names[] = {"mg", "jacobi", NULL};
+static const char *const translocate_names[] = {"parallel", "sequential", NULL};
 /* fluid_ksp_type: sessile_fluid_ksp's order (CG is not offered: the fluid's
  * Jacobian is nonsymmetric). */
 static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
@@ -28,6 +29,7 @@ static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi",
 #define PT_ENUM_PROBE SESSILE_PT_ENUM, probe_names
 #define PT_ENUM_FAR SESSILE_PT_ENUM, far_names
 #define PT_ENUM_SOLVER SESSILE_PT_ENUM, solver_names
+#define PT_ENUM_TRANSLOCATE SESSILE_PT_ENUM, translocate_names
 #define PT_ENUM_KSP SESSILE_PT_ENUM, ksp_names
 #define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
 #define BOUNDS_0 0

@@ -1,6 +1,8 @@
 /* The per-iteration growth chain on the GPU: normals -> probe -> translocate
  * passes -> grow, recorded in one command buffer (one submit), then the
- * downloads. */
+ * downloads.  The paper's sequential translocation runs on the host between
+ * two submits. */
+#include <stdlib.h>
 #include "growth_internal.h"
 
 sessile_status growth_record_normals(sessile_growth_gpu *g, const sessile_box *box) {
@@ -18,6 +20,19 @@ sessile_status sessile_growth_gpu_normals(sessile_growth_gpu *g, double *normals
   SESSILE_CALL(sessile_cmd_end(g->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
   return sessile_buffer_download_reals(g->nrm, 0, normals, 3 * (size_t)g->nv);
+}
+
+/* probed -> the paper's sequential sweeps -> ctr[0]. */
+static sessile_status translocate_on_host(sessile_growth_gpu *g, const sessile_growth_params *prm) {
+  double *c = malloc((size_t)g->nv * sizeof *c);
+  SESSILE_CHECK(c, SESSILE_ERR_NO_MEMORY, "out of host memory for %u vertices", g->nv);
+  sessile_status st = sessile_buffer_download_reals(g->probed, 0, c, g->nv);
+  double cmax = sessile_growth_translocate_cmax(prm);
+  for (int sweep = 0; st == SESSILE_OK && sweep < prm->translocate_passes; sweep++)
+    sessile_growth_ref_translocate_sequential(g->host_nbr_off, g->host_nbr, g->nv, prm->t_give, cmax, c);
+  if (st == SESSILE_OK) st = sessile_buffer_upload_reals(g->ctr[0], 0, c, g->nv);
+  free(c);
+  return st;
 }
 
 sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box *box,
@@ -44,10 +59,19 @@ sessile_status sessile_growth_gpu_step(sessile_growth_gpu *g, const sessile_box 
   sessile_buffer *bp[5] = {g->params, g->pos, g->nrm, sessile_vec_buffer(c), g->probed};
   SESSILE_CALL(sessile_cmd_dispatch(g->cmd, g->k[GK_PROBE], groups, bp, &p));
   sessile_buffer *cur = g->probed;
+  if (prm->translocate_sequential && prm->translocate_passes > 0) {
+    /* The paper's sweep depends on the vertex order, one vertex after the
+     * other: it runs on the host between the probe and the grow kernel. */
+    SESSILE_CALL(sessile_cmd_end(g->cmd));
+    SESSILE_CALL(sessile_cmd_submit_wait(g->cmd));
+    SESSILE_CALL(translocate_on_host(g, prm));
+    SESSILE_CALL(sessile_cmd_begin(g->cmd));
+    cur = g->ctr[0];
+  }
   /* translocate_passes sweeps, each SESSILE_TRANSLOCATE_SWEEP simultaneous
    * passes (translocate.comp). */
   uint32_t k = 0;
-  for (int sweep = 0; sweep < prm->translocate_passes; sweep++)
+  for (int sweep = 0; sweep < (prm->translocate_sequential ? 0 : prm->translocate_passes); sweep++)
     for (int pass = 0; pass < SESSILE_TRANSLOCATE_SWEEP; pass++, k++) {
       sessile_buffer *dst = g->ctr[k & 1];
       sessile_buffer *bt[5] = {g->params, g->nbr_off, g->nbr, cur, dst};

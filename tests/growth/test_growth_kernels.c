@@ -326,6 +326,23 @@ static void test_translocate(const sessile_surface *s) {
            "parallel vs sequential max|diff| %.3e, mean %.3e; max change by the parallel form %.3e\n",
            p.t_give, passes, nv, range_lo, range_hi, mxd, mean, chg);
   }
+  /* translocate_mode = sequential: the step runs the paper's sweeps (seq
+   * holds 5 of them from the same probed values) between probe and grow,
+   * and its positions are the reference step's. */
+  {
+    double *rpos = t_dalloc(3 * nv), *rtr = t_dalloc(nv), *pos1 = t_dalloc(3 * nv);
+    sessile_growth_params q = p;
+    q.translocate_sequential = 1;
+    t_must("step (sequential)", sessile_growth_gpu_step(gg, &box, v, &q, 1, 0, pos1, NULL, tr, NULL));
+    t_check("sequential step: translocated = 5 sequential sweeps of the probed (rel)", t_relerr(tr, seq, nv),
+            tol(1e-15, 1e-5));
+    t_true("sequential step: differs from the parallel form", t_relerr(tr, a, nv) > 1e-3);
+    t_must("ref step (sequential)", sessile_growth_ref_step(&box, s, f, &q, 1, 0, rpos, NULL, rtr, NULL));
+    t_check("sequential step: reference translocated (rel)", t_relerr(rtr, seq, nv), tol(1e-15, 1e-5));
+    t_check("sequential step: positions GPU vs reference (rel)", t_relerr(pos1, rpos, 3 * nv), tol(1e-14, 1e-5));
+    t_true("sequential step: positions differ from the parallel step's", t_relerr(pos1, pos, 3 * nv) > 0);
+    free(rpos), free(rtr), free(pos1);
+  }
   sessile_vec_destroy(v);
   free(off), free(nbr), free(c), free(a), free(b), free(seq), free(f), free(tr), free(pr), free(pos);
 }

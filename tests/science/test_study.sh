@@ -103,4 +103,46 @@ cat "$T/fail.out"
 check "a failing run stops the study: exit 1, naming its folder and its log" eval \
   '[ "$rc" -eq 1 ] && grep -q "error: part species: runs/crella-s1-i3-.* failed (exit 1" "$T/fail.out" && grep -q "a planted failure" "$T/fail.out"'
 check "... and writes no report" test ! -e "$T/fail/report.md"
+
+# The parts on the paper's claims under other pipelines (pipelines.py), without
+# the current (its flow solve every iteration is minutes a run): today's
+# pipeline and the literal one, crella against radiate with 95 % intervals,
+# the literal K from its calibration runs, and the far-field height sweep.
+"$PY" "$STUDY" --quick --parts current,literal,height --compare-modes still -j 2 --sessile "$S" \
+  --out "$T/pipes" >"$T/pipes.out" 2>&1
+rc=$?
+tail -3 "$T/pipes.out"
+check "current, literal, height run end to end (exit $rc)" [ "$rc" -eq 0 ]
+check "their results: intervals around the mean difference, K rescaled, four heights" "$PY" - "$T/pipes" <<'PYEOF'
+import json, math, os, sys
+res = json.load(open(os.path.join(sys.argv[1], "results.json")))
+bad = []
+def need(ok, what):
+    if not ok:
+        bad.append(what)
+P = res["parts"]
+need(set(P) == {"current", "literal", "height"}, "the three parts")
+need(set(P["current"]) == {"today/still"} and "literal/still" in P["literal"], "today's and the literal pipeline")
+for part in ("current", "literal"):
+    for key, r in P[part].items():
+        if key == "calibration":
+            continue
+        for m, t in r["pairs"].items():
+            if t["mean"] is not None and t["ci_lo"] is not None:
+                need(t["ci_lo"] <= t["mean"] <= t["ci_hi"], f"{key} {m}: the interval holds the mean")
+        need(r["pairs"]["height_cm"]["ci_lo"] is not None, f"{key}: a height interval from 2 pairs")
+cal = P["literal"]["calibration"]["still"]
+need(0 < cal["ratio"] and cal["k_literal"] > 0, "a positive K for the literal pipeline")
+need(abs(cal["k_literal"] / (cal["k_today"] * cal["ratio"] ** cal["kinetic_order"]) - 1) < 1e-3, "K' = K a^n")
+lit = [r for r in res["runs"].values() if r["sets"].get("translocate_mode") == "sequential"]
+need(len(lit) == 4 and all(r["sets"].get("probe") == "paper" and r["sets"].get("far_field") == "walls" for r in lit),
+     "the literal runs: sequential, paper probe, walls")
+h = P["height"]["rows"]
+need([r["factor"] for r in h] == [0.5, 1, 1.5, 2], "four heights")
+need(all(abs(r["far_field_height_cm"] - r["factor"] * P["height"]["default_cm"]) < 1e-6 for r in h), "H relative to the default")
+need(h[1]["volume_added_cm3_rel"] == 0, "changes against the default H")
+need(all(math.isfinite(r["spread_cm"]) and r["spread_cm"] > 0 for r in h), "spread measured")
+print("FAILED: " + "; ".join(bad) if bad else "current/literal/height results consistent")
+sys.exit(1 if bad else 0)
+PYEOF
 finish

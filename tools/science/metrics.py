@@ -216,6 +216,15 @@ def tip_spacing(V, t):
     return float(d.min(axis=1).mean())
 
 
+def spread(V, F, c=None):
+    """The sponge's horizontal reach: the largest x-y distance of a vertex
+    from the vertical axis through the solid's centroid (cm).  How far the
+    sponge spreads out sideways, whatever its number of tips."""
+    if c is None:
+        c = centroid(V, F)
+    return float(np.hypot(V[:, 0] - c[0], V[:, 1] - c[1]).max())
+
+
 def surface_metrics(V, F):
     """Every metric of one surface, as a JSON-ready dict."""
     e, counts = edges(F)
@@ -234,6 +243,7 @@ def surface_metrics(V, F):
         "surface_to_volume_per_cm": a / vol if vol > 0 else float("nan"),
         "base_area_cm2": ba,
         "base_hull_area_cm2": base_hull_area(V),
+        "spread_cm": spread(V, F, c) if vol != 0 else float("nan"),
         "exposed_area_cm2": a - ba,
         "centroid_cm": [float(x) for x in c],
         "bbox_min_cm": [float(x) for x in V.min(axis=0)],

@@ -51,8 +51,12 @@ for _mod in ("numpy", "scipy"):
 import numpy as np  # noqa: E402
 
 import metrics  # noqa: E402
+import pipelines  # noqa: E402
 
-PARTS = ("grid", "box", "sweeps", "species")
+PARTS = ("grid", "box", "sweeps", "species", "current", "literal", "height")
+# The default: the first four.  current, literal and height are asked for by
+# name (--parts): current solves the flow every iteration, hours here.
+DEFAULT_PARTS = PARTS[:4]
 # Every run: no snapshots but the last, no VTU fields, no slices, no flow
 # solve (the flow does not feed the growth while diffusion_limited; it would
 # only fill the snapshots' velocity channels).
@@ -244,7 +248,12 @@ class Run:
         if cfg.get("iterations") != self.iterations or (m.get("totals") or {}).get("iterations_done") != self.iterations:
             return False
         params = cfg.get("parameters", {})
-        if set(params) != set(self.table) or not all(same_value(self.table[k], params[k]) for k in params):
+        missing = set(self.table) - set(params)
+        if any_binary:
+            # A parameter a newer binary added, left at its default, is the
+            # older binary's behaviour (new options default to it).
+            missing = {k for k in missing if k in self.differs}
+        if missing or set(params) - set(self.table) or not all(same_value(self.table[k], params[k]) for k in params):
             return False
         if not any_binary and side.get("sessile_sha256") != sessile.sha256:
             return False
@@ -425,6 +434,19 @@ class Plan:
         self.grid_jitter = a.grid_jitter if a.grid_jitter is not None else self.grid_cell
         self.grid_levels = [1, 2, 3]
         self.species_jitter = "4"
+        # current, literal: crella against radiate under other pipelines
+        # (pipelines.py); the flow solve of every iteration makes them costly,
+        # so they run at box_resolution 1 unless told otherwise.
+        self.compare_iterations = it or (3 if q else 20)
+        self.compare_seeds = a.compare_seeds or ([1, 2] if q else [1, 2, 3, 4, 5, 6])
+        self.compare_resolution = "1" if q else a.compare_resolution
+        self.compare_extra = {"box_resolution": self.compare_resolution}
+        self.literal_current = a.literal_current
+        self.current_seeds = a.current_seeds or self.compare_seeds
+        self.compare_modes = [m.strip() for m in a.compare_modes.split(",") if m.strip()]
+        self.height_iterations = it or (3 if q else 20)
+        self.height_resolution = "1" if q else a.height_resolution
+        self.height_extra = {"box_resolution": self.height_resolution}
 
     def describe(self):
         return {k: v for k, v in self.__dict__.items()}
@@ -940,8 +962,9 @@ def write_report(path, P, args, results, part_times, runs_by_part, info, picfile
     L.append(f"- device: {info.get('device')}")
     L.append(f"- parts: {', '.join(results)}{' (quick mode: a smoke test, not results)' if P.quick else ''}; "
              f"`-j {args.jobs}`")
-    L.append("- every run: `--every 0 --no-fields --slices '' --set fluid_at_snapshots=false` (no flow solve: "
-             "with diffusion_limited it does not feed the growth)")
+    L.append("- every run: `--every 0 --no-fields --slices '' --set fluid_at_snapshots=false` (no flow solve "
+             "where diffusion_limited: it would not feed the growth; with the current on the flow is solved every "
+             "iteration)")
     L.append("")
     rows = [[p, f"{part_times[p]['runs']}", f"{part_times[p]['ran']}", f"{part_times[p]['wall_s']:.0f} s",
              f"{part_times[p]['run_seconds']:.0f} s"] for p in results]
@@ -966,6 +989,15 @@ def write_report(path, P, args, results, part_times, runs_by_part, info, picfile
             L += report_sweeps(P, results["sweeps"])
         elif part == "species":
             L += report_species(P, results["species"], picfiles, picrel)
+        elif part == "current":
+            L += pipelines.report_compare(P, results["current"], "## Crella against radiate, the current on and off "
+                                          "(`current`)", sys.modules[__name__])
+        elif part == "literal":
+            res = {k: v for k, v in results["literal"].items() if k != "calibration"}
+            L += pipelines.report_compare(P, res, "## The paper's literal pipeline (`literal`)",
+                                          sys.modules[__name__], cal=results["literal"].get("calibration"))
+        elif part == "height":
+            L += pipelines.report_height(P, results["height"], sys.modules[__name__])
         L.append("")
     if plotfiles:
         L.append("## Plots")
@@ -995,7 +1027,8 @@ def main(argv=None):
     ap.add_argument("--json", help="the machine-readable results (default OUT/results.json)")
     ap.add_argument("--pictures", help="folder of the pictures (default OUT/pictures); links in the report are "
                                        "relative to the report")
-    ap.add_argument("--parts", default=",".join(PARTS), help="comma-separated parts (default: all)")
+    ap.add_argument("--parts", default=",".join(DEFAULT_PARTS),
+                    help=f"comma-separated parts of {', '.join(PARTS)} (default: {', '.join(DEFAULT_PARTS)})")
     ap.add_argument("-j", "--jobs", type=int, default=2, help="runs at a time (default 2)")
     ap.add_argument("--quick", action="store_true",
                     help="smoke test: 3 iterations, 2 seeds, box_resolution 1 (the grid part on a 3.2 cm base grid)")
@@ -1005,7 +1038,17 @@ def main(argv=None):
                     help="position_jitter of the grid runs in cm (default one base cell: 1.2; quick 3.2)")
     ap.add_argument("--box-seeds", type=parse_seeds, help="seeds of the box part (default 1)")
     ap.add_argument("--species-seeds", type=parse_seeds, help="seeds of the species part (default 1-6; quick 1-2)")
-    ap.add_argument("--sweep-seed", type=int, default=1, help="seed of the sweeps (default 1)")
+    ap.add_argument("--sweep-seed", type=int, default=1, help="seed of the sweeps and of height (default 1)")
+    ap.add_argument("--compare-seeds", type=parse_seeds,
+                    help="seeds of the current and literal parts (default 1-6; quick 1-2)")
+    ap.add_argument("--current-seeds", type=parse_seeds,
+                    help="seeds of current and literal with the current on (default: --compare-seeds)")
+    ap.add_argument("--compare-modes", default="current,still",
+                    help="current and literal: with the current on, without it, or both (default current,still)")
+    ap.add_argument("--compare-resolution", default="1", help="box_resolution of current and literal (default 1)")
+    ap.add_argument("--literal-current", action="store_true",
+                    help="literal: also with the current on (every iteration solves the flow)")
+    ap.add_argument("--height-resolution", default="2", help="box_resolution of height (default 2)")
     ap.add_argument("--sessile", default=default_sessile(), help="the sessile binary (default: build/sessile of "
                                                                   "this checkout, or $SESSILE)")
     ap.add_argument("--any-binary", action="store_true",
@@ -1018,6 +1061,9 @@ def main(argv=None):
     if bad or not parts:
         die(f"unknown part(s) {', '.join(bad) or '(none)'}; the parts are {', '.join(PARTS)}", 2)
     parts = [p for p in PARTS if p in parts]
+    if not set(P_modes := [m.strip() for m in a.compare_modes.split(",") if m.strip()]) <= {"current", "still"} \
+            or not P_modes:
+        die(f"--compare-modes takes current, still or both (got '{a.compare_modes}')", 2)
     if a.jobs < 1:
         die("-j needs at least 1", 2)
     if not (os.path.isfile(a.sessile) and os.access(a.sessile, os.X_OK)):
@@ -1037,8 +1083,30 @@ def main(argv=None):
         r = Run(sessile, preset, seed, iterations, sets)
         return made.setdefault(r.name, r)  # identical runs are one run
 
-    planners = {"grid": plan_grid, "box": plan_box, "sweeps": plan_sweeps, "species": plan_species}
-    runs_by_part = {p: planners[p](P, mk) for p in parts}
+    planners = {"grid": plan_grid, "box": plan_box, "sweeps": plan_sweeps, "species": plan_species,
+                "current": pipelines.plan_current,
+                "height": lambda P, mk: pipelines.plan_height(P, mk, sessile.table("radiate", dict(COMMON_SETS)))}
+    runs_by_part = {p: planners[p](P, mk) for p in parts if p != "literal"}
+    literal_cal = {}
+    if "literal" in parts:
+        # K of the literal pipeline needs two one-iteration runs per mode first.
+        cal = {m: pipelines.calibration_runs(P, mk, m) for m in pipelines.literal_modes(P)}
+        calruns = [r for c in cal.values() for r in c.values()]
+        if a.no_run:
+            missing = [r.name for r in calruns if not r.done(sessile, out, True)]
+            if missing:
+                die(f"--no-run: runs not completed: {', '.join('runs/' + m for m in missing)}")
+        else:
+            log(f"literal: {len(calruns)} calibration runs of one iteration")
+            try:
+                execute(calruns, sessile, out, a.jobs, a.any_binary, {"done": 0, "total": len(calruns)})
+            except RunFailed as e:
+                die(f"part literal: {e}")
+        table = sessile.table("radiate", dict(COMMON_SETS))
+        literal_cal = {m: pipelines.literal_k(c, out, table) for m, c in cal.items()}
+        runs_by_part["literal"] = pipelines.plan_literal(P, mk, {m: v["k_literal"] for m, v in literal_cal.items()})
+        runs_by_part["literal"].update({("cal", m, p): r for m, c in cal.items() for p, r in c.items()})
+        runs_by_part = {p: runs_by_part[p] for p in parts}
     counter = {"done": 0, "total": len(made)}
     log(f"{len(made)} runs for {', '.join(parts)}{' (quick)' if P.quick else ''}, {a.jobs} at a time, in {out}")
 
@@ -1077,8 +1145,13 @@ def main(argv=None):
         if not r.metrics["closed"]:
             log(f"warning: runs/{r.name}: the final surface is not closed; its volume is not meaningful")
 
-    analysers = {"grid": analyse_grid, "box": analyse_box, "sweeps": analyse_sweeps, "species": analyse_species}
+    pairs = lambda P, runs: pipelines.analyse_pairs(  # noqa: E731
+        P, {k: r for k, r in runs.items() if len(k) == 4}, paired_tests, stats)
+    analysers = {"grid": analyse_grid, "box": analyse_box, "sweeps": analyse_sweeps, "species": analyse_species,
+                 "current": pairs, "literal": pairs, "height": pipelines.analyse_height}
     results = {p: analysers[p](P, runs_by_part[p]) for p in parts}
+    if literal_cal:
+        results["literal"]["calibration"] = literal_cal
 
     picfiles = {}
     if "species" in parts:

@@ -114,6 +114,8 @@ def main():
     check("cube: base area 1, hull 1", abs(m["base_area_cm2"] - 1) < 1e-12 and abs(m["base_hull_area_cm2"] - 1) < 1e-12)
     check("cube: closed, height 1, S/V 6", m["closed"] and m["height_cm"] == 1 and abs(m["surface_to_volume_per_cm"] - 6) < 1e-12)
     check("cube turned inside out: volume -1", abs(metrics.volume(V, F[:, ::-1]) + 1) < 1e-12)
+    check("cube: spread sqrt(1/2) (a corner from the centroid's axis)", abs(m["spread_cm"] - math.sqrt(0.5)) < 1e-12,
+          m["spread_cm"])
     check("cube with a face missing: not closed", not metrics.surface_metrics(V, F[:-1])["closed"])
 
     # 2. The icosphere (sessile's, or ours), radius 2.  The polyhedron lies
@@ -155,6 +157,7 @@ def main():
           f"{m['base_area_cm2']:.4f}, {m['base_hull_area_cm2']:.4f}, pi R^2 = {math.pi * R * R:.4f}")
     check("dome: height R, one tip at the top", abs(m["height_cm"] - R) < 1e-9 and m["tips"] == 1
           and abs(m["tip_positions_cm"][0][2] - R) < 1e-9)
+    check("dome: spread R (the base's rim)", abs(m["spread_cm"] / R - 1) < 1e-6, m["spread_cm"])
     check("dome: centroid 3R/8 above the base (within 1 %)", abs(m["centroid_cm"][2] / (3 * R / 8) - 1) < 1e-2,
           m["centroid_cm"][2])
 

@@ -67,6 +67,9 @@ extern "C" {
   X(nutrient_threshold, REAL, 0, 0, 1e6, 0, "", "ours", "Iroquois: grow only where translocated C exceeds it") \
   X(t_give, REAL, 0.05, 0, 1, 0, "", "ours", "translocation: share given to each neighbour (eqs 7-8)") \
   X(translocate_passes, INT, 1, 0, 100, 0, "", "ours", "translocation sweeps per iteration (0: off)") \
+  X(translocate_mode, ENUM_TRANSLOCATE, 0, 0, 1, 0, "", "ours (docs/growth.md)",                     \
+    "translocation sweep: parallel (every vertex at once, order-independent) or sequential (the " \
+    "paper's vertex by vertex, in index order, on the host)")                                     \
   X(skeletal_growth, ENUM_SKELETON, 0, 0, 1, 0, "", "Table 1",                                        \
     "radiate (growth along the normal) or halichondrid (normal + random vector, eqs 1-2)")        \
   X(normal_offset_radius, REAL, 0.02, 0, 1e6, 0, "", "Table 1",                                       \
@@ -117,6 +120,7 @@ typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sess
 typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
 typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
+typedef enum { SESSILE_TRANSLOCATE_PARALLEL = 0, SESSILE_TRANSLOCATE_SEQUENTIAL = 1 } sessile_translocate;
 /* fluid_ksp_type's values; fluid_pc_type's value is la's sessile_pc_type
  * itself (its names are the pc registry's, in the enum's order). */
 typedef enum { SESSILE_FLUID_KSP_GMRES = 0, SESSILE_FLUID_KSP_BICGSTAB = 1 } sessile_fluid_ksp;
@@ -130,6 +134,7 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_PROBE(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_FAR(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SOLVER(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_TRANSLOCATE(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_KSP(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_PC(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)

@@ -33,6 +33,8 @@ typedef struct sessile_growth_params {
   uint32_t probe_samples;  /* samples along the normal, >= 2 (ours) */
   double t_give;           /* translocation coefficient, [0,1] (ours) */
   int translocate_passes;  /* 0 disables translocation */
+  int translocate_sequential; /* 0: each sweep in the parallel form (GPU); 1: the paper's
+                               * vertex-by-vertex sweep (host, between probe and grow) */
   double nutrient_threshold; /* Iroquois: grow only where C > this (ours) */
   double growth_threshold; /* grow only where g(C) > this, cm (Table 1: 0) */
   double growth_rate;      /* Gr (Table 1: 5) */
@@ -69,7 +71,8 @@ sessile_status sessile_growth_gpu_cut(sessile_growth_gpu *g, const sessile_box *
 sessile_status sessile_growth_gpu_normals(sessile_growth_gpu *g, double *normals);
 
 /* One growth step on the uploaded surface: normals, probe c along them (eq
- * 6), translocation (eqs 7-8, order-independent form), Iroquois and growth
+ * 6), translocation (eqs 7-8, order-independent form; the paper's sequential
+ * one on the host where p->translocate_sequential), Iroquois and growth
  * thresholds, growth (eqs 9-10) with radiate or Halichondrid normals (eqs 1-2,
  * random vectors from `seed` and `iteration`), displacement clamped into the
  * box.  Writes the new positions (3 nv) and, when not NULL, the per-vertex
