@@ -65,11 +65,11 @@ typedef struct sessile_fluid_params {
   double linear_rtol;  /* default 1e-6 */
   int linear_max;      /* default 100 */
   sessile_ksp_type ksp;/* default GMRES */
-  sessile_pc_type pc;  /* la's preconditioner (sessile/la/pc.h), default ILU(0);
+  sessile_pc_type pc;  /* la's preconditioner (sessile/la/pc.h), default MG; ILU0:
                           Jacobi is used instead on a matrix stored in several
                           chunks (la's ILU(0) needs one); BLOCK_JACOBI inverts
                           each node's 4x4 diagonal block (couples u and p);
-                          MG is the block multigrid V-cycle (sessile/la/bmg.h)
+                          MG is the block multigrid W-cycle (sessile/la/bmg.h)
                           on a structured box mesh (sessile_tetmesh_from_box),
                           ILU(0) on any other */
   sessile_bmg_options mg; /* pc MG's options (default sessile_bmg_options_default) */
