@@ -2,7 +2,8 @@
  * Jacobian uploaded, la's preconditioner object for params.pc and la's
  * Krylov solver.  Fallbacks, reported in the step's lin_pc: ILU(0) becomes
  * Jacobi on a matrix stored in row chunks; mg (the block multigrid, on a
- * Kuhn box mesh only) becomes ILU(0) on any other mesh (or Jacobi, chunked).
+ * Kuhn box mesh only) becomes ILU(0) on any other mesh (or Jacobi, chunked)
+ * and for a step whose hierarchy has a singular diagonal block.
  * The mg hierarchy and its pc are kept in the fluid across Newton steps and
  * solves: its masks are rebuilt only when the fixed unknowns change, its
  * operators at each setup (docs/fluid.md). */
@@ -63,6 +64,12 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
   if (s == SESSILE_OK) s = sessile_vec_upload(b, du);
   if (s == SESSILE_OK) s = sessile_vec_fill(fl->la, 0.0, x);
   if (s == SESSILE_OK) s = sessile_pc_setup(pc, m);
+  if (s == SESSILE_ERR_NUMERIC && st->lin_pc == SESSILE_PC_MG && st->lin_chunks == 1) {
+    /* a singular block on some level: this step runs ILU(0) (recorded as such) */
+    st->lin_pc = o.pc = SESSILE_PC_ILU0;
+    s = sessile_pc_create_type(fl->la, SESSILE_PC_ILU0, &own);
+    if (s == SESSILE_OK) s = sessile_pc_setup(pc = own, m);
+  }
   st->pc_setup_s = sessile_wall_seconds() - tp;
   if (s == SESSILE_OK) s = sessile_ksp_solve_pc(fl->la, &o, m, pc, b, x, &lr);
   if (s == SESSILE_OK) s = sessile_vec_download(x, du);
