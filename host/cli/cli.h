@@ -106,6 +106,8 @@ int cmd_devices(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
+/* User + system CPU seconds of the whole process so far (cli_cpu.c; lavapipe's threads too). */
+double cli_cpu_seconds(void);
 /* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */
 int cmd_coral(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_coral_lsystem(int argc, char **argv, const cli_gpu_opts *global);

@@ -7,12 +7,14 @@
 #include <string.h>
 #include "cli.h"
 #include "sessile/fem/fluid.h"
+#include "sessile/load.h"
 #include "sessile/growth/growth_ref.h"
 #include "sessile/mesh/tetmesh.h"
 
 static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"
-    "                           [--picard K] [--restart M] [--no-lsic]\n"
+    "                           [--picard K] [--restart M] [--no-lsic] [--no-compare]\n"
+    "                           [--mg-smoother gs|jacobi] [--mg-sweeps N] [--mg-cycle v|w] [--mg-galerkin]\n"
     "                           [--set KEY=VALUE]... [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
@@ -25,12 +27,21 @@ static const char *help =
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
     "fluid_ksp_restart, fluid_newton_rtol and fluid_newton_max_it (--set; docs/fluid.md); the\n"
     "flags are short for some: --pc NAME is --set fluid_pc_type=NAME (none, jacobi,\n"
-    "ilu0, block_jacobi; docs/la.md), ILU(0) by default (Jacobi where the matrix\n"
-    "exceeds maxStorageBufferRange and is stored in chunks; the pc column says which\n"
-    "ran); --ksp K is --set fluid_ksp_type=K; --restart M is --set fluid_ksp_restart=M\n"
+    "ilu0, block_jacobi, mg; docs/la.md), mg (block multigrid) by default (ilu0 runs\n"
+    "Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
+    "the pc column says which ran); --ksp K is --set fluid_ksp_type=K; --restart M is --set fluid_ksp_restart=M\n"
     "(GMRES(M)); --block-scale is --pc block_jacobi (the inverse of each node's 4x4\n"
     "diagonal block).  --picard K takes K Picard (Oseen) steps before Newton;\n"
-    "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n";
+    "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n"
+    "\n"
+    "Unless --no-compare (or the pc is ilu0), the same two solves run first with\n"
+    "ilu0, then with the chosen pc, and a last table compares them: Newton steps,\n"
+    "GMRES iterations per step, wall and CPU seconds (the process's, lavapipe's\n"
+    "threads included: on a loaded machine the fairer figure) and the ratios.\n"
+    "pc mg's hierarchy (docs/fluid.md, \"Multigrid\"): --mg-smoother (8-colour block\n"
+    "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (pre and\n"
+    "post, default 2), --mg-cycle (default w), --mg-galerkin (Galerkin coarse\n"
+    "operators instead of the rediscretised ones).\n";
 
 /* --verbose: the fluid solver's monitor lines to stderr. */
 static void print_line(void *user, const char *line) {
@@ -71,12 +82,70 @@ static sessile_status dome_mask(const sessile_box *b, double radius, double cx, 
   return st;
 }
 
+/* One preconditioner's pair of solves: from rest around the dome, then warm
+ * after it grew by max_growth; CPU seconds of each into cpu[2]. */
+static sessile_status run_pair(sessile_fluid *fl, const sessile_box *box, const sessile_grow_params *p,
+                               const sessile_fluid_params *fp, uint8_t *solid, double *up,
+                               sessile_fluid_result r[2], double cpu[2]) {
+  double mx[3];
+  sessile_box_max(box, mx);
+  uint32_t n = sessile_box_nodes(box);
+  memset(up, 0, (size_t)n * 4 * sizeof *up);
+  printf("--- preconditioner %s ---\n", sessile_pc_type_name(fp->pc));
+  SESSILE_CALL(dome_mask(box, p->sponge_radius, mx[0] / 2, mx[1] / 2, solid));
+  double c0 = cli_cpu_seconds();
+  SESSILE_CALL(sessile_fluid_solve(fl, solid, fp, up, &r[0]));
+  cpu[0] = cli_cpu_seconds() - c0;
+  print_result("full solve from rest", &r[0]);
+  fflush(stdout);
+  SESSILE_CALL(dome_mask(box, p->sponge_radius + p->max_growth, mx[0] / 2, mx[1] / 2, solid));
+  for (uint32_t i = 0; i < n; i++)
+    if (solid[i]) up[4 * i] = up[4 * i + 1] = up[4 * i + 2] = 0;
+  c0 = cli_cpu_seconds();
+  SESSILE_CALL(sessile_fluid_solve(fl, solid, fp, up, &r[1]));
+  cpu[1] = cli_cpu_seconds() - c0;
+  printf("\n");
+  print_result("warm-started re-solve (sponge radius +0.3 cm)", &r[1]);
+  printf("\n");
+  fflush(stdout);
+  return SESSILE_OK;
+}
+
+/* The table of the pairs that ran (k0: 0 with the ilu0 reference, else 1) and the ratios. */
+static void print_compare(const sessile_fluid_result r[2][2], const double cpu[2][2], const char *name[2], int k0) {
+  double load[3];
+  sessile_load_average(load);
+  printf("%s (load %.1f %.1f %.1f):\n", k0 ? "summary" : "comparison in this run", load[0], load[1], load[2]);
+  printf("  %-12s %-5s %5s %8s %9s %8s %9s %8s %8s %10s\n", "pc", "solve", "steps", "lin its", "its/step",
+         "max its", "solve s", "pc set s", "total s", "cpu s");
+  for (int k = k0; k < 2; k++)
+    for (int w = 0; w < 2; w++) {
+      const sessile_fluid_result *x = &r[k][w];
+      int mx = 0;
+      double ps = 0;
+      for (int i = 0; i < x->nsteps; i++) {
+        if (x->step[i].lin_iterations > mx) mx = x->step[i].lin_iterations;
+        ps += x->step[i].pc_setup_s;
+      }
+      printf("  %-12s %-5s %5d %8d %9.1f %8d %9.2f %8.2f %8.2f %10.2f%s\n", name[k], w ? "warm" : "rest",
+             x->nsteps, x->lin_iterations, x->nsteps ? (double)x->lin_iterations / x->nsteps : 0.0, mx,
+             x->solve_s, ps, x->seconds, cpu[k][w], x->converged ? "" : "  NOT converged");
+    }
+  for (int w = 0; w < 2 && !k0; w++)
+    printf("  %s: %s / %s = %.2fx in wall time, %.2fx in CPU time\n", w ? "warm" : "from rest", name[0],
+           name[1], r[1][w].seconds > 0 ? r[0][w].seconds / r[1][w].seconds : 0.0,
+           cpu[1][w] > 0 ? cpu[0][w] / cpu[1][w] : 0.0);
+}
+
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   sessile_grow_params p;
   sessile_params_default(&p);
   unsigned res = 0;
-  int picard = -1, lsic = -1, verbose = 0;
+  int picard = -1, lsic = -1, verbose = 0, compare = 1;
+  sessile_bmg_options mgo;
+  sessile_bmg_options_default(&mgo);
+  int galerkin = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -98,16 +167,37 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       lsic = 0;
       continue;
     }
-    if (!strcmp(a, "--verbose")) {
-      verbose = 1;
+    if (!strcmp(a, "--verbose") || !strcmp(a, "--no-compare") || !strcmp(a, "--mg-galerkin")) {
+      if (a[2] == 'v') verbose = 1;
+      else if (a[2] == 'n') compare = 0;
+      else galerkin = 1;
       continue;
     }
-    static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp", "--set"};
+    static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp",
+                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--set"};
     int k = 0;
-    while (k < 6 && strcmp(a, valued[k])) k++;
-    if (k == 6) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
+    while (k < 9 && strcmp(a, valued[k])) k++;
+    if (k == 9) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v || (k < 5 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!v || (k < 8 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!strcmp(a, "--mg-smoother")) {
+      if (strcmp(v, "gs") && strcmp(v, "jacobi"))
+        return cli_usage_error("bench fluid", "--mg-smoother: gs or jacobi (got '%.40s')", v);
+      mgo.smoother = v[0] == 'j' ? SESSILE_BMG_JACOBI : SESSILE_BMG_GAUSS_SEIDEL;
+      if (v[0] == 'j') mgo.omega = 0.6;
+      continue;
+    }
+    if (!strcmp(a, "--mg-cycle")) {
+      if (strcmp(v, "v") && strcmp(v, "w")) return cli_usage_error("bench fluid", "--mg-cycle: v or w (got '%.40s')", v);
+      mgo.cycle = v[0] == 'w' ? 2 : 1;
+      continue;
+    }
+    if (!strcmp(a, "--mg-sweeps")) {
+      unsigned u;
+      if (cli_parse_uint("bench fluid", a, v, 1, 8, &u)) return EXIT_USAGE;
+      mgo.pre = mgo.post = (int)u;
+      continue;
+    }
     if (!strcmp(a, "--resolution")) {
       if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
     } else if (!strcmp(a, "--picard")) {
@@ -130,8 +220,6 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   const uint32_t cells[3] = {(uint32_t)p.box_cells_x, (uint32_t)p.box_cells_y, (uint32_t)p.box_cells_z};
   s = sessile_box_make(origin, p.box_base_cell, cells, (int)res, &box);
   if (s != SESSILE_OK) return cli_fail(s);
-  double mx[3];
-  sessile_box_max(&box, mx);
 
   sessile_gpu *g = NULL;
   sessile_la *la = NULL;
@@ -156,6 +244,8 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   if (picard >= 0) fp.picard_steps = picard;
   if (lsic >= 0) fp.lsic = lsic;
   if (verbose) fp.monitor = print_line;
+  fp.mg = mgo;
+  fp.mg_galerkin = galerkin;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
     printf("sessile bench fluid: device %s (%s), driver %s, fp%d\n", gi->name, gi->type, gi->driver,
@@ -165,26 +255,26 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
            res, box.n[0], box.n[1], box.n[2], n, 4 * n, mesh.ntets, box.h,
            sessile_ksp_type_name(fp.ksp), sessile_pc_type_name(fp.pc),
            p.fluid_density * p.inlet_velocity * 0.12 / p.fluid_viscosity);
+    if (fp.pc == SESSILE_PC_MG)
+      printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle, %s coarse operators\n",
+             mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", mgo.pre, mgo.post,
+             mgo.cycle == 2 ? "W" : "V", galerkin ? "Galerkin" : "rediscretised");
     printf("mesh and solver setup: %.2f s\n\n", t_setup);
     fflush(stdout);
-    s = dome_mask(&box, p.sponge_radius, mx[0] / 2, mx[1] / 2, solid);
   }
-  sessile_fluid_result r1, r2;
-  if (s == SESSILE_OK) s = sessile_fluid_solve(fl, solid, &fp, up, &r1);
-  if (s == SESSILE_OK) {
-    print_result("full solve from rest", &r1);
-    fflush(stdout);
-    s = dome_mask(&box, p.sponge_radius + p.max_growth, mx[0] / 2, mx[1] / 2, solid);
+  /* ilu0 first (the reference), then the chosen pc */
+  sessile_fluid_result (*r)[2] = calloc(2, sizeof *r);
+  double cpu[2][2] = {{0, 0}, {0, 0}};
+  const char *name[2] = {"ilu0", sessile_pc_type_name(fp.pc)};
+  if (!r && s == SESSILE_OK) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  int both = compare && fp.pc != SESSILE_PC_ILU0;
+  for (int k = both ? 0 : 1; k < 2 && s == SESSILE_OK; k++) {
+    sessile_fluid_params q = fp;
+    if (k == 0) q.pc = SESSILE_PC_ILU0;
+    s = run_pair(fl, &box, &p, &q, solid, up, r[k], cpu[k]);
   }
-  if (s == SESSILE_OK) {
-    for (uint32_t i = 0; i < n; i++)
-      if (solid[i]) up[4 * i] = up[4 * i + 1] = up[4 * i + 2] = 0;
-    s = sessile_fluid_solve(fl, solid, &fp, up, &r2);
-  }
-  if (s == SESSILE_OK) {
-    printf("\n");
-    print_result("warm-started re-solve (sponge radius +0.3 cm)", &r2);
-  }
+  if (s == SESSILE_OK) print_compare((const sessile_fluid_result(*)[2])r, (const double(*)[2])cpu, name, !both);
+  free(r);
   sessile_fluid_destroy(fl);
   sessile_tetmesh_free(&mesh);
   sessile_la_destroy(la);

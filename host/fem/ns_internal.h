@@ -4,6 +4,7 @@
 
 #include <stdint.h>
 #include "sessile/fem/fluid.h"
+#include "sessile/la/pc.h"
 
 /* Coefficients of one assembly: newton = 1 for the full Jacobian, 0 for the
  * Picard (Oseen) linearisation. */
@@ -25,6 +26,8 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
 #define NS_QA 0.5854101966249685
 #define NS_QB 0.1381966011250105
 
+#define NS_MG_LEVELS 15
+
 /* The solver object (sessile/fem/fluid.h). */
 struct sessile_fluid {
   sessile_la *la;
@@ -37,11 +40,20 @@ struct sessile_fluid {
   uint32_t ncolours;
   uint32_t *corder;   /* ntets, tets sorted by colour */
   uint32_t *cstart;   /* ncolours + 1 */
+  uint32_t grid[3];   /* the mesh is a Kuhn box of these nodes per axis (ns_box.c); 0: not */
+  sessile_bmg *bmg;   /* pc mg: the block hierarchy, kept across solves (created on first use) */
+  sessile_bmg_options bmg_opt; /* the options it was made with */
+  sessile_pc *mgpc;   /* the pc "mg" on it, kept likewise */
+  struct sessile_fluid *coarse[NS_MG_LEVELS]; /* its coarse levels 1.. as fluids (ns_mg.c) */
+  int ncoarse;
 };
 
 /* Pieces of the solver, one file each (ns_fluid.c has the overview). */
 sessile_status ns_build_graph(sessile_fluid *fl);   /* fl->a's pattern and fl->pos */
 sessile_status ns_build_colours(sessile_fluid *fl); /* fl->ncolours, corder, cstart */
+/* fl->grid: the box's nodes per axis when the mesh is a structured Kuhn box
+ * in box order (sessile_tetmesh_from_box), else zeros. */
+void ns_detect_box(sessile_fluid *fl);
 /* Residual r (4 per node) and, when jac, the Jacobian into fl->a.val. */
 void ns_assemble(sessile_fluid *fl, const sessile_fluid_params *p, const double *up, double newton,
                  int jac, double *r);
@@ -54,9 +66,16 @@ void ns_impose_bc(const sessile_fluid *fl, const uint8_t *solid, const sessile_f
 /* Zeroes the residual's Dirichlet rows and, when jac, makes them identity
  * rows; returns ||r|| of the rest. */
 double ns_apply_bc_rows(sessile_fluid *fl, const uint8_t *bc, int jac, double *r);
-/* du = J⁻¹(-r) for the assembled fl->a on the GPU; fills st's linear fields. */
-sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p, const double *r,
-                               double *du, sessile_vec *b, sessile_vec *x, sessile_fluid_step *st);
+/* du = J⁻¹(-r) for the assembled fl->a on the GPU; fills st's linear fields.
+ * solid, up and newton: the state J was assembled at (pc mg rediscretises it). */
+sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p, const uint8_t *solid,
+                               const double *up, double newton, const double *r, double *du,
+                               sessile_vec *b, sessile_vec *x, sessile_fluid_step *st);
+/* pc mg: the coarse levels' operators rediscretised at the injected state
+ * (given to fl->bmg), and the coarse fluids' release (ns_mg.c). */
+sessile_status ns_mg_operators(sessile_fluid *fl, const sessile_fluid_params *p, const uint8_t *solid,
+                               const double *up, double newton);
+void ns_mg_free(sessile_fluid *fl);
 /* One line to the caller's monitor (nothing when it is NULL). */
 void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

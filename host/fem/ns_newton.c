@@ -98,7 +98,7 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     st->picard = picard;
     st->assembly_s = tass;
     double ts = sessile_wall_seconds();
-    s = ns_linear_solve(fl, p, r, du, b, x, st);
+    s = ns_linear_solve(fl, p, solid, up, picard ? 0.0 : 1.0, r, du, b, x, st);
     st->solve_s = sessile_wall_seconds() - ts;
     if (s != SESSILE_OK) break;
     res->solve_s += st->solve_s;

@@ -17,9 +17,10 @@ static const char *const translocate_names[] = {"parallel", "sequential", NULL};
  * Jacobian is nonsymmetric). */
 static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
 /* fluid_pc_type: the pc registry's names (sessile/la/pc.h) indexed by
- * sessile_pc_type, without mg (the fluid mesh has no grid hierarchy);
- * tests/growth/test_grow_solver_params.c checks them against the registry. */
-static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", NULL};
+ * sessile_pc_type (mg: the block multigrid on the immersed box, ILU(0) on
+ * the conforming mesh); tests/growth/test_grow_solver_params.c checks them
+ * against the registry. */
+static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", "mg", NULL};
 
 #define PT_REAL SESSILE_PT_REAL, NULL
 #define PT_INT SESSILE_PT_INT, NULL

@@ -5,7 +5,7 @@
 #include "sessile/growth/grow_params.h"
 
 _Static_assert(SESSILE_PC_NONE == 0 && SESSILE_PC_JACOBI == 1 && SESSILE_PC_ILU0 == 2 &&
-                   SESSILE_PC_BLOCK_JACOBI == 3,
+                   SESSILE_PC_BLOCK_JACOBI == 3 && SESSILE_PC_MG == 4,
                "fluid_pc_type's names (params.c) follow sessile_pc_type's order");
 
 void sessile_params_fluid_solver(const sessile_grow_params *p, sessile_fluid_params *fp) {

@@ -175,7 +175,7 @@ cases=$(cat <<'CASES'
 2 | parameter nutrient_pc_type: 'cg' is not one of mg, jacobi | - | grow --out run --set nutrient_solver=cg
 2 | parameter 'nutrient_ksp_rtol' is given twice .also as 'linear_rtol'. | - | grow --out run --config $F/linear_both.json
 2 | parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | grow --out run --set fluid_ksp_type=cg
-2 | parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | grow --out run --set fluid_pc_type=mg
+2 | parameter fluid_pc_type: 'amg' is not one of none, jacobi, ilu0, block_jacobi, mg | - | grow --out run --set fluid_pc_type=amg
 2 | parameter fluid_pc_type: 'ilu1' is not one of | - | grow --out run --set fluid_pc_type=ilu1
 2 | parameter fluid_ksp_restart: '65' is not an integer in \[1, 64\] | - | grow --out run --set fluid_ksp_restart=65
 2 | parameter fluid_ksp_max_it: '0' is not an integer in \[1, | - | grow --out run --set fluid_ksp_max_it=0
@@ -349,10 +349,10 @@ cases=$(cat <<'CASES'
 2 | coral lsystem: error: --seed given twice | - | coral lsystem --seed 1 --seed 1
 2 | bench fluid: error: --picard given twice | - | bench fluid --picard 1 --picard 2
 2 | bench fluid: error: --restart given twice | - | bench fluid --restart 3 --restart 4
-2 | bench fluid: error: --pc: parameter fluid_pc_type: 'mg' is not one of none, jacobi, ilu0, block_jacobi | - | bench fluid --pc mg
+2 | bench fluid: error: --pc: parameter fluid_pc_type: 'amg' is not one of none, jacobi, ilu0, block_jacobi, mg | - | bench fluid --pc amg
 2 | bench fluid: error: --ksp: parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | bench fluid --ksp cg
 2 | bench fluid: error: --restart: parameter fluid_ksp_restart: '0' is not an integer in \[1, 64\] | - | bench fluid --restart 0
-2 | parameter fluid_pc_type: 'ilu' is not one of none, jacobi, ilu0, block_jacobi | - | bench fluid --set fluid_pc_type=ilu
+2 | parameter fluid_pc_type: 'ilu' is not one of none, jacobi, ilu0, block_jacobi, mg | - | bench fluid --set fluid_pc_type=ilu
 0 | ^t_give +0\.2  | - | grow --set t_give=0.1 --set t_give=0.2 --print-config
 # GNU --opt=value: the same checks as --opt value; a flag takes no value
 2 | grow: error: --iterations: 'abc' is not an integer | - | grow --iterations=abc

@@ -51,7 +51,7 @@ for d in ("immersed", "conforming"):
 sys.exit(0 if ok else 1)
 PYEOF
 # The fluid's solver choices reach the solver: each Newton step records the
-# Krylov method and preconditioner it ran (defaults gmres + ilu0 above).
+# Krylov method and preconditioner it ran (defaults gmres + mg above).
 "$S" grow ${SMALL/--iterations 8/--iterations 1} --every 1 --set fluid_ksp_type=bicgstab \
   --set fluid_pc_type=block_jacobi --out "$T/opts" 2>"$T/opts.err"
 check "run with fluid_ksp_type=bicgstab, fluid_pc_type=block_jacobi" [ $? -eq 0 ]
@@ -64,7 +64,7 @@ def kinds(d):
             for s in json.loads(l).get("fluid", {}).get("steps", [])}
 a, b = kinds("immersed"), kinds("opts")
 print("default:", a, "chosen:", b)
-sys.exit(0 if a == {("gmres", "ilu0")} and b == {("bicgstab", "block_jacobi")} else 1)
+sys.exit(0 if a == {("gmres", "mg")} and b == {("bicgstab", "block_jacobi")} else 1)
 PYEOF
 check "EXR slice carries c, ux, uy, uz, umag, p" eval \
   'exrheader "$T/immersed/slices/iter_0008_z.exr" | grep -q "umag, 32-bit floating-point" && exrheader "$T/immersed/slices/iter_0008_z.exr" | grep -q "  p, 32-bit floating-point"'

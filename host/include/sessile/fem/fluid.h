@@ -27,6 +27,7 @@
 #define SESSILE_FLUID_H
 
 #include <stdint.h>
+#include "sessile/la/bmg.h"
 #include "sessile/la/la.h"
 #include "sessile/mesh/tetmesh.h"
 
@@ -64,10 +65,16 @@ typedef struct sessile_fluid_params {
   double linear_rtol;  /* default 1e-6 */
   int linear_max;      /* default 100 */
   sessile_ksp_type ksp;/* default GMRES */
-  sessile_pc_type pc;  /* la's preconditioner (sessile/la/pc.h), default ILU(0);
+  sessile_pc_type pc;  /* la's preconditioner (sessile/la/pc.h), default MG; ILU0:
                           Jacobi is used instead on a matrix stored in several
                           chunks (la's ILU(0) needs one); BLOCK_JACOBI inverts
-                          each node's 4x4 diagonal block (couples u and p) */
+                          each node's 4x4 diagonal block (couples u and p);
+                          MG is the block multigrid W-cycle (sessile/la/bmg.h)
+                          on a structured box mesh (sessile_tetmesh_from_box),
+                          ILU(0) on any other */
+  sessile_bmg_options mg; /* pc MG's options (default sessile_bmg_options_default) */
+  int mg_galerkin;     /* pc MG: Galerkin coarse operators R A P instead of the
+                          rediscretised linearisation (default 0; comparisons) */
   int restart;         /* GMRES(m), default 50 */
   /* Progress: one line per Newton/Picard step and one at the end (and the
    * check_linear lines) to monitor(monitor_user, line); NULL (default):
@@ -99,6 +106,8 @@ typedef struct sessile_fluid_step {
   sessile_pc_type lin_pc;  /* the preconditioner used (see params.pc) */
   uint32_t lin_chunks;     /* row chunks the block matrix was stored in (la) */
   double assembly_s, solve_s;
+  double pc_setup_s;       /* of solve_s: the preconditioner's setup (host factors,
+                              Galerkin products, uploads) */
 } sessile_fluid_step;
 
 typedef struct sessile_fluid_result {
@@ -133,6 +142,14 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid,
  * minus the sum over its nodes. */
 sessile_status sessile_fluid_residual(sessile_fluid *fl, const sessile_fluid_params *p,
                                       const double *up, double *r);
+
+/* The linear system of a Newton step (picard = 0) or a Picard (Oseen) step
+ * (picard = 1) at the state up (its boundary values imposed on a copy):
+ * the Jacobian with the Dirichlet rows as unit rows into jac (allocated
+ * here; free with sessile_bcsr4_free) and, when rhs is not NULL, -R (4 per
+ * node, zero on the Dirichlet rows).  Tests and other solvers use it. */
+sessile_status sessile_fluid_jacobian(sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
+                                      const double *up, int picard, sessile_bcsr4 *jac, double *rhs);
 
 #ifdef __cplusplus
 }

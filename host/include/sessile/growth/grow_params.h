@@ -97,9 +97,10 @@ extern "C" {
   X(fluid_ksp_type, ENUM_KSP, 0, 0, 1, 0, "", "ours (docs/fluid.md)",                              \
     "Krylov method of each Newton step's linear system: gmres (GMRES(fluid_ksp_restart)) or "     \
     "bicgstab")                                                                                    \
-  X(fluid_pc_type, ENUM_PC, SESSILE_PC_ILU0, 0, 3, 0, "", "ours (docs/fluid.md)",                  \
+  X(fluid_pc_type, ENUM_PC, SESSILE_PC_MG, 0, 4, 0, "", "ours (docs/fluid.md)",                    \
     "la's preconditioner of the fluid's linear solves (sessile/la/pc.h): none, jacobi, ilu0 "    \
-    "(Jacobi on a matrix stored in chunks) or block_jacobi (each node's 4x4 block)")             \
+    "(Jacobi on a matrix stored in chunks), block_jacobi (each node's 4x4 block) or mg (block "  \
+    "multigrid on the immersed box; ilu0 on the conforming mesh)")                               \
   X(fluid_ksp_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper §4.2 (linear 1e-6)",                      \
     "true relative residual each Newton step's linear solve aims at")                             \
   X(fluid_ksp_max_it, INT, 100, 1, 1000000, 0, "", "paper §4.2 (linear 100)",                       \

@@ -11,7 +11,9 @@
  *                   the same as jacobi)
  *   "ilu0"          ILU(0) of a CSR or BCSR4 matrix (nonsymmetric: not for CG)
  *   "mg"            one V-cycle of a sessile_mg hierarchy (sessile/la/mg.h),
- *                   given with sessile_pc_mg_set before the setup
+ *                   given with sessile_pc_mg_set before the setup, or of a
+ *                   block hierarchy for 4x4 block matrices on a Kuhn box
+ *                   (sessile/la/bmg.h), given with sessile_pc_mg_set_block
  * How to add one: docs/la.md ("Preconditioners").
  *
  * Ownership: the caller owns the pc and destroys it before the la.  A pc
@@ -21,6 +23,7 @@
 #define SESSILE_PC_H
 
 #include "sessile/la/la.h"
+#include "sessile/la/bmg.h"
 #include "sessile/la/mg.h"
 
 #ifdef __cplusplus
@@ -55,6 +58,11 @@ int sessile_pc_symmetric(const sessile_pc *pc);
  * the pc exists).  The setup then checks that the matrix has the finest
  * level's rows.  SESSILE_ERR_USAGE on a pc of another type. */
 sessile_status sessile_pc_mg_set(sessile_pc *pc, sessile_mg *mg);
+/* "mg" on a block matrix: the block hierarchy whose V-cycle is M⁻¹ (not
+ * owned); the pc's setup builds its operators from the matrix
+ * (sessile_bmg_setup).  Given before the setup; replaces a scalar hierarchy.
+ * The pc is then nonsymmetric (GMRES, BiCGSTAB). */
+sessile_status sessile_pc_mg_set_block(sessile_pc *pc, sessile_bmg *mg);
 
 /* sessile_ksp_solve with a set-up pc object instead of the options' pc
  * enum (pc NULL: the enum's, built and set up for a here).  CG refuses a

@@ -1,0 +1,48 @@
+/* Internal definitions of the block multigrid (host/la/bmg*.c, pc_bmg.c). */
+#ifndef SESSILE_BMG_INTERNAL_H
+#define SESSILE_BMG_INTERNAL_H
+
+#include "la_internal.h"
+#include "sessile/la/bmg.h"
+
+#define BMG_MAX_LEVELS 16
+#define BMG_NOFF 15 /* a node and its 14 Kuhn neighbours */
+
+typedef struct {
+  uint32_t n[3], nodes;
+  int off[BMG_NOFF][3];    /* the Kuhn offsets, sorted by index displacement (row order) */
+  sessile_bcsr4 a;         /* l >= 1: R A P (the Kuhn pattern, built at creation) */
+  const sessile_bcsr4 *given; /* l >= 1: the caller's operator (copied into a at setup) or NULL */
+  sessile_bcsr4 copy;      /* the copy of given */
+  const sessile_bcsr4 *ah; /* the host operator: l = 0 the caller's, else &a */
+  const sessile_mat *m;    /* the device operator: l = 0 the caller's, else own */
+  sessile_mat *own;
+  double *dinv;            /* 16 per node: inverse diagonal blocks */
+  sessile_buffer **dinvb;  /* dinv per row chunk of m */
+  uint32_t ndinv;
+  uint8_t *fixed;          /* per node: bit a = unknown a is fixed (unit row) */
+  sessile_buffer *mask;    /* uint per node: bit a = unknown a is free */
+  sessile_vec *x, *b;      /* l >= 1: the correction and the restricted residual */
+  sessile_vec *r;          /* the residual (and the Jacobi sweeps' other buffer) */
+} bmg_level;
+
+struct sessile_bmg {
+  sessile_la *la;
+  sessile_bmg_options o;
+  int nl;
+  bmg_level lv[BMG_MAX_LEVELS];
+  double *cinv;            /* dense coarsest inverse (4N x 4N, row-major) or NULL: sweeps */
+  sessile_mat *cinvm;      /* the same as a full block matrix */
+  int ready;               /* set up */
+  unsigned rebuilds;       /* times the fixed masks changed */
+};
+
+/* The Kuhn offsets of a grid, in row order (bmg.c). */
+void bmg_offsets(const uint32_t n[3], int off[BMG_NOFF][3]);
+/* Records out = V-cycle(r) into c (bmg_record.c); r and out whole vectors of
+ * the finest level, distinct. */
+sessile_status bmg_rec_vcycle(const sessile_bmg *mg, sessile_cmd *c, vref r, vref out, int guard);
+/* Galerkin product of level l + 1 from level l, masks applied (bmg_setup.c). */
+sessile_status bmg_galerkin(sessile_bmg *mg, int l);
+
+#endif

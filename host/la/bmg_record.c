@@ -1,0 +1,130 @@
+/* Recording of one block-multigrid V-cycle (sessile/la/bmg.h) into a
+ * command buffer, every dispatch guarded by the solver's stop slot.
+ *
+ * Level l with right-hand side b, from x = 0:
+ *   pre-smoothing: x = omega D^-1 b (block Jacobi from zero, no SpMV), then
+ *     `pre` sweeps (Gauss-Seidel: colours 0..7 in place; Jacobi: into r and
+ *     copied back);
+ *   r = b - A x; b_{l+1} = R r; the cycle on level l+1; x += P x_{l+1}
+ *     (`cycle` times: 2 is a W-cycle, with the second coarse residual
+ *     restricted from the fine one; once when level l+1 is solved exactly);
+ *   `post` sweeps (Gauss-Seidel: colours 7..0);
+ * the coarsest level: x = A^-1 b as one dense block SpMV, or the Jacobi
+ * start and coarse_sweeps sweeps alternating forward and backward.
+ * Smoother and residual dispatch once per row chunk of the level's matrix;
+ * a colour sweep covers only the chunk's k-slabs of its colour. */
+#include "bmg_internal.h"
+
+static bmg_push grid_push(const bmg_level *v, int guard) {
+  bmg_push p = {.n0 = v->n[0], .n1 = v->n[1], .n2 = v->n[2], .m0 = la_div_magic(v->n[0]),
+                .m1 = la_div_magic(v->n[1]), .guard = guard, .colour = 8};
+  return p;
+}
+
+/* One pass of the smoother over level l (every chunk): colour 0..7 or 8 (all). */
+static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, vref y,
+                               uint32_t colour, uint32_t flags, int guard) {
+  sessile_la *la = mg->la;
+  const bmg_level *v = &mg->lv[l];
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH, &k));
+  uint32_t par[3] = {colour & 1u, (colour >> 1) & 1u, (colour >> 2) & 1u};
+  uint32_t sub[3] = {0, 0, 0};
+  for (int a = 0; a < 3; a++) sub[a] = (v->n[a] - par[a] + 1) / 2;
+  uint32_t plane = v->n[0] * v->n[1];
+  for (uint32_t ci = 0; ci < v->m->nchunks; ci++) {
+    const mat_chunk *ch = &v->m->chunk[ci];
+    bmg_push p = grid_push(v, guard);
+    p.colour = colour, p.flags = flags, p.row0 = ch->row0, p.nrows = ch->nrows;
+    p.omega = sessile_push_real_of(mg->o.omega, la->real_bytes);
+    if (colour < 8) {
+      if (!sub[0] || !sub[1] || !sub[2]) continue;
+      uint32_t klo = ch->row0 / plane, khi = (ch->row0 + ch->nrows - 1) / plane;
+      if (khi < par[2]) continue;
+      uint32_t slo = klo <= par[2] ? 0 : (klo - par[2] + 1) / 2, shi = (khi - par[2]) / 2;
+      if (shi >= sub[2]) shi = sub[2] - 1;
+      if (slo > shi) continue;
+      p.s0 = sub[0], p.s1 = sub[1], p.ms0 = la_div_magic(sub[0]), p.ms1 = la_div_magic(sub[1]);
+      p.first = slo * sub[0] * sub[1];
+      p.items = (shi - slo + 1) * sub[0] * sub[1];
+    } else {
+      p.items = ch->nrows;
+    }
+    sessile_buffer *bufs[8] = {la->scalars, ch->rowptr, ch->col, ch->val, v->dinvb[ci], b.buf, x.buf, y.buf};
+    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, K_BMG_SMOOTH, p.items), bufs, &p));
+  }
+  return SESSILE_OK;
+}
+
+/* `sweeps` smoothing sweeps of x on level l (after the start from zero when zero). */
+static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int sweeps,
+                                 int zero, int backward, int guard) {
+  const bmg_level *v = &mg->lv[l];
+  vref none = {0};
+  if (zero) SESSILE_CALL(rec_pass(mg, c, l, b, x, x, 8, BMG_ZERO, guard));
+  for (int s = 0; s < sweeps; s++) {
+    if (mg->o.smoother == SESSILE_BMG_JACOBI) {
+      SESSILE_CALL(rec_pass(mg, c, l, b, x, vref_of(v->r), 8, 0, guard));
+      SESSILE_CALL(rec_vec(mg->la, c, K_COPY, 4 * v->nodes, vref_of(v->r), x, none, -1, 0, guard));
+      continue;
+    }
+    int back = backward ^ (s & 1 && l == mg->nl - 1); /* the coarsest alternates */
+    for (int q = 0; q < 8; q++) SESSILE_CALL(rec_pass(mg, c, l, b, x, x, back ? 7 - q : q, 0, guard));
+  }
+  return SESSILE_OK;
+}
+
+static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int guard) {
+  sessile_la *la = mg->la;
+  const bmg_level *v = &mg->lv[l];
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_BMG_RESIDUAL, &k));
+  for (uint32_t ci = 0; ci < v->m->nchunks; ci++) {
+    const mat_chunk *ch = &v->m->chunk[ci];
+    bmg_push p = grid_push(v, guard);
+    p.row0 = ch->row0, p.nrows = p.items = ch->nrows;
+    sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, b.buf, x.buf, v->r->buf};
+    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, K_BMG_RESIDUAL, p.items), bufs, &p));
+  }
+  return SESSILE_OK;
+}
+
+/* b_{l+1} = R r_l, or x_l += P x_{l+1} (prolong). */
+static sessile_status rec_transfer(const sessile_bmg *mg, sessile_cmd *c, int l, vref x, int prolong, int guard) {
+  sessile_la *la = mg->la;
+  const bmg_level *f = &mg->lv[l], *cv = &mg->lv[l + 1];
+  la_kernel_id id = prolong ? K_BMG_PROLONG : K_BMG_RESTRICT;
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, id, &k));
+  const bmg_level *run = prolong ? f : cv, *other = prolong ? cv : f;
+  bmg_push p = grid_push(run, guard);
+  p.f0 = other->n[0], p.f1 = other->n[1], p.f2 = other->n[2];
+  p.items = run->nodes;
+  if (prolong) {
+    sessile_buffer *bufs[4] = {la->scalars, f->mask, cv->x->buf, x.buf};
+    return sessile_cmd_dispatch(c, k, la_groups(la, id, p.items), bufs, &p);
+  }
+  sessile_buffer *bufs[5] = {la->scalars, f->mask, cv->mask, f->r->buf, cv->b->buf};
+  return sessile_cmd_dispatch(c, k, la_groups(la, id, p.items), bufs, &p);
+}
+
+static sessile_status rec_level(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int guard) {
+  if (l == mg->nl - 1) {
+    if (mg->cinvm) return rec_spmv(mg->la, c, mg->cinvm, b, x, guard);
+    return rec_smooth(mg, c, l, b, x, mg->o.coarse_sweeps, 1, 0, guard);
+  }
+  const bmg_level *cv = &mg->lv[l + 1];
+  SESSILE_CALL(rec_smooth(mg, c, l, b, x, mg->o.pre, 1, 0, guard));
+  int corr = l + 2 == mg->nl && mg->cinvm ? 1 : mg->o.cycle; /* an exact coarsest solve once */
+  for (int k = 0; k < corr; k++) {
+    SESSILE_CALL(rec_residual(mg, c, l, b, x, guard));
+    SESSILE_CALL(rec_transfer(mg, c, l, x, 0, guard));
+    SESSILE_CALL(rec_level(mg, c, l + 1, vref_of(cv->b), vref_of(cv->x), guard));
+    SESSILE_CALL(rec_transfer(mg, c, l, x, 1, guard));
+  }
+  return rec_smooth(mg, c, l, b, x, mg->o.post, 0, 1, guard);
+}
+
+sessile_status bmg_rec_vcycle(const sessile_bmg *mg, sessile_cmd *c, vref r, vref out, int guard) {
+  return rec_level(mg, c, 0, r, out, guard);
+}
