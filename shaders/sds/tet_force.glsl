@@ -13,7 +13,7 @@
 
 void main() {
   uint t = sessile_gid();
-  if (t >= pc.ntets) return;
+  if (t >= pc.ntets || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint q[4] = uint[4](LD_TOPO(4u * t), LD_TOPO(4u * t + 1u), LD_TOPO(4u * t + 2u), LD_TOPO(4u * t + 3u));
   REAL a[3], b[3], c[3], g[4][3];
   for (int i = 0; i < 3; i++) {
