@@ -1,8 +1,8 @@
 /* A batch of SDS physics steps in one submission (sessile/sds/sds_batch.h,
- * docs/sds.md "The loop on the device"): per step the forces, the stable
+ * docs/sds.md "The loop on the device"): per step five dispatches, the
+ * forces (tet_force also flags the inverted tets of its input), the stable
  * bound, stable_min (which first checks the step before, as
- * sessile_sds_gpu_advance does on the host), the gather and the inverted
- * flags; the kernels honour the event word, so the batch stops itself after
+ * sessile_sds_gpu_advance does on the host) and the gather; the kernels honour the event word, so the batch stops itself after
  * the first step that raises one.  The host reads the events, the count of
  * accepted steps and their log once, at the end. */
 #include <math.h>
@@ -16,13 +16,13 @@ _Static_assert((int)SESSILE_SDS_EV_DIVIDE == (int)SDS_EV_DIVIDE && (int)SESSILE_
                    (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
                "sds_batch.h's events are kernels.def's");
 
-/* Records the batch: step k reads pair (cur + k) & 1; the last check after. */
+/* Records the batch: step k reads pair (cur + k) & 1 (its tet_force flags
+ * the inverted tets of step k - 1's result); after the last, its flags and
+ * the last check. */
 static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
-  for (uint32_t k = 0; k < steps; k++) {
-    int c = (s->cur + (int)k) & 1;
-    SESSILE_CALL(sds_gpu_record_forces(s, c, 0.0, 1, 2, k + 1));
-    if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, 1 - c, k + 1));
-  }
+  for (uint32_t k = 0; k < steps; k++)
+    SESSILE_CALL(sds_gpu_record_forces(s, (s->cur + (int)k) & 1, 0.0, 1, 2, k + 1));
+  if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, (s->cur + (int)steps) & 1, steps + 1));
   sds_push p = sds_gpu_push_of(s, 0.0, 1, 3);
   p.batch = steps + 1;
   return sds_gpu_record_stable_min(s, &p);

@@ -7,7 +7,9 @@
 // gather takes in mode 2: stab[n] = h, stab[n + 1] = hmax, stab[n + 2] = the
 // bound, copied to step for the host.  The cap is the one
 // sessile_sds_gpu_advance applied on the host before this kernel existed.
-// In a batch (pc.batch > 0; docs/sds.md, "The loop on the device") it first
+// In a batch (pc.batch > 0; docs/sds.md, "The loop on the device"), where
+// tet_force flags the inverted tets of its input (the step before's result)
+// into ev[2], it first
 // checks the batch's previous step as sessile_sds_gpu_advance does on the
 // host, operation by operation (the same bits in fp64): its largest move
 // against max_move (else the step is rejected and the batch stops: the host
@@ -84,6 +86,7 @@ void main() {
   uint l = gl_LocalInvocationID.x, L = gl_WorkGroupSize.x, n = pc.ncells;
   if (pc.batch != 0u) {
     if (ev[0] != 0u) return; // stopped: stab[n] is -1 already
+    if (pc.batch == 1u && l == 0u) ev[2] = 0u; // tet_force flagged the batch's start state: not a step's
     if (pc.batch > 1u) {
       check_step(l, L, n, pc.batch - 2u);
       if (evs != 0u) {
