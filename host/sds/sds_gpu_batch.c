@@ -16,17 +16,32 @@ _Static_assert((int)SESSILE_SDS_EV_DIVIDE == (int)SDS_EV_DIVIDE && (int)SESSILE_
                    (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
                "sds_batch.h's events are kernels.def's");
 
-/* Records the batch: step k reads pair (cur + k) & 1 (its tet_force flags
- * the inverted tets of step k - 1's result); after the last, its flags and
- * the last check. */
-static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
-  for (uint32_t k = 0; k < steps; k++)
-    SESSILE_CALL(sds_gpu_record_forces(s, (s->cur + (int)k) & 1, 0.0, 1, 2, k + 1));
-  if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, (s->cur + (int)steps) & 1, steps + 1));
+/* Records the check of step k (stable_min in mode 3) after its result's
+ * inverted flags (pair c). */
+static sessile_status record_check(sessile_sds_gpu *s, uint32_t k, int c, uint32_t split) {
+  if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, c, (k + 1) | split));
   sds_push p = sds_gpu_push_of(s, 0.0, 1, 3);
-  p.batch = steps + 1;
+  p.batch = (k + 2) | split;
   return sds_gpu_record_stable_min(s, &p);
 }
+
+/* Records the batch: step k reads pair (cur + k) & 1.  Folded (five
+ * dispatches a step): its tet_force flags step k - 1's result and its
+ * stable_min checks step k - 1; the last step is checked after the loop.
+ * Split (a hook, or asked for): each step checked right after its gather,
+ * then the hook (seven dispatches a step, and the hook's). */
+static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
+  uint32_t split = s->batch_split || s->hook ? SDS_BATCH_SPLIT : 0;
+  for (uint32_t k = 0; k < steps; k++) {
+    int c = (s->cur + (int)k) & 1;
+    SESSILE_CALL(sds_gpu_record_forces(s, c, 0.0, 1, 2, (k + 1) | split));
+    if (split) SESSILE_CALL(record_check(s, k, 1 - c, split));
+    if (s->hook) SESSILE_CALL(s->hook(s, s->hook_ctx, k, 1 - c));
+  }
+  return split ? SESSILE_OK : record_check(s, steps - 1, (s->cur + (int)steps) & 1, 0);
+}
+
+void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split) { s->batch_split = split != 0; }
 
 sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   const sessile_sds_params *p = &s->p;

@@ -22,6 +22,13 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
 #define SDS_MOVE_AIM 0.8
 #define SDS_GROW 1.25
 
+/* A batch's per-step hook (sds_gpu_batch.c): records dispatches after step
+ * k's check, once the step is accepted, and before step k + 1's forces,
+ * which read pair c: the rules kernel and the morphogens (docs/sds.md, "The
+ * loop on the device").  Its kernels must honour ev[0] and take the step's
+ * dt and end time from the device (step[SDS_STEP_LOG + 2 k], + 1). */
+typedef sessile_status (*sds_gpu_batch_hook)(sessile_sds_gpu *s, void *ctx, uint32_t k, int c);
+
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
   uint32_t real_bytes;
@@ -60,6 +67,9 @@ struct sessile_sds_gpu {
   size_t nsub, nsub_surf, sub_cap;
   int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
   int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
+  int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
+  sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
+  void *hook_ctx;
 };
 
 /* A real as the device stores it (r, m kept on the host: rm). */

@@ -15,7 +15,10 @@
 // against max_move (else the step is rejected and the batch stops: the host
 // halves dt), the next step aimed at SDS_MOVE_AIM x max_move, the time, and
 // the events that stop the batch after the step (inverted tets, stale
-// contact lists, the stop time, dt_min).  Once ev[0] is set it writes
+// contact lists, the stop time, dt_min).  With SDS_BATCH_SPLIT each step is
+// checked by a dispatch of its own in mode 3, after the step's inverted
+// flags and before anything of the next step (the rules must see a step
+// only once it is accepted).  Once ev[0] is set it writes
 // stab[n] = -1, which the gather honours, and does nothing more.
 #include "sds_common.glsl"
 
@@ -84,17 +87,19 @@ void check_step(uint l, uint L, uint n, uint j) {
 
 void main() {
   uint l = gl_LocalInvocationID.x, L = gl_WorkGroupSize.x, n = pc.ncells;
-  if (pc.batch != 0u) {
+  uint bk = pc.batch & ~SDS_BATCH_SPLIT;
+  bool split = (pc.batch & SDS_BATCH_SPLIT) != 0u; // steps checked by their own dispatches (mode 3)
+  if (bk != 0u) {
     if (ev[0] != 0u) return; // stopped: stab[n] is -1 already
-    if (pc.batch == 1u && l == 0u) ev[2] = 0u; // tet_force flagged the batch's start state: not a step's
-    if (pc.batch > 1u) {
-      check_step(l, L, n, pc.batch - 2u);
+    if (bk == 1u && !split && l == 0u) ev[2] = 0u; // tet_force flagged the batch's start state: not a step's
+    if (bk > 1u && (pc.mode == 3u || !split)) {
+      check_step(l, L, n, bk - 2u);
       if (evs != 0u) {
         if (l == 0u) stab[n] = REAL(-1);
         return;
       }
     }
-    if (pc.mode == 3u) return; // the batch's last check
+    if (pc.mode == 3u) return; // a check alone
   }
   REAL best = sp[SP_DT_MAX];
   for (uint c = l; c < n; c += L)
@@ -106,7 +111,7 @@ void main() {
     barrier();
   }
   if (l == 0u) {
-    REAL bound = part[0], hmax = sp[SP_DT_MAX], asked = pc.batch != 0u ? step[3] : pc.dt;
+    REAL bound = part[0], hmax = sp[SP_DT_MAX], asked = bk != 0u ? step[3] : pc.dt;
     if (sp[SP_SAFETY] > REAL(0) && sp[SP_SAFETY] * bound < hmax) hmax = sp[SP_SAFETY] * bound;
     REAL h = asked > hmax ? hmax : asked;
     stab[n] = h, stab[n + 1u] = hmax, stab[n + 2u] = bound;

@@ -23,7 +23,7 @@ void main() {
     b[i] = LD_X(3u * q[2] + i) - LD_X(3u * q[0] + i);
     c[i] = LD_X(3u * q[3] + i) - LD_X(3u * q[0] + i);
   }
-  if (pc.batch != 0u) { // a batch: the flags of this state, the last step's result (stable_min checks them)
+  if (pc.batch != 0u && (pc.batch & SDS_BATCH_SPLIT) == 0u) { // a batch: the flags of this state, the last step's result (stable_min checks them)
     uint inv = tet_inverted(a, b, c);
     flag[t] = inv;
     if (inv != 0u) atomicOr(ev[2], 1u);

@@ -17,10 +17,11 @@ typedef struct counts { uint32_t batches, rejects, lists, inverted, steps; } cou
 
 static int same(const double *a, const double *b, size_t n) { return !memcmp(a, b, n * sizeof *a); }
 
-/* Runs `total` accepted steps both ways from o, batches of k; every
- * mismatch counts in *bad (printed once). */
+/* Runs `total` accepted steps both ways from o, batches of k (their steps
+ * checked in dispatches of their own when split); every mismatch counts in
+ * *bad (printed once). */
 static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_params *p, uint32_t total,
-                      uint32_t k, int *bad) {
+                      uint32_t k, int split, int *bad) {
   counts n = {0};
   sessile_sds a = {0}, b = {0};
   t_must("copy", sessile_sds_copy(o0, &a));
@@ -28,6 +29,7 @@ static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_p
   sessile_sds_gpu *ga = NULL, *gb = NULL;
   t_must("gpu a", sessile_sds_gpu_create(g, &a, p, &ga));
   t_must("gpu b", sessile_sds_gpu_create(g, &b, p, &gb));
+  sessile_sds_gpu_batch_split(gb, split);
   double dta = p->dt, ta = 0;
   sessile_sds_batch bt = {.t_stop = INFINITY, .time = 0, .dt = p->dt};
   double *log = t_dalloc(2 * (size_t)k);
@@ -77,8 +79,8 @@ static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_p
   free(log);
   sessile_sds_gpu_destroy(ga), sessile_sds_gpu_destroy(gb);
   sessile_sds_free(&a), sessile_sds_free(&b);
-  printf("%u steps in %u batches of at most %u: %u stopped by an undone step, %u by stale lists, %u by inverted tets\n",
-         n.steps, n.batches, k, n.rejects, n.lists, n.inverted);
+  printf("%s: %u steps in %u batches of at most %u: %u stopped by an undone step, %u by stale lists, %u by inverted tets\n",
+         split ? "split checks" : "folded checks", n.steps, n.batches, k, n.rejects, n.lists, n.inverted);
   return n;
 }
 
@@ -156,8 +158,12 @@ int main(void) {
   p.max_move = 0.02;
   p.obstacle.nv = rock.nv, p.obstacle.nf = rock.nf, p.obstacle.pos = rock.pos, p.obstacle.tri = rock.tri;
   int bad = 0;
-  counts n = compare(g, &o, &p, 400, 64, &bad);
+  counts n = compare(g, &o, &p, 400, 64, 0, &bad);
   if (fp64) t_true("ball on a rock: batches give the host-driven steps bit for bit", bad == 0);
+  t_true("the scene undoes steps and lets the lists go stale", n.rejects > 0 && n.lists > 0);
+  bad = 0;
+  n = compare(g, &o, &p, 200, 64, 1, &bad);
+  if (fp64) t_true("ball on a rock, split checks: the host-driven steps bit for bit", bad == 0);
   t_true("the scene undoes steps and lets the lists go stale", n.rejects > 0 && n.lists > 0);
   stop_time(g, &o, &p);
   skin(g, &o, &p);
@@ -166,8 +172,12 @@ int main(void) {
   sessile_sds_params_default(&q);
   q.obstacle = p.obstacle;
   bad = 0;
-  n = compare(g, &o, &q, 120, 64, &bad);
+  n = compare(g, &o, &q, 120, 64, 0, &bad);
   if (fp64) t_true("a crushed ball: batches give the host-driven steps bit for bit", bad == 0);
+  t_true("the scene inverts tets", n.inverted > 0);
+  bad = 0;
+  n = compare(g, &o, &q, 60, 64, 1, &bad);
+  if (fp64) t_true("a crushed ball, split checks: the host-driven steps bit for bit", bad == 0);
   t_true("the scene inverts tets", n.inverted > 0);
   sessile_sds_free(&o);
   sessile_surface_free(&rock);

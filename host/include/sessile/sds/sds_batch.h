@@ -39,4 +39,9 @@ typedef struct sessile_sds_batch {
  * (sessile_sds_gpu_inverted), are those after the last accepted step.  Fails
  * with SESSILE_ERR_NUMERIC as sessile_sds_gpu_advance does. */
 sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b);
+/* split 1: a batch checks each step in dispatches of its own (the inverted
+ * flags, then the check) right after its gather, the order the rules kernel
+ * needs (a step's rules run once it is accepted, before the next step's
+ * forces): seven dispatches a step instead of five, the same steps. */
+void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split);
 #endif
