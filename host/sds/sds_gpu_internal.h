@@ -1,7 +1,8 @@
 /* The SDS physics on the GPU, shared by its files (sessile/sds/sds.h;
  * sds_gpu_buffers.c: the buffers, their uploads and the kernels' choice;
  * sds_gpu_contacts.c: the contact lists; sds_gpu_step.c: forces, steps and
- * their control, the inverted flags). */
+ * their control, the inverted flags; sds_gpu_batch.c: a batch of steps with
+ * the control on the device). */
 #ifndef SESSILE_SDS_GPU_INTERNAL_H
 #define SESSILE_SDS_GPU_INTERNAL_H
 #include <stdint.h>
