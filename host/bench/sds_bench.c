@@ -1,6 +1,8 @@
 /* `sessile bench sds`: (1) time per force + integrate step against cells
  * (icosphere imports, levels 2-5, and the Figure 9 body over its rock), GPU
- * against the C reference, with the share of the contact stages (surface
+ * against the C reference, the loop's host-driven step against the same
+ * steps in device batches (sessile_sds_gpu_batch), with the share of the
+ * contact stages (surface
  * hash build and queries, obstacle queries); (2) the Figure 9 model (rock)
  * run through the loop (sessile_sds_run) into a temporary run directory,
  * against the paper's 5.7 minutes.  Figures, never pass/fail. */
@@ -9,14 +11,23 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "sessile/sds/sds_builtin.h"
 #include "sessile/sds/sds.h"
+#include "sessile/sds/sds_batch.h"
 #include "sessile/bench/bench.h"
 #include "sessile/sds/sds_run.h"
 
 #define REPS 5 /* medians over this many repeats */
+
+/* The process's CPU time: lavapipe's threads are the process's, so on a
+ * shared machine the work of two variants compares where the wall does not. */
+static double cpu_seconds(void) {
+  struct timespec t;
+  return clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t) ? 0 : (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 static double median(double *v, int n) {
   for (int i = 1; i < n; i++)
@@ -32,6 +43,25 @@ typedef struct bench_size {
   int rock;  /* 1: the rock model's body (radius 1) with its rock (radius 2.4, below) */
   int host_steps, gpu_steps;
 } bench_size;
+
+/* `steps` accepted steps through device batches (sessile_sds_gpu_batch),
+ * from the asked step *dt (then the next one); the batches they took.  The
+ * dispatches recorded after a batch's event still cost their launch (about
+ * 0.1 ms each on lavapipe), so a batch asks about as many steps as the
+ * batches before ran: twice the last when it ran them all, one more than
+ * the steps an event let it run when one stopped it. */
+static sessile_status device_steps(sessile_sds_gpu *s, uint32_t steps, double *dt, uint32_t *batches) {
+  sessile_sds_batch b = {.t_stop = INFINITY, .dt = *dt};
+  uint32_t ask = 16;
+  for (uint32_t n = 0; n < steps; n += b.done, ++*batches) {
+    b.steps = steps - n < ask ? steps - n : ask;
+    SESSILE_CALL(sessile_sds_gpu_batch(s, &b));
+    ask = b.events ? b.done + 1 : 2 * b.steps;
+    if (ask > SESSILE_SDS_BATCH_MAX) ask = SESSILE_SDS_BATCH_MAX;
+  }
+  *dt = b.dt;
+  return SESSILE_OK;
+}
 
 static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) {
   const double ctr[3] = {0, 0, 0}, rc[3] = {0, 0, -3.45}; /* as host/sds/models/rock.sds */
@@ -56,7 +86,8 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
   double dt = 0.5 * sessile_sds_stable_dt(&o, &p);
   sessile_sds_gpu *s = NULL;
   if (st == SESSILE_OK) st = sessile_sds_gpu_create(g, &o, &p, &s);
-  double tg[REPS], tl[REPS], tb[REPS], th[REPS], fa[REPS], fn[REPS], fl[REPS];
+  double tg[REPS], tl[REPS], td[REPS], tb[REPS], th[REPS], fa[REPS], fn[REPS], fl[REPS], cr[REPS];
+  uint32_t nbatch = 0;
   if (st == SESSILE_OK) st = sessile_sds_gpu_step(s, dt, NULL); /* warm-up */
   int per = b->gpu_steps / REPS > 0 ? b->gpu_steps / REPS : 1;
   for (int r = 0; r < REPS && st == SESSILE_OK; r++) {
@@ -64,11 +95,16 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
     for (int k = 0; k < per && st == SESSILE_OK; k++) st = sessile_sds_gpu_step(s, dt, NULL);
     tg[r] = (sessile_wall_seconds() - t0) / per;
     t0 = sessile_wall_seconds(); /* the loop's step: the stable bound in the submission, the step read back */
-    for (int k = 0; k < per && st == SESSILE_OK; k++) {
-      double h = dt;
-      st = sessile_sds_gpu_advance(s, 1, &h, NULL);
-    }
+    double h = dt, c0 = cpu_seconds(); /* the step control's chain, as the loop's */
+    for (int k = 0; k < per && st == SESSILE_OK; k++) st = sessile_sds_gpu_advance(s, 1, &h, NULL);
     tl[r] = (sessile_wall_seconds() - t0) / per;
+    double cl = cpu_seconds() - c0;
+    t0 = sessile_wall_seconds(), c0 = cpu_seconds(); /* the same steps with the control on the device, in batches */
+    h = dt;
+    if (st == SESSILE_OK) st = device_steps(s, (uint32_t)per, &h, &nbatch);
+    td[r] = (sessile_wall_seconds() - t0) / per;
+    double cd = cpu_seconds() - c0;
+    cr[r] = cd > 0 ? cl / cd : 0;
     t0 = sessile_wall_seconds();
     if (st == SESSILE_OK) st = sessile_sds_gpu_steps(s, (uint32_t)per, dt);
     tb[r] = (sessile_wall_seconds() - t0) / per;
@@ -82,9 +118,10 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
   }
   if (st == SESSILE_OK) {
     double mh = median(th, REPS), mg = median(tg, REPS), mb = median(tb, REPS), ma = median(fa, REPS),
-           mn = median(fn, REPS), ml = median(fl, REPS), mlp = median(tl, REPS);
-    fprintf(out, "%8u %9u %7u %5s %9.2f %10.3f %10.3f %10.3f %10.3f %8.2f %9.3f %8.0f%% %8.3f\n", o.ncells, o.ntets,
-            o.nfaces, b->rock ? "yes" : "no", t_import, 1e3 * mh, 1e3 * mg, 1e3 * mlp, 1e3 * mb, mh / mb, ma,
+           mn = median(fn, REPS), ml = median(fl, REPS), mlp = median(tl, REPS), md = median(td, REPS);
+    fprintf(out, "%8u %9u %7u %5s %9.2f %10.3f %10.3f %10.3f %10.3f %8.2f %8.2f %8.2f %8.2f %7.1f %10.3f %8.2f %9.3f %8.0f%% %8.3f\n",
+            o.ncells, o.ntets, o.nfaces, b->rock ? "yes" : "no", t_import, 1e3 * mh, 1e3 * mg, 1e3 * mlp, 1e3 * md,
+            1e6 * mlp / o.ncells, 1e6 * md / o.ncells, mlp / md, median(cr, REPS), (double)REPS * per / nbatch, 1e3 * mb, mh / mb, ma,
             ma > 0 ? 100 * fmax(0, ma - mn) / ma : 0, ml);
     fflush(out);
   }
@@ -103,16 +140,22 @@ sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out) {
           "device %s, fp%d; "
           "medians of %d repeats\n",
           i->name, i->precision, REPS);
-  fprintf(out, "%8s %9s %7s %5s %9s %10s %10s %10s %10s %8s %9s %9s %8s\n", "cells", "tets", "faces", "rock",
-          "import_s", "C_ms/step", "GPU_ms", "GPU_loop", "GPU_batch", "C/batch", "force_ms", "contacts", "list_ms");
+  fprintf(out, "%8s %9s %7s %5s %9s %10s %10s %10s %10s %8s %8s %8s %8s %7s %10s %8s %9s %9s %8s\n", "cells", "tets",
+          "faces", "rock", "import_s", "C_ms/step", "GPU_ms", "GPU_loop", "GPU_dev", "loop_us", "dev_us", "loop/dev",
+          "cpu_l/d", "st/bat", "GPU_batch", "C/batch", "force_ms", "contacts", "list_ms");
   for (size_t k = 0; k < sizeof sizes / sizeof *sizes; k++) SESSILE_CALL(bench_one(g, &sizes[k], out));
   fprintf(out,
           "(C: the host reference step, one thread; GPU_ms: one submission per step with the move check; "
           "GPU_loop: the loop's step, sessile_sds_gpu_advance: the same with the stable bound computed in the "
-          "submission and the step read back (a step max_move undid counts); "
+          "submission and the step read back (a step max_move undid counts); GPU_dev: the same steps with the step "
+          "control on the device, batches of up to %d steps in one submission each (sessile_sds_gpu_batch), "
+          "stopping at an undone step, an inverted tet or stale contact lists; loop_us, dev_us: microseconds "
+          "per cell-step of the two, loop/dev their ratio (wall) and cpu_l/d that of the process's CPU time, "
+          "which a shared machine disturbs less; st/bat: steps per batch; "
           "GPU_batch: all steps in one submission, the contact lists built before each; force_ms: one force "
           "evaluation in its own submission; contacts: its share spent on the contact lists' triangles; list_ms: "
-          "one build of the contact lists, surface hash included, in its own submission)\n");
+          "one build of the contact lists, surface hash included, in its own submission)\n",
+          SESSILE_SDS_BATCH_MAX);
   return SESSILE_OK;
 }
 

@@ -16,7 +16,7 @@
 sessile_status sds_gpu_ensure(sessile_sds_gpu *s, int i, size_t bytes) {
   if (bytes < 16) bytes = 16;
   sessile_buffer_kind kind =
-      (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX || i == B_STEP) ? SESSILE_BUFFER_MAPPED
+      (i == B_MOVE || i == B_FLAG || i == B_SP || i == B_LMAX || i == B_STEP || i == B_EVENT) ? SESSILE_BUFFER_MAPPED
                                                                               : SESSILE_BUFFER_DEVICE;
   return sessile_buffer_reserve(s->gpu, &s->b[i], bytes, kind);
 }
@@ -113,6 +113,8 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   v[SP_SAFETY] = p->stable_safety, v[SP_DT_MAX] = p->dt_max;
   v[SP_STAB_WALL] = p->box || p->obstacle.nf ? p->k_wall : 0;
   v[SP_STAB_CONTACT] = p->self_collide ? p->k_contact : 0;
+  /* a batch's step control (stable_min.comp, as sessile_sds_gpu_advance) */
+  v[SP_MAX_MOVE] = p->max_move, v[SP_DT_MIN] = p->dt_min, v[SP_AIM] = SDS_MOVE_AIM, v[SP_GROW] = SDS_GROW;
   /* the obstacle is static: its hash table is built here, once, on the host */
   sds_hash ho = {0};
   if (p->obstacle.nf)
@@ -202,7 +204,8 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(sds_gpu_ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(sds_gpu_ensure(s, B_MOVE, 2 * n * rb));
   SESSILE_CALL(sds_gpu_ensure(s, B_STAB, (4 * n + 3) * rb)); /* bounds, 3 scalars, element sums */
-  SESSILE_CALL(sds_gpu_ensure(s, B_STEP, 3 * rb));
+  SESSILE_CALL(sds_gpu_ensure(s, B_STEP, (SDS_STEP_LOG + 2 * (size_t)SDS_BATCH_MAX) * rb)); /* a batch's log too */
+  SESSILE_CALL(sds_gpu_ensure(s, B_EVENT, 4 * 4));
   /* the lists' buffers are sized by their builds (lists_ensure), which keep
    * room for the cells a partial build appends: never shrunk or grown here */
   SESSILE_CALL(sds_gpu_ensure(s, B_XB, 16));

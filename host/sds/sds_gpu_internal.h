@@ -1,7 +1,8 @@
 /* The SDS physics on the GPU, shared by its files (sessile/sds/sds.h;
  * sds_gpu_buffers.c: the buffers, their uploads and the kernels' choice;
  * sds_gpu_contacts.c: the contact lists; sds_gpu_step.c: forces, steps and
- * their control, the inverted flags). */
+ * their control, the inverted flags; sds_gpu_batch.c: a batch of steps with
+ * the control on the device). */
 #ifndef SESSILE_SDS_GPU_INTERNAL_H
 #define SESSILE_SDS_GPU_INTERNAL_H
 #include <stdint.h>
@@ -9,7 +10,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which
@@ -21,6 +22,13 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
  * by at most SDS_GROW a step. */
 #define SDS_MOVE_AIM 0.8
 #define SDS_GROW 1.25
+
+/* A batch's per-step hook (sds_gpu_batch.c): records dispatches after step
+ * k's check, once the step is accepted, and before step k + 1's forces,
+ * which read pair c: the rules kernel and the morphogens (docs/sds.md, "The
+ * loop on the device").  Its kernels must honour ev[0] and take the step's
+ * dt and end time from the device (step[SDS_STEP_LOG + 2 k], + 1). */
+typedef sessile_status (*sds_gpu_batch_hook)(sessile_sds_gpu *s, void *ctx, uint32_t k, int c);
 
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
@@ -62,6 +70,9 @@ struct sessile_sds_gpu {
   int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
   struct sds_gpu_rules *rules; /* the rules on the device, borrowed (sds_gpu_rules.h; NULL: on the host) */
   double rules_dt;             /* the step of the last sds_gpu_rules_record */
+  int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
+  sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
+  void *hook_ctx;
 };
 
 /* A real as the device stores it (r, m kept on the host: rm). */
@@ -79,6 +90,14 @@ sessile_status sds_gpu_submit(sessile_sds_gpu *s);
 sessile_kernel *sds_gpu_kern(const sessile_sds_gpu *s, int k);
 uint32_t sds_gpu_groups(const sessile_sds_gpu *s, int k, uint32_t items);
 sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int mode);
+
+/* sds_gpu_step.c: edge, tet and gather dispatches (mode 0, 1 or 2; mode 2
+ * with the stable bound between them) reading pair c and writing pair
+ * 1 - c; the inverted-tet flags of pair c's x; stable_min alone (a batch's
+ * last check).  batch: 0, or 1 + the step's index in a batch (kernels.def). */
+sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode, uint32_t batch);
+sessile_status sds_gpu_record_inverted(sessile_sds_gpu *s, int c, uint32_t batch);
+sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p);
 
 /* sds_gpu_contacts.c: the lists' staleness after moves, checks at an upload
  * of radii or of a new complex, a build recorded, and the lists made

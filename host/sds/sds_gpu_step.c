@@ -9,31 +9,36 @@
 
 static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) {
   if (!s->nedges) return SESSILE_OK;
-  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF]};
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM], s->b[B_ELF], s->b[B_EVENT]};
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_EDGE), sds_gpu_groups(s, SDS_EDGE, s->nedges), b, p);
 }
 
 static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
   if (!s->ntets) return SESSILE_OK;
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
-                         s->b[B_ELF]};
+                         s->b[B_ELF], s->b[B_EVENT], s->b[B_FLAG]};
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_TET), sds_gpu_groups(s, SDS_TET, s->ntets), b, p);
+}
+
+/* Records stable_min: the min of the bound (and in a batch the check of
+ * the step before, kernels.def). */
+sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p) {
+  sessile_buffer *bm[] = {s->b[B_SP], s->b[B_STAB], s->b[B_STEP], s->b[B_EVENT], s->b[B_MOVE], s->b[B_TOPO]};
+  return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
 }
 
 /* Records the stable bound (after record_edge and record_tet in mode 2,
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
-  sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB]};
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB], s->b[B_EVENT]};
   SESSILE_CALL(sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_STABLE), sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p));
-  sessile_buffer *bm[] = {s->b[B_SP], s->b[B_STAB], s->b[B_STEP]};
-  return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
+  return sds_gpu_record_stable_min(s, p);
 }
 
-/* Records edge, tet and gather dispatches (mode 0, 1 or 2; mode 2 with the
- * stable bound between them) reading pair c and writing pair 1 - c. */
-static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode) {
+sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode, uint32_t batch) {
   sds_push p = sds_gpu_push_of(s, dt, damping, mode);
+  p.batch = batch;
   int nx = 1 - c;
   SESSILE_CALL(record_edge(s, c, &p));
   SESSILE_CALL(record_tet(s, c, &p));
@@ -45,10 +50,10 @@ static sessile_status record_forces(sessile_sds_gpu *s, int c, double dt, int da
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_GATHER), sds_gpu_groups(s, SDS_GATHER, s->ncells), b, &p);
 }
 
-/* Records the inverted-tet flags of pair c's x. */
-static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
+sessile_status sds_gpu_record_inverted(sessile_sds_gpu *s, int c, uint32_t batch) {
   sds_push p = sds_gpu_push_of(s, 0.0, 0, 0);
-  sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG]};
+  p.batch = batch;
+  sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG], s->b[B_EVENT]};
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_INVERTED), sds_gpu_groups(s, SDS_INVERTED, s->ntets), b, &p);
 }
 
@@ -59,9 +64,9 @@ static sessile_status record_inverted(sessile_sds_gpu *s, int c) {
 static sessile_status run_forces(sessile_sds_gpu *s, double dt, int damping, int mode) {
   SESSILE_CALL(sds_gpu_lists_ensure(s));
   SESSILE_CALL(sds_gpu_begin(s));
-  SESSILE_CALL(record_forces(s, s->cur, dt, damping, mode));
+  SESSILE_CALL(sds_gpu_record_forces(s, s->cur, dt, damping, mode, 0));
   int nx = 1 - s->cur, rec = mode != 0 && !sessile_buffer_host_ptr(s->b[B_X0 + nx]);
-  if (mode != 0 && s->ntets) SESSILE_CALL(record_inverted(s, nx));
+  if (mode != 0 && s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, nx, 0));
   if (rec) { /* the loop downloads every step's x, v: in this submission */
     SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_X0 + nx], 0, s->hx, 3 * (size_t)s->ncells));
     SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_V0 + nx], 0, s->hv, 3 * (size_t)s->ncells));
@@ -86,7 +91,7 @@ sessile_status sessile_sds_gpu_steps(sessile_sds_gpu *s, uint32_t steps, double 
   SESSILE_CALL(sds_gpu_begin(s));
   for (uint32_t k = 0; k < steps; k++) {
     if (lists && k > 0) SESSILE_CALL(sds_gpu_record_lists(s, (s->cur + (int)k) & 1, 0));
-    SESSILE_CALL(record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1));
+    SESSILE_CALL(sds_gpu_record_forces(s, (s->cur + (int)k) & 1, dt, 1, 1, 0));
   }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   s->flags_cur = -1, s->mirror = -1;
@@ -188,7 +193,7 @@ sessile_status sessile_sds_gpu_inverted(sessile_sds_gpu *s, uint32_t **list, uin
   *list = NULL, *n = 0;
   if (s->ntets && s->flags_cur != s->cur) { /* not flagged by the step that made this state */
     SESSILE_CALL(sds_gpu_begin(s));
-    SESSILE_CALL(record_inverted(s, s->cur));
+    SESSILE_CALL(sds_gpu_record_inverted(s, s->cur, 0));
     SESSILE_CALL(sessile_cmd_end(s->cmd));
     SESSILE_CALL(sds_gpu_submit(s));
     s->flags_cur = s->cur;

@@ -10,7 +10,7 @@
 
 void main() {
   uint e = sessile_gid();
-  if (e >= pc.nedges) return;
+  if (e >= pc.nedges || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint a = LD_TOPO(o_edge() + 2u * e), b = LD_TOPO(o_edge() + 2u * e + 1u);
   REAL esm = LD_SM(pc.ntets + e);
   REAL d0 = LD_X(3u * b) - LD_X(3u * a), d1 = LD_X(3u * b + 1u) - LD_X(3u * a + 1u), d2 = LD_X(3u * b + 2u) - LD_X(3u * a + 2u);

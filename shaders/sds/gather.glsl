@@ -60,6 +60,7 @@ void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
 void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
+  if (pc.batch != 0u && !(stab[pc.ncells] > REAL(0))) return; // a batch that stopped (stable_min)
   REAL s[3] = REAL[3](REAL(0), REAL(0), REAL(0));
   uint ce = o_ce(), ct = o_ct(), ceo = o_ceo(), cto = o_cto(), efo = 12u * pc.ntets;
   if (pc.mode == 2u) // stable.glsl summed the elements already, in this order

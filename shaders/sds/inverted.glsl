@@ -5,7 +5,7 @@
 
 void main() {
   uint t = sessile_gid();
-  if (t >= pc.ntets) return;
+  if (t >= pc.ntets || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint q0 = LD_TOPO(4u * t), q1 = LD_TOPO(4u * t + 1u), q2 = LD_TOPO(4u * t + 2u), q3 = LD_TOPO(4u * t + 3u);
   REAL a[3], b[3], c[3];
   for (int i = 0; i < 3; i++) {
@@ -13,6 +13,7 @@ void main() {
     b[i] = LD_X(3u * q2 + i) - LD_X(3u * q0 + i);
     c[i] = LD_X(3u * q3 + i) - LD_X(3u * q0 + i);
   }
-  REAL V = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-  flag[t] = (V > REAL(0) && is_finite(V)) ? 0u : 1u;
+  uint inv = tet_inverted(a, b, c);
+  flag[t] = inv;
+  if (pc.batch != 0u && inv != 0u) atomicOr(ev[2], 1u); // stable_min stops the batch on it
 }

@@ -16,7 +16,7 @@
 
 void main() {
   uint c = sessile_gid();
-  if (c >= pc.ncells) return;
+  if (c >= pc.ncells || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint ce = o_ce(), ct = o_ct(), ceo = o_ceo(), cto = o_cto();
   uint tw = 12u * pc.ntets + 3u * pc.nedges, ew = 20u * pc.ntets + 3u * pc.nedges;
   precise REAL w2 = REAL(0), gam = REAL(0);

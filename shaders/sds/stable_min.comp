@@ -3,16 +3,104 @@
 // One workgroup: the stable bound, min(dt_max, min_c h_c) (a NaN h_c is
 // skipped, as sessile_sds_stable_dt does; a min is exact in any order, so
 // the bits do not depend on the schedule), the cap hmax = dt_max lowered to
-// stable_safety x the bound, and the step h = min(pc.dt, hmax) that the
+// stable_safety x the bound, and the step h = min(asked, hmax) that the
 // gather takes in mode 2: stab[n] = h, stab[n + 1] = hmax, stab[n + 2] = the
 // bound, copied to step for the host.  The cap is the one
 // sessile_sds_gpu_advance applied on the host before this kernel existed.
+// In a batch (pc.batch > 0; docs/sds.md, "The loop on the device"), where
+// tet_force flags the inverted tets of its input (the step before's result)
+// into ev[2], it first
+// checks the batch's previous step as sessile_sds_gpu_advance does on the
+// host, operation by operation (the same bits in fp64): its largest move
+// against max_move (else the step is rejected and the batch stops: the host
+// halves dt), the next step aimed at SDS_MOVE_AIM x max_move, the time, and
+// the events that stop the batch after the step (inverted tets, stale
+// contact lists, the stop time, dt_min).  With SDS_BATCH_SPLIT each step is
+// checked by a dispatch of its own in mode 3, after the step's inverted
+// flags and before anything of the next step (the rules must see a step
+// only once it is accepted).  Once ev[0] is set it writes
+// stab[n] = -1, which the gather honours, and does nothing more.
 #include "sds_common.glsl"
 
 shared REAL part[SDS_SCAN_MAX];
+shared uint bad, evs;
+
+// The largest of v over the workgroup's lanes (exact in any order).
+REAL group_max(uint l, uint L, REAL v) {
+  part[l] = v;
+  barrier();
+  for (uint w = L / 2u; w > 0u; w /= 2u) {
+    if (l < w && part[l + w] > part[l]) part[l] = part[l + w];
+    barrier();
+  }
+  REAL r = part[0];
+  barrier();
+  return r;
+}
+
+// The check of the batch's step j (its gather wrote move; inverted flagged
+// ev[2]): the events into ev[0] and evs, the step's dt and end time logged.
+void check_step(uint l, uint L, uint n, uint j) {
+  if (l == 0u) bad = 0u;
+  barrier();
+  REAL mv = REAL(0), far = REAL(0), far_surf = REAL(0);
+  bool lists = pc.lcap > 0u;
+  for (uint c = l; c < n; c += L) {
+    REAL m = move[c];
+    if (!is_finite(m)) bad = 1u; // any lane: the same value
+    else if (m > mv) mv = m;
+    if (lists) {
+      REAL d = move[n + c];
+      if (d > far) far = d;
+      if (topo[o_csurf() + c] != 0u && d > far_surf) far_surf = d;
+    }
+  }
+  mv = group_max(l, L, mv);
+  far = group_max(l, L, far);
+  far_surf = group_max(l, L, far_surf);
+  if (l == 0u) {
+    uint e = 0u;
+    precise REAL h = step[0], g = step[6];
+    // the lists' staleness (sds_gpu_lists_stale), also after a rejected step
+    if (lists && ((pc.nobs != 0u && !(far + g <= sp[SP_SKIN])) || (pc.tsize != 0u && !(REAL(2) * far_surf + g <= sp[SP_SKIN]))))
+      e |= SDS_EV_LISTS;
+    if (bad != 0u) e |= SDS_EV_NONFINITE;
+    else if (mv > sp[SP_MAX_MOVE]) e |= SDS_EV_REJECT;
+    else {
+      precise REAL t = step[4] + h;
+      precise REAL f = mv > REAL(0) ? sp[SP_AIM] * sp[SP_MAX_MOVE] / mv : sp[SP_GROW];
+      precise REAL hn = h * (f < sp[SP_GROW] ? f : sp[SP_GROW]);
+      if (hn > sp[SP_DT_MAX]) hn = sp[SP_DT_MAX];
+      ev[1] = ev[1] + 1u;
+      step[4] = t, step[3] = hn, step[7] = mv;
+      step[SDS_STEP_LOG + 2u * j] = h, step[SDS_STEP_LOG + 2u * j + 1u] = t;
+      if (!(hn >= sp[SP_DT_MIN])) e |= SDS_EV_DTMIN;
+      if (ev[2] != 0u) e |= SDS_EV_INVERTED;
+      if (t >= step[5]) e |= SDS_EV_TIME;
+    }
+    ev[2] = 0u;
+    ev[0] = e;
+    evs = e;
+  }
+  barrier();
+}
 
 void main() {
   uint l = gl_LocalInvocationID.x, L = gl_WorkGroupSize.x, n = pc.ncells;
+  uint bk = pc.batch & ~SDS_BATCH_SPLIT;
+  bool split = (pc.batch & SDS_BATCH_SPLIT) != 0u; // steps checked by their own dispatches (mode 3)
+  if (bk != 0u) {
+    if (ev[0] != 0u) return; // stopped: stab[n] is -1 already
+    if (bk == 1u && !split && l == 0u) ev[2] = 0u; // tet_force flagged the batch's start state: not a step's
+    if (bk > 1u && (pc.mode == 3u || !split)) {
+      check_step(l, L, n, bk - 2u);
+      if (evs != 0u) {
+        if (l == 0u) stab[n] = REAL(-1);
+        return;
+      }
+    }
+    if (pc.mode == 3u) return; // a check alone
+  }
   REAL best = sp[SP_DT_MAX];
   for (uint c = l; c < n; c += L)
     if (stab[c] < best) best = stab[c];
@@ -23,9 +111,9 @@ void main() {
     barrier();
   }
   if (l == 0u) {
-    REAL bound = part[0], hmax = sp[SP_DT_MAX];
+    REAL bound = part[0], hmax = sp[SP_DT_MAX], asked = bk != 0u ? step[3] : pc.dt;
     if (sp[SP_SAFETY] > REAL(0) && sp[SP_SAFETY] * bound < hmax) hmax = sp[SP_SAFETY] * bound;
-    REAL h = pc.dt > hmax ? hmax : pc.dt;
+    REAL h = asked > hmax ? hmax : asked;
     stab[n] = h, stab[n + 1u] = hmax, stab[n + 2u] = bound;
     step[0] = h, step[1] = hmax, step[2] = bound;
   }

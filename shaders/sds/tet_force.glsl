@@ -8,19 +8,26 @@
 // the surface multiplier) and with k = damp_vol, operation by operation as
 // sessile_sds_stable_dt, so that the bound has the host's bits where the
 // device rounds as the host does (precise: no fused multiply-adds).
+// In a batch it also flags the tet when its input state is inverted
+// (inverted.glsl's flag, one dispatch fewer a step).
 // Mirrors tet_force in host/sds/sds_physics.c.
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
 void main() {
   uint t = sessile_gid();
-  if (t >= pc.ntets) return;
+  if (t >= pc.ntets || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint q[4] = uint[4](LD_TOPO(4u * t), LD_TOPO(4u * t + 1u), LD_TOPO(4u * t + 2u), LD_TOPO(4u * t + 3u));
   REAL a[3], b[3], c[3], g[4][3];
   for (int i = 0; i < 3; i++) {
     a[i] = LD_X(3u * q[1] + i) - LD_X(3u * q[0] + i);
     b[i] = LD_X(3u * q[2] + i) - LD_X(3u * q[0] + i);
     c[i] = LD_X(3u * q[3] + i) - LD_X(3u * q[0] + i);
+  }
+  if (pc.batch != 0u && (pc.batch & SDS_BATCH_SPLIT) == 0u) { // a batch: the flags of this state, the last step's result (stable_min checks them)
+    uint inv = tet_inverted(a, b, c);
+    flag[t] = inv;
+    if (inv != 0u) atomicOr(ev[2], 1u);
   }
   g[1][0] = b[1] * c[2] - b[2] * c[1], g[1][1] = b[2] * c[0] - b[0] * c[2], g[1][2] = b[0] * c[1] - b[1] * c[0];
   g[2][0] = c[1] * a[2] - c[2] * a[1], g[2][1] = c[2] * a[0] - c[0] * a[2], g[2][2] = c[0] * a[1] - c[1] * a[0];

@@ -1,0 +1,88 @@
+/* A batch of SDS physics steps in one submission (sessile/sds/sds_batch.h,
+ * docs/sds.md "The loop on the device"): per step five dispatches, the
+ * forces (tet_force also flags the inverted tets of its input), the stable
+ * bound, stable_min (which first checks the step before, as
+ * sessile_sds_gpu_advance does on the host) and the gather; the kernels honour the event word, so the batch stops itself after
+ * the first step that raises one.  The host reads the events, the count of
+ * accepted steps and their log once, at the end. */
+#include <math.h>
+#include <string.h>
+#include "sessile/sds/sds_batch.h"
+#include "sds/sds_gpu_internal.h"
+
+_Static_assert((int)SESSILE_SDS_EV_DIVIDE == (int)SDS_EV_DIVIDE && (int)SESSILE_SDS_EV_REJECT == (int)SDS_EV_REJECT &&
+                   (int)SESSILE_SDS_EV_NONFINITE == (int)SDS_EV_NONFINITE && (int)SESSILE_SDS_EV_INVERTED == (int)SDS_EV_INVERTED &&
+                   (int)SESSILE_SDS_EV_LISTS == (int)SDS_EV_LISTS && (int)SESSILE_SDS_EV_TIME == (int)SDS_EV_TIME &&
+                   (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
+               "sds_batch.h's events are kernels.def's");
+
+/* Records the check of step k (stable_min in mode 3) after its result's
+ * inverted flags (pair c). */
+static sessile_status record_check(sessile_sds_gpu *s, uint32_t k, int c, uint32_t split) {
+  if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, c, (k + 1) | split));
+  sds_push p = sds_gpu_push_of(s, 0.0, 1, 3);
+  p.batch = (k + 2) | split;
+  return sds_gpu_record_stable_min(s, &p);
+}
+
+/* Records the batch: step k reads pair (cur + k) & 1.  Folded (five
+ * dispatches a step): its tet_force flags step k - 1's result and its
+ * stable_min checks step k - 1; the last step is checked after the loop.
+ * Split (a hook, or asked for): each step checked right after its gather,
+ * then the hook (seven dispatches a step, and the hook's). */
+static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
+  uint32_t split = s->batch_split || s->hook ? SDS_BATCH_SPLIT : 0;
+  for (uint32_t k = 0; k < steps; k++) {
+    int c = (s->cur + (int)k) & 1;
+    SESSILE_CALL(sds_gpu_record_forces(s, c, 0.0, 1, 2, (k + 1) | split));
+    if (split) SESSILE_CALL(record_check(s, k, 1 - c, split));
+    if (s->hook) SESSILE_CALL(s->hook(s, s->hook_ctx, k, 1 - c));
+  }
+  return split ? SESSILE_OK : record_check(s, steps - 1, (s->cur + (int)steps) & 1, 0);
+}
+
+void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split) { s->batch_split = split != 0; }
+
+sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
+  const sessile_sds_params *p = &s->p;
+  SESSILE_CHECK(b->steps >= 1 && b->steps <= SDS_BATCH_MAX, SESSILE_ERR_USAGE,
+                "sds: steps per batch must be 1..%d (got %u)", SDS_BATCH_MAX, b->steps);
+  b->done = 0, b->events = 0;
+  SESSILE_CALL(sds_gpu_lists_ensure(s));
+  /* the control's scalars (kernels.def, step): the step asked, the time, the
+   * stop time, the lists' growth term of sds_gpu_lists_stale */
+  double ctl[5] = {b->dt, b->time, b->t_stop, s->p.contact_scale * s->grown, 0};
+  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_STEP], 3, ctl, 5));
+  const uint32_t zero[4] = {0, 0, 0, 0};
+  SESSILE_CALL(sessile_buffer_upload(s->b[B_EVENT], 0, zero, sizeof zero));
+  SESSILE_CALL(sds_gpu_begin(s));
+  SESSILE_CALL(record_batch(s, b->steps));
+  SESSILE_CALL(sessile_cmd_end(s->cmd));
+  s->flags_cur = -1, s->mirror = -1;
+  SESSILE_CALL(sds_gpu_submit(s));
+  uint32_t ev[4];
+  double st[SDS_STEP_LOG];
+  SESSILE_CALL(sessile_buffer_download(s->b[B_EVENT], 0, ev, sizeof ev));
+  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], 0, st, SDS_STEP_LOG));
+  uint32_t done = ev[1], e = ev[0];
+  SESSILE_CHECK(done <= b->steps, SESSILE_ERR_INTERNAL, "sds: a batch of %u steps accepted %u", b->steps, done);
+  if (b->log && done) SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], SDS_STEP_LOG, b->log, 2 * (size_t)done));
+  s->cur = (s->cur + (int)done) & 1; /* a rejected step wrote the other pair */
+  b->done = done, b->events = e;
+  if (done) b->time = st[4], b->dt = st[3];
+  if (e & SDS_EV_LISTS) lists_invalidate(s);
+  if (!(e & SDS_EV_REJECT) && !(e & SDS_EV_NONFINITE) && done) s->flags_cur = s->cur;
+  if (e & SDS_EV_NONFINITE)
+    return sessile_error_set(SESSILE_ERR_NUMERIC, "sds: the state is not finite after a step of %g s (blow-up)", st[0]);
+  if (e & SDS_EV_REJECT) { /* undone: the next batch retries at half the step */
+    double h = 0.5 * st[0];
+    SESSILE_CHECK(h >= p->dt_min, SESSILE_ERR_NUMERIC,
+                  "sds: the step fell below dt_min = %g s (a step of %g s moved a cell more than %g radii)", p->dt_min,
+                  st[0], p->max_move);
+    b->dt = h;
+  }
+  SESSILE_CHECK(!(e & SDS_EV_DTMIN), SESSILE_ERR_NUMERIC,
+                "sds: the step fell below dt_min = %g s (a cell moved %g radii in a step of %g s)", p->dt_min, st[7],
+                st[0]);
+  return SESSILE_OK;
+}
