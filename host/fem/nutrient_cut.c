@@ -152,6 +152,15 @@ uint32_t nutrient_cut_groups(const sessile_kernel *k, const sessile_box *b) {
   return (sessile_box_nodes(b) + local - 1) / local;
 }
 
+sessile_status nutrient_cut_start(sessile_cut_nutrient *nt, sessile_vec *c) {
+  const level *f = &nt->lv[0];
+  cut_push p = nutrient_cut_push(nt, &f->box, 0);
+  sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
+  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, nutrient_cut_groups(nt->k_bc, &f->box), b, &p));
+  SESSILE_CALL(sessile_cmd_end(nt->cmd));
+  return sessile_cmd_submit_wait(nt->cmd);
+}
+
 /* Every level's operator, the lift, and the homogenised start (Dirichlet
  * entries of c zeroed); one submission. */
 static sessile_status setup(sessile_cut_nutrient *nt, sessile_vec *c) {
@@ -163,12 +172,7 @@ static sessile_status setup(sessile_cut_nutrient *nt, sessile_vec *c) {
                             sessile_vec_buffer(nt->lift), sessile_vec_buffer(nt->value)};
     SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_cut, nutrient_cut_groups(nt->k_cut, &v->box), b, &p));
   }
-  const level *f = &nt->lv[0];
-  cut_push p = nutrient_cut_push(nt, &f->box, 0);
-  sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
-  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, nutrient_cut_groups(nt->k_bc, &f->box), b, &p));
-  SESSILE_CALL(sessile_cmd_end(nt->cmd));
-  return sessile_cmd_submit_wait(nt->cmd);
+  return nutrient_cut_start(nt, c);
 }
 
 /* c = value on Dirichlet nodes (restore), then the extension. */

@@ -97,12 +97,7 @@ static sessile_status adv_setup(sessile_cut_nutrient *nt, const double *velocity
                             sessile_vec_buffer(nt->lift), sessile_vec_buffer(nt->value)};
     SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, a->k_cut, nutrient_cut_groups(a->k_cut, &v->box), b, &p));
   }
-  const level *f = &nt->lv[0];
-  cut_push p = nutrient_cut_push(nt, &f->box, 0);
-  sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
-  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, nutrient_cut_groups(nt->k_bc, &f->box), b, &p));
-  SESSILE_CALL(sessile_cmd_end(nt->cmd));
-  return sessile_cmd_submit_wait(nt->cmd);
+  return nutrient_cut_start(nt, c);
 }
 
 sessile_status sessile_cut_nutrient_solve_advected(sessile_cut_nutrient *nt, sessile_cut_solver solver,

@@ -42,6 +42,9 @@ struct sessile_cut_nutrient {
 
 cut_push nutrient_cut_push(const sessile_cut_nutrient *nt, const sessile_box *b, uint32_t flag);
 uint32_t nutrient_cut_groups(const sessile_kernel *k, const sessile_box *b);
+/* Records the homogenised start (c = 0 on Dirichlet nodes) into nt->cmd,
+ * which the caller began, ends it and submits. */
+sessile_status nutrient_cut_start(sessile_cut_nutrient *nt, sessile_vec *c);
 /* c = value on Dirichlet nodes (restore), then the extension across the surface. */
 sessile_status nutrient_cut_finish(sessile_cut_nutrient *nt, const sessile_vec *c, int restore);
 void nutrient_cut_adv_free(sessile_cut_nutrient *nt);

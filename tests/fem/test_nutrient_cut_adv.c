@@ -27,6 +27,7 @@
 #include "sessile/la/pc.h"
 #include "sessile/fem/nutrient_cut.h"
 #include "testutil.h"
+#include "dome.h"
 
 static sessile_la *la;
 static double tol_k = 1e-13;
@@ -386,29 +387,11 @@ static void convergence(void) {
 
 /* A dome on the floor in a uniform current along x. */
 static void dome(void) {
-  const double o[3] = {0, 0, 0}, D = 1e-4;
-  const uint32_t cells[3] = {16, 16, 12};
-  sessile_box b;
-  t_must("box", sessile_box_make(o, 1.2, cells, 2, &b));
-  sessile_cut_bc bc;
-  sessile_cut_bc_default(&bc);
-  bc.height = 1.2 * 12;
-  sessile_cut_nutrient *nt;
-  t_must("create", sessile_cut_nutrient_create(la, &b, &bc, 12, &nt));
-  sessile_growth_gpu *gg;
-  t_must("growth", sessile_growth_gpu_create(la, &gg));
-  sessile_surface s = {0};
-  const double c0[3] = {9.6, 9.6, 0};
-  t_must("icosphere", sessile_surface_icosphere(4, 5.0, c0, &s));
-  for (uint32_t v = 0; v < s.nv; v++)
-    if (s.pos[3 * v + 2] < 0) s.pos[3 * v + 2] = 0;
-  t_must("surface", sessile_growth_gpu_set_surface(gg, &s));
-  for (int l = 0; l < sessile_cut_nutrient_levels(nt); l++) {
-    sessile_box lb;
-    sessile_buffer *sb, *tb;
-    sessile_cut_nutrient_level(nt, l, &lb, &sb, &tb);
-    t_must("cut", sessile_growth_gpu_cut(gg, &lb, sb, tb));
-  }
+  t_dome dm;
+  t_dome_make(la, 5.0, &dm);
+  const sessile_box b = dm.b;
+  sessile_cut_nutrient *nt = dm.nt;
+  const double D = 1e-4;
   size_t n = sessile_box_nodes(&b);
   double *vel = t_dalloc(3 * n), *x[2] = {t_dalloc(n), t_dalloc(n)};
   for (size_t i = 0; i < n; i++) vel[3 * i] = 0.05;
@@ -448,9 +431,7 @@ static void dome(void) {
   t_true("dome: MG needs fewer iterations than Jacobi", its[0] < its[1]);
   sessile_vec_destroy(c);
   free(vel), free(x[0]), free(x[1]), free(m);
-  sessile_surface_free(&s);
-  sessile_growth_gpu_destroy(gg);
-  sessile_cut_nutrient_destroy(nt);
+  t_dome_free(&dm);
 }
 
 int main(int argc, char **argv) {
