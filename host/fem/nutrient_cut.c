@@ -41,6 +41,19 @@ static sessile_status make_levels(sessile_cut_nutrient *nt, const sessile_box *b
   return SESSILE_OK;
 }
 
+void nutrient_cut_mg_levels(const sessile_cut_nutrient *nt, sessile_vec *const *coef,
+                            sessile_mg_level *ml) {
+  memset(ml, 0, (size_t)nt->nlevels * sizeof *ml);
+  for (int l = 0; l < nt->nlevels; l++) {
+    const level *v = &nt->lv[l];
+    memcpy(ml[l].n, v->box.n, sizeof ml[l].n);
+    ml[l].h = v->box.h;
+    ml[l].mask = v->mask;
+    ml[l].diag = v->diag;
+    ml[l].coef = coef ? coef[l] : NULL;
+  }
+}
+
 static sessile_status init(sessile_cut_nutrient *nt, const sessile_box *box, int max_levels) {
   sessile_gpu *g = sessile_la_gpu(nt->la);
   uint32_t rb = sessile_la_real_bytes(nt->la);
@@ -58,14 +71,7 @@ static sessile_status init(sessile_cut_nutrient *nt, const sessile_box *box, int
                                                f->box.h, f->mask, f->diag, &nt->a));
   if (nt->nlevels > 1) {
     sessile_mg_level ml[MAX_LEVELS];
-    memset(ml, 0, sizeof ml);
-    for (int l = 0; l < nt->nlevels; l++) {
-      const level *v = &nt->lv[l];
-      memcpy(ml[l].n, v->box.n, sizeof ml[l].n);
-      ml[l].h = v->box.h;
-      ml[l].mask = v->mask;
-      ml[l].diag = v->diag;
-    }
+    nutrient_cut_mg_levels(nt, NULL, ml);
     sessile_mg_options mo;
     sessile_mg_options_default(&mo);
     SESSILE_CALL(sessile_mg_create(nt->la, nt->nlevels, ml, &mo, &nt->mg));

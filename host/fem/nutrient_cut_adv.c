@@ -44,15 +44,7 @@ static sessile_status adv_make(sessile_cut_nutrient *nt, cut_adv *a) {
                                                    f->box.h, f->mask, f->diag, a->coef[0], &a->a));
   if (nt->nlevels == 1) return SESSILE_OK;
   sessile_mg_level ml[MAX_LEVELS];
-  memset(ml, 0, sizeof ml);
-  for (int l = 0; l < nt->nlevels; l++) {
-    const level *v = &nt->lv[l];
-    memcpy(ml[l].n, v->box.n, sizeof ml[l].n);
-    ml[l].h = v->box.h;
-    ml[l].mask = v->mask;
-    ml[l].diag = v->diag;
-    ml[l].coef = a->coef[l];
-  }
+  nutrient_cut_mg_levels(nt, a->coef, ml);
   SESSILE_CALL(sessile_mg_create(la, nt->nlevels, ml, NULL, &a->mg));
   SESSILE_CALL(sessile_pc_create(la, "mg", &a->pc));
   SESSILE_CALL(sessile_pc_mg_set(a->pc, a->mg));

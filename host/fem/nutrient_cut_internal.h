@@ -42,6 +42,9 @@ struct sessile_cut_nutrient {
 
 cut_push nutrient_cut_push(const sessile_cut_nutrient *nt, const sessile_box *b, uint32_t flag);
 uint32_t nutrient_cut_groups(const sessile_kernel *k, const sessile_box *b);
+/* The multigrid's levels from the object's (coef: per level, or NULL). */
+void nutrient_cut_mg_levels(const sessile_cut_nutrient *nt, sessile_vec *const *coef,
+                            sessile_mg_level *ml);
 /* Records the homogenised start (c = 0 on Dirichlet nodes) into nt->cmd,
  * which the caller began, ends it and submits. */
 sessile_status nutrient_cut_start(sessile_cut_nutrient *nt, sessile_vec *c);

@@ -1,4 +1,7 @@
-/* A dome (an icosphere flattened onto the substratum) centred in a
+/* The nutrient tests' shared pieces: a random stream, a vector from host
+ * values, and the dome below.
+ *
+ * A dome (an icosphere flattened onto the substratum) centred in a
  * 16 x 16 x 12-cell box of 1.2 cm at resolution 2, c = 1 at the box top,
  * classified on every level of a cut-cell nutrient: the sponge's start, for
  * the nutrient tests. */
@@ -8,6 +11,19 @@
 #include "sessile/growth/growth_gpu.h"
 #include "sessile/fem/nutrient_cut.h"
 #include "testutil.h"
+
+static uint64_t rng = 88172645463325252ull;
+static inline double urand(void) {
+  rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+  return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+static inline sessile_vec *t_vec_of(sessile_la *la, const double *x, uint32_t n) {
+  sessile_vec *v;
+  t_must("vec", sessile_vec_create(la, n, &v));
+  t_must("upload", sessile_vec_upload(v, x));
+  return v;
+}
 
 typedef struct {
   sessile_box b;

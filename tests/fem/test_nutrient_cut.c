@@ -30,18 +30,7 @@
 static sessile_la *la;
 static double tol_k = 1e-14;
 
-static uint64_t rng = 88172645463325252ull;
-static double urand(void) {
-  rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
-
-static sessile_vec *vec_of(const double *x, uint32_t n) {
-  sessile_vec *v;
-  t_must("vec", sessile_vec_create(la, n, &v));
-  t_must("upload", sessile_vec_upload(v, x));
-  return v;
-}
+static sessile_vec *vec_of(const double *x, uint32_t n) { return t_vec_of(la, x, n); }
 
 /* Random solid blob and fractions; GPU setup (through a 1-level nutrient) vs reference. */
 static void setup_vs_ref(sessile_far_field ff) {

@@ -32,18 +32,7 @@
 static sessile_la *la;
 static double tol_k = 1e-13;
 
-static uint64_t rng = 88172645463325252ull;
-static double urand(void) {
-  rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
-
-static sessile_vec *vec_of(const double *x, uint32_t n) {
-  sessile_vec *v;
-  t_must("vec", sessile_vec_create(la, n, &v));
-  t_must("upload", sessile_vec_upload(v, x));
-  return v;
-}
+static sessile_vec *vec_of(const double *x, uint32_t n) { return t_vec_of(la, x, n); }
 
 static sessile_buffer *mask_buffer(const uint32_t *m, size_t n) {
   sessile_buffer *b;
