@@ -47,7 +47,7 @@ static sessile_status problem_make(sessile_la *la, uint32_t nx, uint32_t ny, uin
     if (s == SESSILE_OK) s = sessile_buffer_upload(mb, 0, mask, (size_t)nodes * 4);
     if (s == SESSILE_OK) s = sessile_vec_create(la, nodes, &vd);
     if (s == SESSILE_OK) s = sessile_vec_upload(vd, diag);
-    sessile_mg_level v = {{n[0], n[1], n[2]}, h, mb, vd};
+    sessile_mg_level v = {{n[0], n[1], n[2]}, h, mb, vd, NULL};
     p->lv[l] = v;
     p->nl = l + 1;
     if (l == 0) {

@@ -4,29 +4,8 @@
  * across the surface for the probe. */
 #include <stdlib.h>
 #include <string.h>
-#include "fem_kernels.h"
-#include "sessile/la/mg.h"
-#include "sessile/fem/nutrient_cut.h"
 
-#define MAX_LEVELS 12
-
-typedef struct {
-  sessile_box box;
-  sessile_buffer *solid, *theta, *mask;
-  sessile_vec *diag;
-} level;
-
-struct sessile_cut_nutrient {
-  sessile_la *la;
-  sessile_cut_bc bc;
-  int nlevels;
-  level lv[MAX_LEVELS];
-  sessile_vec *lift, *value, *ext;
-  sessile_kernel *k_cut, *k_ghost, *k_bc;
-  sessile_cmd *cmd;
-  sessile_mat *a;  /* the finest operator (Jacobi-PCG, residuals) */
-  sessile_mg *mg;  /* NULL with one level */
-};
+#include "nutrient_cut_internal.h"
 
 void sessile_cut_bc_default(sessile_cut_bc *bc) {
   bc->far_field = SESSILE_FAR_FIELD_HEIGHT;
@@ -62,6 +41,19 @@ static sessile_status make_levels(sessile_cut_nutrient *nt, const sessile_box *b
   return SESSILE_OK;
 }
 
+void nutrient_cut_mg_levels(const sessile_cut_nutrient *nt, sessile_vec *const *coef,
+                            sessile_mg_level *ml) {
+  memset(ml, 0, (size_t)nt->nlevels * sizeof *ml);
+  for (int l = 0; l < nt->nlevels; l++) {
+    const level *v = &nt->lv[l];
+    memcpy(ml[l].n, v->box.n, sizeof ml[l].n);
+    ml[l].h = v->box.h;
+    ml[l].mask = v->mask;
+    ml[l].diag = v->diag;
+    ml[l].coef = coef ? coef[l] : NULL;
+  }
+}
+
 static sessile_status init(sessile_cut_nutrient *nt, const sessile_box *box, int max_levels) {
   sessile_gpu *g = sessile_la_gpu(nt->la);
   uint32_t rb = sessile_la_real_bytes(nt->la);
@@ -79,13 +71,7 @@ static sessile_status init(sessile_cut_nutrient *nt, const sessile_box *box, int
                                                f->box.h, f->mask, f->diag, &nt->a));
   if (nt->nlevels > 1) {
     sessile_mg_level ml[MAX_LEVELS];
-    for (int l = 0; l < nt->nlevels; l++) {
-      const level *v = &nt->lv[l];
-      memcpy(ml[l].n, v->box.n, sizeof ml[l].n);
-      ml[l].h = v->box.h;
-      ml[l].mask = v->mask;
-      ml[l].diag = v->diag;
-    }
+    nutrient_cut_mg_levels(nt, NULL, ml);
     sessile_mg_options mo;
     sessile_mg_options_default(&mo);
     SESSILE_CALL(sessile_mg_create(nt->la, nt->nlevels, ml, &mo, &nt->mg));
@@ -124,6 +110,7 @@ sessile_status sessile_cut_nutrient_create(sessile_la *la, const sessile_box *bo
 
 void sessile_cut_nutrient_destroy(sessile_cut_nutrient *nt) {
   if (!nt) return;
+  nutrient_cut_adv_free(nt);
   sessile_mg_destroy(nt->mg);
   sessile_mat_destroy(nt->a);
   sessile_cmd_destroy(nt->cmd);
@@ -154,7 +141,7 @@ void sessile_cut_nutrient_level(sessile_cut_nutrient *nt, int l, sessile_box *bo
 sessile_buffer *sessile_cut_nutrient_mask(sessile_cut_nutrient *nt) { return nt->lv[0].mask; }
 const sessile_vec *sessile_cut_nutrient_extended(const sessile_cut_nutrient *nt) { return nt->ext; }
 
-static cut_push push_of(const sessile_cut_nutrient *nt, const sessile_box *b, uint32_t flag) {
+cut_push nutrient_cut_push(const sessile_cut_nutrient *nt, const sessile_box *b, uint32_t flag) {
   uint32_t rb = sessile_la_real_bytes(nt->la);
   cut_push p = {.n0 = b->n[0], .n1 = b->n[1], .n2 = b->n[2],
                 .far_field = nt->bc.far_field == SESSILE_FAR_FIELD_WALLS ? FAR_WALLS : FAR_HEIGHT,
@@ -166,9 +153,18 @@ static cut_push push_of(const sessile_cut_nutrient *nt, const sessile_box *b, ui
   return p;
 }
 
-static uint32_t groups(const sessile_kernel *k, const sessile_box *b) {
+uint32_t nutrient_cut_groups(const sessile_kernel *k, const sessile_box *b) {
   uint32_t local = sessile_kernel_local_size(k);
   return (sessile_box_nodes(b) + local - 1) / local;
+}
+
+sessile_status nutrient_cut_start(sessile_cut_nutrient *nt, sessile_vec *c) {
+  const level *f = &nt->lv[0];
+  cut_push p = nutrient_cut_push(nt, &f->box, 0);
+  sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
+  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, nutrient_cut_groups(nt->k_bc, &f->box), b, &p));
+  SESSILE_CALL(sessile_cmd_end(nt->cmd));
+  return sessile_cmd_submit_wait(nt->cmd);
 }
 
 /* Every level's operator, the lift, and the homogenised start (Dirichlet
@@ -177,28 +173,23 @@ static sessile_status setup(sessile_cut_nutrient *nt, sessile_vec *c) {
   SESSILE_CALL(sessile_cmd_begin(nt->cmd));
   for (int l = 0; l < nt->nlevels; l++) {
     level *v = &nt->lv[l];
-    cut_push p = push_of(nt, &v->box, l == 0);
+    cut_push p = nutrient_cut_push(nt, &v->box, l == 0);
     sessile_buffer *b[6] = {v->solid, v->theta, v->mask, sessile_vec_buffer(v->diag),
                             sessile_vec_buffer(nt->lift), sessile_vec_buffer(nt->value)};
-    SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_cut, groups(nt->k_cut, &v->box), b, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_cut, nutrient_cut_groups(nt->k_cut, &v->box), b, &p));
   }
-  const level *f = &nt->lv[0];
-  cut_push p = push_of(nt, &f->box, 0);
-  sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
-  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, groups(nt->k_bc, &f->box), b, &p));
-  SESSILE_CALL(sessile_cmd_end(nt->cmd));
-  return sessile_cmd_submit_wait(nt->cmd);
+  return nutrient_cut_start(nt, c);
 }
 
 /* c = value on Dirichlet nodes (restore), then the extension. */
-static sessile_status finish(sessile_cut_nutrient *nt, const sessile_vec *c, int restore) {
+sessile_status nutrient_cut_finish(sessile_cut_nutrient *nt, const sessile_vec *c, int restore) {
   const level *f = &nt->lv[0];
   SESSILE_CALL(sessile_cmd_begin(nt->cmd));
-  cut_push p = push_of(nt, &f->box, 1);
+  cut_push p = nutrient_cut_push(nt, &f->box, 1);
   sessile_buffer *b[3] = {f->mask, sessile_vec_buffer(nt->value), sessile_vec_buffer(c)};
-  if (restore) SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, groups(nt->k_bc, &f->box), b, &p));
+  if (restore) SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_bc, nutrient_cut_groups(nt->k_bc, &f->box), b, &p));
   sessile_buffer *gb[4] = {f->mask, f->theta, sessile_vec_buffer(c), sessile_vec_buffer(nt->ext)};
-  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_ghost, groups(nt->k_ghost, &f->box), gb, &p));
+  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_ghost, nutrient_cut_groups(nt->k_ghost, &f->box), gb, &p));
   SESSILE_CALL(sessile_cmd_end(nt->cmd));
   return sessile_cmd_submit_wait(nt->cmd);
 }
@@ -218,7 +209,7 @@ sessile_status sessile_cut_nutrient_solve(sessile_cut_nutrient *nt, sessile_cut_
   SESSILE_CALL(setup(nt, c));
   if (solver == SESSILE_CUT_SOLVER_MG && nt->mg) SESSILE_CALL(sessile_mg_solve(nt->mg, &o, nt->lift, c, res));
   else SESSILE_CALL(sessile_ksp_solve(nt->la, &o, nt->a, nt->lift, c, res));
-  SESSILE_CALL(finish(nt, c, 1));
+  SESSILE_CALL(nutrient_cut_finish(nt, c, 1));
   res->seconds = sessile_wall_seconds() - t0;
   return SESSILE_OK;
 }
@@ -229,11 +220,11 @@ sessile_status sessile_cut_nutrient_extend(sessile_cut_nutrient *nt, const sessi
                 "nutrient field has %u entries, the box %u nodes", sessile_vec_size(c),
                 sessile_box_nodes(&f->box));
   SESSILE_CALL(sessile_cmd_begin(nt->cmd));
-  cut_push p = push_of(nt, &f->box, 1);
+  cut_push p = nutrient_cut_push(nt, &f->box, 1);
   sessile_buffer *b[6] = {f->solid, f->theta, f->mask, sessile_vec_buffer(f->diag),
                           sessile_vec_buffer(nt->lift), sessile_vec_buffer(nt->value)};
-  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_cut, groups(nt->k_cut, &f->box), b, &p));
+  SESSILE_CALL(sessile_cmd_dispatch(nt->cmd, nt->k_cut, nutrient_cut_groups(nt->k_cut, &f->box), b, &p));
   SESSILE_CALL(sessile_cmd_end(nt->cmd));
   SESSILE_CALL(sessile_cmd_submit_wait(nt->cmd));
-  return finish(nt, c, 0);
+  return nutrient_cut_finish(nt, c, 0);
 }

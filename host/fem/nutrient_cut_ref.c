@@ -1,6 +1,7 @@
 /* Host references of shaders/fem/cutcell.comp and ghost.comp (the cut-cell
  * nutrient's boundary setup and its extension across the surface), in
  * double, operation by operation, for the tests. */
+#include <math.h>
 #include "sessile/fem/nutrient_cut.h"
 
 typedef struct {
@@ -37,9 +38,27 @@ static size_t stride(const sessile_box *b, int a) {
   return a == 0 ? 1 : a == 1 ? b->n[0] : (size_t)b->n[0] * b->n[1];
 }
 
-void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *solid,
-                           const double *theta, uint32_t *mask, double *diag, double *lift,
-                           double *value) {
+/* cut_adv.glsl: B(x) = x / (e^x - 1), and the factor of an edge's weight. */
+double sessile_cut_bernoulli(double x) {
+  if (x == 0) return 1;
+  if (x > 700) return 0;
+  if (x < -700) return -x;
+  return x / expm1(x);
+}
+
+static double adv_factor(const ctx *x, const double *vel, double pe, size_t node,
+                         const uint32_t c[3], int d, double th) {
+  int a = d >> 1, plus = d & 1;
+  double p = vel[3 * node + a] * pe, sp = plus ? p : -p;
+  int wall = plus ? c[a] == 0 : c[a] + 1 == x->box->n[a];
+  if (wall && th == 1) return 0.5 * (sessile_cut_bernoulli(p) + sessile_cut_bernoulli(-p));
+  return sessile_cut_bernoulli(sp * th);
+}
+
+/* Both setups: vel NULL is the Laplace one (cutcell.comp), else cutcell_adv.comp. */
+static void setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *solid,
+                  const double *theta, const double *vel, double pe, uint32_t *mask, double *diag,
+                  double *coef, double *lift, double *value) {
   ctx x = {box, bc};
   size_t nodes = sessile_box_nodes(box);
   for (size_t node = 0; node < nodes; node++) {
@@ -50,6 +69,8 @@ void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, con
                     : solid[node] ? SESSILE_CUT_SOLID : SESSILE_CUT_FREE;
     if (code == SESSILE_CUT_SOLID) g = 0;
     mask[node] = code;
+    if (coef)
+      for (int dir = 0; dir < 6; dir++) coef[6 * node + dir] = 0;
     if (code != SESSILE_CUT_FREE) {
       diag[node] = 1;
       if (lift) lift[node] = 0, value[node] = g;
@@ -62,22 +83,39 @@ void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, con
       size_t m = plus ? node + stride(box, a) : node - stride(box, a);
       uint32_t cm[3] = {c[0], c[1], c[2]};
       cm[a] = plus ? c[a] + 1 : c[a] - 1;
-      double gm, f = face(&x, c, a), w = 1;
+      double gm, f = face(&x, c, a), w = 1, th = 1;
       if (node_dirichlet(&x, cm, &gm)) {
         if (bc->far_field == SESSILE_FAR_FIELD_HEIGHT && a == 2 && plus && cm[2] != 0) {
           double t = (bc->height - zk(&x, c[2])) / box->h;
           t = t < 1 ? t : 1;
-          w = 1 / (t > bc->theta_min ? t : bc->theta_min);
+          th = t > bc->theta_min ? t : bc->theta_min;
+          w = 1 / th;
         }
+        if (vel) w *= adv_factor(&x, vel, pe, node, c, dir, th);
         b += f * w * gm;
-      } else if (solid[m]) {
-        w = 1 / theta_of(&x, theta, node, dir);
+      } else {
+        if (solid[m]) th = theta_of(&x, theta, node, dir), w = 1 / th;
+        if (vel) w *= adv_factor(&x, vel, pe, node, c, dir, th);
       }
+      if (coef) coef[6 * node + dir] = w;
       d += f * w;
     }
     diag[node] = d;
     if (lift) lift[node] = box->h * b, value[node] = 0;
   }
+}
+
+void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *solid,
+                           const double *theta, uint32_t *mask, double *diag, double *lift,
+                           double *value) {
+  setup(box, bc, solid, theta, NULL, 0, mask, diag, NULL, lift, value);
+}
+
+void sessile_cut_ref_setup_adv(const sessile_box *box, const sessile_cut_bc *bc,
+                               const uint32_t *solid, const double *theta, const double *vel,
+                               double pe, uint32_t *mask, double *diag, double *coef, double *lift,
+                               double *value) {
+  setup(box, bc, solid, theta, vel, pe, mask, diag, coef, lift, value);
 }
 
 void sessile_cut_ref_ghost(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *mask,

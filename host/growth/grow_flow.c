@@ -11,10 +11,12 @@
  * The velocity and pressure are then interpolated (P1) to the nutrient box's
  * nodes (ufine, pfine): zero inside the sponge.
  *
- * Nutrient with advection: SUPG advection-diffusion (docs/advdiff.md) on the
- * nutrient box with that velocity, the paper's boundary conditions, solved on
- * the GPU; the field is clamped into [0, 1] (SUPG's small over- and
- * undershoots near layers) before the probe reads it. */
+ * Nutrient with advection: by default the cut-cell solve of host/fem
+ * (grow_nutrient.c); with advection_scheme = tet the SUPG advection-diffusion
+ * below (docs/advdiff.md) on the nutrient box's tetrahedra with that
+ * velocity, the paper's boundary conditions, solved on the GPU; its field is
+ * clamped into [0, 1] (SUPG's small over- and undershoots near layers)
+ * before the probe reads it. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

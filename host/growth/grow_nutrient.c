@@ -1,6 +1,7 @@
 /* The nutrient of one growth iteration: the uploaded surface classified
  * on every box level (the solid mask and the cut fractions), then the field
- * solved (Laplace with cut cells, warm-started; or advected by the flow),
+ * solved (Laplace with cut cells, warm-started; or advected by the flow,
+ * with the same cut cells, or on the tetrahedra with advection_scheme = tet),
  * recorded under "nutrient_solve". */
 #include "grow_internal.h"
 
@@ -16,12 +17,18 @@ sessile_status grow_classify(grow_run *r) {
   return SESSILE_OK;
 }
 
-static void record_solve(cJSON *rec, int advect, sessile_cut_solver solver, const sessile_solve_result *res) {
+enum { LAPLACE, ADVECT_CUT, ADVECT_TET };
+
+static void record_solve(cJSON *rec, int eq, sessile_cut_solver solver, const sessile_solve_result *res) {
+  static const char *const eqs[] = {"Laplace (diffusion limited), cut-cell boundary",
+                                    "advection-diffusion (exponentially fitted), cut-cell boundary, u from the flow",
+                                    "advection-diffusion (SUPG on tetrahedra), u from the flow"};
+  int mg = solver == SESSILE_CUT_SOLVER_MG;
   cJSON *ns = cJSON_AddObjectToObject(rec, "nutrient_solve");
-  cJSON_AddStringToObject(ns, "equation", advect ? "advection-diffusion (SUPG), u from the flow"
-                                                 : "Laplace (diffusion limited), cut-cell boundary");
-  cJSON_AddStringToObject(ns, "solver", advect ? "bicgstab+jacobi"
-                                        : solver == SESSILE_CUT_SOLVER_MG ? "pcg+multigrid" : "pcg+jacobi");
+  cJSON_AddStringToObject(ns, "equation", eqs[eq]);
+  cJSON_AddStringToObject(ns, "solver", eq == ADVECT_TET ? "bicgstab+jacobi"
+                                        : eq == ADVECT_CUT ? (mg ? "bicgstab+multigrid" : "bicgstab+jacobi")
+                                        : mg ? "pcg+multigrid" : "pcg+jacobi");
   cJSON_AddNumberToObject(ns, "iterations", res->iterations);
   cJSON_AddNumberToObject(ns, "true_relres", res->true_relres);
   cJSON_AddStringToObject(ns, "status", sessile_solve_status_name(res->status));
@@ -30,7 +37,8 @@ static void record_solve(cJSON *rec, int advect, sessile_cut_solver solver, cons
 }
 
 sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessile_vec **probe_field) {
-  int advect = !r->p->diffusion_limited;
+  int eq = r->p->diffusion_limited ? LAPLACE
+           : r->p->advection_scheme == SESSILE_ADVECTION_TET ? ADVECT_TET : ADVECT_CUT;
   sessile_ksp_options ko;
   sessile_ksp_options_default(&ko);
   ko.type = SESSILE_KSP_CG;
@@ -40,12 +48,17 @@ sessile_status grow_nutrient_solve(grow_run *r, int it, cJSON *rec, const sessil
   sessile_solve_result res;
   sessile_cut_solver solver =
       r->p->nutrient_pc_type == SESSILE_SOLVER_MG ? SESSILE_CUT_SOLVER_MG : SESSILE_CUT_SOLVER_JACOBI;
-  if (advect) SESSILE_CALL(grow_nutrient_advected(r, &res));
+  if (eq == ADVECT_TET) SESSILE_CALL(grow_nutrient_advected(r, &res));
+  else if (eq == ADVECT_CUT)
+    SESSILE_CALL(sessile_cut_nutrient_solve_advected(r->nutrient, solver, r->ufine,
+                                                     r->p->diffusion_coefficient, r->c, &ko, &res));
   else SESSILE_CALL(sessile_cut_nutrient_solve(r->nutrient, solver, r->c, &ko, &res));
-  /* The flux probe reads the field extended across the surface. */
-  if (advect && r->p->probe == SESSILE_PROBE_FLUX) SESSILE_CALL(sessile_cut_nutrient_extend(r->nutrient, r->c));
+  /* The flux probe reads the field extended across the surface (the cut
+   * solves extend it themselves). */
+  if (eq == ADVECT_TET && r->p->probe == SESSILE_PROBE_FLUX)
+    SESSILE_CALL(sessile_cut_nutrient_extend(r->nutrient, r->c));
   *probe_field = r->p->probe == SESSILE_PROBE_FLUX ? sessile_cut_nutrient_extended(r->nutrient) : r->c;
-  record_solve(rec, advect, solver, &res);
+  record_solve(rec, eq, solver, &res);
   r->sum.solver_iterations += res.iterations;
   if (res.true_relres > r->sum.worst_relres) r->sum.worst_relres = res.true_relres;
   SESSILE_CHECK(res.status != SESSILE_SOLVE_BREAKDOWN, SESSILE_ERR_NUMERIC,

@@ -13,6 +13,7 @@ static const char *const probe_names[] = {"flux", "paper", NULL};
 static const char *const far_names[] = {"height", "walls", NULL};
 static const char *const solver_names[] = {"mg", "jacobi", NULL};
 static const char *const translocate_names[] = {"parallel", "sequential", NULL};
+static const char *const adv_names[] = {"cut", "tet", NULL};
 /* fluid_ksp_type: sessile_fluid_ksp's order (CG is not offered: the fluid's
  * Jacobian is nonsymmetric). */
 static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
@@ -31,6 +32,7 @@ static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi",
 #define PT_ENUM_FAR SESSILE_PT_ENUM, far_names
 #define PT_ENUM_SOLVER SESSILE_PT_ENUM, solver_names
 #define PT_ENUM_TRANSLOCATE SESSILE_PT_ENUM, translocate_names
+#define PT_ENUM_ADV SESSILE_PT_ENUM, adv_names
 #define PT_ENUM_KSP SESSILE_PT_ENUM, ksp_names
 #define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
 #define BOUNDS_0 0
@@ -84,8 +86,12 @@ sessile_status sessile_params_preset(sessile_grow_params *p, const char *name) {
   return sessile_error_set(SESSILE_ERR_USAGE, "unknown preset '%s' (presets: radiate, crella)", name);
 }
 
+/* The default far-field height scales with the sponge, not the box: 4.8
+ * initial radii, 28.8 cm for the paper's 6 cm sponge (docs/nutrient.md). */
+#define FAR_FIELD_RADII 4.8
+
 double sessile_params_far_field_height(const sessile_grow_params *p) {
-  return p->far_field_height < 0 ? p->box_base_cell * p->box_cells_z : p->far_field_height;
+  return p->far_field_height < 0 ? FAR_FIELD_RADII * p->sponge_radius : p->far_field_height;
 }
 
 /* Box nodes at the nutrient's resolution (each level halves the cell). */
@@ -113,6 +119,10 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
    * plus the solid mask; flow: block-CSR (4x4 reals, ~15 neighbours) for the
    * Jacobian and its ILU(0), and GMRES(50)'s basis of 4 reals per node. */
   double nutrient = box_nodes(p, p->box_resolution) * (12 * 8 + 4);
+  /* advected on the cut cells: 6 weights and 3 velocities per node, and
+   * BiCGSTAB's vectors */
+  if (!p->diffusion_limited && p->advection_scheme == SESSILE_ADVECTION_CUT)
+    nutrient += box_nodes(p, p->box_resolution) * (17 * 8);
   double fn = flow_nodes(p, &tets);
   int flow = !p->diffusion_limited || p->fluid_every_iteration || p->fluid_at_snapshots;
   return nutrient + (flow ? fn * (2 * 15 * 16 * 8 + 52 * 4 * 8) : 0);
@@ -142,7 +152,7 @@ static sessile_status validate(const void *values) {
   if (p->far_field == SESSILE_FAR_HEIGHT) {
     double H = sessile_params_far_field_height(p);
     SESSILE_CHECK(p->far_field_height == -1 || p->far_field_height > 0, SESSILE_ERR_USAGE,
-                  "far_field_height must be positive, or -1 for the box top (got %g)", p->far_field_height);
+                  "far_field_height must be positive, or -1 for 4.8 sponge radii (got %g)", p->far_field_height);
     SESSILE_CHECK(H <= top * (1 + 1e-12), SESSILE_ERR_USAGE,
                   "far_field_height (%g cm) must not exceed the box top (%g cm = box_base_cell x "
                   "box_cells_z); raise box_cells_z or lower far_field_height", H, top);

@@ -124,11 +124,11 @@ static sessile_status solve_device(sessile_la *la, const sessile_ksp_options *o,
 /* Host residual r = b − A x in double (CSR, block CSR, or the 7-point
  * operators with their mask and diagonal downloaded once per solve). */
 static void host_residual(const sessile_mat *a, const uint32_t *mask, const double *diag,
-                          const double *b, const double *x, double *r) {
+                          const double *coef, const double *b, const double *x, double *r) {
   if (a->kind == MAT_STENCIL7)
     sessile_ref_stencil7(a->grid[0], a->grid[1], a->grid[2], a->h, mask, x, r);
   else if (a->kind == MAT_STENCIL7_CUT)
-    sessile_ref_stencil7_cut(a->grid[0], a->grid[1], a->grid[2], a->h, mask, diag, x, r);
+    sessile_ref_stencil7_cut_adv(a->grid[0], a->grid[1], a->grid[2], a->h, mask, diag, coef, x, r);
   else if (a->kind == MAT_CSR) sessile_ref_spmv_csr(&a->host, x, r);
   else sessile_ref_spmv_bcsr4(&a->hostb, x, r);
   for (uint32_t i = 0; i < a->nrows; i++) r[i] = b[i] - r[i];
@@ -147,17 +147,18 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
   SESSILE_CHECK(bh, SESSILE_ERR_NO_MEMORY, "out of host memory");
   double *xh = bh + n, *rh = xh + n;
   uint32_t *mask = NULL;
-  double *diag = NULL;
+  double *diag = NULL, *coef = NULL;
   sessile_status s = sessile_vec_download((sessile_vec *)b, bh);
   if (s == SESSILE_OK && (a->kind == MAT_STENCIL7 || a->kind == MAT_STENCIL7_CUT))
     s = la_stencil7_host_mask(a, &mask);
   if (s == SESSILE_OK && a->kind == MAT_STENCIL7_CUT) s = la_stencil7_cut_host_diag(a, &diag);
+  if (s == SESSILE_OK && a->kind == MAT_STENCIL7_CUT) s = la_stencil7_cut_host_coef(a, &coef);
   if (s == SESSILE_OK) s = sessile_vec_download(x, xh);
   double bnorm = sessile_ref_nrm2(n, bh);
   sessile_ksp_options in = *o;
   in.rtol = fmax(o->rtol, 1e-4); /* what fp32 Krylov reliably reaches */
   for (int k = 0; s == SESSILE_OK && k < 30; k++) {
-    host_residual(a, mask, diag, bh, xh, rh);
+    host_residual(a, mask, diag, coef, bh, xh, rh);
     double rel = sessile_ref_nrm2(n, rh) / bnorm;
     if (!isfinite(rel)) {
       res->status = SESSILE_SOLVE_BREAKDOWN;
@@ -188,7 +189,7 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
   if (s == SESSILE_OK) s = sessile_vec_upload(x, xh);
   if (s == SESSILE_OK) s = sessile_vec_download(x, xh); /* x as stored, rounded to fp32 */
   if (s == SESSILE_OK) {
-    host_residual(a, mask, diag, bh, xh, rh);
+    host_residual(a, mask, diag, coef, bh, xh, rh);
     res->true_relres = sessile_ref_nrm2(n, rh) / bnorm;
     if (res->status == SESSILE_SOLVE_CONVERGED && !(res->true_relres <= o->rtol)) {
       res->status = SESSILE_SOLVE_MAX_ITER;
@@ -199,6 +200,7 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
   }
   free(mask);
   free(diag);
+  free(coef);
   free(bh);
   return s;
 }

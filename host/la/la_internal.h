@@ -65,6 +65,8 @@ struct sessile_mat {
   sessile_buffer *mask;    /* STENCIL7(_CUT): Dirichlet mask (uint32 per node), not owned */
   const sessile_vec *diag; /* STENCIL7_CUT: the cut-cell diagonal, not owned */
   int cut_texel;           /* STENCIL7_CUT: read mask, diag and x through texel buffers */
+  const sessile_vec *coef; /* STENCIL7_CUT with advection: 6 off-diagonal weights per node
+                              (stencil_cut_adv.c), not owned; NULL: all 1 */
   struct la_ilu *ilu;      /* ILU(0) factors, computed on first use (ilu.c) */
 };
 
@@ -107,6 +109,13 @@ sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_ma
                                 vref y, int guard, uint32_t *count);
 sessile_status la_stencil7_cut_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv);
 sessile_status la_stencil7_cut_host_diag(const sessile_mat *a, double **diag);
+/* The push constants of the cut-cell kernels for y = A x. */
+cut_push la_cut_push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard);
+/* The advective variant (a->coef set; stencil_cut_adv.c): texel reads only. */
+sessile_status rec_stencil7_cut_adv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x,
+                                    vref y, int guard, uint32_t *count);
+/* Host copy of a->coef, or NULL when it has none (free() it). */
+sessile_status la_stencil7_cut_host_coef(const sessile_mat *a, double **coef);
 /* Multiply-high divisor of grid extent n (kernels: node -> (i, j, k) without division). */
 static inline uint32_t la_div_magic(uint32_t n) { return 0xffffffffu / n; }
 /* Groups for an element-wise kernel over n reals, and for a reduction. */

@@ -63,6 +63,11 @@ static sessile_status check_level(sessile_la *la, int l, const sessile_mg_level 
                 "multigrid level %d: diag has %u entries%s, %u x %u x %u nodes need %u", l,
                 v->diag->n, v->diag->la == la ? "" : " of another la", n[0], n[1], n[2],
                 (uint32_t)nodes);
+  SESSILE_CHECK(!v->coef || (v->coef->la == la && v->coef->n == 6 * (uint32_t)nodes),
+                SESSILE_ERR_USAGE, "multigrid level %d: coef needs 6 entries per node (%u x %u x %u) "
+                "in the same la", l, n[0], n[1], n[2]);
+  SESSILE_CHECK(!finer || !finer->coef == !v->coef, SESSILE_ERR_USAGE,
+                "multigrid level %d: advective weights on some levels and not others", l);
   /* The multigrid kernels gather through texel buffers (no storage fallback). */
   uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
   SESSILE_CHECK(sessile_buffer_size(v->mask) / 4 <= maxt &&
@@ -82,8 +87,13 @@ static sessile_status create_objects(sessile_mg *mg, const sessile_mg_level *lev
     v->h = levels[l].h;
     v->mask = levels[l].mask;
     v->diag = levels[l].diag;
-    SESSILE_CALL(sessile_mat_create_stencil7_cut(la, v->n[0], v->n[1], v->n[2], v->h, v->mask,
-                                                 v->diag, &v->a));
+    v->coef = levels[l].coef;
+    if (v->coef)
+      SESSILE_CALL(sessile_mat_create_stencil7_cut_adv(la, v->n[0], v->n[1], v->n[2], v->h,
+                                                       v->mask, v->diag, v->coef, &v->a));
+    else
+      SESSILE_CALL(sessile_mat_create_stencil7_cut(la, v->n[0], v->n[1], v->n[2], v->h, v->mask,
+                                                   v->diag, &v->a));
     SESSILE_CALL(sessile_vec_create(la, v->nodes, &v->t));
     if (l > 0) {
       SESSILE_CALL(sessile_vec_create(la, v->nodes, &v->x));
@@ -108,6 +118,10 @@ static sessile_status create_objects(sessile_mg *mg, const sessile_mg_level *lev
       K_STENCIL7_CUT_JACOBI};
   sessile_kernel *k;
   for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) SESSILE_CALL(la_kernel(la, ids[i], &k));
+  static const la_kernel_id adv[] = {K_MG_SMOOTH_ADV, K_MG_RESIDUAL_ADV, K_STENCIL7_CUT_ADV,
+                                     K_STENCIL7_CUT_ADV_DOT};
+  for (size_t i = 0; mg->lv[0].coef && i < sizeof adv / sizeof adv[0]; i++)
+    SESSILE_CALL(la_kernel(la, adv[i], &k));
   return SESSILE_OK;
 }
 

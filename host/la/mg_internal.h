@@ -13,6 +13,7 @@ typedef struct {
   double h;
   sessile_buffer *mask;    /* the caller's */
   const sessile_vec *diag; /* the caller's */
+  const sessile_vec *coef; /* the caller's advective weights, or NULL */
   sessile_mat *a;          /* the level's operator (sessile_mat_create_stencil7_cut) */
   sessile_vec *t;          /* the other sweep buffer (ping-pong) */
   sessile_vec *x, *b;      /* coarse levels: the correction and the restricted residual */

@@ -39,6 +39,12 @@ static sessile_status rec_sweep(sessile_mg *mg, sessile_cmd *c, int l, vref x, v
   sessile_la *la = mg->la;
   const mg_level *v = &mg->lv[l];
   mg_push p = level_push(mg, l, flags, set, guard);
+  if (v->coef) { /* the advective operator: no fused dot (it serves BiCGSTAB and GMRES, not CG) */
+    SESSILE_CHECK(!count, SESSILE_ERR_INTERNAL, "multigrid: a fused dot on an advective level");
+    sessile_buffer *abufs[7] = {la->scalars, v->mask, v->diag->buf, v->coef->buf, x.buf, b.buf, y.buf};
+    return sessile_cmd_dispatch(c, la->k[K_MG_SMOOTH_ADV], la_groups(la, K_MG_SMOOTH_ADV, v->nodes),
+                                abufs, &p);
+  }
   sessile_buffer *bufs[6] = {la->scalars, v->mask, v->diag->buf, x.buf, b.buf, y.buf};
   if (!count)
     return sessile_cmd_dispatch(c, la->k[K_MG_SMOOTH], la_groups(la, K_MG_SMOOTH, v->nodes), bufs, &p);
@@ -52,6 +58,11 @@ static sessile_status rec_residual(sessile_mg *mg, sessile_cmd *c, int l, vref x
   sessile_la *la = mg->la;
   const mg_level *v = &mg->lv[l];
   mg_push p = level_push(mg, l, 0, 0, guard);
+  if (v->coef) {
+    sessile_buffer *abufs[7] = {la->scalars, v->mask, v->diag->buf, v->coef->buf, x.buf, b.buf, y.buf};
+    return sessile_cmd_dispatch(c, la->k[K_MG_RESIDUAL_ADV],
+                                la_groups(la, K_MG_RESIDUAL_ADV, v->nodes), abufs, &p);
+  }
   sessile_buffer *bufs[6] = {la->scalars, v->mask, v->diag->buf, x.buf, b.buf, y.buf};
   return sessile_cmd_dispatch(c, la->k[K_MG_RESIDUAL], la_groups(la, K_MG_RESIDUAL, v->nodes), bufs, &p);
 }

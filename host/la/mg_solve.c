@@ -66,6 +66,9 @@ sessile_status sessile_mg_solve(sessile_mg *mg, const sessile_ksp_options *opt, 
   sessile_la *la = mg->la;
   uint32_t n = mg->lv[0].nodes;
   SESSILE_CHECK(b && x, SESSILE_ERR_USAGE, "multigrid solve: b and x are required");
+  SESSILE_CHECK(!mg->lv[0].coef, SESSILE_ERR_USAGE,
+                "multigrid solve: the advective operator is nonsymmetric and CG does not apply; "
+                "use the hierarchy as pc \"mg\" of BiCGSTAB or GMRES (sessile_ksp_solve_pc)");
   SESSILE_CHECK(b->n == n && x->n == n && b->la == la && x->la == la, SESSILE_ERR_USAGE,
                 "multigrid solve: the finest level has %u nodes, b %u and x %u entries%s", n, b->n,
                 x->n, b->la == la && x->la == la ? "" : " (or they belong to another la)");

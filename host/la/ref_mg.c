@@ -16,7 +16,7 @@ static uint32_t nodes(const level *v) { return v->n[0] * v->n[1] * v->n[2]; }
 static void sweep(const level *v, double omega, const double *x, const double *b, double *y,
                   double *ax) {
   int64_t n = nodes(v);
-  if (x) sessile_ref_stencil7_cut(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, x, ax);
+  if (x) sessile_ref_stencil7_cut_adv(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, v->coef, x, ax);
 #pragma omp parallel for schedule(static)
   for (int64_t i = 0; i < n; i++) {
     if (v->mask[i]) y[i] = b[i];
@@ -82,7 +82,7 @@ static void vcycle(int nl, const level *lv, const sessile_mg_options *o, int l, 
   }
   if (l == nl - 1) return;
   /* residual, 0 on Dirichlet nodes */
-  sessile_ref_stencil7_cut(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, x, ax);
+  sessile_ref_stencil7_cut_adv(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, v->coef, x, ax);
   for (int64_t i = 0; i < n; i++) t[i] = v->mask[i] ? 0 : b[i] - ax[i];
   const level *c = &lv[l + 1];
   int64_t nc = nodes(c);
@@ -122,7 +122,7 @@ sessile_ref_result sessile_ref_mg_pcg(int nlevels, const sessile_ref_mg_level *l
   double *w = alloc_work(nlevels, lv, 4 * n);
   if (!w) return res;
   double *r = w, *z = r + n, *p = z + n, *q = p + n, *work = q + n;
-#define APPLY(in, out) sessile_ref_stencil7_cut(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, in, out)
+#define APPLY(in, out) sessile_ref_stencil7_cut_adv(v->n[0], v->n[1], v->n[2], v->h, v->mask, v->diag, v->coef, in, out)
   double bb = sessile_ref_dot(n, b, b);
   if (bb == 0) {
     sessile_ref_fill(n, 0, x);

@@ -35,7 +35,7 @@ sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint
   return SESSILE_OK;
 }
 
-static cut_push push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard) {
+cut_push la_cut_push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, int guard) {
   cut_push p = {.n0 = a->grid[0], .n1 = a->grid[1], .n2 = a->grid[2],
                 .m0 = la_div_magic(a->grid[0]), .m1 = la_div_magic(a->grid[1]),
                 .xoff = x.off4 * 4, .yoff = y.off4 * 4, .guard = guard,
@@ -45,7 +45,8 @@ static cut_push push_of(sessile_la *la, const sessile_mat *a, vref x, vref y, in
 
 sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x,
                                 vref y, int guard, uint32_t *count) {
-  cut_push p = push_of(la, a, x, y, guard);
+  if (a->coef) return rec_stencil7_cut_adv(la, c, a, x, y, guard, count);
+  cut_push p = la_cut_push_of(la, a, x, y, guard);
   int tex = a->cut_texel &&
             sessile_buffer_size(x.buf) / la->real_bytes <=
                 sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
@@ -62,7 +63,7 @@ sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_ma
 sessile_status la_stencil7_cut_jacobi(sessile_la *la, const sessile_mat *a, sessile_vec *dinv) {
   sessile_kernel *k;
   SESSILE_CALL(la_kernel(la, K_STENCIL7_CUT_JACOBI, &k));
-  cut_push p = push_of(la, a, vref_of(dinv), vref_of(dinv), -1);
+  cut_push p = la_cut_push_of(la, a, vref_of(dinv), vref_of(dinv), -1);
   sessile_buffer *bufs[4] = {la->scalars, a->mask, a->diag->buf, dinv->buf};
   SESSILE_CALL(sessile_cmd_begin(la->cmd));
   SESSILE_CALL(sessile_cmd_dispatch(la->cmd, k, la_groups(la, K_STENCIL7_CUT_JACOBI, a->nrows), bufs, &p));
@@ -81,8 +82,9 @@ sessile_status la_stencil7_cut_host_diag(const sessile_mat *a, double **diag) {
   return s;
 }
 
-void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
-                              const double *diag, const double *x, double *y) {
+/* The operator with optional off-diagonal weights (coef NULL: all 1). */
+void sessile_ref_stencil7_cut_adv(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
+                           const double *diag, const double *coef, const double *x, double *y) {
   const int64_t s1 = nx, s2 = (int64_t)nx * ny;
 #pragma omp parallel for schedule(static)
   for (int64_t k = 0; k < (int64_t)nz; k++)
@@ -95,11 +97,17 @@ void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, c
         }
         double bx = i == 0 || i == nx - 1 ? 0.5 : 1, by = j == 0 || j == ny - 1 ? 0.5 : 1;
         double bz = k == 0 || k == nz - 1 ? 0.5 : 1;
-#define NB(ok, m) ((ok) && !mask[m] ? x[m] : 0.0)
-        double sx = NB(i > 0, n - 1) + NB(i + 1 < nx, n + 1);
-        double sy = NB(j > 0, n - s1) + NB(j + 1 < ny, n + s1);
-        double sz = NB(k > 0, n - s2) + NB(k + 1 < nz, n + s2);
+        const double *w = coef ? coef + 6 * n : NULL;
+#define NB(ok, m, d) ((ok) && !mask[m] ? (w ? w[d] : 1.0) * x[m] : 0.0)
+        double sx = NB(i > 0, n - 1, 0) + NB(i + 1 < nx, n + 1, 1);
+        double sy = NB(j > 0, n - s1, 2) + NB(j + 1 < ny, n + s1, 3);
+        double sz = NB(k > 0, n - s2, 4) + NB(k + 1 < nz, n + s2, 5);
 #undef NB
         y[n] = h * (diag[n] * x[n] - (by * bz * sx + bx * bz * sy + bx * by * sz));
       }
+}
+
+void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
+                              const double *diag, const double *x, double *y) {
+  sessile_ref_stencil7_cut_adv(nx, ny, nz, h, mask, diag, NULL, x, y);
 }

@@ -8,6 +8,9 @@
 // The includer sets CUT_TEXEL: 0 reads mask, diag and x from storage buffers,
 // 1 from the uniform texel buffers mask_t, diag_t, x_t (lavapipe gathers texels
 // with vector loads; docs/la.md).  Push fields: n0, n1, n2, m0, m1, xoff, h.
+// CUT_ADV 1 (texel reads only): each free neighbour's term carries the weight
+// coef[6 n + d] (d = 0..5: -x, +x, -y, +y, -z, +z), the advective operator of
+// host/la/stencil_cut_adv.c.
 #include "la_kernels.glsl"
 #include "grid_index.glsl"
 
@@ -20,6 +23,16 @@ REAL ct_diag(uint i) { return texel_real(diag_t, i); }
 uint ct_mask(uint i) { return mask[i]; }
 REAL ct_x(uint i) { return x[pc.xoff + i]; }
 REAL ct_diag(uint i) { return diag[i]; }
+#endif
+
+#ifndef CUT_ADV
+#define CUT_ADV 0
+#endif
+#if CUT_ADV
+REAL ct_w(uint n, uint d) { return texel_real(coef_t, 6u * n + d); }
+#define CT_W(n, d) ct_w(n, d) *
+#else
+#define CT_W(n, d)
 #endif
 
 // x_m when neighbour m exists (ok) and is free, else 0.  Both reads happen
@@ -36,9 +49,9 @@ REAL ct_sum(uint n, uvec3 p) {
   REAL bx = p.x == 0u || p.x == pc.n0 - 1u ? REAL(0.5) : REAL(1);
   REAL by = p.y == 0u || p.y == pc.n1 - 1u ? REAL(0.5) : REAL(1);
   REAL bz = p.z == 0u || p.z == pc.n2 - 1u ? REAL(0.5) : REAL(1);
-  REAL sx = ct_nb(p.x > 0u, n, n - 1u) + ct_nb(p.x + 1u < pc.n0, n, n + 1u);
-  REAL sy = ct_nb(p.y > 0u, n, n - s1) + ct_nb(p.y + 1u < pc.n1, n, n + s1);
-  REAL sz = ct_nb(p.z > 0u, n, n - s2) + ct_nb(p.z + 1u < pc.n2, n, n + s2);
+  REAL sx = CT_W(n, 0u) ct_nb(p.x > 0u, n, n - 1u) + CT_W(n, 1u) ct_nb(p.x + 1u < pc.n0, n, n + 1u);
+  REAL sy = CT_W(n, 2u) ct_nb(p.y > 0u, n, n - s1) + CT_W(n, 3u) ct_nb(p.y + 1u < pc.n1, n, n + s1);
+  REAL sz = CT_W(n, 4u) ct_nb(p.z > 0u, n, n - s2) + CT_W(n, 5u) ct_nb(p.z + 1u < pc.n2, n, n + s2);
   return by * bz * sx + bx * bz * sy + bx * by * sz;
 }
 

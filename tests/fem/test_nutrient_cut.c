@@ -25,22 +25,12 @@
 #include "sessile/la/la_ref.h"
 #include "sessile/fem/nutrient_cut.h"
 #include "testutil.h"
+#include "dome.h"
 
 static sessile_la *la;
 static double tol_k = 1e-14;
 
-static uint64_t rng = 88172645463325252ull;
-static double urand(void) {
-  rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
-  return (double)(rng >> 11) / 9007199254740992.0;
-}
-
-static sessile_vec *vec_of(const double *x, uint32_t n) {
-  sessile_vec *v;
-  t_must("vec", sessile_vec_create(la, n, &v));
-  t_must("upload", sessile_vec_upload(v, x));
-  return v;
-}
+static sessile_vec *vec_of(const double *x, uint32_t n) { return t_vec_of(la, x, n); }
 
 /* Random solid blob and fractions; GPU setup (through a 1-level nutrient) vs reference. */
 static void setup_vs_ref(sessile_far_field ff) {
@@ -247,29 +237,10 @@ static void convergence(void) {
 
 /* The whole solve on a dome resting on the floor (the sponge's start). */
 static void dome_solve(sessile_cut_solver solver) {
-  const double o[3] = {0, 0, 0};
-  const uint32_t cells[3] = {16, 16, 12};
-  sessile_box b;
-  t_must("box", sessile_box_make(o, 1.2, cells, 2, &b));
-  sessile_cut_bc bc;
-  sessile_cut_bc_default(&bc);
-  bc.height = 1.2 * 12;
-  sessile_cut_nutrient *nt;
-  t_must("create", sessile_cut_nutrient_create(la, &b, &bc, 12, &nt));
-  sessile_growth_gpu *gg;
-  t_must("growth", sessile_growth_gpu_create(la, &gg));
-  sessile_surface s = {0};
-  const double c0[3] = {9.6, 9.6, 0};
-  t_must("icosphere", sessile_surface_icosphere(4, 6.0, c0, &s));
-  for (uint32_t v = 0; v < s.nv; v++)
-    if (s.pos[3 * v + 2] < 0) s.pos[3 * v + 2] = 0;
-  t_must("surface", sessile_growth_gpu_set_surface(gg, &s));
-  for (int l = 0; l < sessile_cut_nutrient_levels(nt); l++) {
-    sessile_box lb;
-    sessile_buffer *sb, *tb;
-    sessile_cut_nutrient_level(nt, l, &lb, &sb, &tb);
-    t_must("cut", sessile_growth_gpu_cut(gg, &lb, sb, tb));
-  }
+  t_dome dm;
+  t_dome_make(la, 6.0, &dm);
+  const sessile_box b = dm.b;
+  sessile_cut_nutrient *nt = dm.nt;
   size_t n = sessile_box_nodes(&b);
   sessile_vec *c;
   t_must("vec", sessile_vec_create(la, (uint32_t)n, &c));
@@ -307,9 +278,7 @@ static void dome_solve(sessile_cut_solver solver) {
   t_true(what, nsolid > 0 && ext_max <= 0 && ext_min < 0);
   sessile_vec_destroy(c);
   free(x), free(e), free(m);
-  sessile_surface_free(&s);
-  sessile_growth_gpu_destroy(gg);
-  sessile_cut_nutrient_destroy(nt);
+  t_dome_free(&dm);
 }
 
 int main(int argc, char **argv) {

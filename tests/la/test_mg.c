@@ -65,8 +65,8 @@ static void build(problem *p, uint32_t nx, uint32_t ny, uint32_t nz, double radi
       for (uint32_t i = 0; i < nodes; i++) p->diag[l][i] = (float)p->diag[l][i];
     t_must("upload", sessile_buffer_upload(p->mb[l], 0, p->mask[l], (size_t)nodes * 4));
     t_must("upload", sessile_vec_upload(p->vd[l], p->diag[l]));
-    sessile_ref_mg_level r = {{n[0], n[1], n[2]}, h, p->mask[l], p->diag[l]};
-    sessile_mg_level g = {{n[0], n[1], n[2]}, h, p->mb[l], p->vd[l]};
+    sessile_ref_mg_level r = {{n[0], n[1], n[2]}, h, p->mask[l], p->diag[l], NULL};
+    sessile_mg_level g = {{n[0], n[1], n[2]}, h, p->mb[l], p->vd[l], NULL};
     p->ref[l] = r;
     p->lv[l] = g;
     if ((n[0] - 1) % 2 || (n[1] - 1) % 2 || (n[2] - 1) % 2 || l + 1 == MAXL) break;

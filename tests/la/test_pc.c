@@ -82,8 +82,8 @@ static void sphere_build(sphere *p) {
     t_must("diag", sessile_vec_create(la, nodes, &p->vd[l]));
     t_must("upload", sessile_buffer_upload(p->mb[l], 0, p->mask[l], (size_t)nodes * 4));
     t_must("upload", sessile_vec_upload(p->vd[l], p->diag[l]));
-    p->ref[l] = (sessile_ref_mg_level){{n[0], n[1], n[2]}, h, p->mask[l], p->diag[l]};
-    p->lv[l] = (sessile_mg_level){{n[0], n[1], n[2]}, h, p->mb[l], p->vd[l]};
+    p->ref[l] = (sessile_ref_mg_level){{n[0], n[1], n[2]}, h, p->mask[l], p->diag[l], NULL};
+    p->lv[l] = (sessile_mg_level){{n[0], n[1], n[2]}, h, p->mb[l], p->vd[l], NULL};
     for (int a = 0; a < 3; a++) n[a] = (n[a] - 1) / 2 + 1;
     h *= 2;
   }

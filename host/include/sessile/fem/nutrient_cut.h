@@ -73,11 +73,38 @@ const sessile_vec *sessile_cut_nutrient_extended(const sessile_cut_nutrient *nt)
  * theta, then extends c as the solve does. */
 sessile_status sessile_cut_nutrient_extend(sessile_cut_nutrient *nt, const sessile_vec *c);
 
+/* The advected nutrient u·∇c = D ∇²c (docs/nutrient.md) with the same cut
+ * cells, boundary conditions and far field: each edge weight w carries the
+ * exponentially fitted factor B(±P θ) (B(x) = x/(e^x − 1), P = u h / D, the
+ * velocity component along the edge at the node), so the operator is an
+ * M-matrix (no over- or undershoots) and second order.  velocity: 3 per
+ * finest node (x, y, z), m/s; D in m²/s (the box is in cm).  Solved by
+ * BiCGSTAB (GMRES when opt->type says so; CG is replaced by BiCGSTAB)
+ * preconditioned by one V-cycle of the advective hierarchy (solver MG, with
+ * every coarse level rediscretised from its own crossings and the velocity
+ * injected onto it) or by Jacobi, to opt->rtol from the warm start c.  On
+ * return c and the extended field are as sessile_cut_nutrient_solve leaves
+ * them.  The classifier fills the levels' solid and theta first, as for the
+ * Laplace solve. */
+sessile_status sessile_cut_nutrient_solve_advected(sessile_cut_nutrient *nt, sessile_cut_solver solver,
+                                                   const double *velocity, double D, sessile_vec *c,
+                                                   const sessile_ksp_options *opt,
+                                                   sessile_solve_result *res);
+
 /* --- host references (double; the tests compare the kernels with them) --- */
 /* cutcell.comp: mask, diag, and (lift, value when lift != NULL). */
 void sessile_cut_ref_setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *solid,
                            const double *theta, uint32_t *mask, double *diag, double *lift,
                            double *value);
+/* cutcell_adv.comp: also coef (6 per node, the edge weights w, 0 where there is no edge or
+ * on Dirichlet nodes); vel 3 per node, pe = h / D in the velocity's units (the object uses
+ * h in m: box h × 0.01). */
+void sessile_cut_ref_setup_adv(const sessile_box *box, const sessile_cut_bc *bc,
+                               const uint32_t *solid, const double *theta, const double *vel,
+                               double pe, uint32_t *mask, double *diag, double *coef, double *lift,
+                               double *value);
+/* B(x) = x / (e^x - 1) as the kernels evaluate it (B(0) = 1). */
+double sessile_cut_bernoulli(double x);
 /* ghost.comp: ext from c. */
 void sessile_cut_ref_ghost(const sessile_box *box, const sessile_cut_bc *bc, const uint32_t *mask,
                            const double *theta, const double *c, double *ext);

@@ -25,6 +25,10 @@ extern "C" {
 #define SESSILE_PARAMS(X)                                                                          \
   X(diffusion_limited, BOOL, 1, 0, 1, 0, "", "Table 1",                                               \
     "velocity set to 0 in the nutrient equation (Laplace); false: the flow advects it")           \
+  X(advection_scheme, ENUM_ADV, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                           \
+    "diffusion_limited = false: cut (the cut-cell surface and far field of the Laplace nutrient, "  \
+    "exponentially fitted, multigrid-BiCGSTAB) or tet (P1+SUPG on the box's tetrahedra with the " \
+    "staircase surface and the paper's walls, docs/advdiff.md; for comparison)")                 \
   X(probe, ENUM_PROBE, 0, 0, 1, 0, "", "ours (docs/model.md)",                                       \
     "what a vertex takes up: flux (the nutrient's normal derivative at the surface over the bare " \
     "substratum's, C of order 1) or paper (eq 6: attenuated samples of c along the normal)")      \
@@ -38,9 +42,9 @@ extern "C" {
     "the nutrient's far field: height (c = 1 at far_field_height, zero flux through the side "    \
     "walls: the box size is a convergence parameter) or walls (c = 1 on every wall but the "      \
     "substratum, the paper's box)")                                                                \
-  X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/model.md)",                           \
+  X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/nutrient.md)",                        \
     "far_field = height: c = 1 at and above this height over the substratum (<= the box top); "  \
-    "-1 = the box top (28.8 cm in the default box)")                                               \
+    "-1 = 4.8 sponge_radius (28.8 cm for the paper's 6 cm sponge), whatever the box")            \
   X(nutrient_pc_type, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
     "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
@@ -122,6 +126,7 @@ typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
 typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
 typedef enum { SESSILE_TRANSLOCATE_PARALLEL = 0, SESSILE_TRANSLOCATE_SEQUENTIAL = 1 } sessile_translocate;
+typedef enum { SESSILE_ADVECTION_CUT = 0, SESSILE_ADVECTION_TET = 1 } sessile_advection;
 /* fluid_ksp_type's values; fluid_pc_type's value is la's sessile_pc_type
  * itself (its names are the pc registry's, in the enum's order). */
 typedef enum { SESSILE_FLUID_KSP_GMRES = 0, SESSILE_FLUID_KSP_BICGSTAB = 1 } sessile_fluid_ksp;
@@ -136,6 +141,7 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_FAR(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SOLVER(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_TRANSLOCATE(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_ADV(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_KSP(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_PC(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
@@ -158,7 +164,8 @@ sessile_status sessile_params_set(sessile_grow_params *p, const char *key, const
  * sponge inside the box with its wall margin, box sizes within 32-bit
  * indices and host memory, ...). */
 sessile_status sessile_params_validate(const sessile_grow_params *p);
-/* The far-field height in cm: far_field_height, or the box top for -1. */
+/* The far-field height in cm: far_field_height, or 4.8 sponge_radius for -1
+ * (docs/nutrient.md, "The far-field height"). */
 double sessile_params_far_field_height(const sessile_grow_params *p);
 
 struct sessile_fluid_params;

@@ -108,6 +108,17 @@ sessile_status sessile_mat_create_stencil7(sessile_la *la, uint32_t nx, uint32_t
 sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
                                                double h, sessile_buffer *mask, const sessile_vec *diag,
                                                sessile_mat **out);
+/* The same operator with off-diagonal weights (the advected nutrient's exponentially fitted
+ * fluxes, docs/nutrient.md): for a free node
+ *   (A x)_n = h (diag[n] x_n - sum over free existing neighbours m of f_nm coef[6 n + d] x_m),
+ * d the direction of m from n (0..5: -x, +x, -y, +y, -z, +z).  Nonsymmetric: not for CG.
+ * coef (6 reals per node) is the caller's, read at every application like mask and diag;
+ * read through texel buffers (SESSILE_ERR_TOO_LARGE past the device's texel limit).
+ * Plain-C reference: sessile_ref_stencil7_cut_adv. */
+sessile_status sessile_mat_create_stencil7_cut_adv(sessile_la *la, uint32_t nx, uint32_t ny,
+                                                   uint32_t nz, double h, sessile_buffer *mask,
+                                                   const sessile_vec *diag, const sessile_vec *coef,
+                                                   sessile_mat **out);
 void sessile_mat_destroy(sessile_mat *m);
 uint32_t sessile_mat_rows(const sessile_mat *m);
 uint64_t sessile_mat_nnz(const sessile_mat *m); /* stored scalar entries, before padding */

@@ -36,6 +36,12 @@ void sessile_ref_stencil7(uint32_t nx, uint32_t ny, uint32_t nz, double h, const
  * Dirichlet node; diag: the caller's cut-cell diagonal). */
 void sessile_ref_stencil7_cut(uint32_t nx, uint32_t ny, uint32_t nz, double h, const uint32_t *mask,
                               const double *diag, const double *x, double *y);
+/* The same with the off-diagonal weights of sessile_mat_create_stencil7_cut_adv: coef holds
+ * 6 per node (directions -x, +x, -y, +y, -z, +z), and the term of a free neighbour m in
+ * direction d is f_nm coef[6 n + d] x_m (coef NULL: all 1, the operator above). */
+void sessile_ref_stencil7_cut_adv(uint32_t nx, uint32_t ny, uint32_t nz, double h,
+                                  const uint32_t *mask, const double *diag, const double *coef,
+                                  const double *x, double *y);
 
 /* Inverse diagonal for Jacobi; fails (SESSILE_ERR_NUMERIC, message names the
  * row) on a zero or non-finite diagonal entry. */
@@ -106,6 +112,7 @@ typedef struct sessile_ref_mg_level {
   double h;
   const uint32_t *mask; /* != 0: Dirichlet */
   const double *diag;
+  const double *coef;   /* NULL, or the advective weights (sessile_ref_stencil7_cut_adv) */
 } sessile_ref_mg_level;
 struct sessile_mg_options;
 /* z = M r: one V-cycle.  Fails only with SESSILE_ERR_NO_MEMORY. */

@@ -23,6 +23,10 @@ typedef struct sessile_mg_level {
   double h;               /* spacing */
   sessile_buffer *mask;   /* uint32 per node, != 0: Dirichlet */
   const sessile_vec *diag;/* the cut-cell diagonal (see sessile_mat_create_stencil7_cut) */
+  const sessile_vec *coef;/* NULL (the symmetric operator), or 6 off-diagonal weights per node:
+                             the advective operator of sessile_mat_create_stencil7_cut_adv
+                             (every level or none; the hierarchy is then a preconditioner for
+                             BiCGSTAB or GMRES through pc "mg", and sessile_mg_solve refuses it) */
 } sessile_mg_level;
 /* levels[0] is the finest; level l+1 is nested in level l: n_{l+1} = (n_l - 1)/2 + 1 on every
  * axis, node (I,J,K) of l+1 is node (2I,2J,2K) of l, h_{l+1} = 2 h_l.  Coarse operators are
