@@ -87,11 +87,18 @@ sessile_status sessile_params_preset(sessile_grow_params *p, const char *name) {
 }
 
 /* The default far-field height scales with the sponge, not the box: 4.8
- * initial radii, 28.8 cm for the paper's 6 cm sponge (docs/nutrient.md). */
+ * initial radii, 28.8 cm for the paper's 6 cm sponge (docs/nutrient.md).
+ * Only where that cannot be met does the default bend: at most the box top
+ * (a sponge too large for its box keeps the old default) and at least two
+ * node spacings above the sponge's top (a sponge too small for the grid). */
 #define FAR_FIELD_RADII 4.8
 
 double sessile_params_far_field_height(const sessile_grow_params *p) {
-  return p->far_field_height < 0 ? FAR_FIELD_RADII * p->sponge_radius : p->far_field_height;
+  if (p->far_field_height >= 0) return p->far_field_height;
+  double top = p->box_base_cell * p->box_cells_z, h = p->box_base_cell * ldexp(1.0, 1 - p->box_resolution);
+  double H = FAR_FIELD_RADII * p->sponge_radius, low = p->sponge_z + p->sponge_radius + 2 * h;
+  if (H < low) H = low;
+  return H < top ? H : top;
 }
 
 /* Box nodes at the nutrient's resolution (each level halves the cell). */

@@ -164,8 +164,9 @@ sessile_status sessile_params_set(sessile_grow_params *p, const char *key, const
  * sponge inside the box with its wall margin, box sizes within 32-bit
  * indices and host memory, ...). */
 sessile_status sessile_params_validate(const sessile_grow_params *p);
-/* The far-field height in cm: far_field_height, or 4.8 sponge_radius for -1
- * (docs/nutrient.md, "The far-field height"). */
+/* The far-field height in cm: far_field_height, or for -1 4.8 sponge_radius,
+ * kept within [sponge top + 2 node spacings, box top] (docs/nutrient.md, "The
+ * far-field height"). */
 double sessile_params_far_field_height(const sessile_grow_params *p);
 
 struct sessile_fluid_params;
