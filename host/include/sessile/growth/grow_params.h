@@ -44,7 +44,8 @@ extern "C" {
     "substratum, the paper's box)")                                                                \
   X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/nutrient.md)",                        \
     "far_field = height: c = 1 at and above this height over the substratum (<= the box top); "  \
-    "-1 = 4.8 sponge_radius (28.8 cm for the paper's 6 cm sponge), whatever the box")            \
+    "-1 = 4.8 sponge_radius (28.8 cm for the paper's 6 cm sponge), whatever the box (at most "    \
+    "its top, at least two node spacings over the sponge)")                                         \
   X(nutrient_pc_type, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
     "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
