@@ -93,11 +93,11 @@ sessile_status sessile_bmg_create(sessile_la *la, const uint32_t n[3], const ses
   SESSILE_CHECK((uint64_t)n[0] * n[1] * n[2] <= UINT32_MAX / 16, SESSILE_ERR_TOO_LARGE,
                 "block multigrid: grid %u x %u x %u is too large", n[0], n[1], n[2]);
   SESSILE_CHECK(o->pre >= 0 && o->post >= 0 && o->pre + o->post >= 1 && o->omega > 0 && o->omega <= 2 &&
-                    o->max_levels >= 1 && o->coarse_sweeps >= 1 && (o->cycle == 1 || o->cycle == 2) &&
+                    o->max_levels >= 1 && o->coarse_sweeps >= 1 && o->cycle >= 1 && o->cycle <= 3 &&
                     (o->smoother == SESSILE_BMG_GAUSS_SEIDEL || o->smoother == SESSILE_BMG_JACOBI),
                 SESSILE_ERR_USAGE,
                 "block multigrid: bad options (pre %d, post %d, at least one sweep; omega %g in (0, 2]; "
-                "max_levels %d >= 1; coarse_sweeps %d >= 1; cycle %d: 1 or 2; smoother %d)",
+                "max_levels %d >= 1; coarse_sweeps %d >= 1; cycle %d: 1, 2 or 3; smoother %d)",
                 o->pre, o->post, o->omega, o->max_levels, o->coarse_sweeps, o->cycle, (int)o->smoother);
   sessile_bmg *mg = calloc(1, sizeof *mg);
   SESSILE_CHECK(mg, SESSILE_ERR_NO_MEMORY, "out of host memory");

@@ -42,6 +42,12 @@ void bmg_offsets(const uint32_t n[3], int off[BMG_NOFF][3]);
 /* Records out = V-cycle(r) into c (bmg_record.c); r and out whole vectors of
  * the finest level, distinct. */
 sessile_status bmg_rec_vcycle(const sessile_bmg *mg, sessile_cmd *c, vref r, vref out, int guard);
+/* Coarse corrections level l < nl - 1 takes (`cycle`; once when level l + 1 is
+ * solved exactly or for cycle 3 on the finest level); the device and the reference share it. */
+static inline int bmg_corrections(const sessile_bmg *mg, int l) {
+  if ((l + 2 == mg->nl && mg->cinvm) || (l == 0 && mg->o.cycle == 3)) return 1;
+  return mg->o.cycle == 1 ? 1 : 2;
+}
 /* Galerkin product of level l + 1 from level l, masks applied (bmg_setup.c). */
 sessile_status bmg_galerkin(sessile_bmg *mg, int l);
 

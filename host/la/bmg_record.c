@@ -7,7 +7,8 @@
  *     copied back);
  *   r = b - A x; b_{l+1} = R r; the cycle on level l+1; x += P x_{l+1}
  *     (`cycle` times: 2 is a W-cycle, with the second coarse residual
- *     restricted from the fine one; once when level l+1 is solved exactly);
+ *     restricted from the fine one; once when level l+1 is solved exactly, and
+ *     on the finest level for cycle 3: bmg_corrections);
  *   `post` sweeps (Gauss-Seidel: colours 7..0);
  * the coarsest level: x = A^-1 b as one dense block SpMV, or the Jacobi
  * start and coarse_sweeps sweeps alternating forward and backward.
@@ -115,7 +116,7 @@ static sessile_status rec_level(const sessile_bmg *mg, sessile_cmd *c, int l, vr
   }
   const bmg_level *cv = &mg->lv[l + 1];
   SESSILE_CALL(rec_smooth(mg, c, l, b, x, mg->o.pre, 1, 0, guard));
-  int corr = l + 2 == mg->nl && mg->cinvm ? 1 : mg->o.cycle; /* an exact coarsest solve once */
+  int corr = bmg_corrections(mg, l);
   for (int k = 0; k < corr; k++) {
     SESSILE_CALL(rec_residual(mg, c, l, b, x, guard));
     SESSILE_CALL(rec_transfer(mg, c, l, x, 0, guard));

@@ -76,7 +76,7 @@ static sessile_status level(const sessile_bmg *mg, int l, const double *b, doubl
   double *bc = calloc(c4, sizeof *bc), *xc = calloc(c4, sizeof *xc);
   sessile_status s = bc && xc ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   if (s == SESSILE_OK) smooth(mg, l, b, x, t, mg->o.pre, 1, 0);
-  int corr = l + 2 == mg->nl && mg->cinvm ? 1 : mg->o.cycle;
+  int corr = bmg_corrections(mg, l);
   for (int k = 0; k < corr && s == SESSILE_OK; k++) {
     sessile_ref_spmv_bcsr4(v->ah, x, t);
     for (size_t i = 0; i < n4; i++) t[i] = b[i] - t[i];

@@ -40,7 +40,8 @@ typedef enum { SESSILE_BMG_GAUSS_SEIDEL = 0, SESSILE_BMG_JACOBI = 1 } sessile_bm
 typedef struct sessile_bmg_options {
   sessile_bmg_smoother smoother; /* default Gauss-Seidel (8 colours) */
   int pre, post;                 /* sweeps before and after the coarse correction (default 2, 2) */
-  int cycle;                     /* coarse corrections per level: 1 V-cycle, 2 W-cycle (default 2) */
+  int cycle;                     /* coarse corrections per level: 1 V-cycle, 2 W-cycle (default 2),
+                                    3 one on the finest level and two below (V at the top, W under) */
   double omega;                  /* damping (default 0.9 for Gauss-Seidel; ~0.6 for Jacobi) */
   int max_levels;                /* at most this many levels (default 16; 2 = two-grid) */
   uint32_t coarse_dense_max;     /* the coarsest level is inverted densely when it has at
