@@ -17,6 +17,20 @@ static double potential(const sessile_sds *o, const sessile_sds_params *p) {
   return e.edge + e.vol + e.potential;
 }
 
+/* -grad E by central differences of step h in every coordinate. */
+static void minus_grad_fd(sessile_sds *o, const sessile_sds_params *p, double h, size_t n3, double *out) {
+  for (size_t k = 0; k < n3; k++) {
+    double x0 = o->x[k];
+    o->x[k] = x0 + h;
+    double ep = potential(o, p);
+    o->x[k] = x0 - h;
+    double em = potential(o, p);
+    o->x[k] = x0;
+    out[k] = -(ep - em) / (2 * h);
+  }
+}
+
+
 static double maxabs(const double *a, size_t n) {
   double m = 0;
   for (size_t i = 0; i < n; i++) m = fmax(m, fabs(a[i]));
@@ -79,15 +93,7 @@ int main(void) {
   /* host: f = -grad E by central differences */
   sessile_sds_forces_ref(&o, &p, 0, f);
   double h = 1e-6;
-  for (size_t k = 0; k < n3; k++) {
-    double x0 = o.x[k];
-    o.x[k] = x0 + h;
-    double ep = potential(&o, &p);
-    o.x[k] = x0 - h;
-    double em = potential(&o, &p);
-    o.x[k] = x0;
-    ffd[k] = -(ep - em) / (2 * h);
-  }
+  minus_grad_fd(&o, &p, h, n3, ffd);
   t_check("host forces = -grad E (central differences, h 1e-6, rel to max)", t_relerr(f, ffd, n3), 1e-6);
 
   /* GPU = host, damping on */
@@ -162,15 +168,7 @@ int main(void) {
     u.uniform_stiffness = 1, u.k_edge = 0.02, u.k_vol = 0.03; /* energies: about the prototype's at this size */
     double *fu = t_dalloc(n3), *fd = t_dalloc(n3);
     sessile_sds_forces_ref(&o, &u, 0, fu);
-    for (size_t k = 0; k < n3; k++) {
-      double x0 = o.x[k];
-      o.x[k] = x0 + h;
-      double ep = potential(&o, &u);
-      o.x[k] = x0 - h;
-      double em = potential(&o, &u);
-      o.x[k] = x0;
-      fd[k] = -(ep - em) / (2 * h);
-    }
+    minus_grad_fd(&o, &u, h, n3, fd);
     t_check("uniform stiffness: host forces = -grad E (central differences, rel to max)", t_relerr(fu, fd, n3), 1e-6);
     t_true("uniform stiffness: other forces than the prototype's scaling", t_relerr(fu, f, n3) > 1e-3);
     t_must("gpu set params", sessile_sds_gpu_set_params(sg, &u));
