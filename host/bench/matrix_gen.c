@@ -213,7 +213,7 @@ sessile_status sessile_csr_p1tet(uint32_t nx, uint32_t ny, uint32_t nz, double h
   /* Row counts depend only on which of the 15 offsets stay inside the box. */
   uint64_t *cnt = malloc((size_t)n * sizeof *cnt);
   SESSILE_CHECK(cnt != NULL, SESSILE_ERR_NO_MEMORY,
-                "p1tet: cannot allocate %" PRIu32 " row counts: use a smaller mesh", n);
+                "p1tet: out of host memory: cannot allocate %" PRIu32 " row counts: use a smaller mesh", n);
 #pragma omp parallel for schedule(static) if (n >= GEN_PAR_MIN_ROWS)
   for (uint32_t r = 0; r < n; r++) {
     int64_t p[3] = {(int64_t)(r % mx), (int64_t)((r / mx) % my), (int64_t)(r / mx / my)};

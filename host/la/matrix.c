@@ -41,7 +41,7 @@ sessile_status sessile_csr_alloc(uint32_t nrows, uint32_t ncols, uint64_t nnz, s
     free(val);
     return sessile_error_set(
         SESSILE_ERR_NO_MEMORY,
-        "cannot allocate a %" PRIu32 " x %" PRIu32 " CSR matrix with %" PRIu64
+        "out of host memory: cannot allocate a %" PRIu32 " x %" PRIu32 " CSR matrix with %" PRIu64
         " nonzeros (%.3f GiB row pointers + %.3f GiB columns + %.3f GiB values): "
         "use a smaller problem",
         nrows, ncols, nnz, gib((uint64_t)nrows + 1, sizeof *rowptr), gib(nnz, sizeof *col),
@@ -81,7 +81,7 @@ sessile_status sessile_bcsr4_alloc(uint32_t nbrows, uint32_t nbcols, uint64_t nn
     free(val);
     return sessile_error_set(
         SESSILE_ERR_NO_MEMORY,
-        "cannot allocate a %" PRIu32 " x %" PRIu32 " block (4x4) matrix with %" PRIu64
+        "out of host memory: cannot allocate a %" PRIu32 " x %" PRIu32 " block (4x4) matrix with %" PRIu64
         " blocks (%.3f GiB row pointers + %.3f GiB columns + %.3f GiB values): "
         "use a smaller problem",
         nbrows, nbcols, nnzb, gib((uint64_t)nbrows + 1, sizeof *rowptr), gib(nnzb, sizeof *col),

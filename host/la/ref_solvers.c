@@ -25,7 +25,7 @@ static double *alloc_vectors(const char *solver, uint64_t count, uint64_t n) {
     w = malloc(count * n * sizeof(double) + 1); /* +1: never malloc(0) */
   if (!w)
     (void)sessile_error_set(SESSILE_ERR_NO_MEMORY,
-                            "%s: cannot allocate %" PRIu64 " work vectors of length %" PRIu64
+                            "%s: out of host memory: cannot allocate %" PRIu64 " work vectors of length %" PRIu64
                             " (%.3f GiB): use a smaller problem",
                             solver, count, n,
                             (double)count * (double)n * 8.0 / (1024.0 * 1024.0 * 1024.0));

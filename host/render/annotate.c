@@ -105,7 +105,7 @@ sessile_status sessile_render_annotate(unsigned char *rgba, int w, int h, const 
   if ((!grid && !bar) || w < 64 || h < 48) return SESSILE_OK;
   cairo_surface_t *s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
   SESSILE_CHECK(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS, SESSILE_ERR_NO_MEMORY,
-                "cannot allocate a %d x %d annotation layer", w, h);
+                "out of host memory: cannot allocate a %d x %d annotation layer", w, h);
   cairo_t *cr = cairo_create(s);
   text_setup(cr);
   /* text size: a 40th of the height, 10..28 px */

@@ -27,13 +27,13 @@ sessile_status d2_canvas_create(d2_canvas *c, int w, int h, const char *what) {
   c->s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
   if (cairo_surface_status(c->s) != CAIRO_STATUS_SUCCESS) {
     d2_canvas_destroy(c);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: cannot allocate a %d x %d picture (%.0f MB)", what, w,
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: out of host memory: cannot allocate a %d x %d picture (%.0f MB)", what, w,
                              h, 4.0 * w * h / 1e6);
   }
   c->cr = cairo_create(c->s);
   if (cairo_status(c->cr) != CAIRO_STATUS_SUCCESS) {
     d2_canvas_destroy(c);
-    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: cannot create a Cairo context", what);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: out of host memory: cannot create a Cairo context", what);
   }
   cairo_font_options_t *fo = cairo_font_options_create();
   cairo_font_options_set_antialias(fo, CAIRO_ANTIALIAS_GRAY);

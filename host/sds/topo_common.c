@@ -194,11 +194,11 @@ sessile_status topo_fill_hull(const double *x, const uint32_t *faces, uint32_t n
    * either unless the hull needs one (then refused below). */
   sessile_status ts = sessile_tetgen_surface(xyz, np, verts, (int)nf, "pYzQ", &r, msg, sizeof msg);
   if (ts == SESSILE_ERR_NO_MEMORY) {
-    st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "re-tetrahedralising a hull of %u faces: %s", nf, msg);
+    st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory re-tetrahedralising a hull of %u faces: %s", nf, msg);
     goto done;
   }
   if (ts != SESSILE_OK) {
-    st = sessile_error_set(SESSILE_ERR_NUMERIC, "re-tetrahedralising a hull of %u faces: %s", nf, msg);
+    st = sessile_error_set(SESSILE_ERR_NUMERIC, "out of host memory re-tetrahedralising a hull of %u faces: %s", nf, msg);
     goto done;
   }
   if (r.npoints != np) {
