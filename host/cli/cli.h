@@ -108,6 +108,9 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global);
 /* User + system CPU seconds of the whole process so far (cli_cpu.c; lavapipe's threads too). */
 double cli_cpu_seconds(void);
+/* The kernels' device times recorded under sessile_gpu_profile, dearest
+ * first, with their share of wall_s (cli_kernels.c; bench --kernels). */
+void cli_print_kernels(sessile_gpu *g, const char *what, double wall_s);
 /* `sessile coral lsystem|venation` (cmd_coral.c dispatches). */
 int cmd_coral(int argc, char **argv, const cli_gpu_opts *global);
 int cmd_coral_lsystem(int argc, char **argv, const cli_gpu_opts *global);

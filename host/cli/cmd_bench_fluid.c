@@ -15,7 +15,7 @@ static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"
     "                           [--picard K] [--restart M] [--no-lsic] [--no-compare]\n"
     "                           [--mg-smoother gs|jacobi] [--mg-sweeps N] [--mg-cycle v|w|vw] [--mg-galerkin]\n"
-    "                           [--set KEY=VALUE]... [--device D]\n"
+    "                           [--baseline ilu0|storage] [--kernels] [--set KEY=VALUE]... [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
     "Newton; docs/fluid.md) on the default box at box level R (default: the\n"
@@ -35,13 +35,17 @@ static const char *help =
     "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n"
     "\n"
     "Unless --no-compare (or the pc is ilu0), the same two solves run first with\n"
-    "ilu0, then with the chosen pc, and a last table compares them: Newton steps,\n"
+    "ilu0 (--baseline storage: the chosen pc reading its matrices through storage\n"
+    "buffers instead of texel buffers, the la option spmv_storage: the same bits),\n"
+    "then with the chosen pc, and a last table compares them: Newton steps,\n"
     "GMRES iterations per step, wall and CPU seconds (the process's, lavapipe's\n"
     "threads included: on a loaded machine the fairer figure) and the ratios.\n"
     "pc mg's hierarchy (docs/fluid.md, \"Multigrid\"): --mg-smoother (8-colour block\n"
     "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (pre and\n"
     "post, default 2), --mg-cycle (default w; vw: V on the finest level, W below),\n"
-    "--mg-galerkin (Galerkin coarse operators instead of the rediscretised ones).\n";
+    "--mg-galerkin (Galerkin coarse operators instead of the rediscretised ones).\n"
+    "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
+    "them (timestamps around every dispatch; the baseline's are not timed).\n";
 
 /* --verbose: the fluid solver's monitor lines to stderr. */
 static void print_line(void *user, const char *line) {
@@ -145,7 +149,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   int picard = -1, lsic = -1, verbose = 0, compare = 1;
   sessile_bmg_options mgo;
   sessile_bmg_options_default(&mgo);
-  int galerkin = 0;
+  int galerkin = 0, storage_base = 0, kernels = 0;
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -163,6 +167,10 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
         p.fluid_pc_type = (int)sessile_params_find(&sessile_grow_param_table, "fluid_pc_type")->def;
       continue;
     }
+    if (!strcmp(a, "--kernels")) {
+      kernels = 1;
+      continue;
+    }
     if (!strcmp(a, "--no-lsic")) {
       lsic = 0;
       continue;
@@ -174,12 +182,18 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       continue;
     }
     static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp",
-                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--set"};
+                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--baseline", "--set"};
     int k = 0;
-    while (k < 9 && strcmp(a, valued[k])) k++;
-    if (k == 9) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
+    while (k < 10 && strcmp(a, valued[k])) k++;
+    if (k == 10) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v || (k < 8 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!v || (k < 9 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!strcmp(a, "--baseline")) {
+      if (strcmp(v, "ilu0") && strcmp(v, "storage"))
+        return cli_usage_error("bench fluid", "--baseline: ilu0 or storage (got '%.40s')", v);
+      storage_base = v[0] == 's';
+      continue;
+    }
     if (!strcmp(a, "--mg-smoother")) {
       if (strcmp(v, "gs") && strcmp(v, "jacobi"))
         return cli_usage_error("bench fluid", "--mg-smoother: gs or jacobi (got '%.40s')", v);
@@ -266,13 +280,29 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   /* ilu0 first (the reference), then the chosen pc */
   sessile_fluid_result (*r)[2] = calloc(2, sizeof *r);
   double cpu[2][2] = {{0, 0}, {0, 0}};
-  const char *name[2] = {"ilu0", sessile_pc_type_name(fp.pc)};
+  char base_name[48];
+  snprintf(base_name, sizeof base_name, "%s-storage", sessile_pc_type_name(fp.pc));
+  const char *name[2] = {storage_base ? base_name : "ilu0", sessile_pc_type_name(fp.pc)};
   if (!r && s == SESSILE_OK) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
-  int both = compare && fp.pc != SESSILE_PC_ILU0;
+  int both = compare && (fp.pc != SESSILE_PC_ILU0 || storage_base);
   for (int k = both ? 0 : 1; k < 2 && s == SESSILE_OK; k++) {
     sessile_fluid_params q = fp;
-    if (k == 0) q.pc = SESSILE_PC_ILU0;
-    s = run_pair(fl, &box, &p, &q, solid, up, r[k], cpu[k]);
+    /* the baseline: ilu0, or the same pc with storage reads (the option is
+     * read when a pass is recorded) */
+    sessile_la_options lo;
+    sessile_la_options_default(&lo);
+    lo.spmv_storage = k == 0 && storage_base;
+    sessile_la_set_options(la, &lo);
+    if (k == 0 && !storage_base) q.pc = SESSILE_PC_ILU0;
+    if (k == 1 && kernels) s = sessile_gpu_profile(g, 1);
+    double w0 = sessile_wall_seconds();
+    if (s == SESSILE_OK) s = run_pair(fl, &box, &p, &q, solid, up, r[k], cpu[k]);
+    if (s == SESSILE_OK && k == 1 && kernels) {
+      char what[64];
+      snprintf(what, sizeof what, "the %s solves (from rest and warm)", name[1]);
+      cli_print_kernels(g, what, sessile_wall_seconds() - w0);
+      s = sessile_gpu_profile(g, 0);
+    }
   }
   if (s == SESSILE_OK) print_compare((const sessile_fluid_result(*)[2])r, (const double(*)[2])cpu, name, !both);
   free(r);

@@ -34,34 +34,6 @@ static const char *help =
     "                  around every dispatch: calls, total, per call, share of the wall time);\n"
     "                  the rest of the wall time is the host's work and the submissions\n";
 
-/* The rock run's kernels, dearest first. */
-static int by_ms(const void *a, const void *b) {
-  const sessile_kernel_time *p = a, *q = b;
-  return (p->ms < q->ms) - (p->ms > q->ms);
-}
-
-static void print_kernels(sessile_gpu *g, double wall_s) {
-  const sessile_kernel_time *t = NULL;
-  uint64_t untimed = 0;
-  size_t n = sessile_gpu_profile_read(g, &t, &untimed);
-  sessile_kernel_time *s = malloc((n ? n : 1) * sizeof *s);
-  if (!s) return;
-  memcpy(s, t, n * sizeof *s);
-  qsort(s, n, sizeof *s, by_ms);
-  double sum = 0;
-  for (size_t i = 0; i < n; i++) sum += s[i].ms;
-  printf("kernels of the rock run (device time from timestamps; wall %.1f s):\n", wall_s);
-  printf("%-28s %10s %10s %10s %7s\n", "kernel", "calls", "total_s", "ms/call", "wall%");
-  for (size_t i = 0; i < n; i++)
-    printf("%-28s %10llu %10.2f %10.4f %6.1f%%\n", s[i].name, (unsigned long long)s[i].calls, 1e-3 * s[i].ms,
-           s[i].calls ? s[i].ms / (double)s[i].calls : 0.0, wall_s > 0 ? 100 * 1e-3 * s[i].ms / wall_s : 0.0);
-  printf("%-28s %10s %10.2f %10s %6.1f%%  (the rest: host work, transfers, submissions%s)\n", "all kernels", "",
-         1e-3 * sum, "", wall_s > 0 ? 100 * 1e-3 * sum / wall_s : 0.0,
-         untimed ? "; some dispatches untimed" : "");
-  if (untimed) printf("(%llu dispatches past the 64 timed per submission)\n", (unsigned long long)untimed);
-  free(s);
-}
-
 int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   double rock_t = 1;
@@ -105,7 +77,7 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   const char *tmp = getenv("TMPDIR"); /* the rock run's scratch folder */
   if (s == SESSILE_OK && rock_t > 0)
     s = sessile_sds_bench_rock(g, rock_t, tmp && *tmp ? tmp : "/tmp", stop, stdout);
-  if (s == SESSILE_OK && kernels && rock_t > 0) print_kernels(g, sessile_wall_seconds() - t0);
+  if (s == SESSILE_OK && kernels && rock_t > 0) cli_print_kernels(g, "the rock run", sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
   if (s == SESSILE_ERR_INTERRUPTED) {
     fprintf(stderr, "sessile bench sds: interrupted (signal %d)\n", (int)*stop);

@@ -5,7 +5,8 @@
 #include <string.h>
 #include "gpu_internal.h"
 
-enum { SETS_PER_POOL = 512, MAX_POOLS = 256, TIMESTAMPS = 64, PROF_MAX = 64 };
+/* PROF_MAX: dispatches timed per recording under sessile_gpu_profile. */
+enum { SETS_PER_POOL = 512, MAX_POOLS = 256, TIMESTAMPS = 64, PROF_MAX = SESSILE_PROFILE_MAX };
 
 struct sessile_cmd {
   sessile_gpu *gpu;
@@ -432,12 +433,17 @@ sessile_status sessile_cmd_submit_wait(sessile_cmd *c) {
   }
   if (c->prof_rec) c->gpu->prof_untimed += c->nuntimed;
   if (c->prof_rec && c->nprof) {
-    uint64_t t[2 * PROF_MAX];
-    SESSILE_VK(vkGetQueryPoolResults(d, c->prof_q, 0, 2 * c->nprof, sizeof t, t, sizeof(uint64_t),
-                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    for (uint32_t i = 0; i < c->nprof; i++)
-      SESSILE_CALL(sessile_gpu_profile_add_(c->gpu, c->prof_name[i],
-                                            1e-6 * (double)(t[2 * i + 1] - t[2 * i]) * c->gpu->info.timestamp_period_ns));
+    uint64_t *t = malloc(2 * (size_t)c->nprof * sizeof *t);
+    SESSILE_CHECK(t, SESSILE_ERR_NO_MEMORY, "out of host memory for the profile's timestamps");
+    VkResult vr = vkGetQueryPoolResults(d, c->prof_q, 0, 2 * c->nprof, 2 * (size_t)c->nprof * sizeof *t, t,
+                                        sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    sessile_status ps = vr == VK_SUCCESS ? SESSILE_OK
+                                         : sessile_error_set(SESSILE_ERR_VULKAN, "vkGetQueryPoolResults failed (%d)", (int)vr);
+    for (uint32_t i = 0; ps == SESSILE_OK && i < c->nprof; i++)
+      ps = sessile_gpu_profile_add_(c->gpu, c->prof_name[i],
+                                    1e-6 * (double)(t[2 * i + 1] - t[2 * i]) * c->gpu->info.timestamp_period_ns);
+    free(t);
+    SESSILE_CALL(ps);
   }
   return SESSILE_OK;
 }

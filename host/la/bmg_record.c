@@ -13,7 +13,8 @@
  * the coarsest level: x = A^-1 b as one dense block SpMV, or the Jacobi
  * start and coarse_sweeps sweeps alternating forward and backward.
  * Smoother and residual dispatch once per row chunk of the level's matrix;
- * a colour sweep covers only the chunk's k-slabs of its colour. */
+ * a colour sweep covers only the chunk's k-slabs of its colour; both read
+ * the matrix and x through texel buffers where the views fit (texel_ok). */
 #include "bmg_internal.h"
 
 static bmg_push grid_push(const bmg_level *v, int guard) {
@@ -22,13 +23,23 @@ static bmg_push grid_push(const bmg_level *v, int guard) {
   return p;
 }
 
+/* The _tex twin of a smoother or residual pass when the context allows
+ * texel reads and every view it takes (the chunk's rowptr, col and val, and
+ * x) fits maxTexelBufferElements; else the storage kernel (the same bits). */
+static int texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x) {
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  return la->spmv_texel && sessile_buffer_size(ch->rowptr) / 4 <= maxt && sessile_buffer_size(ch->col) / 4 <= maxt &&
+         sessile_buffer_size(ch->val) / 16 <= maxt && sessile_buffer_size(x) / 16 <= maxt;
+}
+
 /* One pass of the smoother over level l (every chunk): colour 0..7 or 8 (all). */
 static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, vref y,
                                uint32_t colour, uint32_t flags, int guard) {
   sessile_la *la = mg->la;
   const bmg_level *v = &mg->lv[l];
-  sessile_kernel *k;
+  sessile_kernel *k, *kt;
   SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH, &k));
+  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH_TEX, &kt));
   uint32_t par[3] = {colour & 1u, (colour >> 1) & 1u, (colour >> 2) & 1u};
   uint32_t sub[3] = {0, 0, 0};
   for (int a = 0; a < 3; a++) sub[a] = (v->n[a] - par[a] + 1) / 2;
@@ -52,7 +63,8 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
       p.items = ch->nrows;
     }
     sessile_buffer *bufs[8] = {la->scalars, ch->rowptr, ch->col, ch->val, v->dinvb[ci], b.buf, x.buf, y.buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, K_BMG_SMOOTH, p.items), bufs, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, la_groups(la, K_BMG_SMOOTH, p.items),
+                                      bufs, &p));
   }
   return SESSILE_OK;
 }
@@ -78,14 +90,16 @@ static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, v
 static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int guard) {
   sessile_la *la = mg->la;
   const bmg_level *v = &mg->lv[l];
-  sessile_kernel *k;
+  sessile_kernel *k, *kt;
   SESSILE_CALL(la_kernel(la, K_BMG_RESIDUAL, &k));
+  SESSILE_CALL(la_kernel(la, K_BMG_RESIDUAL_TEX, &kt));
   for (uint32_t ci = 0; ci < v->m->nchunks; ci++) {
     const mat_chunk *ch = &v->m->chunk[ci];
     bmg_push p = grid_push(v, guard);
     p.row0 = ch->row0, p.nrows = p.items = ch->nrows;
     sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, b.buf, x.buf, v->r->buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, K_BMG_RESIDUAL, p.items), bufs, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, la_groups(la, K_BMG_RESIDUAL, p.items),
+                                      bufs, &p));
   }
   return SESSILE_OK;
 }

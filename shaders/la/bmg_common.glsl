@@ -7,14 +7,38 @@ REAL4 bmg_free(uint m) {
                (m & 8u) != 0u ? 1 : 0);
 }
 #ifdef BMG_ROWS
+// The matrix rows and x: from storage buffers (BMG_TEXEL 0) or uniform
+// texel buffers of raw bits (BMG_TEXEL 1, the _tex kernels: lavapipe
+// gathers texels with vector loads where it loads storage lane by lane;
+// the same values, so the same bits).  A REAL4 is two RGBA32UI texels in
+// fp64, one in fp32.
+#if BMG_TEXEL
+uint bmg_rowptr(uint i) { return texelFetch(rowptr_t, int(i)).x; }
+uint bmg_col(uint k) { return texelFetch(col_t, int(k)).x; }
+#if SESSILE_F64
+REAL4 bmg_tex4(usamplerBuffer t, uint i) {
+  uvec4 a = texelFetch(t, int(2u * i)), c = texelFetch(t, int(2u * i + 1u));
+  return REAL4(packDouble2x32(a.xy), packDouble2x32(a.zw), packDouble2x32(c.xy), packDouble2x32(c.zw));
+}
+#else
+REAL4 bmg_tex4(usamplerBuffer t, uint i) { return uintBitsToFloat(texelFetch(t, int(i))); }
+#endif
+REAL4 bmg_val(uint v) { return bmg_tex4(val_t, v); }
+REAL4 bmg_x(uint i) { return bmg_tex4(x_t, i); }
+#else
+uint bmg_rowptr(uint i) { return rowptr[i]; }
+uint bmg_col(uint k) { return col[k]; }
+REAL4 bmg_val(uint v) { return val[v]; }
+REAL4 bmg_x(uint i) { return x[i]; }
+#endif
 // b - A x for block row `row` of the bound chunk (node = row0 + row).
 REAL4 bmg_row_residual(uint row, REAL4 bv) {
   REAL4 r = bv;
-  uint e = rowptr[row + 1u];
-  for (uint k = rowptr[row]; k < e; k++) {
-    REAL4 xb = x[col[k]];
+  uint e = bmg_rowptr(row + 1u);
+  for (uint k = bmg_rowptr(row); k < e; k++) {
+    REAL4 xb = bmg_x(bmg_col(k));
     uint v = 4u * k;
-    r -= REAL4(dot(val[v], xb), dot(val[v + 1u], xb), dot(val[v + 2u], xb), dot(val[v + 3u], xb));
+    r -= REAL4(dot(bmg_val(v), xb), dot(bmg_val(v + 1u), xb), dot(bmg_val(v + 2u), xb), dot(bmg_val(v + 3u), xb));
   }
   return r;
 }

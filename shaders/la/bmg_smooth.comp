@@ -1,33 +1,5 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// One block smoothing pass over one matrix row chunk:
-//   y_n = x_n + omega Dinv_n (b - A x)_n
-// for every node of the chunk (colour 8: block Jacobi, y another buffer) or
-// for the nodes of one parity colour (block Gauss-Seidel: y = x, in place;
-// nodes of one colour share no Kuhn tet, so none reads another's update).
-// BMG_ZERO: x is zero and not read (the first sweep from zero).
-#include "la_kernels.glsl"
-#include "grid_index.glsl"
-#define BMG_ROWS
-#include "bmg_common.glsl"
-void main() {
-  if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
-  uint g = sessile_gid();
-  if (g >= pc.items) return;
-  uint node;
-  if (pc.colour < 8u) {
-    uint t = g + pc.first, a = grid_div(t, pc.s0, pc.ms0), kk = grid_div(a, pc.s1, pc.ms1);
-    uvec3 par = uvec3(pc.colour & 1u, (pc.colour >> 1u) & 1u, (pc.colour >> 2u) & 1u);
-    uvec3 ijk = 2u * uvec3(t - a * pc.s0, a - kk * pc.s1, kk) + par;
-    node = ijk.x + pc.n0 * (ijk.y + pc.n1 * ijk.z);
-    if (node < pc.row0 || node >= pc.row0 + pc.nrows) return;
-  } else {
-    node = pc.row0 + g;
-  }
-  uint row = node - pc.row0;
-  bool zero = (pc.flags & BMG_ZERO) != 0u;
-  REAL4 r = zero ? b[node] : bmg_row_residual(row, b[node]);
-  uint d = 4u * row;
-  REAL4 dz = REAL4(dot(dinv[d], r), dot(dinv[d + 1u], r), dot(dinv[d + 2u], r), dot(dinv[d + 3u], r));
-  y[node] = (zero ? REAL4(0) : x[node]) + pc.omega * dz;
-}
+// bmg_smooth.glsl reading the matrix and x through storage buffers.
+#define BMG_TEXEL 0
+#include "bmg_smooth.glsl"

@@ -11,7 +11,9 @@
  *    iterations 4..12) <= 0.5 on every grid, and the factors of the grids
  *    differ by at most 0.1.  On 9x9x7 the hierarchy has two levels (a
  *    two-grid cycle with an exact coarse solve); finer grids add levels;
- *  - the device V-cycle equals the plain-C reference (1e-10 relative; fp64);
+ *  - the device V-cycle equals the plain-C reference (1e-10 relative; fp64),
+ *    and its smoother and residual give the same bits reading the matrix
+ *    and x through storage buffers as through texel buffers;
  *  - the same V-cycle with the matrices stored in row chunks (the test-only
  *    chunk limit) equals the unchunked one (1e-12);
  *  - the fluid's solve with pc mg (rediscretised coarse levels): the first
@@ -153,6 +155,21 @@ static void vcycle_checks(scene *sc, const sessile_bcsr4 *a, const double *b) {
   t_must("download", sessile_vec_download(zv, z));
   t_must("ref vcycle", sessile_ref_bmg_vcycle(mg, b, zr));
   if (fp64) t_check("device V-cycle = reference (max rel)", t_relerr(z, zr, n4), 1e-10);
+  /* the smoother and residual reading storage buffers (la option
+   * spmv_storage) instead of texel buffers: the same values, the same bits */
+  {
+    sessile_la_options so;
+    sessile_la_options_default(&so);
+    so.spmv_storage = 1;
+    sessile_la_set_options(la, &so);
+    double *zs = t_dalloc(n4);
+    t_must("vcycle (storage reads)", sessile_bmg_vcycle(mg, rv, zv));
+    t_must("download", sessile_vec_download(zv, zs));
+    sessile_la_options_default(&so);
+    sessile_la_set_options(la, &so);
+    t_true("V-cycle with storage reads = with texel reads, bit for bit", memcmp(zs, z, n4 * sizeof *z) == 0);
+    free(zs);
+  }
   /* the same matrix in row chunks of at most 256 KiB */
   sessile_la_options lo;
   sessile_la_options_default(&lo);

@@ -264,8 +264,9 @@ static void test_dispatch(sessile_gpu *g) {
   sessile_kernel_destroy(k);
 }
 
-/* The kernel profile: 70 dispatches of la/fill in one recording submitted
- * twice give 2 x 64 timed calls of it and 2 x 6 untimed dispatches, with a
+/* The kernel profile: SESSILE_PROFILE_MAX + 6 dispatches of la/fill in one
+ * recording submitted twice give 2 x SESSILE_PROFILE_MAX timed calls of it
+ * and 2 x 6 untimed dispatches, with a
  * positive device time; off, a submission adds nothing; on again clears. */
 /* sessile_cmd_upload/download: two uploads, a scale, two downloads in one
  * submission; the bytes of the host's own product (2 a and 3 a are exact in
@@ -384,18 +385,19 @@ static void test_profile(sessile_gpu *g) {
   sessile_buffer *bufs[2] = {scal, y};
   uint32_t groups = k ? (n4 + sessile_kernel_local_size(k) - 1) / sessile_kernel_local_size(k) : 1;
   if (s == SESSILE_OK) s = sessile_cmd_begin(c);
-  for (int d = 0; d < 70 && s == SESSILE_OK; d++) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
+  for (int d = 0; d < SESSILE_PROFILE_MAX + 6 && s == SESSILE_OK; d++) s = sessile_cmd_dispatch(c, k, groups, bufs, &push);
   if (s == SESSILE_OK) s = sessile_cmd_end(c);
   if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
   if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
-  t_ok("profile on, 70 dispatches recorded, submitted twice", s);
+  t_ok("profile on, SESSILE_PROFILE_MAX + 6 dispatches recorded, submitted twice", s);
   const sessile_kernel_time *t = NULL;
   uint64_t untimed = 0;
   size_t nt = sessile_gpu_profile_read(g, &t, &untimed);
   if (nt == 1) printf("   %s: %llu calls, %.4f ms, %llu untimed\n", t[0].name, (unsigned long long)t[0].calls, t[0].ms,
                       (unsigned long long)untimed);
-  t_true("one kernel, la/fill, 128 timed calls, 12 untimed dispatches, device time > 0",
-         nt == 1 && strncmp(t[0].name, "la/fill", 7) == 0 && t[0].calls == 128 && untimed == 12 && t[0].ms > 0);
+  t_true("one kernel, la/fill, 2 x SESSILE_PROFILE_MAX timed calls, 12 untimed dispatches, device time > 0",
+         nt == 1 && strncmp(t[0].name, "la/fill", 7) == 0 && t[0].calls == 2 * SESSILE_PROFILE_MAX && untimed == 12 &&
+             t[0].ms > 0);
   double ms = nt == 1 ? t[0].ms : -1;
   if (s == SESSILE_OK) s = sessile_gpu_profile(g, 0);
   if (s == SESSILE_OK) s = sessile_cmd_begin(c);
@@ -404,7 +406,7 @@ static void test_profile(sessile_gpu *g) {
   if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
   nt = sessile_gpu_profile_read(g, &t, &untimed);
   t_true("profile off: a further submission adds nothing",
-         s == SESSILE_OK && nt == 1 && t[0].calls == 128 && t[0].ms == ms && untimed == 12);
+         s == SESSILE_OK && nt == 1 && t[0].calls == 2 * SESSILE_PROFILE_MAX && t[0].ms == ms && untimed == 12);
   if (s == SESSILE_OK) s = sessile_gpu_profile(g, 1);
   t_true("profile on again clears the table", s == SESSILE_OK && sessile_gpu_profile_read(g, NULL, NULL) == 0);
   sessile_gpu_profile(g, 0);

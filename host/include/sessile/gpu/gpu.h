@@ -87,10 +87,11 @@ uint64_t sessile_gpu_submissions(const sessile_gpu *g);
 /* Device time per kernel, from timestamps around each dispatch (for
  * benchmarks: `sessile bench sds --kernels`).  sessile_gpu_profile(g, 1)
  * clears the table and times the dispatches of every recording begun from
- * then on, (g, 0) stops; the first 64 dispatches of a recording are timed,
+ * then on, (g, 0) stops; the first SESSILE_PROFILE_MAX dispatches of a recording are timed,
  * the others counted as untimed.  A timed dispatch ends at the next
  * dispatch's barrier as before, so results are unchanged.  Fails with
  * SESSILE_ERR_UNSUPPORTED on a queue without timestamps. */
+#define SESSILE_PROFILE_MAX 4096 /* dispatches timed per recording (a GMRES segment holds ~2 400) */
 typedef struct sessile_kernel_time {
   char name[64];
   uint64_t calls;

@@ -28,8 +28,9 @@ typedef struct sessile_mat sessile_mat;
 
 /* Options of an la context (the defaults suit every normal use). */
 typedef struct sessile_la_options {
-  /* 1: CSR SpMV reads the matrix through storage buffers only (default 0:
-   * through texel buffers where they fit, docs/design.md). */
+  /* 1: CSR SpMV, the cut-cell stencil and the block multigrid's smoother
+   * and residual read through storage buffers only (default 0: through
+   * texel buffers where they fit, docs/design.md; the same bits). */
   int spmv_storage;
   /* Per-buffer limit in bytes of a matrix's arrays: 0 (default), or a value
    * at or above the device's maxStorageBufferRange, means that range; a
