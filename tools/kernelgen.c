@@ -138,8 +138,8 @@ static void parse(FILE *f) {
       if (k->nb == MAXB) die("kernel %s: more than %d bindings", k->id, MAXB);
       binding *b = &k->b[k->nb++];
       if (n == 4 && !strcmp(tok[0], "storage")) {
-        if (strcmp(tok[3], "ro") && strcmp(tok[3], "wo") && strcmp(tok[3], "rw"))
-          die("storage access must be ro, wo or rw");
+        if (strcmp(tok[3], "ro") && strcmp(tok[3], "wo") && strcmp(tok[3], "rw") && strcmp(tok[3], "rwc"))
+          die("storage access must be ro, wo, rw or rwc (rw and coherent)");
         copy(b->elem, sizeof b->elem, tok[2]);
         copy(b->access, sizeof b->access, tok[3]);
       } else if (n == 3 && !strcmp(tok[0], "texel")) {
@@ -289,7 +289,10 @@ static void write_glsl(FILE *f) {
         fprintf(f, "layout(binding = %d) uniform usamplerBuffer %s;\n", j, b->name);
         continue;
       }
-      const char *q = !strcmp(b->access, "ro") ? "readonly " : !strcmp(b->access, "wo") ? "writeonly " : "";
+      const char *q = !strcmp(b->access, "ro")    ? "readonly "
+                      : !strcmp(b->access, "wo")  ? "writeonly "
+                      : !strcmp(b->access, "rwc") ? "coherent "
+                                                  : "";
       fprintf(f, "layout(std430, binding = %d) %sbuffer B_%s { %s %s[]; };\n", j, q, b->name,
               b->elem, b->name);
     }

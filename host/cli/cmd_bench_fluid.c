@@ -15,7 +15,8 @@ static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"
     "                           [--picard K] [--restart M] [--no-lsic] [--no-compare]\n"
     "                           [--mg-smoother gs|jacobi] [--mg-sweeps N] [--mg-cycle v|w|vw] [--mg-galerkin]\n"
-    "                           [--baseline ilu0|storage] [--kernels] [--set KEY=VALUE]... [--device D]\n"
+    "                           [--mg-wg-max N] [--baseline ilu0|storage] [--kernels] [--set KEY=VALUE]...\n"
+    "                           [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
     "Newton; docs/fluid.md) on the default box at box level R (default: the\n"
@@ -43,7 +44,9 @@ static const char *help =
     "pc mg's hierarchy (docs/fluid.md, \"Multigrid\"): --mg-smoother (8-colour block\n"
     "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (pre and\n"
     "post, default 2), --mg-cycle (default w; vw: V on the finest level, W below),\n"
-    "--mg-galerkin (Galerkin coarse operators instead of the rediscretised ones).\n"
+    "--mg-galerkin (Galerkin coarse operators instead of the rediscretised ones),\n"
+    "--mg-wg-max N (levels of at most N nodes smoothed in one workgroup, one dispatch\n"
+    "for all their sweeps; default 1024, 0: never).\n"
     "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
     "them (timestamps around every dispatch; the baseline's are not timed).\n";
 
@@ -182,12 +185,18 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       continue;
     }
     static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp",
-                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--baseline", "--set"};
+                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--mg-wg-max", "--baseline", "--set"};
     int k = 0;
-    while (k < 10 && strcmp(a, valued[k])) k++;
-    if (k == 10) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
+    while (k < 11 && strcmp(a, valued[k])) k++;
+    if (k == 11) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v || (k < 9 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!v || (k < 10 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!strcmp(a, "--mg-wg-max")) {
+      unsigned u;
+      if (cli_parse_uint("bench fluid", a, v, 0, 1u << 30, &u)) return EXIT_USAGE;
+      mgo.wg_max_nodes = u;
+      continue;
+    }
     if (!strcmp(a, "--baseline")) {
       if (strcmp(v, "ilu0") && strcmp(v, "storage"))
         return cli_usage_error("bench fluid", "--baseline: ilu0 or storage (got '%.40s')", v);
@@ -271,9 +280,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
            sessile_ksp_type_name(fp.ksp), sessile_pc_type_name(fp.pc),
            p.fluid_density * p.inlet_velocity * 0.12 / p.fluid_viscosity);
     if (fp.pc == SESSILE_PC_MG)
-      printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle, %s coarse operators\n",
+      printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle, %s coarse operators, levels of at most %u nodes "
+             "smoothed in one workgroup\n",
              mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", mgo.pre, mgo.post,
-             mgo.cycle == 3 ? "VW" : mgo.cycle == 2 ? "W" : "V", galerkin ? "Galerkin" : "rediscretised");
+             mgo.cycle == 3 ? "VW" : mgo.cycle == 2 ? "W" : "V", galerkin ? "Galerkin" : "rediscretised",
+             mgo.wg_max_nodes);
     printf("mesh and solver setup: %.2f s\n\n", t_setup);
     fflush(stdout);
   }

@@ -15,6 +15,7 @@ void sessile_bmg_options_default(sessile_bmg_options *o) {
   o->max_levels = BMG_MAX_LEVELS;
   o->coarse_dense_max = 160;
   o->coarse_sweeps = 20;
+  o->wg_max_nodes = 1024;
 }
 
 void bmg_offsets(const uint32_t n[3], int off[BMG_NOFF][3]) {

@@ -69,11 +69,37 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
   return SESSILE_OK;
 }
 
+/* The whole smoothing of a small level in one workgroup (bmg_smooth_wg.comp)
+ * where it applies: Gauss-Seidel, one row chunk, texel reads, at most
+ * wg_max_nodes nodes.  *done = 0 when it does not. */
+static sessile_status rec_smooth_wg(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int sweeps,
+                                    uint32_t flags, int guard, int *done) {
+  sessile_la *la = mg->la;
+  const bmg_level *v = &mg->lv[l];
+  *done = 0;
+  if (mg->o.smoother != SESSILE_BMG_GAUSS_SEIDEL || v->nodes > mg->o.wg_max_nodes || v->m->nchunks != 1 ||
+      !texel_ok(la, &v->m->chunk[0], x.buf))
+    return SESSILE_OK;
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH_WG, &k));
+  const mat_chunk *ch = &v->m->chunk[0];
+  bmg_push p = grid_push(v, guard);
+  p.flags = flags, p.sweeps = (uint32_t)sweeps, p.row0 = 0, p.nrows = p.items = ch->nrows;
+  p.omega = sessile_push_real_of(mg->o.omega, la->real_bytes);
+  sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, v->dinvb[0], b.buf, x.buf};
+  *done = 1;
+  return sessile_cmd_dispatch(c, k, 1, bufs, &p);
+}
+
 /* `sweeps` smoothing sweeps of x on level l (after the start from zero when zero). */
 static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int sweeps,
                                  int zero, int backward, int guard) {
   const bmg_level *v = &mg->lv[l];
   vref none = {0};
+  int done;
+  uint32_t flags = (zero ? BMG_ZERO : 0) | (backward ? BMG_BACKWARD : 0) | (l == mg->nl - 1 ? BMG_ALTERNATE : 0);
+  SESSILE_CALL(rec_smooth_wg(mg, c, l, b, x, sweeps, flags, guard, &done));
+  if (done) return SESSILE_OK;
   if (zero) SESSILE_CALL(rec_pass(mg, c, l, b, x, x, 8, BMG_ZERO, guard));
   for (int s = 0; s < sweeps; s++) {
     if (mg->o.smoother == SESSILE_BMG_JACOBI) {

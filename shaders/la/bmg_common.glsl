@@ -24,7 +24,11 @@ REAL4 bmg_tex4(usamplerBuffer t, uint i) {
 REAL4 bmg_tex4(usamplerBuffer t, uint i) { return uintBitsToFloat(texelFetch(t, int(i))); }
 #endif
 REAL4 bmg_val(uint v) { return bmg_tex4(val_t, v); }
+#if defined(BMG_X_STORAGE)
+REAL4 bmg_x(uint i) { return x[i]; } // written in the same dispatch (bmg_smooth_wg)
+#else
 REAL4 bmg_x(uint i) { return bmg_tex4(x_t, i); }
+#endif
 #else
 uint bmg_rowptr(uint i) { return rowptr[i]; }
 uint bmg_col(uint k) { return col[k]; }

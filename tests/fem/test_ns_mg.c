@@ -13,7 +13,8 @@
  *    two-grid cycle with an exact coarse solve); finer grids add levels;
  *  - the device V-cycle equals the plain-C reference (1e-10 relative; fp64),
  *    and its smoother and residual give the same bits reading the matrix
- *    and x through storage buffers as through texel buffers;
+ *    and x through storage buffers as through texel buffers, and the small
+ *    levels' smoothing the same in one workgroup as in 8 dispatches a sweep;
  *  - the same V-cycle with the matrices stored in row chunks (the test-only
  *    chunk limit) equals the unchunked one (1e-12);
  *  - the fluid's solve with pc mg (rediscretised coarse levels): the first
@@ -168,6 +169,23 @@ static void vcycle_checks(scene *sc, const sessile_bcsr4 *a, const double *b) {
     sessile_la_options_default(&so);
     sessile_la_set_options(la, &so);
     t_true("V-cycle with storage reads = with texel reads, bit for bit", memcmp(zs, z, n4 * sizeof *z) == 0);
+    /* every level's smoothing in 8 dispatches a sweep (wg_max_nodes 0)
+     * against the small levels' in one workgroup */
+    sessile_bmg_options wo;
+    sessile_bmg_options_default(&wo);
+    wo.wg_max_nodes = 0;
+    sessile_bmg *mw = NULL;
+    t_must("bmg (no one-workgroup smoothing)", sessile_bmg_create(la, sc->box.n, &wo, &mw));
+    t_must("bmg setup", sessile_bmg_setup(mw, m));
+    t_must("vcycle", sessile_bmg_vcycle(mw, rv, zv));
+    t_must("download", sessile_vec_download(zv, zs));
+    printf("    levels of at most %u nodes smoothed in one workgroup:", wo.wg_max_nodes = 1024);
+    for (int l = 0; l < sessile_bmg_levels(mg); l++)
+      if (sessile_bmg_level_nodes(mg, l) <= 1024) printf(" %u", sessile_bmg_level_nodes(mg, l));
+    printf("\n");
+    t_true("V-cycle with one-workgroup smoothing = per-colour dispatches, bit for bit",
+           memcmp(zs, z, n4 * sizeof *z) == 0);
+    sessile_bmg_destroy(mw);
     free(zs);
   }
   /* the same matrix in row chunks of at most 256 KiB */

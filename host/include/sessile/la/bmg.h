@@ -47,6 +47,9 @@ typedef struct sessile_bmg_options {
   uint32_t coarse_dense_max;     /* the coarsest level is inverted densely when it has at
                                     most this many nodes (default 160) ... */
   int coarse_sweeps;             /* ... else this many sweeps (default 20) */
+  uint32_t wg_max_nodes;         /* Gauss-Seidel on a level of at most this many nodes (in one
+                                    row chunk) runs all its sweeps in one workgroup, one dispatch
+                                    (default 1024; 0: never); the same bits either way */
 } sessile_bmg_options;
 
 void sessile_bmg_options_default(sessile_bmg_options *o);
