@@ -42,6 +42,7 @@ void sessile_fluid_destroy(sessile_fluid *fl) {
   ns_mg_free(fl);
   sessile_pc_destroy(fl->mgpc);
   sessile_bmg_destroy(fl->bmg);
+  sessile_mat_destroy(fl->dev);
   sessile_bcsr4_free(&fl->a);
   free(fl);
 }

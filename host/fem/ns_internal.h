@@ -36,6 +36,7 @@ struct sessile_fluid {
   uint32_t *tet;      /* 4 ntets */
   uint32_t *tags;     /* nnodes */
   sessile_bcsr4 a;    /* the pattern (node graph), values rewritten each assembly */
+  sessile_mat *dev;   /* a on the device, kept across solves (refilled: no new buffers) */
   uint32_t *pos;      /* 16 ntets: block index of (a, b) of each tet */
   uint32_t ncolours;
   uint32_t *corder;   /* ntets, tets sorted by colour */

@@ -39,8 +39,14 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
                                sessile_vec *b, sessile_vec *x, sessile_fluid_step *st) {
   size_t n4 = (size_t)fl->nnodes * 4;
   for (size_t k = 0; k < n4; k++) du[k] = -r[k];
-  sessile_mat *m = NULL;
-  SESSILE_CALL(sessile_mat_create_bcsr4(fl->la, &fl->a, &m));
+  /* the device matrix of the last solve takes the new values in place; a
+   * first solve, or one after the context's chunking changed, makes it */
+  if (!fl->dev || sessile_mat_refill_bcsr4(fl->dev, &fl->a) != SESSILE_OK) {
+    sessile_mat_destroy(fl->dev);
+    fl->dev = NULL;
+    SESSILE_CALL(sessile_mat_create_bcsr4(fl->la, &fl->a, &fl->dev));
+  }
+  sessile_mat *m = fl->dev;
   sessile_ksp_options o;
   sessile_ksp_options_default(&o);
   o.type = st->lin_ksp = p->ksp;
@@ -74,7 +80,6 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
   if (s == SESSILE_OK) s = sessile_ksp_solve_pc(fl->la, &o, m, pc, b, x, &lr);
   if (s == SESSILE_OK) s = sessile_vec_download(x, du);
   sessile_pc_destroy(own);
-  sessile_mat_destroy(m);
   if (s != SESSILE_OK) return s;
   if (p->check_linear && p->monitor) {
     double *y = malloc(n4 * sizeof *y), e = 0, nb = 0;

@@ -154,16 +154,24 @@ static sessile_status level_inverses(sessile_bmg *mg, int l) {
   }
   SESSILE_CHECK(bad < 0, SESSILE_ERR_NUMERIC,
                 "block multigrid: the diagonal block of node %ld on level %d is missing or singular", bad, l);
-  for (uint32_t c = 0; c < v->ndinv; c++) sessile_buffer_destroy(v->dinvb[c]);
-  free(v->dinvb);
-  v->ndinv = 0;
-  v->dinvb = calloc(v->m->nchunks, sizeof *v->dinvb);
-  SESSILE_CHECK(v->dinvb, SESSILE_ERR_NO_MEMORY, "out of host memory");
-  v->ndinv = v->m->nchunks;
+  /* the buffers of the last setup when the chunks are the same (fresh device
+   * memory costs lavapipe page faults: la.h, sessile_mat_refill_bcsr4) */
+  int same = v->ndinv == v->m->nchunks;
+  for (uint32_t c = 0; same && c < v->ndinv; c++)
+    same = v->dinvb[c] && sessile_buffer_size(v->dinvb[c]) == (size_t)v->m->chunk[c].nrows * 16 * mg->la->real_bytes;
+  if (!same) {
+    for (uint32_t c = 0; c < v->ndinv; c++) sessile_buffer_destroy(v->dinvb[c]);
+    free(v->dinvb);
+    v->ndinv = 0;
+    v->dinvb = calloc(v->m->nchunks, sizeof *v->dinvb);
+    SESSILE_CHECK(v->dinvb, SESSILE_ERR_NO_MEMORY, "out of host memory");
+    v->ndinv = v->m->nchunks;
+  }
   for (uint32_t c = 0; c < v->ndinv; c++) {
     const mat_chunk *ch = &v->m->chunk[c];
     size_t n = (size_t)ch->nrows * 16;
-    SESSILE_CALL(sessile_buffer_create(mg->la->gpu, n * mg->la->real_bytes, SESSILE_BUFFER_DEVICE, &v->dinvb[c]));
+    if (!same)
+      SESSILE_CALL(sessile_buffer_create(mg->la->gpu, n * mg->la->real_bytes, SESSILE_BUFFER_DEVICE, &v->dinvb[c]));
     SESSILE_CALL(sessile_buffer_upload_reals(v->dinvb[c], 0, v->dinv + 16 * (size_t)ch->row0, n));
   }
   return SESSILE_OK;
@@ -225,7 +233,7 @@ static sessile_status coarse_inverse(sessile_bmg *mg) {
         for (int c = 0; c < 4; c++) full.val[16 * k + 4 * r + c] = mg->cinv[(size_t)(4 * i + r) * n + 4 * j + c];
     }
   }
-  if (s == SESSILE_OK) {
+  if (s == SESSILE_OK && (!mg->cinvm || sessile_mat_refill_bcsr4(mg->cinvm, &full) != SESSILE_OK)) {
     sessile_mat_destroy(mg->cinvm);
     mg->cinvm = NULL;
     s = sessile_mat_create_bcsr4(mg->la, &full, &mg->cinvm);
@@ -256,10 +264,12 @@ sessile_status sessile_bmg_setup(sessile_bmg *mg, const sessile_mat *a) {
   for (int l = 0; l + 1 < mg->nl; l++) {
     bmg_level *c = &mg->lv[l + 1];
     if (!c->given) SESSILE_CALL(bmg_galerkin(mg, l));
-    sessile_mat_destroy(c->own);
-    c->own = NULL;
     c->m = NULL;
-    SESSILE_CALL(sessile_mat_create_bcsr4(mg->la, c->ah, &c->own));
+    if (!c->own || sessile_mat_refill_bcsr4(c->own, c->ah) != SESSILE_OK) {
+      sessile_mat_destroy(c->own);
+      c->own = NULL;
+      SESSILE_CALL(sessile_mat_create_bcsr4(mg->la, c->ah, &c->own));
+    }
     c->m = c->own;
   }
   for (int l = 0; l < mg->nl; l++) SESSILE_CALL(level_inverses(mg, l));

@@ -161,13 +161,27 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
     m = (uint32_t)fit - 1;
     la_monitorf(o, "gmres: restart reduced to %u to fit maxStorageBufferRange", m);
   }
-  sessile_buffer *V = NULL;
-  sessile_vec *z = NULL, *ones = NULL;
   gm_segs sg = {NULL, NULL, 0};
   while (seg_lo(sg.nseg, m) < m) sg.nseg++;
-  sessile_status s = sessile_buffer_create(la->gpu, (size_t)(m + 1) * per, SESSILE_BUFFER_DEVICE, &V);
-  if (s == SESSILE_OK) s = sessile_vec_create(la, a->nrows, &z);
-  if (s == SESSILE_OK && !pc->diag) s = la_ones(la, a->nrows, &ones);
+  /* the basis, z and ones of the last solve when they fit (la_internal.h) */
+  sessile_status s = SESSILE_OK;
+  if (!la->gm_basis || sessile_buffer_size(la->gm_basis) < (size_t)(m + 1) * per) {
+    sessile_buffer_destroy(la->gm_basis);
+    la->gm_basis = NULL;
+    s = sessile_buffer_create(la->gpu, (size_t)(m + 1) * per, SESSILE_BUFFER_DEVICE, &la->gm_basis);
+  }
+  if (s == SESSILE_OK && (!la->gm_z || la->gm_z->n != a->nrows)) {
+    sessile_vec_destroy(la->gm_z);
+    la->gm_z = NULL;
+    s = sessile_vec_create(la, a->nrows, &la->gm_z);
+  }
+  if (s == SESSILE_OK && !pc->diag && (!la->gm_ones || la->gm_ones->n != a->nrows)) {
+    sessile_vec_destroy(la->gm_ones);
+    la->gm_ones = NULL;
+    s = la_ones(la, a->nrows, &la->gm_ones);
+  }
+  sessile_buffer *V = la->gm_basis;
+  sessile_vec *z = la->gm_z, *ones = pc->diag ? NULL : la->gm_ones;
   if (s == SESSILE_OK) {
     sg.cmd = calloc(1 + (size_t)sg.nseg, sizeof *sg.cmd);
     sg.done = calloc(sg.nseg, 1);
@@ -177,8 +191,5 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
   if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, V, z, ones, m, &sg, res);
   for (uint32_t i = 0; sg.cmd && i <= sg.nseg; i++) sessile_cmd_destroy(sg.cmd[i]);
   free(sg.cmd), free(sg.done);
-  sessile_vec_destroy(ones);
-  sessile_vec_destroy(z);
-  sessile_buffer_destroy(V);
   return s;
 }

@@ -48,6 +48,9 @@ void sessile_la_set_options(sessile_la *la, const sessile_la_options *opt) {
 void sessile_la_destroy(sessile_la *la) {
   if (!la) return;
   for (int i = 0; i < K_COUNT; i++) sessile_kernel_destroy(la->k[i]);
+  sessile_buffer_destroy(la->gm_basis);
+  sessile_vec_destroy(la->gm_z);
+  sessile_vec_destroy(la->gm_ones);
   sessile_cmd_destroy(la->cmd);
   sessile_buffer_destroy(la->partials);
   sessile_buffer_destroy(la->scalars);

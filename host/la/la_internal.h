@@ -21,6 +21,11 @@ struct sessile_la {
                                  on; sessile_la_options.spmv_storage forces storage buffers) */
   uint64_t max_chunk_bytes;   /* sessile_la_options.max_matrix_chunk_bytes (0: none) */
   uint64_t vec_serial;        /* the last vector's serial (sessile_vec.serial) */
+  /* GMRES's scratch, kept between solves (la_gmres): fresh device memory on
+   * lavapipe is host memory page-faulted in on first touch, ~45 MB a solve
+   * of the fluid's level-1 system */
+  sessile_buffer *gm_basis;
+  sessile_vec *gm_z, *gm_ones;
   uint32_t fused_groups;      /* at most this many groups for the grid-stride kernels with
                                  a reduction of the cut-cell operator and the multigrid:
                                  128 on CPU devices (lavapipe runs a group's barriers as

@@ -284,6 +284,24 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   return SESSILE_OK;
 }
 
+sessile_status sessile_mat_refill_bcsr4(sessile_mat *m, const sessile_bcsr4 *a) {
+  SESSILE_CHECK(m && a && m->kind == MAT_BCSR4 && a->nbrows == m->hostb.nbrows && a->nnzb == m->hostb.nnzb &&
+                    memcmp(a->rowptr, m->hostb.rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr) == 0 &&
+                    memcmp(a->col, m->hostb.col, (size_t)a->nnzb * sizeof *a->col) == 0,
+                SESSILE_ERR_USAGE, "refill: the block matrix's pattern is not the one it was created with");
+  SESSILE_CHECK(m->chunk_limit == chunk_limit(m->la), SESSILE_ERR_USAGE,
+                "refill: the context's chunk limit changed since the matrix was made");
+  la_ilu_destroy(m->ilu); /* the factors of the old values */
+  m->ilu = NULL;
+  memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
+  for (uint32_t c = 0; c < m->nchunks; c++) {
+    const mat_chunk *ch = &m->chunk[c];
+    uint64_t k0 = a->rowptr[ch->row0], nnzb = a->rowptr[ch->row0 + ch->nrows] - k0;
+    if (nnzb) SESSILE_CALL(sessile_buffer_upload_reals(ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16));
+  }
+  return SESSILE_OK;
+}
+
 void sessile_mat_destroy(sessile_mat *m) {
   if (!m) return;
   for (uint32_t c = 0; c < m->nchunks; c++) {

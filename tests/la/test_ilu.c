@@ -320,6 +320,55 @@ static void test_pivots(void) {
   sessile_bcsr4_free(&b);
 }
 
+/* sessile_mat_refill_bcsr4: new values in the same buffers give the SpMV
+ * and the ILU(0) application of a matrix made from them (the factors of
+ * the old values are dropped); another pattern is refused. */
+static void test_refill(void) {
+  printf("-- refilling a block matrix's values in place\n");
+  sessile_csr pt = {0};
+  sessile_bcsr4 b1 = {0}, b2 = {0}, b3 = {0};
+  t_must("p1tet", sessile_csr_p1tet(6, 5, 4, 1.0, 1.0, 1.0, &pt));
+  t_must("bcsr4", sessile_bcsr4_random_on(&pt, 5, &b1));
+  t_must("bcsr4", sessile_bcsr4_random_on(&pt, 9, &b2));
+  uint32_t n = b1.nbrows * 4;
+  double *r = t_dalloc(n), *y1 = t_dalloc(n), *y2 = t_dalloc(n), *z1 = t_dalloc(n), *z2 = t_dalloc(n);
+  sessile_fill_random(r, n, -1, 1, 5);
+  sessile_mat *m = NULL, *f = NULL;
+  sessile_vec *vr = NULL, *vy = NULL;
+  t_must("mats", sessile_mat_create_bcsr4(la, &b1, &m));
+  t_must("mats", sessile_mat_create_bcsr4(la, &b2, &f));
+  t_must("vecs", sessile_vec_create(la, n, &vr));
+  t_must("vecs", sessile_vec_create(la, n, &vy));
+  t_must("upload", sessile_vec_upload(vr, r));
+  sessile_ilu0_info info;
+  t_must("ilu0 of the old values", sessile_mat_ilu0(la, m, &info));
+  t_must("refill", sessile_mat_refill_bcsr4(m, &b2));
+  t_must("spmv", sessile_mat_mult(la, m, vr, vy));
+  t_must("download", sessile_vec_download(vy, y1));
+  t_must("spmv", sessile_mat_mult(la, f, vr, vy));
+  t_must("download", sessile_vec_download(vy, y2));
+  t_true("refilled SpMV = a new matrix's, bit for bit", memcmp(y1, y2, n * sizeof *y1) == 0);
+  t_must("ilu0", sessile_mat_ilu0(la, m, &info));
+  t_must("ilu0 apply", sessile_mat_ilu0_apply(la, m, vr, vy));
+  t_must("download", sessile_vec_download(vy, z1));
+  t_must("ilu0", sessile_mat_ilu0(la, f, &info));
+  t_must("ilu0 apply", sessile_mat_ilu0_apply(la, f, vr, vy));
+  t_must("download", sessile_vec_download(vy, z2));
+  t_true("refilled ILU(0) application = a new matrix's (the old factors dropped)",
+         memcmp(z1, z2, n * sizeof *z1) == 0);
+  /* another pattern: one block fewer */
+  t_must("alloc", sessile_bcsr4_alloc(b1.nbrows, b1.nbcols, b1.nnzb - 1, &b3));
+  memcpy(b3.rowptr, b1.rowptr, ((size_t)b1.nbrows + 1) * sizeof *b3.rowptr);
+  b3.rowptr[b1.nbrows] = b1.nnzb - 1;
+  memcpy(b3.col, b1.col, (size_t)(b1.nnzb - 1) * sizeof *b3.col);
+  t_true("another pattern is refused (SESSILE_ERR_USAGE)", sessile_mat_refill_bcsr4(m, &b3) == SESSILE_ERR_USAGE);
+  sessile_vec_destroy(vr), sessile_vec_destroy(vy);
+  sessile_mat_destroy(m), sessile_mat_destroy(f);
+  sessile_bcsr4_free(&b1), sessile_bcsr4_free(&b2), sessile_bcsr4_free(&b3);
+  sessile_csr_free(&pt);
+  free(r), free(y1), free(y2), free(z1), free(z2);
+}
+
 int main(int argc, char **argv) {
   int want32 = 0;
   for (int i = 1; i < argc; i++) {
@@ -338,6 +387,7 @@ int main(int argc, char **argv) {
   test_pivots();
   test_convdiff();
   test_coupled_bcsr4();
+  test_refill();
   printf("ILU tests took %.1f s\n", sessile_wall_seconds() - t0);
   sessile_la_destroy(la);
   return t_finish(g);

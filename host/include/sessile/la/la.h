@@ -81,6 +81,12 @@ sessile_status sessile_vec_nrm2(sessile_la *la, const sessile_vec *x, double *ou
  * only when Jacobi is later requested (see sessile_mat_jacobi). */
 sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sessile_mat **out);
 sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out);
+/* New values for a block matrix created from the same pattern (rowptr and
+ * col equal): written into its buffers, none allocated (a Newton loop's
+ * Jacobians: lavapipe's fresh device memory costs page faults).  A pc set
+ * up on m must be set up again.  SESSILE_ERR_USAGE for another pattern (or
+ * another chunk limit in the context's options since m was made). */
+sessile_status sessile_mat_refill_bcsr4(sessile_mat *m, const sessile_bcsr4 *a);
 /* The P1 Laplacian of the uniform Kuhn box as a matrix-free operator: the
  * 7-point stencil times h (diagonal 6h, face neighbours -h) on an
  * nx*ny*nz grid (node i + nx (j + ny k)), with every wall node and every
