@@ -18,6 +18,7 @@ static int node_dirichlet(const ctx *x, const uint32_t c[3], double *value) {
   *value = 1;
   if (x->bc->far_field == SESSILE_FAR_FIELD_WALLS)
     return c[0] == 0 || c[1] == 0 || c[0] == n[0] - 1 || c[1] == n[1] - 1 || c[2] == n[2] - 1;
+  if (x->bc->far_field == SESSILE_FAR_FIELD_INLET && c[0] == 0) return 1;
   return !(zk(x, c[2]) < x->bc->height - 1e-9 * x->box->h);
 }
 
@@ -85,7 +86,7 @@ static void setup(const sessile_box *box, const sessile_cut_bc *bc, const uint32
       cm[a] = plus ? c[a] + 1 : c[a] - 1;
       double gm, f = face(&x, c, a), w = 1, th = 1;
       if (node_dirichlet(&x, cm, &gm)) {
-        if (bc->far_field == SESSILE_FAR_FIELD_HEIGHT && a == 2 && plus && cm[2] != 0) {
+        if (bc->far_field != SESSILE_FAR_FIELD_WALLS && a == 2 && plus && cm[2] != 0) {
           double t = (bc->height - zk(&x, c[2])) / box->h;
           t = t < 1 ? t : 1;
           th = t > bc->theta_min ? t : bc->theta_min;

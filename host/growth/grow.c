@@ -66,7 +66,9 @@ sessile_status grow_setup(grow_run *r) {
   SESSILE_CALL(sessile_la_create(r->gpu, &r->la));
   sessile_cut_bc bc;
   sessile_cut_bc_default(&bc);
-  bc.far_field = p->far_field == SESSILE_FAR_WALLS ? SESSILE_FAR_FIELD_WALLS : SESSILE_FAR_FIELD_HEIGHT;
+  bc.far_field = p->far_field == SESSILE_FAR_WALLS   ? SESSILE_FAR_FIELD_WALLS
+                 : p->far_field == SESSILE_FAR_INLET ? SESSILE_FAR_FIELD_INLET
+                                                     : SESSILE_FAR_FIELD_HEIGHT;
   bc.height = sessile_params_far_field_height(p);
   SESSILE_CALL(sessile_cut_nutrient_create(r->la, &r->box, &bc,
                                            p->nutrient_pc_type == SESSILE_SOLVER_MG ? 12 : 1,

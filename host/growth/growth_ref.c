@@ -16,8 +16,8 @@ void sessile_growth_params_from(const sessile_grow_params *p, sessile_growth_par
    * 1/H (far_field = walls: H the box top; the side walls then feed the
    * box's middle a little more than that, docs/model.md). */
   double top = p->box_base_cell * p->box_cells_z, H = sessile_params_far_field_height(p);
-  g->flux_ref = 1.0 / (p->far_field == SESSILE_FAR_HEIGHT ? H : top);
-  if (p->far_field == SESSILE_FAR_HEIGHT) g->ceiling = H;
+  g->flux_ref = 1.0 / (p->far_field != SESSILE_FAR_WALLS ? H : top); /* height, inlet: H */
+  if (p->far_field != SESSILE_FAR_WALLS) g->ceiling = H;
   g->probe_samples = (uint32_t)p->probe_samples;
   g->t_give = p->t_give;
   g->translocate_passes = p->translocate_passes;

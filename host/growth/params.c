@@ -10,7 +10,7 @@
 static const char *const skeleton_names[] = {"radiate", "halichondrid", NULL};
 static const char *const domain_names[] = {"immersed", "conforming", NULL};
 static const char *const probe_names[] = {"flux", "paper", NULL};
-static const char *const far_names[] = {"height", "walls", NULL};
+static const char *const far_names[] = {"height", "walls", "inlet", NULL};
 static const char *const solver_names[] = {"mg", "jacobi", NULL};
 static const char *const translocate_names[] = {"parallel", "sequential", NULL};
 static const char *const adv_names[] = {"cut", "tet", NULL};
@@ -156,7 +156,7 @@ static sessile_status validate(const void *values) {
                 SESSILE_ERR_USAGE,
                 "the sponge centre (%g, %g) cm puts the sponge (radius %g cm) within one node "
                 "spacing (%g cm) of a side wall or outside the box (%g x %g cm)", cx, cy, R, h, sx, sy);
-  if (p->far_field == SESSILE_FAR_HEIGHT) {
+  if (p->far_field != SESSILE_FAR_WALLS) { /* height, inlet */
     double H = sessile_params_far_field_height(p);
     SESSILE_CHECK(p->far_field_height == -1 || p->far_field_height > 0, SESSILE_ERR_USAGE,
                   "far_field_height must be positive, or -1 for 4.8 sponge radii (got %g)", p->far_field_height);

@@ -28,6 +28,7 @@ bool cut_node_dirichlet(uint c[3], out REAL value) {
     return wall;
   }
   value = REAL(1);
+  if (pc.far_field == FAR_INLET && c[0] == 0u) return true; // fresh water through the inlet
   // a layer within 1e-9 h of the plane is on it (28.8 is not 24 x 1.2 in binary)
   return !(cut_z(c[2]) < pc.height - REAL(1e-9) * pc.h);
 }

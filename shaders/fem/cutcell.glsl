@@ -59,7 +59,7 @@ void main() {
 #endif
     if (nodebc) {
       // The far-field plane between two layers: its own fraction.
-      if (pc.far_field == FAR_HEIGHT && a == 2u && plus && cm[2] != 0u) {
+      if (pc.far_field != FAR_WALLS && a == 2u && plus && cm[2] != 0u) {
         precise REAL t = (pc.height - cut_z(c[2])) / pc.h;
         w = REAL(1) / max(min(t, REAL(1)), pc.theta_min);
 #if CUT_ADV

@@ -188,7 +188,7 @@ static void solve_vs_ref(sessile_far_field ff) {
   ko.rtol = 1e-12;
   ko.max_it = 2000;
   sessile_solve_result res;
-  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : "height";
+  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet" : "height";
   for (int s = 0; s < 2; s++) {
     sessile_cut_solver solver = s ? SESSILE_CUT_SOLVER_JACOBI : SESSILE_CUT_SOLVER_MG;
     t_must("fill", sessile_vec_fill(la, 0.5, cv));
@@ -431,6 +431,7 @@ int main(int argc, char **argv) {
   la_vs_ref();
   solve_vs_ref(SESSILE_FAR_FIELD_HEIGHT);
   solve_vs_ref(SESSILE_FAR_FIELD_WALLS);
+  solve_vs_ref(SESSILE_FAR_FIELD_INLET);
   dome();
   convergence();
   sessile_la_destroy(la);

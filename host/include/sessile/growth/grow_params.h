@@ -38,12 +38,13 @@ extern "C" {
     "probe = paper: how far along the vertex normal the nutrient is probed")                       \
   X(probe_samples, INT, 8, 2, 256, 0, "", "ours",                                                     \
     "probe = paper: samples along the normal, at d = k/(S-1), k = 0..S-1 (eq 6)")                 \
-  X(far_field, ENUM_FAR, 0, 0, 1, 0, "", "ours (docs/model.md)",                                     \
+  X(far_field, ENUM_FAR, 0, 0, 2, 0, "", "ours (docs/model.md)",                                     \
     "the nutrient's far field: height (c = 1 at far_field_height, zero flux through the side "    \
-    "walls: the box size is a convergence parameter) or walls (c = 1 on every wall but the "      \
-    "substratum, the paper's box)")                                                                \
+    "walls: the box size is a convergence parameter), walls (c = 1 on every wall but the "        \
+    "substratum, the paper's box) or inlet (height, and c = 1 on the inlet wall x = 0 above the " \
+    "substratum: fresh water arriving with the current)")                                          \
   X(far_field_height, REAL, -1, -1, 1e6, 0, "cm", "ours (docs/nutrient.md)",                        \
-    "far_field = height: c = 1 at and above this height over the substratum (<= the box top); "  \
+    "far_field = height or inlet: c = 1 at and above this height over the substratum (<= the box top); "  \
     "-1 = 4.8 sponge_radius (28.8 cm for the paper's 6 cm sponge), whatever the box (at most "    \
     "its top, at least two node spacings over the sponge)")                                         \
   X(nutrient_pc_type, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
@@ -124,7 +125,7 @@ extern "C" {
 typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 } sessile_skeleton_type;
 typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sessile_domain;
 typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
-typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1 } sessile_far;
+typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1, SESSILE_FAR_INLET = 2 } sessile_far;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
 typedef enum { SESSILE_TRANSLOCATE_PARALLEL = 0, SESSILE_TRANSLOCATE_SEQUENTIAL = 1 } sessile_translocate;
 typedef enum { SESSILE_ADVECTION_CUT = 0, SESSILE_ADVECTION_TET = 1 } sessile_advection;
