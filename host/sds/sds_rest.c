@@ -57,3 +57,12 @@ void sessile_sds_relax_multipliers(sessile_sds *o) {
   for (uint32_t t = 0; t < o->ntets; t++)
     o->tet_sm[t] = sessile_sds_tet_volume(o, t) / sessile_sds_tet_rest_of(o, t);
 }
+
+double sessile_sds_mass(double density, double r) {
+  /* fma gives each product's rounding error exactly (Dekker's split on the
+   * device: the same two doubles); C17 without extensions contracts nothing */
+  double p = r * r, e = fma(r, r, -p);
+  double q = p * r, f = fma(p, r, -q);
+  double g = e * r, s = f + g;
+  return density * 4.0 / 3.0 * SDS_PI * (q + s);
+}

@@ -60,7 +60,7 @@ static sessile_status morphogens(sds_sim *s, const double *src, double dt) {
   return sessile_morph_gpu_get_phi(s->mg, s->o.phi);
 }
 
-static void set_mass(sds_sim *s, uint32_t c) { s->o.m[c] = s->density * 4.0 / 3.0 * SDS_PI * pow(s->o.r[c], 3); }
+static void set_mass(sds_sim *s, uint32_t c) { s->o.m[c] = sessile_sds_mass(s->density, s->o.r[c]); }
 
 sessile_status sds_rules(sds_sim *s, double dt) {
   sessile_sds *o = &s->o;

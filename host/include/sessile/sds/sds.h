@@ -127,6 +127,11 @@ sessile_status sessile_sds_from_icosphere(int level, double radius, const double
 /* §3.2.1: r_c = mean over neighbours c' of |x_c - x_c'| / 2 (over the edge
  * list); m = density 4/3 pi r^3.  A cell without edges keeps its radius. */
 void sessile_sds_radii_from_edges(sessile_sds *o, double density);
+/* A cell's mass after growth, density 4/3 pi r^3 with r^3 rounded once (the
+ * exact products of r r and (r r) r: the rules kernel's cube, so that the
+ * host's and the device's masses are the same bits; glibc's pow(r, 3) is an
+ * ulp off for about one radius in 1 200). */
+double sessile_sds_mass(double density, double r);
 /* Signed volume of tet t, eq 1: (x1-x0).((x2-x0)x(x3-x0)) / 6. */
 double sessile_sds_tet_volume(const sessile_sds *o, uint32_t t);
 /* Appendix A: rest volume of a tet whose edge lengths are the sums of its
