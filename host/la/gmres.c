@@ -16,13 +16,28 @@ static sessile_status gm_op(sessile_la *la, sessile_cmd *c, uint32_t op, uint32_
 }
 
 static int hslot(uint32_t i, uint32_t j, uint32_t m) { return GM_BASE + (int)(i + j * (m + 1)); }
+/* y_i's slot (gmres_scalar.comp's Y(i)). */
+static int yslot(uint32_t i, uint32_t m) { return GM_BASE + (int)((m + 1) * m + (m + 1) + 2 * m + i); }
+
+/* The Krylov basis: m + 1 vectors one after another in one buffer, or, when
+ * that buffer would exceed the per-buffer limit (maxStorageBufferRange:
+ * 128 MiB on lavapipe, 2.6 GB wanted at the fluid's level 3), one buffer
+ * each. */
+typedef struct gm_basis {
+  sessile_buffer *one;
+  sessile_buffer **each;
+  uint32_t n4;
+} gm_basis;
+static vref vj(const gm_basis *B, uint32_t j) {
+  return B->one ? (vref){B->one, j * B->n4} : (vref){B->each[j], 0};
+}
 
 /* The cycle in pieces: the start (residual, beta, v0), iterations j0..j1-1,
  * the end (back substitution, x update, the cycle's convergence test). */
-#define VJ(j) ((vref){V, (uint32_t)(j) * n4})
+#define VJ(j) vj(V, (uint32_t)(j))
 static sessile_status rec_start(sessile_la *la, sessile_cmd *c, const sessile_mat *a, const sessile_vec *b,
-                                const sessile_vec *x, sessile_buffer *V, uint32_t m) {
-  uint32_t n = a->nrows, n4 = (n + 3) / 4, cnt;
+                                const sessile_vec *x, const gm_basis *V, uint32_t m) {
+  uint32_t n = a->nrows, cnt;
   vref none = {0};
   SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), VJ(1), S_STOP));
   SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, VJ(1), vref_of(b), VJ(0), -1, COEF_NEG, S_STOP));
@@ -33,8 +48,8 @@ static sessile_status rec_start(sessile_la *la, sessile_cmd *c, const sessile_ma
 }
 
 static sessile_status rec_iters(sessile_la *la, sessile_cmd *c, const sessile_mat *a, const sessile_pc *pc,
-                                sessile_buffer *V, sessile_vec *z, uint32_t m, uint32_t j0, uint32_t j1) {
-  uint32_t n = a->nrows, n4 = (n + 3) / 4, cnt;
+                                const gm_basis *V, sessile_vec *z, uint32_t m, uint32_t j0, uint32_t j1) {
+  uint32_t n = a->nrows, cnt;
   vref none = {0};
   for (uint32_t j = j0; j < j1; j++) {
     SESSILE_CALL(rec_pc(pc, c, VJ(j), vref_of(z), GM_DONE));
@@ -53,18 +68,30 @@ static sessile_status rec_iters(sessile_la *la, sessile_cmd *c, const sessile_ma
 }
 
 static sessile_status rec_end(sessile_la *la, sessile_cmd *c, const sessile_mat *a, const sessile_vec *x,
-                              const sessile_pc *pc, sessile_buffer *V, sessile_vec *z, const sessile_vec *ones,
+                              const sessile_pc *pc, const gm_basis *V, sessile_vec *z, const sessile_vec *ones,
                               uint32_t m) {
   uint32_t n = a->nrows, n4 = (n + 3) / 4;
   vref none = {0};
   SESSILE_CALL(gm_op(la, c, 2, 0, m));
+  if (!V->one) { /* split basis: z = sum_i y_i v_i (y_i = 0 for i >= k), then as below */
+    SESSILE_CALL(rec_vec(la, c, K_FILL, n, vref_of(z), none, none, GM_ZERO, 0, S_STOP));
+    for (uint32_t i = 0; i < m; i++)
+      SESSILE_CALL(rec_vec(la, c, K_AXPY, n, VJ(i), vref_of(z), none, yslot(i, m), 0, S_STOP));
+    if (pc->diag) { /* x += D⁻¹ z */
+      SESSILE_CALL(rec_vec(la, c, K_PMUL, n, vref_of(z), vref_of(pc->diag), VJ(m), -1, 0, S_STOP));
+    } else { /* v_m = M⁻¹ z */
+      SESSILE_CALL(rec_pc(pc, c, vref_of(z), VJ(m), S_STOP));
+    }
+    SESSILE_CALL(rec_vec(la, c, K_AXPY, n, VJ(m), vref_of(x), none, -1, 0, S_STOP));
+    return gm_op(la, c, 3, 0, m);
+  }
   vec_push p = {.n4 = n4, .n = n, .off0 = n4, .off1 = m, .a_slot = -1, .guard = S_STOP};
   if (pc->diag) { /* x += D⁻¹ V y in one pass */
-    sessile_buffer *ub[4] = {la->scalars, V, pc->diag->buf, x->buf};
+    sessile_buffer *ub[4] = {la->scalars, V->one, pc->diag->buf, x->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_GMRES_UPDATE], la_groups(la, K_GMRES_UPDATE, n4), ub, &p));
   } else { /* z = V y (with D⁻¹ = ones), v_m = M⁻¹ z (v_m is free now), x += v_m */
     SESSILE_CALL(rec_vec(la, c, K_FILL, n, vref_of(z), none, none, GM_ZERO, 0, S_STOP));
-    sessile_buffer *ub[4] = {la->scalars, V, ones->buf, z->buf};
+    sessile_buffer *ub[4] = {la->scalars, V->one, ones->buf, z->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_GMRES_UPDATE], la_groups(la, K_GMRES_UPDATE, n4), ub, &p));
     SESSILE_CALL(rec_pc(pc, c, vref_of(z), VJ(m), S_STOP));
     SESSILE_CALL(rec_vec(la, c, K_AXPY, n, VJ(m), vref_of(x), none, -1, 0, S_STOP));
@@ -97,7 +124,7 @@ static uint32_t seg_hi(uint32_t k, uint32_t m) { return seg_lo(k + 1, m); }
 
 static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const sessile_mat *a,
                              const sessile_vec *b, sessile_vec *x, const sessile_pc *pc,
-                             sessile_buffer *V, sessile_vec *z, const sessile_vec *ones, uint32_t m,
+                             const gm_basis *V, sessile_vec *z, const sessile_vec *ones, uint32_t m,
                              gm_segs *sg, sessile_solve_result *res) {
   sessile_kernel *k;
   static const la_kernel_id ids[] = {K_GMRES_SCALAR, K_GMRES_UPDATE, K_DOT, K_REDUCE, K_WAXPY,
@@ -149,23 +176,38 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
                         sessile_solve_result *res) {
   uint32_t n4 = (a->nrows + 3) / 4;
   uint32_t m = (uint32_t)o->restart;
-  /* The basis must fit one storage buffer: shrink m (and say so) rather than fail. */
+  /* The basis in one buffer when it fits the per-buffer limit (the range,
+   * or the la's max_matrix_chunk_bytes for tests), else one buffer a vector. */
   uint64_t per = (uint64_t)n4 * 4 * la->real_bytes;
-  uint64_t range = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range;
-  if ((uint64_t)(m + 1) * per > range) {
-    uint64_t fit = range / per;
-    SESSILE_CHECK(fit >= 3, SESSILE_ERR_TOO_LARGE,
-                  "GMRES needs at least 3 basis vectors of %llu bytes in one buffer, but "
-                  "maxStorageBufferRange is %llu: use bicgstab", (unsigned long long)per,
-                  (unsigned long long)range);
-    m = (uint32_t)fit - 1;
-    la_monitorf(o, "gmres: restart reduced to %u to fit maxStorageBufferRange", m);
-  }
+  uint64_t range = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range, lim = range;
+  if (la->max_chunk_bytes > 0 && la->max_chunk_bytes < lim) lim = la->max_chunk_bytes;
+  SESSILE_CHECK(per <= range, SESSILE_ERR_TOO_LARGE,
+                "GMRES: one basis vector of %llu bytes exceeds maxStorageBufferRange (%llu): use bicgstab",
+                (unsigned long long)per, (unsigned long long)range);
+  int split = (uint64_t)(m + 1) * per > lim;
+  if (split)
+    la_monitorf(o, "gmres: the basis (%u vectors of %llu bytes) exceeds the per-buffer limit: one buffer a vector",
+                m + 1, (unsigned long long)per);
   gm_segs sg = {NULL, NULL, 0};
   while (seg_lo(sg.nseg, m) < m) sg.nseg++;
   /* the basis, z and ones of the last solve when they fit (la_internal.h) */
   sessile_status s = SESSILE_OK;
-  if (!la->gm_basis || sessile_buffer_size(la->gm_basis) < (size_t)(m + 1) * per) {
+  if (split) {
+    int fits = la->gm_neach >= m + 1;
+    for (uint32_t i = 0; fits && i <= m; i++) fits = sessile_buffer_size(la->gm_each[i]) >= per;
+    if (!fits) {
+      for (uint32_t i = 0; i < la->gm_neach; i++) sessile_buffer_destroy(la->gm_each[i]);
+      free(la->gm_each);
+      la->gm_neach = 0;
+      la->gm_each = calloc(m + 1, sizeof *la->gm_each);
+      if (!la->gm_each) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for GMRES");
+      else la->gm_neach = m + 1;
+      for (uint32_t i = 0; s == SESSILE_OK && i <= m; i++)
+        s = sessile_buffer_create(la->gpu, per, SESSILE_BUFFER_DEVICE, &la->gm_each[i]);
+    }
+    sessile_buffer_destroy(la->gm_basis); /* not both at once */
+    la->gm_basis = NULL;
+  } else if (!la->gm_basis || sessile_buffer_size(la->gm_basis) < (size_t)(m + 1) * per) {
     sessile_buffer_destroy(la->gm_basis);
     la->gm_basis = NULL;
     s = sessile_buffer_create(la->gpu, (size_t)(m + 1) * per, SESSILE_BUFFER_DEVICE, &la->gm_basis);
@@ -180,7 +222,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
     la->gm_ones = NULL;
     s = la_ones(la, a->nrows, &la->gm_ones);
   }
-  sessile_buffer *V = la->gm_basis;
+  gm_basis V = {split ? NULL : la->gm_basis, split ? la->gm_each : NULL, n4};
   sessile_vec *z = la->gm_z, *ones = pc->diag ? NULL : la->gm_ones;
   if (s == SESSILE_OK) {
     sg.cmd = calloc(1 + (size_t)sg.nseg, sizeof *sg.cmd);
@@ -188,7 +230,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
     if (!sg.cmd || !sg.done) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for GMRES");
   }
   for (uint32_t i = 0; s == SESSILE_OK && i <= sg.nseg; i++) s = sessile_cmd_create(la->gpu, &sg.cmd[i]);
-  if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, V, z, ones, m, &sg, res);
+  if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, &V, z, ones, m, &sg, res);
   for (uint32_t i = 0; sg.cmd && i <= sg.nseg; i++) sessile_cmd_destroy(sg.cmd[i]);
   free(sg.cmd), free(sg.done);
   return s;

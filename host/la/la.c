@@ -49,6 +49,8 @@ void sessile_la_destroy(sessile_la *la) {
   if (!la) return;
   for (int i = 0; i < K_COUNT; i++) sessile_kernel_destroy(la->k[i]);
   sessile_buffer_destroy(la->gm_basis);
+  for (uint32_t i = 0; i < la->gm_neach; i++) sessile_buffer_destroy(la->gm_each[i]);
+  free(la->gm_each);
   sessile_vec_destroy(la->gm_z);
   sessile_vec_destroy(la->gm_ones);
   sessile_cmd_destroy(la->cmd);

@@ -24,7 +24,9 @@ struct sessile_la {
   /* GMRES's scratch, kept between solves (la_gmres): fresh device memory on
    * lavapipe is host memory page-faulted in on first touch, ~45 MB a solve
    * of the fluid's level-1 system */
-  sessile_buffer *gm_basis;
+  sessile_buffer *gm_basis;   /* the basis in one buffer, or ... */
+  sessile_buffer **gm_each;   /* ... one buffer per vector (gm_neach) when it would not fit one */
+  uint32_t gm_neach;
   sessile_vec *gm_z, *gm_ones;
   uint32_t fused_groups;      /* at most this many groups for the grid-stride kernels with
                                  a reduction of the cut-cell operator and the multigrid:

@@ -61,6 +61,8 @@ void main() {
       for (int l = i + 1; l < k; l++) t -= s[H(uint(i), uint(l))] * s[Y(uint(l))];
       s[Y(uint(i))] = t / s[H(uint(i), uint(i))];
     }
+    // y_i = 0 beyond k: a basis split over buffers is summed over all m (gmres.c)
+    for (uint i = uint(k); i < pc.m; i++) s[Y(i)] = REAL(0);
   } else {
     if (!is_finite(s[GM_EST])) stop(STOP_BREAKDOWN, R_NONFINITE);
     else if (s[GM_EST] <= tol) stop(STOP_CONVERGED, REAL(0));

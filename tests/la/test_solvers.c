@@ -273,6 +273,49 @@ static void test_bcsr4(void) {
   free(x);
 }
 
+/* ---- GMRES with its basis in one buffer a vector ---- */
+/* A basis over the per-buffer limit (here the la's max_matrix_chunk_bytes,
+ * on lavapipe maxStorageBufferRange at the fluid's level 3) is split into a
+ * buffer per vector; the Arnoldi process is the same operations, the update
+ * x += V y a sum in another order: the same iterations, x to rounding.
+ * Restarted (max_it over the restart length) with the Jacobi pc (the fused
+ * update's other path) and with ILU(0). */
+static void test_gmres_split(void) {
+  printf("-- GMRES with the basis split into one buffer a vector\n");
+  sessile_csr a;
+  t_must("convdiff", sessile_csr_convdiff(14, 13, 12, 4.0, &a));
+  const uint32_t n = a.nrows;
+  double *b = t_dalloc(n), *x1 = t_dalloc(n), *x2 = t_dalloc(n);
+  rhs(b, n, 21);
+  sessile_mat *m = NULL;
+  t_must("mat", sessile_mat_create_csr(la, &a, &m));
+  const sessile_pc_type pcs[2] = {SESSILE_PC_JACOBI, SESSILE_PC_ILU0};
+  for (int q = 0; q < 2; q++) {
+    sessile_ksp_options o = opts(SESSILE_KSP_GMRES, pcs[q], 2000);
+    o.restart = 12; /* several cycles */
+    sessile_solve_result r1, r2;
+    fill(x1, n, 0.0), fill(x2, n, 0.0);
+    t_must("one buffer", solve(&o, m, b, x1, &r1));
+    sessile_la_options lo;
+    sessile_la_options_default(&lo);
+    lo.max_matrix_chunk_bytes = (uint64_t)n * 8 * 4; /* 13 vectors do not fit; one does */
+    sessile_la_set_options(la, &lo);
+    t_must("split", solve(&o, m, b, x2, &r2));
+    sessile_la_options_default(&lo);
+    sessile_la_set_options(la, &lo);
+    char what[160];
+    snprintf(what, sizeof what, "GMRES(12)+%s, split basis: converged, %d iterations as in one buffer (%d)",
+             q ? "ILU(0)" : "Jacobi", r2.iterations, r1.iterations);
+    t_true(what, r1.status == SESSILE_SOLVE_CONVERGED && r2.status == SESSILE_SOLVE_CONVERGED &&
+                     abs(r2.iterations - r1.iterations) <= 1 && r1.iterations > 12);
+    snprintf(what, sizeof what, "GMRES(12)+%s, split basis: x as in one buffer (max rel)", q ? "ILU(0)" : "Jacobi");
+    t_check(what, t_relerr(x2, x1, n), fp32 ? 1e-3 : 1e-6);
+  }
+  sessile_mat_destroy(m);
+  sessile_csr_free(&a);
+  free(b), free(x1), free(x2);
+}
+
 /* ---- b = 0: x = 0 at once, for every solver ---- */
 static void test_zero_rhs(void) {
   printf("-- zero right-hand side\n");
@@ -538,6 +581,7 @@ int main(int argc, char **argv) {
   test_convdiff();
   test_p1tet();
   test_bcsr4();
+  test_gmres_split();
   test_zero_rhs();
   test_indefinite();
   test_singular();
