@@ -179,8 +179,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
   /* The basis in one buffer when it fits the per-buffer limit (the range,
    * or the la's max_matrix_chunk_bytes for tests), else one buffer a vector. */
   uint64_t per = (uint64_t)n4 * 4 * la->real_bytes;
-  uint64_t range = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range, lim = range;
-  if (la->max_chunk_bytes > 0 && la->max_chunk_bytes < lim) lim = la->max_chunk_bytes;
+  uint64_t range = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range, lim = la_chunk_limit(la);
   SESSILE_CHECK(per <= range, SESSILE_ERR_TOO_LARGE,
                 "GMRES: one basis vector of %llu bytes exceeds maxStorageBufferRange (%llu): use bicgstab",
                 (unsigned long long)per, (unsigned long long)range);

@@ -156,6 +156,10 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
                         sessile_solve_result *res);
 /* A vector of n ones (the fused solver kernels' D⁻¹ when the pc is not diagonal). */
 sessile_status la_ones(sessile_la *la, uint32_t n, sessile_vec **out);
+/* The per-buffer limit of a matrix's arrays and GMRES's basis: the device's
+ * maxStorageBufferRange, lowered by the la's max_matrix_chunk_bytes when set
+ * (a testing knob: small problems then split). mat.c. */
+uint64_t la_chunk_limit(const sessile_la *la);
 /* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
                               const sessile_ksp_options *o, const char *name, int est_slot,

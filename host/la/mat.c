@@ -33,10 +33,7 @@ static sessile_status check_csr(const sessile_csr *a) {
   return SESSILE_OK;
 }
 
-/* The per-buffer limit of a matrix's arrays: the device's
- * maxStorageBufferRange, lowered by the la's max_matrix_chunk_bytes when set
- * (a testing knob: it makes small matrices split into many chunks). */
-static uint64_t chunk_limit(sessile_la *la) {
+uint64_t la_chunk_limit(const sessile_la *la) {
   uint64_t lim = sessile_gpu_info_of(la->gpu)->max_storage_buffer_range;
   if (la->max_chunk_bytes > 0 && la->max_chunk_bytes < lim) lim = la->max_chunk_bytes;
   return lim;
@@ -181,7 +178,7 @@ sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sess
   m->nrows = a->nrows;
   m->nnz = a->nnz;
   m->rows_per = 1; /* SELL-8: one row per invocation */
-  m->chunk_limit = chunk_limit(la);
+  m->chunk_limit = la_chunk_limit(la);
   sessile_status s = copy_csr(a, &m->host);
   if (s == SESSILE_OK) s = upload_csr(la, m);
   if (s != SESSILE_OK) {
@@ -268,7 +265,7 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   m->nrows = a->nbrows * 4;
   m->nnz = a->nnzb * 16;
   m->rows_per = 1;
-  m->chunk_limit = chunk_limit(la);
+  m->chunk_limit = la_chunk_limit(la);
   sessile_status s = sessile_bcsr4_alloc(a->nbrows, a->nbcols, a->nnzb, &m->hostb);
   if (s == SESSILE_OK) {
     memcpy(m->hostb.rowptr, a->rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr);
@@ -289,7 +286,7 @@ sessile_status sessile_mat_refill_bcsr4(sessile_mat *m, const sessile_bcsr4 *a) 
                     memcmp(a->rowptr, m->hostb.rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr) == 0 &&
                     memcmp(a->col, m->hostb.col, (size_t)a->nnzb * sizeof *a->col) == 0,
                 SESSILE_ERR_USAGE, "refill: the block matrix's pattern is not the one it was created with");
-  SESSILE_CHECK(m->chunk_limit == chunk_limit(m->la), SESSILE_ERR_USAGE,
+  SESSILE_CHECK(m->chunk_limit == la_chunk_limit(m->la), SESSILE_ERR_USAGE,
                 "refill: the context's chunk limit changed since the matrix was made");
   la_ilu_destroy(m->ilu); /* the factors of the old values */
   m->ilu = NULL;
