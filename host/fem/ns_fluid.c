@@ -70,10 +70,13 @@ sessile_status sessile_fluid_create(sessile_la *la, const sessile_tetmesh *m, se
     memcpy(fl->tet, m->tet, (size_t)m->ntets * 4 * sizeof *fl->tet);
     if (m->node_tags) memcpy(fl->tags, m->node_tags, (size_t)m->nnodes * sizeof *fl->tags);
     else memset(fl->tags, 0, (size_t)m->nnodes * sizeof *fl->tags);
-    s = ns_build_graph(fl);
+    ns_detect_box(fl);
+    /* a box keeps its order (the multigrid's); any other mesh is sorted so
+     * that consecutive tets are near (ns_colour.c) */
+    if (!fl->grid[0]) s = ns_order_tets(fl);
   }
+  if (s == SESSILE_OK) s = ns_build_graph(fl);
   if (s == SESSILE_OK) s = ns_build_colours(fl);
-  if (s == SESSILE_OK) ns_detect_box(fl);
   if (s != SESSILE_OK) {
     sessile_fluid_destroy(fl);
     return s;

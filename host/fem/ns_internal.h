@@ -27,6 +27,8 @@ void ns_element(const double X[4][3], const double U[16], const double F[4][3], 
 #define NS_QB 0.1381966011250105
 
 #define NS_MG_LEVELS 15
+/* The largest chunk of tets a thread assembles in a row (ns_colour.c). */
+#define NS_CHUNK 2048u
 
 /* The solver object (sessile/fem/fluid.h). */
 struct sessile_fluid {
@@ -38,9 +40,10 @@ struct sessile_fluid {
   sessile_bcsr4 a;    /* the pattern (node graph), values rewritten each assembly */
   sessile_mat *dev;   /* a on the device, kept across solves (refilled: no new buffers) */
   uint32_t *pos;      /* 16 ntets: block index of (a, b) of each tet */
-  uint32_t ncolours;
-  uint32_t *corder;   /* ntets, tets sorted by colour */
-  uint32_t *cstart;   /* ncolours + 1 */
+  uint32_t chunk;     /* consecutive tets a thread assembles in a row (ns_colour.c) */
+  uint32_t ncolours;  /* of the chunks */
+  uint32_t *corder;   /* the chunks sorted by colour */
+  uint32_t *cstart;   /* ncolours + 1: colour c's chunks are corder[cstart[c] .. cstart[c+1]) */
   uint32_t grid[3];   /* the mesh is a Kuhn box of these nodes per axis (ns_box.c); 0: not */
   sessile_bmg *bmg;   /* pc mg: the block hierarchy, kept across solves (created on first use) */
   sessile_bmg_options bmg_opt; /* the options it was made with */
@@ -51,7 +54,9 @@ struct sessile_fluid {
 
 /* Pieces of the solver, one file each (ns_fluid.c has the overview). */
 sessile_status ns_build_graph(sessile_fluid *fl);   /* fl->a's pattern and fl->pos */
-sessile_status ns_build_colours(sessile_fluid *fl); /* fl->ncolours, corder, cstart */
+sessile_status ns_build_colours(sessile_fluid *fl); /* fl->chunk, ncolours, corder, cstart */
+/* Puts fl->tet in Morton order of the tets' centroids (a mesh that is not a box). */
+sessile_status ns_order_tets(sessile_fluid *fl);
 /* fl->grid: the box's nodes per axis when the mesh is a structured Kuhn box
  * in box order (sessile_tetmesh_from_box), else zeros. */
 void ns_detect_box(sessile_fluid *fl);

@@ -24,11 +24,16 @@
  *  - Newton near the solution: log(r_{k+1}) / log(r_k) >= 1.6 for the
  *    relative residuals of the last steps (quadratic), Poiseuille channel Re 10, h = H/2,
  *    linear rtol 1e-13;
+ *  - the parallel assembly (chunks of tets coloured, ns_colour.c) gives the
+ *    same bytes with 1, 2 and 3 threads, and equals a plain tet-by-tet
+ *    assembly within 1e-13 of the largest entry (only the sums' order
+ *    differs), on a box of several chunks at a random state;
  *  (the default scene, inlet/outlet/substratum and an immersed dome, runs in
  *  --bench only).
  * `test_ns --bench [resolution]` (not run by ctest) times the default box
  * (32 x 32 x 24 cubes of 1.2 cm at resolution 1) with a 6 cm immersed dome. */
 #include <math.h>
+#include <omp.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -405,6 +410,99 @@ static void newton_quadratic(void) {
   sessile_tetmesh_free(&m);
 }
 
+/* ---- the parallel assembly ----------------------------------------------------- */
+static void assembly_threads(int shuffle) {
+  sessile_box box;
+  sessile_tetmesh m = {0};
+  double o[3] = {0, 0, 0};
+  make_mesh(o, 0.5, 14, 12, 10, &box, &m); /* 10 080 tets: several chunks and colours */
+  uint64_t mix = 5;
+  for (uint32_t t = m.ntets - 1; shuffle && t > 0; t--) { /* tets in no spatial order */
+    uint32_t u = (uint32_t)(urand(&mix) * (t + 1)), tmp[4];
+    memcpy(tmp, m.tet + 4 * (size_t)t, sizeof tmp);
+    memcpy(m.tet + 4 * (size_t)t, m.tet + 4 * (size_t)u, sizeof tmp);
+    memcpy(m.tet + 4 * (size_t)u, tmp, sizeof tmp);
+  }
+  sessile_fluid *fl = NULL;
+  t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+  size_t n4 = (size_t)m.nnodes * 4;
+  double *up = t_xalloc(n4 * sizeof *up), *rhs[3], *rr = t_xalloc(n4 * sizeof *rr);
+  uint64_t seed = 11;
+  for (size_t k = 0; k < n4; k++) up[k] = 0.05 * (urand(&seed) - 0.5);
+  sessile_fluid_params p = test_params();
+  sessile_bcsr4 jac[3];
+  int saved = omp_get_max_threads();
+  omp_set_dynamic(0);
+  for (int t = 0; t < 3; t++) {
+    omp_set_num_threads(t + 1);
+    rhs[t] = t_xalloc(n4 * sizeof *rhs[t]);
+    t_must("fluid jacobian", sessile_fluid_jacobian(fl, NULL, &p, up, 0, &jac[t], rhs[t]));
+  }
+  omp_set_num_threads(saved);
+  size_t nv = (size_t)jac[0].nnzb * 16;
+  for (int t = 1; t < 3; t++) {
+    char what[96];
+    snprintf(what, sizeof what, "assembly with %d threads: the same bytes as with 1", t + 1);
+    t_true(what, !memcmp(jac[t].val, jac[0].val, nv * sizeof *jac[0].val) &&
+                     !memcmp(rhs[t], rhs[0], n4 * sizeof *rhs[0]));
+  }
+  /* a plain assembly, tet by tet in index order, without boundary rows */
+  ns_assemble(fl, &p, up, 1.0, 1, rr);
+  double *val = t_xalloc(nv * sizeof *val), *r = t_xalloc(n4 * sizeof *r);
+  memset(val, 0, nv * sizeof *val);
+  memset(r, 0, n4 * sizeof *r);
+  ns_coef c = {p.rho, p.eta, p.lsic, 1.0};
+  double Ke[256], Re[16];
+  for (uint32_t t = 0; t < m.ntets; t++) {
+    const uint32_t *v = fl->tet + 4 * (size_t)t; /* the fluid's order (a mesh not a box is sorted) */
+    double X[4][3], U[16];
+    for (int a = 0; a < 4; a++)
+      for (int i = 0; i < 4; i++) {
+        if (i < 3) X[a][i] = fl->x[3 * (size_t)v[a] + i]; /* metres */
+        U[4 * a + i] = up[4 * (size_t)v[a] + i];
+      }
+    ns_element((const double(*)[3])X, U, NULL, &c, Re, Ke);
+    for (int a = 0; a < 4; a++) {
+      for (int i = 0; i < 4; i++) r[4 * (size_t)v[a] + i] += Re[4 * a + i];
+      for (int b = 0; b < 4; b++)
+        for (int i = 0; i < 4; i++)
+          for (int j = 0; j < 4; j++)
+            val[16 * (size_t)fl->pos[16 * (size_t)t + 4 * a + b] + 4 * i + j] += Ke[(4 * a + i) * 16 + 4 * b + j];
+    }
+  }
+  double dv = 0, mv = 0, dr = 0, mr = 0;
+  for (size_t k = 0; k < nv; k++) dv = fmax(dv, fabs(val[k] - fl->a.val[k])), mv = fmax(mv, fabs(val[k]));
+  for (size_t k = 0; k < n4; k++) dr = fmax(dr, fabs(r[k] - rr[k])), mr = fmax(mr, fabs(r[k]));
+  printf("  parallel assembly (%u tets%s, %u colours of chunks of %u) against tet by tet: Jacobian %.2e, "
+         "residual %.2e of the largest entry\n", m.ntets, shuffle ? " shuffled" : "", fl->ncolours, fl->chunk,
+         dv / mv, dr / mr);
+  t_true("assembly: more than one colour of chunks (the test exercises the colouring)", fl->ncolours > 1);
+  if (shuffle) t_true("assembly: a mesh in no spatial order is sorted (chunks of more than one tet)", fl->chunk > 1);
+  /* the colouring's invariant: no node is shared by two chunks of a colour */
+  uint32_t *owner = t_xalloc((size_t)m.nnodes * sizeof *owner), clash = 0, seen = 0;
+  for (uint32_t col = 0; col < fl->ncolours; col++) {
+    for (uint32_t i = 0; i < m.nnodes; i++) owner[i] = UINT32_MAX;
+    for (uint32_t k = fl->cstart[col]; k < fl->cstart[col + 1]; k++) {
+      uint32_t ch = fl->corder[k];
+      for (uint64_t t = (uint64_t)ch * fl->chunk; t < (uint64_t)(ch + 1) * fl->chunk && t < m.ntets; t++, seen++)
+        for (int a = 0; a < 4; a++) {
+          uint32_t v = fl->tet[4 * t + a];
+          if (owner[v] != UINT32_MAX && owner[v] != ch) clash++;
+          owner[v] = ch;
+        }
+    }
+  }
+  free(owner);
+  t_true("assembly: every tet in one chunk of the colouring", seen == m.ntets);
+  t_true("assembly: no node shared by two chunks of one colour", clash == 0);
+  t_check("assembly: Jacobian against tet by tet, relative to the largest entry", dv / mv, 1e-13);
+  t_check("assembly: residual against tet by tet, relative to the largest entry", dr / mr, 1e-13);
+  for (int t = 0; t < 3; t++) sessile_bcsr4_free(&jac[t]), free(rhs[t]);
+  free(val), free(r), free(rr), free(up);
+  sessile_fluid_destroy(fl);
+  sessile_tetmesh_free(&m);
+}
+
 /* ---- the default scene ---------------------------------------------------------- */
 static void scene(const double origin[3], double h, uint32_t cx, uint32_t cy, uint32_t cz, double R,
                   const sessile_fluid_params *p, int verbose) {
@@ -490,6 +588,8 @@ int main(int argc, char **argv) {
   }
   test_element_jacobian();
   test_element_units();
+  assembly_threads(0);
+  assembly_threads(1);
 
   double g4, g8;
   double e4 = poiseuille(4, &g4), e8 = poiseuille(8, &g8);
