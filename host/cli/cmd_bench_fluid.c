@@ -26,7 +26,10 @@ static const char *help =
     "true linear residual, assembly and solve time.  Figures are for the record\n"
     "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
-    "fluid_ksp_restart, fluid_newton_rtol and fluid_newton_max_it (--set; docs/fluid.md); the\n"
+    "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it and fluid_nested (--set;\n"
+    "docs/fluid.md: a start far from the solution, here from rest, begins from the\n"
+    "solution on the box of twice the spacing; --set fluid_nested=false for plain\n"
+    "Newton from rest); the\n"
     "flags are short for some: --pc NAME is --set fluid_pc_type=NAME (none, jacobi,\n"
     "ilu0, block_jacobi, mg; docs/la.md), mg (block multigrid) by default (ilu0 runs\n"
     "Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
@@ -62,6 +65,10 @@ static void print_result(const char *what, const sessile_fluid_result *r) {
          what, r->converged ? "converged" : "NOT converged", r->nsteps, r->residual0, r->residual,
          r->residual_rest,
          r->lin_iterations, r->seconds, r->assembly_s, r->solve_s);
+  if (r->coarse_tried)
+    printf("  nested start (fluid_nested): the solution on the box of twice the spacing, %d Newton steps and %d "
+           "linear iterations there (coarser boxes included), %.2f s of the total: %s\n", r->coarse_steps,
+           r->coarse_lin_iterations, r->coarse_seconds, r->started_coarse ? "taken" : "not taken (the given start was nearer)");
   printf("  %4s %-7s %12s %8s %12s %-14s %-12s %6s %10s %10s\n", "step", "kind", "residual", "lin its",
          "lin relres", "lin status", "pc", "chunks", "assembly s", "solve s");
   for (int k = 0; k < r->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {

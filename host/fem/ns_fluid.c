@@ -28,11 +28,13 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->pc = SESSILE_PC_MG; /* 10-12 GMRES iterations per Newton step on the default box
                             (ILU(0): 47-100), 2x faster (docs/fluid.md, "Multigrid") */
   p->restart = 50;
+  p->nested = 1;
   sessile_bmg_options_default(&p->mg);
 }
 
 void sessile_fluid_destroy(sessile_fluid *fl) {
   if (!fl) return;
+  sessile_fluid_destroy(fl->nest);
   free(fl->x);
   free(fl->tet);
   free(fl->tags);

@@ -49,6 +49,7 @@ struct sessile_fluid {
   sessile_bmg_options bmg_opt; /* the options it was made with */
   sessile_pc *mgpc;   /* the pc "mg" on it, kept likewise */
   struct sessile_fluid *coarse[NS_MG_LEVELS]; /* its coarse levels 1.. as fluids (ns_mg.c) */
+  struct sessile_fluid *nest; /* the box of twice the spacing for the nested start (ns_nested.c) */
   int ncoarse;
 };
 
@@ -82,6 +83,11 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
 sessile_status ns_mg_operators(sessile_fluid *fl, const sessile_fluid_params *p, const uint8_t *solid,
                                const double *up, double newton);
 void ns_mg_free(sessile_fluid *fl);
+/* The nested start (params.nested, ns_nested.c): may replace up (its
+ * boundary values imposed, bc the nodes' flags) by the interpolated solution
+ * on the box of twice the spacing; r is scratch (4 per node). */
+sessile_status ns_nested_start(sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
+                               const uint8_t *bc, double *up, double *r, sessile_fluid_result *res);
 /* One line to the caller's monitor (nothing when it is NULL). */
 void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

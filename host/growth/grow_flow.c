@@ -90,6 +90,15 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
   cJSON_AddNumberToObject(fl, "assembly_seconds", res->assembly_s);
   cJSON_AddNumberToObject(fl, "solve_seconds", res->solve_s);
   cJSON_AddNumberToObject(fl, "seconds", res->seconds);
+  if (res->coarse_tried) { /* fluid_nested: the solve on the box of twice the spacing */
+    cJSON *n = cJSON_AddObjectToObject(fl, "nested_start");
+    if (n) {
+      cJSON_AddBoolToObject(n, "taken", res->started_coarse);
+      cJSON_AddNumberToObject(n, "newton_steps", res->coarse_steps);
+      cJSON_AddNumberToObject(n, "linear_iterations", res->coarse_lin_iterations);
+      cJSON_AddNumberToObject(n, "seconds", res->coarse_seconds);
+    }
+  }
   cJSON *steps = cJSON_AddArrayToObject(fl, "steps");
   for (int k = 0; steps && k < res->nsteps && k < SESSILE_FLUID_MAX_STEPS; k++) {
     const sessile_fluid_step *st = &res->step[k];

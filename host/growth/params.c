@@ -131,6 +131,7 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
   if (!p->diffusion_limited && p->advection_scheme == SESSILE_ADVECTION_CUT)
     nutrient += box_nodes(p, p->box_resolution) * (17 * 8);
   double fn = flow_nodes(p, &tets);
+  if (p->fluid_nested) fn *= 8.0 / 7.0; /* the nested start's coarser boxes: 1/8 + 1/64 + ... more */
   int flow = !p->diffusion_limited || p->fluid_every_iteration || p->fluid_at_snapshots;
   return nutrient + (flow ? fn * (2 * 15 * 16 * 8 + 52 * 4 * 8) : 0);
 }

@@ -24,7 +24,7 @@ static void defaults_are_the_fluids(void) {
   got.ksp = SESSILE_KSP_CG;
   got.pc = SESSILE_PC_BLOCK_JACOBI;
   got.linear_rtol = got.newton_rtol = -1;
-  got.linear_max = got.restart = got.newton_max = -1;
+  got.linear_max = got.restart = got.newton_max = got.nested = -1;
   sessile_params_fluid_solver(&p, &got);
   t_true("default fluid_ksp_type is the fluid's (gmres)", got.ksp == lib.ksp);
   t_true("default fluid_pc_type is the fluid's (mg)", got.pc == lib.pc);
@@ -33,9 +33,11 @@ static void defaults_are_the_fluids(void) {
   t_check("default fluid_ksp_restart", got.restart - lib.restart, 0);
   t_check("default fluid_newton_rtol", got.newton_rtol - lib.newton_rtol, 0);
   t_check("default fluid_newton_max_it", got.newton_max - lib.newton_max, 0);
+  t_check("default fluid_nested", got.nested - lib.nested, 0);
   /* The mapping touches only the solver's fields. */
   got.ksp = lib.ksp, got.pc = lib.pc, got.linear_rtol = lib.linear_rtol, got.linear_max = lib.linear_max;
   got.restart = lib.restart, got.newton_rtol = lib.newton_rtol, got.newton_max = lib.newton_max;
+  got.nested = lib.nested;
   t_true("no other field changed", memcmp(&got, &lib, sizeof got) == 0);
 }
 
@@ -69,6 +71,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_ok("fluid_ksp_restart", sessile_params_set(p, "fluid_ksp_restart", "20"));
   t_ok("fluid_newton_rtol", sessile_params_set(p, "fluid_newton_rtol", "1e-5"));
   t_ok("fluid_newton_max_it", sessile_params_set(p, "fluid_newton_max_it", "7"));
+  t_ok("fluid_nested", sessile_params_set(p, "fluid_nested", "false"));
   t_ok("valid", sessile_params_validate(p));
   sessile_fluid_params_default(fp);
   sessile_params_fluid_solver(p, fp);
@@ -79,6 +82,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_check("restart arrives", fp->restart - 20, 0);
   t_check("Newton rtol arrives", fp->newton_rtol - 1e-5, 0);
   t_check("Newton max arrives", fp->newton_max - 7, 0);
+  t_check("nested off arrives", fp->nested, 0);
   /* Refused by name: an unknown pc, cg (nonsymmetric Jacobian), a restart
    * past la's GMRES basis. */
   sessile_grow_params q = *p;

@@ -76,6 +76,12 @@ typedef struct sessile_fluid_params {
   int mg_galerkin;     /* pc MG: Galerkin coarse operators R A P instead of the
                           rediscretised linearisation (default 0; comparisons) */
   int restart;         /* GMRES(m), default 50 */
+  int nested;          /* on a box mesh whose grid halves to at least 1000 nodes, a start
+                          whose residual is above a fifth of the rest state's (from rest, or
+                          a growth step's warm start) is replaced by the solution on the box
+                          of twice the spacing (solved the same way, recursively),
+                          interpolated, when that has the smaller residual (default 1;
+                          docs/fluid.md, "Nested start") */
   /* Progress: one line per Newton/Picard step and one at the end (and the
    * check_linear lines) to monitor(monitor_user, line); NULL (default):
    * silent.  The library itself never prints. */
@@ -119,6 +125,11 @@ typedef struct sessile_fluid_result {
   int converged;
   int lin_iterations;         /* totals */
   double assembly_s, solve_s, seconds;
+  /* The nested start (params.nested): tried when coarse_tried; its solve's
+   * Newton steps, linear iterations and seconds (its own coarser ones
+   * included); started_coarse when it was taken. */
+  int coarse_tried, started_coarse, coarse_steps, coarse_lin_iterations;
+  double coarse_seconds;
 } sessile_fluid_result;
 
 sessile_status sessile_fluid_create(sessile_la *la, const sessile_tetmesh *mesh, sessile_fluid **out);

@@ -113,6 +113,9 @@ extern "C" {
     "Krylov iterations per Newton step at most (past it the step is taken as it is)")             \
   X(fluid_ksp_restart, INT, 50, 1, 64, 0, "", "ours (docs/fluid.md)",                               \
     "GMRES(m): basis vectors between restarts (la holds at most 64; unused by bicgstab)")         \
+  X(fluid_nested, BOOL, 1, 0, 1, 0, "", "ours (docs/fluid.md)",                                      \
+    "start a flow far from its solution from the solution on the box of twice the spacing "      \
+    "(nested iteration; the same tolerance)")                                                     \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, 0, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
