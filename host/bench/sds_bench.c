@@ -84,6 +84,7 @@ static sessile_status bench_one(sessile_gpu *g, const bench_size *b, FILE *out) 
     p.obstacle.nv = rock.nv, p.obstacle.nf = rock.nf, p.obstacle.pos = rock.pos, p.obstacle.tri = rock.tri;
   }
   double dt = 0.5 * sessile_sds_stable_dt(&o, &p);
+  if (st == SESSILE_OK && !(dt > 0)) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for the stable step's bound");
   sessile_sds_gpu *s = NULL;
   if (st == SESSILE_OK) st = sessile_sds_gpu_create(g, &o, &p, &s);
   double tg[REPS], tl[REPS], td[REPS], tb[REPS], th[REPS], fa[REPS], fn[REPS], fl[REPS], cr[REPS];

@@ -35,7 +35,11 @@ sessile_status sessile_surface_reserve(sessile_surface *s, uint32_t nv, uint32_t
 
 sessile_status sessile_surface_copy(const sessile_surface *src, sessile_surface *dst) {
   sessile_surface_free(dst);
-  SESSILE_CALL(sessile_surface_reserve(dst, src->nv, src->nf));
+  sessile_status s = sessile_surface_reserve(dst, src->nv, src->nf);
+  if (s != SESSILE_OK) {
+    sessile_surface_free(dst); /* a failed copy leaves dst empty, nothing for the caller to free */
+    return s;
+  }
   if (src->nv) memcpy(dst->pos, src->pos, (size_t)src->nv * 3 * sizeof *dst->pos);
   if (src->nf) memcpy(dst->tri, src->tri, (size_t)src->nf * 3 * sizeof *dst->tri);
   dst->nv = src->nv;

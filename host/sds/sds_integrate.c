@@ -47,10 +47,12 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
  * k_e (m_a + m_b) / R', or k_e / R'^2 with uniform stiffness), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
  * walls k_wall; gamma likewise from the volume damping (damp_vol in place of
  * k_vol) plus the viscous c; a surface cell adds k_contact when
- * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells. */
+ * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells,
+ * 0 when out of memory (a bound of dt_min here made a failed allocation read
+ * as springs too stiff to run). */
 double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) {
   double *lam = calloc(o->ncells ? 2 * (size_t)o->ncells : 1, sizeof *lam); /* omega^2, gamma */
-  if (!lam) return p->dt_min;
+  if (!lam) return 0;
   for (uint32_t e = 0; e < o->nedges; e++) {
     const uint32_t *q = o->edge + 2 * (size_t)e;
     double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);

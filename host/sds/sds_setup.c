@@ -228,9 +228,12 @@ sessile_status sessile_sds_model_check(const char *text, const char *name, const
     st = sds_import_organism(&s, where, level, radius);
     if (st == SESSILE_OK) {
       if (t_end < 0) t_end = sds_param1(s.model, "t_end", 100);
-      double dt = fmin(s.p.stable_safety * sessile_sds_stable_dt(&s.o, &s.p), s.p.dt_max);
+      double sd = sessile_sds_stable_dt(&s.o, &s.p);
+      double dt = fmin(s.p.stable_safety * sd, s.p.dt_max);
       double steps = dt > 0 ? t_end / dt : INFINITY;
-      if (!(steps <= (double)max_steps))
+      if (sd == 0)
+        st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: out of host memory for the stable step's bound", where);
+      else if (!(steps <= (double)max_steps))
         st = sessile_error_set(SESSILE_ERR_USAGE,
                                "%s: reaching t = %g needs at least %.3g steps (stable step %.3g at the start), more "
                                "than --max-steps %llu: soften the springs or shorten the run",

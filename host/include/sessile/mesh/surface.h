@@ -26,7 +26,7 @@ typedef struct sessile_surface {
 void sessile_surface_free(sessile_surface *s);
 /* Makes room for nv vertices and nf triangles (keeps contents). */
 sessile_status sessile_surface_reserve(sessile_surface *s, uint32_t nv, uint32_t nf);
-/* Deep copy (dst is freed first). */
+/* Deep copy (dst is freed first); on failure dst is left empty. */
 sessile_status sessile_surface_copy(const sessile_surface *src, sessile_surface *dst);
 
 /* Icosphere: level 1 is the icosahedron (12 vertices, 20 triangles); each

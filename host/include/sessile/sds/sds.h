@@ -231,7 +231,8 @@ double sessile_sds_contact_accel(const sessile_sds *o, const sessile_sds_params 
 double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
 /* The stable step bound of the integrator at the current state (omega dt < 2
  * for the fastest mode, by Gershgorin at rest; docs/sds.md, "Integrator").
- * sessile_sds_gpu_advance never steps above stable_safety times it. */
+ * sessile_sds_gpu_advance never steps above stable_safety times it.  0 when
+ * out of host memory. */
 double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p);
 /* The critical step of that scheme at the current state, undamped (2 /
  * sqrt of M^-1 K's largest eigenvalue, K by finite differences of the
