@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "fem/ns_internal.h"
+#include "sessile/mesh/mesh_sort.h"
 
 /* Greedy colouring of the chunks of `chunk` tets: no two chunks of a colour
  * share a node, so a colour's chunks scatter into disjoint block rows
@@ -72,17 +73,6 @@ sessile_status ns_build_colours(sessile_fluid *fl) {
   }
 }
 
-typedef struct {
-  uint64_t key;
-  uint32_t t;
-} tet_key;
-
-static int by_key(const void *a, const void *b) {
-  const tet_key *x = a, *y = b;
-  if (x->key != y->key) return x->key < y->key ? -1 : 1;
-  return x->t < y->t ? -1 : x->t > y->t; /* a total order: the same sort on every libc */
-}
-
 /* 21 bits of v spread to every third bit. */
 static uint64_t spread3(uint64_t v) {
   v &= 0x1fffff;
@@ -99,10 +89,11 @@ sessile_status ns_order_tets(sessile_fluid *fl) {
   for (size_t i = 0; i < fl->nnodes; i++)
     for (int a = 0; a < 3; a++) lo[a] = fmin(lo[a], fl->x[3 * i + a]), hi[a] = fmax(hi[a], fl->x[3 * i + a]);
   double ext = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
-  tet_key *k = malloc(((size_t)fl->ntets + 1) * sizeof *k);
-  uint32_t *tet = malloc(((size_t)fl->ntets + 1) * 4 * sizeof *tet);
-  if (!k || !tet) {
-    free(k), free(tet);
+  size_t n = (size_t)fl->ntets + 1;
+  uint64_t *key = malloc(2 * n * sizeof *key);
+  uint32_t *idx = malloc(2 * n * sizeof *idx), *tet = malloc(4 * n * sizeof *tet);
+  if (!key || !idx || !tet) {
+    free(key), free(idx), free(tet);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for the assembly's order");
   }
   double sc = ext > 0 ? 2097151.0 / ext : 0;
@@ -114,13 +105,14 @@ sessile_status ns_order_tets(sessile_fluid *fl) {
       double f = (0.25 * c - lo[a]) * sc;
       q[a] = f > 0 ? (uint64_t)fmin(f, 2097151.0) : 0;
     }
-    k[t].key = spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
-    k[t].t = t;
+    key[t] = spread3(q[0]) | spread3(q[1]) << 1 | spread3(q[2]) << 2;
+    idx[t] = t;
   }
-  qsort(k, fl->ntets, sizeof *k, by_key);
-  for (uint32_t t = 0; t < fl->ntets; t++) memcpy(tet + 4 * (size_t)t, fl->tet + 4 * (size_t)k[t].t, 4 * sizeof *tet);
+  /* the mesh layer's stable radix sort: equal keys keep the tets' order */
+  mesh_sort_u64_idx(key, idx, key + n, idx + n, fl->ntets);
+  for (uint32_t t = 0; t < fl->ntets; t++) memcpy(tet + 4 * (size_t)t, fl->tet + 4 * (size_t)idx[t], 4 * sizeof *tet);
   free(fl->tet);
   fl->tet = tet;
-  free(k);
+  free(key), free(idx);
   return SESSILE_OK;
 }
