@@ -166,11 +166,30 @@ static int rm_entry(const char *path, const struct stat *sb, int flag, struct FT
 }
 
 #define PAPER_S (5.7 * 60) /* Porter & McCormack: the rock model of Figure 9, dual-core 2 GHz PC */
+#define ROCK_T_END 400.0   /* the model's t_end (host/sds/models/rock.sds) */
 
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const char *scratch,
-                                      const volatile sig_atomic_t *stop, FILE *out) {
-  const embedded_text *m = embedded_text_find(sds_builtins, "rock");
-  SESSILE_CHECK(m, SESSILE_ERR_INTERNAL, "bench sds: the rock model is not embedded");
+/* The cell-steps of a run: its step log's cells summed over the steps. */
+static double cell_steps_of(const char *dir) {
+  char path[600];
+  snprintf(path, sizeof path, "%s/sds/steps.csv", dir);
+  FILE *f = fopen(path, "r");
+  if (!f) return 0;
+  double sum = 0;
+  char line[256];
+  unsigned long long step;
+  double t, dt;
+  unsigned cells;
+  while (fgets(line, sizeof line, f))
+    if (sscanf(line, "%llu,%lf,%lf,%u,", &step, &t, &dt, &cells) == 4) sum += cells;
+  fclose(f);
+  return sum;
+}
+
+/* One run of the rock model to t_end through the loop (device_loop: the
+ * loop on the device), frames on, in a temporary run directory. */
+static sessile_status rock_run(sessile_gpu *g, const embedded_text *m, double t_end, int device_loop,
+                               const char *scratch, const volatile sig_atomic_t *stop, FILE *out, double *wall_out,
+                               sessile_sds_run_stats *rs) {
   char dir[512];
   snprintf(dir, sizeof dir, "%s/sessile-bench-sds-XXXXXX", scratch);
   SESSILE_CHECK(mkdtemp(dir), SESSILE_ERR_IO, "bench sds: cannot create a temporary run directory under %s",
@@ -179,47 +198,65 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const char *
                             .stop = stop};
   sessile_run *run = NULL;
   sessile_status st = sessile_run_open(&ro, &run);
-  sessile_sds_run_stats rs;
-  memset(&rs, 0, sizeof rs);
+  memset(rs, 0, sizeof *rs);
+  sessile_sds_run_params p;
+  if (st == SESSILE_OK) st = sessile_sds_run_params_of_model(m->text, "rock", &p);
+  p.device_loop = device_loop;
   double load0[3], load1[3];
   sessile_load_average(load0);
   uint64_t q0 = sessile_gpu_submissions(g);
   double t0 = sessile_wall_seconds();
   if (st == SESSILE_OK) {
-    sessile_sds_run_options o = {.run = run,
-                                 .gpu = g,
-                                 .seed = 1,
-                                 .model_text = m->text,
-                                 .model_name = "rock",
-                                 .t_end = t_end,
-                                 .frames = -1,
-                                 .max_cells = 200000};
-    st = sessile_sds_run(&o, &rs);
+    sessile_sds_run_options o = {.run = run, .gpu = g, .seed = 1, .model_text = m->text, .model_name = "rock",
+                                 .params = &p, .t_end = t_end, .frames = -1, .max_cells = 200000};
+    st = sessile_sds_run(&o, rs);
     st = sessile_run_close(run, st);
-  }
+  } else if (run)
+    st = sessile_run_close(run, st);
   double wall = sessile_wall_seconds() - t0;
   uint64_t nq = sessile_gpu_submissions(g) - q0; /* each waits: about 0.1 ms on a discrete GPU */
   sessile_load_average(load1);
+  double cell_steps = st == SESSILE_OK ? cell_steps_of(dir) : 0;
   nftw(dir, rm_entry, 16, FTW_DEPTH | FTW_PHYS);
   SESSILE_CALL(st);
-  double full = 400; /* the model's t_end (host/sds/models/rock.sds) */
   fprintf(out,
-          "sds rock (Figure 9) through the loop, frames on, to t = %g of %g: wall %.1f s (loop %.1f s), %u cells, "
-          "%u tets, %llu steps (%.2f ms/step), %llu divisions, %llu inversions, %llu submissions (%.2f a step); "
-          "load %.2f -> %.2f\n",
-          rs.time, full, wall, rs.wall_s, rs.cells, rs.tets, (unsigned long long)rs.steps,
-          rs.steps ? 1e3 * rs.wall_s / (double)rs.steps : 0.0, (unsigned long long)rs.divisions,
-          (unsigned long long)rs.inversions, (unsigned long long)nq, rs.steps ? (double)nq / (double)rs.steps : 0.0,
-          load0[0], load1[0]);
-  if (rs.time >= full * (1 - 1e-9))
-    fprintf(out, "paper: %.0f s; ours %.1f s: %.2fx the paper's speed (target >= 5)\n", PAPER_S, wall, PAPER_S / wall);
+          "sds rock (Figure 9), %s, frames on, to t = %g of %g: wall %.1f s (loop %.1f s), %u cells, "
+          "%u tets, %llu steps (%.2f ms/step, %.1f us per cell-step), %llu divisions, %llu inversions, "
+          "%llu submissions (%.2f a step)",
+          device_loop ? "the loop on the device (device_loop)" : "the host-driven loop", rs->time, ROCK_T_END, wall,
+          rs->wall_s, rs->cells, rs->tets, (unsigned long long)rs->steps,
+          rs->steps ? 1e3 * rs->wall_s / (double)rs->steps : 0.0, cell_steps > 0 ? 1e6 * rs->wall_s / cell_steps : 0.0,
+          (unsigned long long)rs->divisions, (unsigned long long)rs->inversions, (unsigned long long)nq,
+          rs->steps ? (double)nq / (double)rs->steps : 0.0);
+  if (device_loop)
+    fprintf(out, ", %llu batches (%.1f steps a batch), %llu steps completed by the host",
+            (unsigned long long)rs->batches, rs->batches ? (double)rs->steps / (double)rs->batches : 0.0,
+            (unsigned long long)rs->host_steps);
+  fprintf(out, "; load %.2f -> %.2f\n", load0[0], load1[0]);
+  if (rs->time >= ROCK_T_END * (1 - 1e-9))
+    fprintf(out, "  paper: %.0f s; ours %.1f s: %.2fx the paper's speed (target >= 5)\n", PAPER_S, wall,
+            PAPER_S / wall);
   else {
-    double ext = wall * full / (rs.time > 0 ? rs.time : 1e-9);
+    double ext = wall * ROCK_T_END / (rs->time > 0 ? rs->time : 1e-9);
     fprintf(out,
-            "EXTRAPOLATION (linear in simulated time from t = %g; growth and divisions later make steps "
+            "  EXTRAPOLATION (linear in simulated time from t = %g; growth and divisions later make steps "
             "dearer, so a lower bound): %.0f s to t = %g; paper %.0f s: %.3fx the paper's speed "
             "(target >= 5)\n",
-            rs.time, ext, full, PAPER_S, PAPER_S / ext);
+            rs->time, ext, ROCK_T_END, PAPER_S, PAPER_S / ext);
   }
+  *wall_out = wall;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const char *scratch,
+                                      const volatile sig_atomic_t *stop, FILE *out) {
+  const embedded_text *m = embedded_text_find(sds_builtins, "rock");
+  SESSILE_CHECK(m, SESSILE_ERR_INTERNAL, "bench sds: the rock model is not embedded");
+  double wall[2];
+  sessile_sds_run_stats rs[2];
+  for (int dev = 0; dev < 2; dev++) SESSILE_CALL(rock_run(g, m, t_end, dev, scratch, stop, out, &wall[dev], &rs[dev]));
+  fprintf(out, "the loop on the device against the host-driven loop, the same run (%s): %.2fx (wall %.1f s against %.1f s)\n",
+          rs[0].steps == rs[1].steps && rs[0].cells == rs[1].cells ? "the same steps and cells" : "THE STEPS DIFFER",
+          wall[0] / wall[1], wall[1], wall[0]);
   return SESSILE_OK;
 }

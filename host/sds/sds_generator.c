@@ -154,6 +154,11 @@ static sessile_status sds_schedule(const void *params, sessile_gen_setup *su) {
   int frames = 0;
   sessile_status s = sessile_sds_model_parse(a->text, a->name, &m);
   if (s == SESSILE_OK) s = sds_run_length(m, t_end, a->frames, &t_end, &frames);
+  /* the loop on the device runs the rules' bytecode there: refused now, not
+   * after the run directory exists */
+  const char *why = s == SESSILE_OK && ((const sessile_sds_run_params *)params)->device_loop
+                        ? sessile_sds_model_bytecode_refusal(m, 1) : NULL;
+  if (why) s = sessile_error_set(SESSILE_ERR_USAGE, "device_loop: %s", why);
   sessile_sds_model_destroy(m);
   su->iterations = t_end > 0 ? frames : 0, su->every = 1;
   return s;
@@ -308,6 +313,13 @@ static void manifest_sds(sessile_run *run, const char *name, const sessile_sds_r
   cJSON_AddNumberToObject(js, "divisions_deferred", (double)st->deferred);
   cJSON_AddNumberToObject(js, "frames", st->frames);
   cJSON_AddNumberToObject(js, "wall_s", st->wall_s);
+  if (st->batches) { /* device_loop (docs/sds.md, "The loop on the device") */
+    cJSON *d = cJSON_AddObjectToObject(js, "device_loop");
+    if (d) {
+      cJSON_AddNumberToObject(d, "batches", (double)st->batches);
+      cJSON_AddNumberToObject(d, "host_completed_steps", (double)st->host_steps);
+    }
+  }
   cJSON_DeleteItemFromObjectCaseSensitive(m, "sds");
   cJSON_AddItemToObject(m, "sds", js);
 }

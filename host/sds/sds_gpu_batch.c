@@ -9,11 +9,13 @@
 #include <string.h>
 #include "sessile/sds/sds_batch.h"
 #include "sds/sds_gpu_internal.h"
+#include "sds/sds_gpu_rules.h"
 
 _Static_assert((int)SESSILE_SDS_EV_DIVIDE == (int)SDS_EV_DIVIDE && (int)SESSILE_SDS_EV_REJECT == (int)SDS_EV_REJECT &&
                    (int)SESSILE_SDS_EV_NONFINITE == (int)SDS_EV_NONFINITE && (int)SESSILE_SDS_EV_INVERTED == (int)SDS_EV_INVERTED &&
                    (int)SESSILE_SDS_EV_LISTS == (int)SDS_EV_LISTS && (int)SESSILE_SDS_EV_TIME == (int)SDS_EV_TIME &&
-                   (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
+                   (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_EV_HOST == (int)SDS_EV_HOST &&
+                   (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
                "sds_batch.h's events are kernels.def's");
 
 /* Records the check of step k (stable_min in mode 3) after its result's
@@ -49,6 +51,7 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
                 "sds: steps per batch must be 1..%d (got %u)", SDS_BATCH_MAX, b->steps);
   b->done = 0, b->events = 0;
   SESSILE_CALL(sds_gpu_lists_ensure(s));
+  SESSILE_CALL(sds_gpu_batch_rules_start(s));
   /* the control's scalars (kernels.def, step): the step asked, the time, the
    * stop time, the lists' growth term of sds_gpu_lists_stale */
   double ctl[5] = {b->dt, b->time, b->t_stop, s->p.contact_scale * s->grown, 0};

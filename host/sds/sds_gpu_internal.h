@@ -10,7 +10,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which
@@ -69,6 +69,7 @@ struct sessile_sds_gpu {
   int flags_cur;    /* B_FLAG holds the inverted flags of pair flags_cur's x (-1: of no current state) */
   int reads;        /* 0: texel reads where the views fit, 1: storage reads always (sessile_sds_gpu_set_reads) */
   struct sds_gpu_rules *rules; /* the rules on the device, borrowed (sds_gpu_rules.h; NULL: on the host) */
+  uint32_t nsub_max;           /* a batch with the rules: morphogen sub-steps recorded per step */
   double rules_dt;             /* the step of the last sds_gpu_rules_record */
   int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
   sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */

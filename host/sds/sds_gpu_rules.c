@@ -10,13 +10,14 @@
 #include "sds_gpu_rules.h"
 
 enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ,
-       R_EVENT, R_COUNT };
+       R_EVENT, R_DCOEF, R_PHI2, R_COUNT };
 
 struct sds_gpu_rules {
   sessile_gpu *gpu;
-  sessile_kernel *k;
+  sessile_kernel *k, *k_bound, *k_morph; /* rules_vm; a batch's morph_bound and morph_step_batch */
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
+  uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
   double density;
 };
 
@@ -34,12 +35,22 @@ sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, 
   SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory for the rules on the device");
   r->gpu = g, r->nmorph = (uint32_t)m->nmorph, r->nstate = (uint32_t)m->nstate;
   const sds_prog *p = m->prog;
-  double mc[2 * SDS_MAX_MORPH];
+  r->nk = (uint32_t)p->nk;
+  double mc[2 * SDS_MAX_MORPH], dc[3 * SDS_MAX_MORPH];
   for (int k = 0; k < m->nmorph; k++) mc[2 * k] = m->capped[k] ? 1 : 0, mc[2 * k + 1] = m->mstart[k];
+  /* the morphogens' coefficients as sessile_morph_gpu_set_cells lays them out */
+  sessile_morph_coef co = sessile_sds_model_coef(m);
+  for (int k = 0; k < m->nmorph; k++)
+    dc[3 * k] = co.diffusion[k], dc[3 * k + 1] = co.decay[k], dc[3 * k + 2] = (!co.capped || co.capped[k]) ? 1 : 0;
   sessile_status st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, &r->k);
+  if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND], 8, 0, &r->k_bound);
+  if (st == SESSILE_OK)
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH], 8, 0, &r->k_morph);
   if (st == SESSILE_OK) st = ensure(r, R_PROG, (size_t)p->nw * 4);
-  if (st == SESSILE_OK) st = ensure(r, R_KONST, (size_t)p->nk * 8);
+  if (st == SESSILE_OK) st = ensure(r, R_KONST, ((size_t)p->nk + SDS_CTL) * 8);
   if (st == SESSILE_OK) st = ensure(r, R_MCOEF, sizeof mc);
+  if (st == SESSILE_OK) st = ensure(r, R_DCOEF, sizeof dc);
+  if (st == SESSILE_OK && m->nmorph) st = sessile_buffer_upload_reals(r->b[R_DCOEF], 0, dc, 3 * (size_t)m->nmorph);
   if (st == SESSILE_OK) st = ensure(r, R_EVENT, SDS_EV_COUNT * 4);
   if (st == SESSILE_OK) st = sessile_buffer_upload(r->b[R_PROG], 0, p->w, (size_t)p->nw * 4);
   if (st == SESSILE_OK && p->nk) st = sessile_buffer_upload_reals(r->b[R_KONST], 0, p->k, p->nk);
@@ -56,6 +67,8 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   if (!r) return;
   for (int i = 0; i < R_COUNT; i++) sessile_buffer_destroy(r->b[i]);
   sessile_kernel_destroy(r->k);
+  sessile_kernel_destroy(r->k_bound);
+  sessile_kernel_destroy(r->k_morph);
   free(r);
 }
 
@@ -69,9 +82,9 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
       rm && surf ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
   for (size_t c = 0; st == SESSILE_OK && c < n; c++)
     rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
-  const int sized[] = {R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ};
+  const int sized[] = {R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ, R_PHI2};
   const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
-                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8};
+                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8};
   for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
@@ -86,21 +99,27 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   return SESSILE_OK;
 }
 
+static const uint32_t ev_zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0, 0}; /* BAD starts above every cell */
+
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
-  static const uint32_t zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0}; /* BAD starts above every cell */
-  return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, zero, sizeof zero);
+  return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
+}
+
+sessile_status sds_gpu_rules_clear(sds_gpu_rules *r) {
+  return sessile_buffer_upload(r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
 static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm, double time,
-                               double dt, uint32_t mode) {
+                               double dt, uint32_t mode, uint32_t batch) {
   SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
   sds_rules_push p;
   memset(&p, 0, sizeof p);
   p.time = sessile_push_real_of(time, 8), p.dt = sessile_push_real_of(dt, 8);
   p.density = sessile_push_real_of(r->density, 8);
   p.ncells = r->ncells, p.nmorph = r->nmorph, p.nstate = r->nstate, p.mode = mode;
-  sessile_buffer *b[R_COUNT];
-  for (int i = 0; i < R_COUNT; i++) b[i] = r->b[i];
+  p.batch = batch, p.kctl = r->nk;
+  sessile_buffer *b[R_EVENT + 1]; /* the kernel's bindings: R_PROG .. R_EVENT */
+  for (int i = 0; i <= R_EVENT; i++) b[i] = r->b[i];
   if (pos) b[R_POS] = pos;
   if (rm) b[R_RM] = rm;
   uint32_t l = sessile_kernel_local_size(r->k);
@@ -109,12 +128,12 @@ static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffe
 
 sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                          double time) {
-  return dispatch(r, cmd, pos, rm, time, 0, 0);
+  return dispatch(r, cmd, pos, rm, time, 0, 0, 0);
 }
 
 sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                           double dt) {
-  return dispatch(r, cmd, pos, rm, 0, dt, 1);
+  return dispatch(r, cmd, pos, rm, 0, dt, 1, 0);
 }
 
 sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which) {
@@ -127,10 +146,10 @@ static int by_cell(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[5], double *req, uint32_t *nreq) {
+sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[SDS_EV_COUNT], double *req, uint32_t *nreq) {
   SESSILE_CALL(sessile_buffer_download(r->b[R_EVENT], 0, ev, SDS_EV_COUNT * 4));
   *nreq = ev[SDS_EV_NREQ] < r->ncells ? ev[SDS_EV_NREQ] : r->ncells;
-  if (!*nreq) return SESSILE_OK;
+  if (!*nreq || !req) return SESSILE_OK; /* req NULL: the event words only */
   SESSILE_CALL(sessile_buffer_download_reals(r->b[R_DIVREQ], 0, req, (size_t)SDS_REQ * *nreq));
   qsort(req, *nreq, SDS_REQ * sizeof *req, by_cell); /* one request per cell: the host's order */
   return SESSILE_OK;
@@ -149,4 +168,42 @@ sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s) {
   SESSILE_CHECK(s->rules && sessile_cmd_recording(s->cmd), SESSILE_ERR_USAGE,
                 "the rules on the device: none attached, or no open recording");
   return sds_gpu_rules_record_apply(s->rules, s->cmd, s->b[B_X0 + s->cur], s->b[B_RM], s->rules_dt);
+}
+
+/* --- inside a batch of physics steps (sds_gpu_batch_rules.c) ------------- */
+sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *step,
+                                          sessile_buffer *pev, uint32_t batch, uint32_t nsub_max) {
+  sds_mbound_push p;
+  memset(&p, 0, sizeof p);
+  p.fudge = sessile_push_real_of(1 + 1e-9, 8); /* sds_rules' sub-step count, rounded as there */
+  p.ncells = r->ncells, p.nmorph = r->nmorph, p.batch = batch, p.nsub_max = nsub_max, p.ctl = r->nk;
+  sessile_buffer *b[] = {pos, r->b[R_OFF], r->b[R_NBR], r->b[R_DCOEF], step, pev, r->b[R_EVENT], r->b[R_KONST]};
+  return sessile_cmd_dispatch(cmd, r->k_bound, 1, b, &p);
+}
+
+sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
+                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub_max) {
+  SESSILE_CALL(dispatch(r, cmd, pos, rm, 0, 0, 0, batch));
+  if (r->nmorph) {
+    sds_morph_push mp;
+    memset(&mp, 0, sizeof mp);
+    mp.ncells = r->ncells, mp.nmorph = r->nmorph, mp.ctl = r->nk;
+    uint32_t l = sessile_kernel_local_size(r->k_morph);
+    /* an even count: the amounts end where they began, in R_PHI */
+    for (uint32_t j = 0; j < nsub_max + (nsub_max & 1u); j++) {
+      mp.sub = j + 1;
+      int in = j & 1;
+      sessile_buffer *b[] = {pos,           rm, r->b[R_OFF], r->b[R_NBR], r->b[R_DCOEF], r->b[R_SRC],
+                             r->b[in ? R_PHI2 : R_PHI], r->b[in ? R_PHI : R_PHI2], r->b[R_KONST], r->b[R_EVENT]};
+      SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_morph, (r->ncells + l - 1) / l, b, &mp));
+    }
+  }
+  return dispatch(r, cmd, pos, rm, 0, 0, 1, batch);
+}
+
+sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *state) {
+  size_t n = r->ncells;
+  if (r->nmorph) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_PHI], 0, phi, n * r->nmorph));
+  if (r->nstate) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_STATE], 0, state, n * r->nstate));
+  return SESSILE_OK;
 }

@@ -18,6 +18,7 @@
 #include "sessile/gpu/gpu.h"
 #include "sessile/sds/sds.h"
 #include "sessile/sds/sds_process.h"
+#include "sds_kernels.h"
 
 typedef struct sds_gpu_rules sds_gpu_rules;
 enum { SDS_RULES_PHI, SDS_RULES_STATE, SDS_RULES_SRC, SDS_RULES_EVENT, SDS_RULES_DIVREQ, SDS_RULES_POS, SDS_RULES_RM };
@@ -34,14 +35,16 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
 /* Records into cmd: the event words cleared (a batch's start), mode 0 at
  * `time`, mode 1 with step dt.  pos and rm NULL: its own POS and RM. */
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd);
+sessile_status sds_gpu_rules_clear(sds_gpu_rules *r); /* the same, now */
 sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                          double time);
 sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                           double dt);
 sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which);
 /* The event words and the requests (sorted by cell; *nreq of them, at most
- * the cell count), read after the submission ran.  req: SDS_REQ per request. */
-sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[5], double *req, uint32_t *nreq);
+ * the cell count), read after the submission ran.  req: SDS_REQ per request
+ * (NULL: the event words and the count only). */
+sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[SDS_EV_COUNT], double *req, uint32_t *nreq);
 
 /* The batched loop's entry (issue 33): with r attached to s, record mode 0
  * into s's open recording, reading s's positions and r, m (which mode 1 then
@@ -50,4 +53,30 @@ sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[5], doubl
 void sds_gpu_rules_attach(sessile_sds_gpu *s, sds_gpu_rules *r);
 sessile_status sds_gpu_rules_record(sessile_sds_gpu *s, double time, double dt);
 sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s);
+
+/* Inside a batch of physics steps (sds_gpu_batch_rules.c; kernels.def,
+ * "The rules' step inside a batch"): morph_bound for step batch - 1 (its
+ * result at pos, the batch's log in step, the physics' events pev); then
+ * rules mode 0, nsub_max morphogen sub-steps (rounded up to even: the
+ * amounts end in their own buffer), mode 1, each reading the step's time
+ * and dt from the control morph_bound left. */
+sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *step,
+                                          sessile_buffer *pev, uint32_t batch, uint32_t nsub_max);
+sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
+                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub_max);
+/* A batch's rules (sds_gpu_batch_rules.c): with r (NULL: none) every
+ * accepted step of s's batches makes its rules' step on the device, at most
+ * nsub_max morphogen sub-steps (beyond, and for a step that inverted a tet,
+ * the batch stops with the step's rules left to the host: SDS_EV_HOST, and
+ * the rules' event word LAST tells the last step whose rules ran); the
+ * radii the device grew into s's host copy (then sessile_sds_gpu_download
+ * gives them); the positions before the last step (the other pair). */
+void sds_gpu_batch_rules(sessile_sds_gpu *s, sds_gpu_rules *r, uint32_t nsub_max);
+/* A batch's start (sessile_sds_gpu_batch, after the lists' build): the
+ * rules' events cleared, the radii at the lists' build up. */
+sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s);
+sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s);
+sessile_status sds_gpu_download_prev_x(sessile_sds_gpu *s, double *x);
+/* The amounts and states as the device holds them. */
+sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *state);
 #endif

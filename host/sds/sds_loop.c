@@ -91,9 +91,11 @@ static sessile_status setup(sds_gen_state *g, const sessile_sds_run_params *para
 }
 
 void sds_teardown(sds_sim *s) {
+  sds_device_loop_destroy(s); /* detaches from pg first */
   sessile_sds_model_destroy(s->model);
   sessile_sds_gpu_destroy(s->pg);
   sessile_morph_gpu_destroy(s->mg);
+  s->pg = NULL, s->mg = NULL;
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
   free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog);
@@ -120,7 +122,7 @@ sessile_status sds_blowup(sds_sim *s, const char *fmt, ...) {
 
 /* The state after the physics: every position and velocity finite, every
  * cell within 1e6 starting sizes of the starting centroid. */
-static sessile_status check_motion(sds_sim *s) {
+sessile_status sds_check_motion(sds_sim *s) {
   const sessile_sds *o = &s->o;
   double far2 = 1e12 * s->size0 * s->size0;
   for (uint32_t c = 0; c < o->ncells; c++) {
@@ -138,7 +140,7 @@ static sessile_status check_motion(sds_sim *s) {
 
 /* The state after the rules: radii positive and finite, morphogens and
  * state variables finite (a runaway growth or production). */
-static sessile_status check_cells(sds_sim *s) {
+sessile_status sds_check_cells(sds_sim *s) {
   const sessile_sds *o = &s->o;
   for (uint32_t c = 0; c < o->ncells; c++) {
     if (!(o->r[c] > 0 && isfinite(o->r[c]) && isfinite(o->m[c])))
@@ -154,30 +156,20 @@ static sessile_status check_cells(sds_sim *s) {
   return SESSILE_OK;
 }
 
-/* One step (docs/sds.md, "The loop"): of the step the control proposed,
- * never cut to land on a frame or t_end, so that the outputs asked for do
- * not change the trajectory. */
-static sessile_status step(sds_sim *s) {
-  free(s->xprev);
-  s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
-  SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
-  memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
-  double try_dt = s->dt, elapsed = 0;
-  s->step_t0 = s->time;
-  sessile_status st = sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed);
-  if (st == SESSILE_ERR_NUMERIC) {
-    /* a non-finite state or a step below dt_min: the integrator's verdict */
-    char why[512];
-    const char *m = sessile_error_message();
-    snprintf(why, sizeof why, "%s", strncmp(m, "sds: ", 5) ? m : m + 5);
-    return sds_blowup(s, "%s", why);
-  }
-  SESSILE_CALL(st);
-  /* step control across calls (one step per call, so that an inversion is
-   * rewound over one step): the integrator proposes the next step */
-  s->dt = try_dt;
-  SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
-  SESSILE_CALL(check_motion(s));
+/* The physics' verdict a blow-up: a non-finite state or a step below dt_min. */
+sessile_status sds_physics_failed(sds_sim *s, sessile_status st) {
+  if (st != SESSILE_ERR_NUMERIC) return st;
+  char why[512];
+  const char *m = sessile_error_message();
+  snprintf(why, sizeof why, "%s", strncmp(m, "sds: ", 5) ? m : m + 5);
+  return sds_blowup(s, "%s", why);
+}
+
+/* What follows a step's physics of `elapsed` s from s->time (step_t0),
+ * the state downloaded and xprev the positions before it: the motion
+ * checked, the inversions (a rewind shortens the step), the rules. */
+sessile_status sds_finish_step(sds_sim *s, double elapsed) {
+  SESSILE_CALL(sds_check_motion(s));
   int handled = 0;
   double frac = 1;
   SESSILE_CALL(sds_inversions(s, &handled, &frac));
@@ -189,7 +181,7 @@ static sessile_status step(sds_sim *s) {
   if (elapsed > 0) {
     s->time += elapsed;
     SESSILE_CALL(sds_rules(s, elapsed));
-    SESSILE_CALL(check_cells(s));
+    SESSILE_CALL(sds_check_cells(s));
     s->stalled = 0;
   } else if (++s->stalled >= 1000)
     return sds_blowup(s, "time stands still: tets keep inverting at the start of the step for 1000 steps");
@@ -197,10 +189,28 @@ static sessile_status step(sds_sim *s) {
   return SESSILE_OK;
 }
 
+/* One step (docs/sds.md, "The loop"): of the step the control proposed,
+ * never cut to land on a frame or t_end, so that the outputs asked for do
+ * not change the trajectory. */
+static sessile_status step(sds_sim *s) {
+  free(s->xprev);
+  s->xprev = malloc((size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  SESSILE_CHECK(s->xprev, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+  memcpy(s->xprev, s->o.x, (size_t)s->o.ncells * 3 * sizeof *s->xprev);
+  double try_dt = s->dt, elapsed = 0;
+  s->step_t0 = s->time;
+  SESSILE_CALL(sds_physics_failed(s, sessile_sds_gpu_advance(s->pg, 1, &try_dt, &elapsed)));
+  /* step control across calls (one step per call, so that an inversion is
+   * rewound over one step): the integrator proposes the next step */
+  s->dt = try_dt;
+  SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
+  return sds_finish_step(s, elapsed);
+}
+
 /* Frame k's time, t_end x (k / frames): k / frames first, so that frames
  * at the same fraction of t_end in runs of other --frames have the same
  * time to the bit (1/5 and 10/50 round alike); the last is t_end itself. */
-static double frame_time(const sds_sim *s, int k) { return s->t_end * ((double)k / s->frames); }
+double sds_frame_time(const sds_sim *s, int k) { return s->t_end * ((double)k / s->frames); }
 
 /* Steps up to frame s->frame: the steps go on until the first whose end is
  * at or past the frame's time (none when an earlier step passed it), so the
@@ -211,15 +221,19 @@ sessile_status sds_frame_steps(sds_gen_state *g) {
   sds_sim *s = &g->s;
   sessile_run *run = g->su->run;
   const sds_gen_args *a = g->su->extra;
-  double next_frame = frame_time(s, s->frame);
+  double next_frame = sds_frame_time(s, s->frame);
   while (s->time < next_frame) {
     SESSILE_CHECK(s->o.ncells <= a->max_cells, SESSILE_ERR_NO_MEMORY,
                   "sds: %u cells at t = %g, more than the limit %u (--max-cells)", s->o.ncells, s->time, a->max_cells);
-    double t0 = s->time, w0 = sessile_wall_seconds();
-    uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
-    SESSILE_CALL(step(s));
-    SESSILE_CALL(sds_steplog_row(s, run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
-                                 s->st->inversions - i0));
+    if (s->prm.device_loop) /* a batch of steps on the device (sds_loop_device.c) */
+      SESSILE_CALL(sds_device_batch(s, run, next_frame));
+    else {
+      double t0 = s->time, w0 = sessile_wall_seconds();
+      uint64_t d0 = s->st->divisions, i0 = s->st->inversions;
+      SESSILE_CALL(step(s));
+      SESSILE_CALL(sds_steplog_row(s, run, s->time - t0, 1e3 * (sessile_wall_seconds() - w0), s->st->divisions - d0,
+                                   s->st->inversions - i0));
+    }
     if (s->time >= next_frame) break;
     sessile_gen_progress(g->su, "steps", 1 - (next_frame - s->time) / (s->t_end / s->frames), NULL);
     int stop = sessile_run_stop_requested(run);
@@ -258,5 +272,6 @@ sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck) {
 
 sessile_status sds_gpu_create(sds_gen_state *g) {
   SESSILE_CALL(sessile_sds_gpu_create(g->su->gpu, &g->s.o, &g->s.p, &g->s.pg));
-  return sessile_morph_gpu_create(g->su->gpu, &g->s.mg);
+  SESSILE_CALL(sessile_morph_gpu_create(g->su->gpu, &g->s.mg));
+  return g->s.prm.device_loop ? sds_device_loop_create(&g->s, g->su->gpu) : SESSILE_OK;
 }

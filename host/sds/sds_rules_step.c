@@ -62,6 +62,36 @@ static sessile_status morphogens(sds_sim *s, const double *src, double dt) {
 
 static void set_mass(sds_sim *s, uint32_t c) { s->o.m[c] = sessile_sds_mass(s->density, s->o.r[c]); }
 
+/* The divisions the rules asked for, in cell order (one request per cell);
+ * a division appends its daughter b, so the requests' cell indices stay
+ * valid.  A cell whose division was deferred is not tried before its
+ * retry time; a vanished gradient draws a seeded direction. */
+sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n) {
+  sessile_sds *o = &s->o;
+  sessile_status st = SESSILE_OK;
+  if (s->retry_cap < o->ncells + n) {
+    uint32_t cap = (uint32_t)(2 * (o->ncells + n));
+    double *r = realloc(s->retry_at, (size_t)cap * sizeof *r);
+    SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
+    for (uint32_t c = s->retry_cap; c < cap; c++) r[c] = -INFINITY;
+    s->retry_at = r, s->retry_cap = cap;
+  }
+  for (size_t i = 0; st == SESSILE_OK && i < n; i++) {
+    if (s->time < s->retry_at[req[i].cell]) continue;
+    double d[3] = {req[i].dir[0], req[i].dir[1], req[i].dir[2]};
+    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
+      /* the gradient vanished: a seeded random direction */
+      double z = sessile_rng_range(&s->rng, -1, 1), phi = sessile_rng_range(&s->rng, 0, 2 * SDS_PI), q = sqrt(1 - z * z);
+      d[0] = q * cos(phi), d[1] = q * sin(phi), d[2] = z;
+    }
+    st = sds_divide(s, (uint32_t)req[i].cell, d);
+    if (st != SESSILE_OK)
+      st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", req[i].cell, s->time,
+                             sessile_error_message());
+  }
+  return st;
+}
+
 sessile_status sds_rules(sds_sim *s, double dt) {
   sessile_sds *o = &s->o;
   sessile_morph_cells cells = sds_cells_of(s);
@@ -73,30 +103,7 @@ sessile_status sds_rules(sds_sim *s, double dt) {
     sessile_sds_actions_apply(s->model, &a, dt, o->r, o->phi, o->state);
     for (uint32_t c = 0; c < o->ncells; c++) set_mass(s, c);
   }
-  /* divisions in cell order; a division appends its daughter b, so the
-   * requests' cell indices stay valid */
-  if (st == SESSILE_OK && s->retry_cap < o->ncells + a.ndivides) {
-    uint32_t cap = (uint32_t)(2 * (o->ncells + a.ndivides));
-    double *r = realloc(s->retry_at, (size_t)cap * sizeof *r);
-    if (!r) st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
-    else {
-      for (uint32_t c = s->retry_cap; c < cap; c++) r[c] = -INFINITY;
-      s->retry_at = r, s->retry_cap = cap;
-    }
-  }
-  for (size_t i = 0; st == SESSILE_OK && i < a.ndivides; i++) {
-    if (s->time < s->retry_at[a.divides[i].cell]) continue;
-    double d[3] = {a.divides[i].dir[0], a.divides[i].dir[1], a.divides[i].dir[2]};
-    if (d[0] == 0 && d[1] == 0 && d[2] == 0) {
-      /* the gradient vanished: a seeded random direction */
-      double z = sessile_rng_range(&s->rng, -1, 1), phi = sessile_rng_range(&s->rng, 0, 2 * SDS_PI), q = sqrt(1 - z * z);
-      d[0] = q * cos(phi), d[1] = q * sin(phi), d[2] = z;
-    }
-    st = sds_divide(s, (uint32_t)a.divides[i].cell, d);
-    if (st != SESSILE_OK)
-      st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", a.divides[i].cell, s->time,
-                             sessile_error_message());
-  }
+  if (st == SESSILE_OK) st = sds_divisions(s, a.divides, a.ndivides);
   sessile_sds_actions_free(&a);
   SESSILE_CALL(st);
   return sds_refresh(s);

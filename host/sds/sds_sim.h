@@ -54,6 +54,11 @@ typedef struct sds_sim {
   double *frame_time;         /* the simulated time of each frame written (frames + 1 entries) */
   char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
   size_t steplog_len, steplog_cap;
+  /* the loop on the device (device_loop; sds_loop_device.c) */
+  struct sds_gpu_rules *rules_dev; /* the rules' kernels and the cells' amounts and states */
+  int rules_sync;             /* the device holds the host's cells, amounts and states */
+  uint32_t batch_steps;       /* steps the next batch asks for */
+  double *blog;               /* a batch's log: dt and end time per step */
 } sds_sim;
 
 /* The model line NAME's first number, or def (t_end, frames). */
@@ -76,6 +81,7 @@ sessile_status sds_neighbours(sds_sim *s);
 sessile_morph_cells sds_cells_of(const sds_sim *s);
 sessile_status sds_refresh(sds_sim *s);
 sessile_status sds_rules(sds_sim *s, double dt);
+sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n);
 
 /* sds_divide.c: the organism as a growable complex and back; one division. */
 sessile_status sds_complex_of(const sessile_sds *o, sessile_sds_topo_complex *cx);
@@ -104,6 +110,21 @@ sessile_status sds_steplog_flush(sds_sim *s, sessile_run *run);
 /* sds_loop.c: a blow-up (docs/sds.md, "Blow-ups"): the message, and the
  * run's stats say what happened when. */
 sessile_status sds_blowup(sds_sim *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* sds_loop.c: what follows a step's physics (the state downloaded, the
+ * physics' verdict a blow-up when st is SESSILE_ERR_NUMERIC): the motion
+ * checked, inversions, the rules, the counts; the cells checked after the
+ * rules; frame k's time. */
+sessile_status sds_physics_failed(sds_sim *s, sessile_status st);
+sessile_status sds_finish_step(sds_sim *s, double elapsed);
+sessile_status sds_check_motion(sds_sim *s);
+sessile_status sds_check_cells(sds_sim *s);
+double sds_frame_time(const sds_sim *s, int k);
+/* sds_loop_device.c (device_loop): the loop on the device's set-up and
+ * teardown, and one batch of steps ending at the first step at or past
+ * t_stop at the latest, what the host does after it included. */
+sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop);
+sessile_status sds_device_loop_create(sds_sim *s, sessile_gpu *gpu);
+void sds_device_loop_destroy(sds_sim *s);
 
 /* `sds run` on the generator framework (sds_generator.c): the command's own
  * arguments (the generator's extra), stored in the run's configuration. */

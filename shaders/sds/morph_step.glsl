@@ -6,6 +6,13 @@
 #include "sds_kernels.glsl"
 // Reads through uniform texel buffers (MORPH_TEXEL = 1: vector loads on
 // lavapipe, as shaders/sds/sds_load.glsl) or storage buffers; the same bits.
+// MORPH_BATCH 1 (morph_step_batch.comp): the step and the sub-step count
+// from a batch's control (ctl), the radii from the physics' rm (r, m).
+#if MORPH_BATCH
+#define MORPH_DT ctl[pc.ctl + 1u]
+#else
+#define MORPH_DT pc.dt
+#endif
 #if MORPH_TEXEL
 #include "texel_real.glsl"
 #define LD_POS(i) texel_real(pos_t, (i))
@@ -16,7 +23,11 @@
 #define LD_SRC(i) texel_real(src_t, (i))
 #else
 #define LD_POS(i) pos[i]
+#if MORPH_BATCH
+#define LD_RADIUS(i) radius[2u * (i)]
+#else
 #define LD_RADIUS(i) radius[i]
+#endif
 #define LD_OFF(i) nbr_off[i]
 #define LD_NBR(i) nbr[i]
 #define LD_PHI(i) phi_in[i]
@@ -33,7 +44,7 @@ void finish(uint c, uint k, REAL pk, REAL s, REAL vc) {
   uint i = c * pc.nmorph + k;
   precise REAL rate = coef[3u * k] * s - coef[3u * k + 1u] * pk;
   rate += LD_SRC(i);
-  precise REAL v = pk + pc.dt * rate;
+  precise REAL v = pk + MORPH_DT * rate;
   v = max(v, REAL(0));
   if (coef[3u * k + 2u] != REAL(0)) v = min(v, vc);
   phi_out[i] = v;
@@ -43,6 +54,13 @@ void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
   uint nm = pc.nmorph;
+#if MORPH_BATCH
+  if (rev[SDS_EV_SKIP] != 0u) return; // the host makes this step's rules
+  if (REAL(pc.sub) > ctl[pc.ctl]) {   // past the step's sub-steps: the amounts as they are
+    for (uint k = 0u; k < nm; k++) phi_out[c * nm + k] = phi_in[c * nm + k];
+    return;
+  }
+#endif
   REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
   REAL vc = vol_of(LD_RADIUS(c));
   uint a = LD_OFF(c), b = LD_OFF(c + 1u);

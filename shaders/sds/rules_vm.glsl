@@ -55,10 +55,15 @@ REAL vol_of(REAL r) {
   return v;
 }
 
+// The step's time and dt: the push constants', or in a batch the control
+// morph_bound left after the constants (kernels.def, SDS_CTL).
+REAL step_time() { return pc.batch != 0u ? konst[pc.kctl + 2u] : pc.time; }
+REAL step_dt() { return pc.batch != 0u ? konst[pc.kctl + 3u] : pc.dt; }
+
 REAL slot_of(uint c, uint a) {
   if (a == 0u) return rm[2u * c];
   if (a == 1u) return vol_of(rm[2u * c]);
-  if (a == 2u) return pc.time;
+  if (a == 2u) return step_time();
   if (a == 3u) return surf[c] != 0u ? REAL(1) : REAL(0);
   if (a < SLOT_STATE) return phi[c * pc.nmorph + a - SLOT_MORPH];
   return state[c * pc.nstate + a - SLOT_STATE];
@@ -271,7 +276,7 @@ REAL cube(REAL r) {
 
 void apply(uint c) {
   uint nm = pc.nmorph, ns = pc.nstate, base = c * (1u + nm + ns);
-  precise REAL r = rm[2u * c] + pc.dt * pend[base];
+  precise REAL r = rm[2u * c] + step_dt() * pend[base];
   REAL vol = vol_of(r);
   uint fl0 = pflag[2u * c], fl1 = pflag[2u * c + 1u];
   for (uint t = 0u; t < nm + ns; t++) {
@@ -299,10 +304,12 @@ void main() {
       event[SDS_EV_SKIP] = 1u;
       return;
     }
+    if (pc.batch != 0u && event[SDS_EV_SKIP] != 0u) return; // morph_bound: the host's step
     evaluate(c);
   } else {
     if (event[SDS_EV_SKIP] != 0u) return;
     apply(c);
     if (event[SDS_EV_FLAGS] != 0u) event[SDS_EV_STOP] = 1u;
+    if (pc.batch != 0u && c == 0u) event[SDS_EV_LAST] = pc.batch;
   }
 }

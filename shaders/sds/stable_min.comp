@@ -85,8 +85,46 @@ void check_step(uint l, uint L, uint n, uint j) {
   barrier();
 }
 
+// Mode 4, in a batch after step j's rules (host/sds/sds_gpu_batch_rules.c):
+// the batch stops when the host must complete the step's rules (SKIP) or a
+// cell asked to divide (STOP); else the lists' staleness with the radii the
+// rules grew, as the host's loop checks it when it uploads them
+// (sds_gpu_lists_check_moves: the largest r - rb, then
+// sds_gpu_lists_stale; pc.dt carries contact_scale), and the growth term the
+// next steps' checks use.
+void growth_check(uint l, uint L, uint n) {
+  if (ev[0] != 0u) return; // stopped by the step's check (stab[n] is -1 already)
+  uint e = rev[SDS_EV_SKIP] != 0u ? SDS_EV_HOST : rev[SDS_EV_STOP] != 0u ? SDS_EV_DIVIDE : 0u;
+  if (e != 0u || pc.lcap == 0u) {
+    if (l == 0u && e != 0u) ev[0] = e, stab[n] = REAL(-1);
+    return;
+  }
+  REAL far = REAL(0), far_surf = REAL(0), grown = REAL(0);
+  for (uint c = l; c < n; c += L) {
+    REAL d = move[n + c];
+    if (d > far) far = d;
+    if (topo[o_csurf() + c] != 0u && d > far_surf) far_surf = d;
+    precise REAL g = rm[2u * c] - rb[c];
+    if (!(g <= grown)) grown = g;
+  }
+  far = group_max(l, L, far);
+  far_surf = group_max(l, L, far_surf);
+  grown = group_max(l, L, grown);
+  if (l == 0u) {
+    precise REAL g = pc.dt * grown;
+    if ((pc.nobs != 0u && !(far + g <= sp[SP_SKIN])) || (pc.tsize != 0u && !(REAL(2) * far_surf + g <= sp[SP_SKIN])))
+      ev[0] = SDS_EV_LISTS, stab[n] = REAL(-1);
+    else
+      step[6] = g;
+  }
+}
+
 void main() {
   uint l = gl_LocalInvocationID.x, L = gl_WorkGroupSize.x, n = pc.ncells;
+  if (pc.mode == 4u) {
+    growth_check(l, L, n);
+    return;
+  }
   uint bk = pc.batch & ~SDS_BATCH_SPLIT;
   bool split = (pc.batch & SDS_BATCH_SPLIT) != 0u; // steps checked by their own dispatches (mode 3)
   if (bk != 0u) {

@@ -52,7 +52,7 @@ static void device_run(sessile_gpu *g, const sessile_sds_model *m, const char *n
     t_must("the host's morphogen step", sessile_morph_step(&ch, &co, H.phi, a.produce, dt, tmp, NULL));
     memcpy(H.phi, tmp, n * nm * sizeof *tmp);
     sessile_sds_actions_apply(m, &a, dt, H.r, H.phi, H.state);
-    uint32_t ev[5], nreq = 0;
+    uint32_t ev[SDS_EV_COUNT], nreq = 0;
     t_must("record", sessile_cmd_begin(cmd));
     t_must("record", sds_gpu_rules_record_clear(r, cmd));
     t_must("record", sds_gpu_rules_record_eval(r, cmd, NULL, NULL, time));
@@ -121,7 +121,7 @@ static void device_check(sessile_gpu *g, const sessile_sds_model *m, const char 
   size_t n = (size_t)C.n, nm = (size_t)C.nm, ns = (size_t)C.ns;
   double *src = t_dalloc(n * nm + 1), *phi = t_dalloc(n * nm + 1), *st = t_dalloc(n * ns + 1), *rm = t_dalloc(2 * n);
   double *req = t_dalloc(SDS_REQ * n);
-  uint32_t ev[5], nreq = 0;
+  uint32_t ev[SDS_EV_COUNT], nreq = 0;
   t_must("events", sds_gpu_rules_read_events(r, ev, req, &nreq));
   if (nm) t_must("down", sessile_buffer_download_reals(sds_gpu_rules_buffer(r, SDS_RULES_SRC), 0, src, n * nm));
   if (nm) t_must("down", sessile_buffer_download_reals(sds_gpu_rules_buffer(r, SDS_RULES_PHI), 0, phi, n * nm));

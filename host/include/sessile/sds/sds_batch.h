@@ -9,13 +9,14 @@
 /* The events that stop a batch after the step that raised them (the bits of
  * shaders/sds/kernels.def's SDS_EV_*). */
 enum {
-  SESSILE_SDS_EV_DIVIDE = 1,     /* a cell asks to divide (the rules kernel, not yet merged) */
+  SESSILE_SDS_EV_DIVIDE = 1,     /* a cell asks to divide (with the rules on the device) */
   SESSILE_SDS_EV_REJECT = 2,     /* a step moved a cell more than max_move: undone, dt halved */
   SESSILE_SDS_EV_NONFINITE = 4,  /* a move not finite (the batch then fails: SESSILE_ERR_NUMERIC) */
   SESSILE_SDS_EV_INVERTED = 8,   /* a tet is inverted after the last accepted step */
   SESSILE_SDS_EV_LISTS = 16,     /* the contact lists may be stale (the next batch builds them) */
   SESSILE_SDS_EV_TIME = 32,      /* the last step ended at or past t_stop */
-  SESSILE_SDS_EV_DTMIN = 64      /* the next step would fall below dt_min (SESSILE_ERR_NUMERIC) */
+  SESSILE_SDS_EV_DTMIN = 64,     /* the next step would fall below dt_min (SESSILE_ERR_NUMERIC) */
+  SESSILE_SDS_EV_HOST = 128      /* with the rules on the device: the last step's rules are the host's */
 };
 #define SESSILE_SDS_BATCH_MAX 1024 /* steps per batch */
 

@@ -36,6 +36,7 @@ typedef struct sessile_sds_run_params {
   int self_collide;           /* bool */
   double dt;                  /* s: the first step */
   double max_move, stable_safety;
+  int device_loop;            /* bool: steps in batches on the device, rules included (the same bytes) */
 } sessile_sds_run_params;
 
 extern const sessile_param_table sessile_sds_run_param_table;
@@ -68,6 +69,8 @@ typedef struct sessile_sds_run_stats {
   uint32_t cells, tets;
   int frames;              /* frames written */
   double wall_s;           /* wall time of the loop (this process's part) */
+  uint64_t batches;        /* device_loop: batches submitted (this process's part) */
+  uint64_t host_steps;     /* device_loop: steps whose rules the host completed (this process's part) */
   int resumed;             /* continued from the run's checkpoint */
   /* a blow-up (docs/sds.md, "Blow-ups"): the run ended with
    * SESSILE_ERR_NUMERIC and frames 0 .. frames - 1 are the good ones */

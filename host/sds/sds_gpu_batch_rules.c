@@ -1,0 +1,41 @@
+/* The rules' step inside a batch of physics steps (docs/sds.md, "The loop on
+ * the device"; kernels.def, "The rules' step inside a batch"): the batch's
+ * hook records, after each step's check, morph_bound, the rules' two modes
+ * around the morphogens' sub-steps, and stable_min mode 4 (the lists'
+ * staleness with the grown radii; the stop at a division or a step the host
+ * must complete).  Every kernel reads the step's dt and time from the
+ * device, so a batch of K steps needs the host only at its end. */
+#include <string.h>
+#include "sds/sds_gpu_internal.h"
+#include "sds/sds_gpu_rules.h"
+
+static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int c) {
+  sds_gpu_rules *r = ctx;
+  SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
+  SESSILE_CALL(sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max));
+  sds_push p = sds_gpu_push_of(s, s->p.contact_scale, 1, 4); /* mode 4 reads contact_scale from dt */
+  p.batch = (k + 2) | SDS_BATCH_SPLIT;
+  return sds_gpu_record_stable_min(s, &p);
+}
+
+sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
+  if (!s->rules || s->hook != rules_hook) return SESSILE_OK;
+  SESSILE_CALL(sds_gpu_rules_clear(s->rules));
+  if (s->rb && sds_gpu_contacts_on(s)) SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_RB], 0, s->rb, s->ncells));
+  return SESSILE_OK;
+}
+
+void sds_gpu_batch_rules(sessile_sds_gpu *s, sds_gpu_rules *r, uint32_t nsub_max) {
+  sds_gpu_rules_attach(s, r);
+  s->hook = r ? rules_hook : NULL, s->hook_ctx = r;
+  s->nsub_max = nsub_max;
+}
+
+sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s) {
+  SESSILE_CHECK(!s->rm_pending, SESSILE_ERR_INTERNAL, "sds: radii pulled over an upload not yet made");
+  return sessile_buffer_download_reals(s->b[B_RM], 0, s->rm, 2 * (size_t)s->ncells);
+}
+
+sessile_status sds_gpu_download_prev_x(sessile_sds_gpu *s, double *x) {
+  return sessile_buffer_download_reals(s->b[B_X0 + 1 - s->cur], 0, x, 3 * (size_t)s->ncells);
+}

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# The loop on the device (device_loop, issue 33; docs/sds.md "The loop on
+# the device") against the host-driven loop: the same run gives the same
+# bytes.  Steps in batches on the device, each step's rules, morphogens and
+# growth there too; the host wakes for divisions, inversions (it completes
+# such a step with its own code), stale contact lists and frames.
+#  - a limb bud that grows fast (Delta 0.03: cells divide and tets invert
+#    from t = 4) to t = 6: every file under sds/ the same bytes, the step
+#    log equal but for its wall ms;
+#  - the limb with diffusion so fast that most steps need more morphogen
+#    sub-steps than a batch records (those steps' rules then the host's);
+#  - the rock model (an obstacle: the contact lists and their skin) to t = 5;
+#  - a run stopped by SIGINT after frame 1 and resumed: the same bytes;
+#  - refusals: a rule the device cannot run (exp), a bad value.
+set -u
+S="$1"
+. "$(dirname "$0")/../common/harness.sh"
+PY=/usr/bin/python3
+M="$(dirname "$0")/../../host/sds/models"
+sed 's/^const Delta = .*/const Delta = 0.03/' "$M/limb.sds" >"$T/fast.sds"
+sed 's/^morphogen phi diffusion=0.05/morphogen phi diffusion=400/' "$M/limb.sds" >"$T/diffuse.sds"
+
+# every file under sds/ the same bytes but the step log, which must be equal but for ms
+same_run() { # dir_a dir_b
+  for f in $(cd "$1/sds" && ls); do
+    [ "$f" = steps.csv ] && continue
+    cmp -s "$1/sds/$f" "$2/sds/$f" || { echo "differs: $f"; return 1; }
+  done
+  [ "$(cd "$1/sds" && ls | wc -l)" -eq "$(cd "$2/sds" && ls | wc -l)" ] || return 1
+  "$PY" - "$1/sds/steps.csv" "$2/sds/steps.csv" <<'PYEOF'
+import csv, sys
+def rows(p):
+    with open(p, newline="") as f:
+        return [{k: v for k, v in r.items() if k != "ms"} for r in csv.DictReader(f)]
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+div = sum(int(r["divisions"]) for r in a)
+inv = sum(int(r["inversions"]) for r in a)
+print("steps", len(a), len(b), "divisions", div, "inversions", inv)
+sys.exit(0 if a == b and len(a) > 0 else 1)
+PYEOF
+}
+counts() { "$PY" -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print(sum(int(x["divisions"]) for x in r), sum(int(x["inversions"]) for x in r))' "$1/sds/steps.csv"; }
+
+# the manifest's device_loop member: batches, steps whose rules the host completed
+loop_stat() { "$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["sds"]["device_loop"][sys.argv[2]])' "$1/manifest.json" "$2"; }
+for m in fast diffuse; do
+  t=6
+  [ $m = diffuse ] && t=1
+  run sds run "$T/$m.sds" --t-end $t --frames 5 --out "$T/$m-h" --quiet
+  check "$m: the host-driven loop completes" rc_is 0
+  run sds run "$T/$m.sds" --t-end $t --frames 5 --out "$T/$m-d" --quiet --set device_loop=true
+  check "$m: the loop on the device completes" rc_is 0
+  check "$m: the same bytes (frames, surfaces, series), the same steps" same_run "$T/$m-h" "$T/$m-d"
+done
+check "fast: the run divides cells and inverts tets; the host completed steps (the inversions')" eval \
+  '[ "$(counts "$T/fast-h" | cut -d" " -f1)" -gt 0 ] && [ "$(counts "$T/fast-h" | cut -d" " -f2)" -gt 0 ] && [ "$(loop_stat "$T/fast-d" host_completed_steps)" -gt 0 ]'
+check "fast: batches of many steps (fewer batches than a quarter of the steps)" eval \
+  '[ $(( $(loop_stat "$T/fast-d" batches) * 4 )) -lt "$(($(wc -l <"$T/fast-d/sds/steps.csv") - 1))" ]'
+check "diffuse: most steps' sub-steps beyond a batch's: the host completed more than half the steps" eval \
+  '[ $(( $(loop_stat "$T/diffuse-d" host_completed_steps) * 2 )) -gt "$(($(wc -l <"$T/diffuse-d/sds/steps.csv") - 1))" ]'
+
+run sds run rock --t-end 5 --frames 2 --out "$T/rock-h" --quiet
+check "rock: the host-driven loop completes" rc_is 0
+run sds run rock --t-end 5 --frames 2 --out "$T/rock-d" --quiet --set device_loop=true
+check "rock: the loop on the device completes" rc_is 0
+check "rock: the same bytes, the same steps" same_run "$T/rock-h" "$T/rock-d"
+
+# stopped by SIGINT after frame 1, resumed
+"$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --quiet --set device_loop=true --out "$T/b" >"$T/out" 2>"$T/err" &
+pid=$!
+for _ in $(seq 1 3000); do [ -e "$T/b/sds/frame_0001.ply" ] && break; sleep 0.02; done
+kill -INT $pid 2>/dev/null
+{ wait $pid; } 2>/dev/null
+echo $? >"$T/rc"
+check "device loop, SIGINT after frame 1: exit 130 (or it finished first: 0)" eval 'rc_is 130 || rc_is 0'
+run sds run --resume "$T/b" --quiet
+check "... resumed: completes" rc_is 0
+check "... the bytes of the uninterrupted runs" same_run "$T/fast-h" "$T/b"
+
+# refusals
+sed 's/^rule r2: tip == 0 \&\& phi > K \* volume -> grow Delta/rule r2: tip == 0 \&\& phi > K * volume -> grow Delta * exp(phi)/' \
+  "$T/fast.sds" >"$T/exp.sds"
+check "the exp model was made" grep -q 'exp(phi)' "$T/exp.sds"
+run sds run "$T/exp.sds" --t-end 1 --frames 1 --out "$T/e" --quiet --set device_loop=true
+check "a rule with exp: refused (exit 2) before the run folder exists, naming device_loop and exp" eval \
+  'rc_is 2 && grep -q "device_loop" "$T/err" && grep -q "exp" "$T/err" && test ! -e "$T/e"'
+run sds run "$T/fast.sds" --t-end 1 --frames 1 --out "$T/v" --quiet --set device_loop=2
+check "device_loop=2: refused (exit 2)" rc_is 2
+finish
