@@ -22,7 +22,7 @@
  * negated inverse: x = 0 - (-C) b. */
 #include "bmg_internal.h"
 
-/* Kernel id of the cycle's precision (f32: made on first use, kept in mg). */
+/* Kernel `id` in the cycle's precision (f32: made on first use, kept in mg). */
 static sessile_status bmg_kernel(const sessile_bmg *mg, la_kernel_id id, sessile_kernel **out) {
   if (!mg->f32) return la_kernel(mg->la, id, out);
   sessile_kernel **k = (sessile_kernel **)&mg->k32[id]; /* a cache, not the hierarchy's state */

@@ -49,7 +49,9 @@
  *    linear tolerance 1e-6, so they differ by about 1e-6 of the steps'
  *    sizes, amplified by the steps after; 1e-4 stays well inside the
  *    Newton tolerance 1e-3 that bounds either's distance to the discrete
- *    solution; measured ~1e-8). */
+ *    solution; measured ~1e-8).
+ * In an fp32 context (SESSILE_PRECISION=32) precision 32 is the context's own
+ * cycle: --mg32 then checks that it gives the bits of precision 64. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -422,8 +424,35 @@ static int mg32_main(void) {
   gpu = t_gpu(0);
   t_must("la", sessile_la_create(gpu, &la));
   fp64 = sessile_la_real_bytes(la) == 8;
-  if (!fp64) { /* precision 32 is then the fp32 context's own cycle */
-    printf("  no fp64 context: the fp32 cycle is the context's own (test_ns_mg --fp32)\n");
+  if (!fp64) { /* precision 32 is then the fp32 context's own cycle: the same bits as 64 */
+    scene sc;
+    scene_make(3, 6.0, &sc);
+    sessile_bcsr4 a;
+    size_t n4 = (size_t)sc.n * 4;
+    double *b = t_dalloc(n4), *z[2] = {t_dalloc(n4), t_dalloc(n4)};
+    system_of(&sc, 1, &a, b);
+    sessile_mat *m = NULL;
+    sessile_vec *rv = NULL, *zv = NULL;
+    t_must("mat", sessile_mat_create_bcsr4(la, &a, &m));
+    t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &rv));
+    t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &zv));
+    t_must("upload", sessile_vec_upload(rv, b));
+    for (int k = 0; k < 2; k++) {
+      sessile_bmg_options o = opts32();
+      if (!k) sessile_bmg_options_default(&o);
+      sessile_bmg *mg = NULL;
+      t_must("bmg", sessile_bmg_create(la, sc.box.n, &o, &mg));
+      t_must("bmg setup", sessile_bmg_setup(mg, m));
+      t_must("vcycle", sessile_bmg_vcycle(mg, rv, zv));
+      t_must("download", sessile_vec_download(zv, z[k]));
+      sessile_bmg_destroy(mg);
+    }
+    t_true("fp32 context: precision 32 = 64, bit for bit", memcmp(z[0], z[1], n4 * sizeof *b) == 0);
+    free(b), free(z[0]), free(z[1]);
+    sessile_vec_destroy(rv), sessile_vec_destroy(zv);
+    sessile_mat_destroy(m);
+    sessile_bcsr4_free(&a);
+    scene_free(&sc);
     sessile_la_destroy(la);
     return t_finish(gpu);
   }
