@@ -15,7 +15,8 @@ static const char *help =
     "usage: sessile bench fluid [--resolution R] [--pc NAME] [--ksp gmres|bicgstab] [--block-scale]\n"
     "                           [--picard K] [--restart M] [--no-lsic] [--no-compare]\n"
     "                           [--mg-smoother gs|jacobi] [--mg-sweeps N] [--mg-cycle v|w|vw] [--mg-galerkin]\n"
-    "                           [--mg-wg-max N] [--baseline ilu0|storage] [--kernels] [--set KEY=VALUE]...\n"
+    "                           [--mg-wg-max N] [--mg-precision 64|32] [--baseline ilu0|storage] [--kernels]\n"
+    "                           [--set KEY=VALUE]...\n"
     "                           [--device D]\n"
     "\n"
     "Solves the stationary Navier-Stokes equations (P1-P1 with PSPG/SUPG/LSIC,\n"
@@ -26,7 +27,8 @@ static const char *help =
     "true linear residual, assembly and solve time.  Figures are for the record\n"
     "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
-    "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it and fluid_nested (--set;\n"
+    "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it, fluid_nested and\n"
+    "fluid_mg_precision (--set;\n"
     "docs/fluid.md: a start far from the solution, here from rest, begins from the\n"
     "solution on the box of twice the spacing; --set fluid_nested=false for plain\n"
     "Newton from rest); the\n"
@@ -34,8 +36,10 @@ static const char *help =
     "ilu0, block_jacobi, mg; docs/la.md), mg (block multigrid) by default (ilu0 runs\n"
     "Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
     "the pc column says which ran); --ksp K is --set fluid_ksp_type=K; --restart M is --set fluid_ksp_restart=M\n"
-    "(GMRES(M)); --block-scale is --pc block_jacobi (the inverse of each node's 4x4\n"
-    "diagonal block).  --picard K takes K Picard (Oseen) steps before Newton;\n"
+    "(GMRES(M)); --mg-precision B is --set fluid_mg_precision=B (pc mg's cycle in 64 bits,\n"
+    "the default, or in 32 inside the fp64 GMRES; on an fp32 device it is fp32 either\n"
+    "way); --block-scale is --pc block_jacobi (the inverse of each node's 4x4 diagonal\n"
+    "block).  --picard K takes K Picard (Oseen) steps before Newton;\n"
     "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n"
     "\n"
     "Unless --no-compare (or the pc is ilu0), the same two solves run first with\n"
@@ -192,12 +196,13 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       continue;
     }
     static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp",
-                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--mg-wg-max", "--baseline", "--set"};
+                                         "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--mg-wg-max", "--mg-precision",
+                                         "--baseline", "--set"};
     int k = 0;
-    while (k < 11 && strcmp(a, valued[k])) k++;
-    if (k == 11) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
+    while (k < 12 && strcmp(a, valued[k])) k++;
+    if (k == 12) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v || (k < 10 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!v || (k < 11 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
     if (!strcmp(a, "--mg-wg-max")) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, 1u << 30, &u)) return EXIT_USAGE;
@@ -235,9 +240,10 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, SESSILE_FLUID_MAX_STEPS, &u)) return EXIT_USAGE;
       picard = (int)u;
-    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp")) {
+    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp") || !strcmp(a, "--mg-precision")) {
       /* the table's parameters under a short flag: one parser, one list of names */
-      const char *key = a[2] == 'r' ? "fluid_ksp_restart" : a[2] == 'p' ? "fluid_pc_type" : "fluid_ksp_type";
+      const char *key = a[2] == 'r' ? "fluid_ksp_restart" : a[2] == 'p' ? "fluid_pc_type"
+                      : a[2] == 'k' ? "fluid_ksp_type" : "fluid_mg_precision";
       s = sessile_params_set(&p, key, v);
       if (s != SESSILE_OK) return cli_usage_error("bench fluid", "%s: %s", a, sessile_error_message());
     } else if (!strcmp(a, "--set")) {
@@ -245,6 +251,10 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       if (s != SESSILE_OK) return cli_fail(s);
     }
   }
+  /* fluid_mg_precision (--mg-precision, --set): the table's range holds 33..63
+   * too; the validation refuses them with its message */
+  if (p.fluid_mg_precision != 64 && p.fluid_mg_precision != 32 && sessile_params_validate(&p) != SESSILE_OK)
+    return cli_usage_error("bench fluid", "%s", sessile_error_message());
   if (!res) res = (unsigned)p.fluid_resolution;
   sessile_box box;
   const double origin[3] = {0, 0, 0};
@@ -276,6 +286,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   if (lsic >= 0) fp.lsic = lsic;
   if (verbose) fp.monitor = print_line;
   fp.mg = mgo;
+  fp.mg.precision = p.fluid_mg_precision; /* the table's (--mg-precision, --set) */
   fp.mg_galerkin = galerkin;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
@@ -287,11 +298,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
            sessile_ksp_type_name(fp.ksp), sessile_pc_type_name(fp.pc),
            p.fluid_density * p.inlet_velocity * 0.12 / p.fluid_viscosity);
     if (fp.pc == SESSILE_PC_MG)
-      printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle, %s coarse operators, levels of at most %u nodes "
+      printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle in fp%d, %s coarse operators, levels of at most %u nodes "
              "smoothed in one workgroup\n",
              mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", mgo.pre, mgo.post,
-             mgo.cycle == 3 ? "VW" : mgo.cycle == 2 ? "W" : "V", galerkin ? "Galerkin" : "rediscretised",
-             mgo.wg_max_nodes);
+             mgo.cycle == 3 ? "VW" : mgo.cycle == 2 ? "W" : "V", gi->precision == 32 ? 32 : fp.mg.precision,
+             galerkin ? "Galerkin" : "rediscretised", mgo.wg_max_nodes);
     printf("mesh and solver setup: %.2f s\n\n", t_setup);
     fflush(stdout);
   }

@@ -124,7 +124,8 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
   double tets;
   /* nutrient: ~12 reals per node (solution, CG vectors, operator diagonal)
    * plus the solid mask; flow: block-CSR (4x4 reals, ~15 neighbours) for the
-   * Jacobian and its ILU(0), and GMRES(50)'s basis of 4 reals per node. */
+   * Jacobian and its ILU(0) (or the multigrid's levels), and GMRES(50)'s basis
+   * of 4 reals per node. */
   double nutrient = box_nodes(p, p->box_resolution) * (12 * 8 + 4);
   /* advected on the cut cells: 6 weights and 3 velocities per node, and
    * BiCGSTAB's vectors */
@@ -133,7 +134,12 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
   double fn = flow_nodes(p, &tets);
   if (p->fluid_nested) fn *= 8.0 / 7.0; /* the nested start's coarser boxes: 1/8 + 1/64 + ... more */
   int flow = !p->diffusion_limited || p->fluid_every_iteration || p->fluid_at_snapshots;
-  return nutrient + (flow ? fn * (2 * 15 * 16 * 8 + 52 * 4 * 8) : 0);
+  double per = 2 * 15 * 16 * 8 + 52 * 4 * 8;
+  /* fluid_mg_precision 32: the cycle's fp32 copy of the fine block values and
+   * its three fp32 vectors on the finest level (its coarse levels, an eighth
+   * and less, shrink against the fp64 ones counted in the ILU(0) share) */
+  if (p->fluid_pc_type == SESSILE_PC_MG && p->fluid_mg_precision == 32) per += 15 * 16 * 4 + 3 * 4 * 4;
+  return nutrient + (flow ? fn * per : 0);
 }
 
 static sessile_status validate(const void *values) {
@@ -171,6 +177,9 @@ static sessile_status validate(const void *values) {
   SESSILE_CHECK(p->vertex_insertion_threshold > p->vertex_fusion_threshold, SESSILE_ERR_USAGE,
                 "vertex_insertion_threshold (%g) must exceed vertex_fusion_threshold (%g)",
                 p->vertex_insertion_threshold, p->vertex_fusion_threshold);
+  SESSILE_CHECK(p->fluid_mg_precision == 64 || p->fluid_mg_precision == 32, SESSILE_ERR_USAGE,
+                "fluid_mg_precision must be 64 or 32 (the bits of the multigrid cycle), got %d",
+                p->fluid_mg_precision);
   SESSILE_CHECK(p->fluid_resolution <= p->box_resolution, SESSILE_ERR_USAGE,
                 "fluid_resolution (%d) must not exceed box_resolution (%d)", p->fluid_resolution,
                 p->box_resolution);

@@ -1,5 +1,5 @@
 /* The fluid's solver choices in the grow table (fluid_ksp_*, fluid_pc_type,
- * the Newton tolerance and bound, the nested start) mapped onto sessile_fluid_params: the one
+ * the Newton tolerance and bound, the nested start, the multigrid cycle's precision) mapped onto sessile_fluid_params: the one
  * place `sessile grow` and `sessile bench fluid` take them from. */
 #include "sessile/fem/fluid.h"
 #include "sessile/growth/grow_params.h"
@@ -17,4 +17,5 @@ void sessile_params_fluid_solver(const sessile_grow_params *p, sessile_fluid_par
   fp->newton_rtol = p->fluid_newton_rtol;
   fp->newton_max = p->fluid_newton_max_it;
   fp->nested = p->fluid_nested;
+  fp->mg.precision = p->fluid_mg_precision;
 }

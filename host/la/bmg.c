@@ -16,6 +16,7 @@ void sessile_bmg_options_default(sessile_bmg_options *o) {
   o->coarse_dense_max = 160;
   o->coarse_sweeps = 20;
   o->wg_max_nodes = 1024;
+  o->precision = 64;
 }
 
 void bmg_offsets(const uint32_t n[3], int off[BMG_NOFF][3]) {
@@ -78,10 +79,37 @@ void sessile_bmg_destroy(sessile_bmg *mg) {
     sessile_vec_destroy(v->x);
     sessile_vec_destroy(v->b);
     sessile_vec_destroy(v->r);
+    sessile_buffer_destroy(v->x32);
+    sessile_buffer_destroy(v->b32);
+    sessile_buffer_destroy(v->r32);
   }
+  for (int k = 0; k < K_COUNT; k++) sessile_kernel_destroy(mg->k32[k]);
+  sessile_buffer_destroy(mg->stop32);
+  sessile_buffer_destroy(mg->zero32);
   free(mg->cinv);
   sessile_mat_destroy(mg->cinvm);
   free(mg);
+}
+
+/* Level v's cycle vectors: x, b (below the finest) and r in the context's
+ * precision, or x32, b32, r32 on every level for the fp32 cycle. */
+static sessile_status level_vectors(sessile_bmg *mg, bmg_level *v) {
+  sessile_la *la = mg->la;
+  if (mg->f32) {
+    size_t bytes = (size_t)v->nodes * 16;
+    SESSILE_CALL(sessile_buffer_create(la->gpu, bytes, SESSILE_BUFFER_DEVICE, &v->x32));
+    SESSILE_CALL(sessile_buffer_create(la->gpu, bytes, SESSILE_BUFFER_DEVICE, &v->b32));
+    SESSILE_CALL(sessile_buffer_create(la->gpu, bytes, SESSILE_BUFFER_DEVICE, &v->r32));
+    v->vx.buf = v->x32, v->vb.buf = v->b32, v->vr.buf = v->r32;
+    return SESSILE_OK;
+  }
+  SESSILE_CALL(sessile_vec_create(la, 4 * v->nodes, &v->r));
+  v->vr = vref_of(v->r);
+  if (mg->nl == 1) return SESSILE_OK; /* the finest level's x and b are the caller's */
+  SESSILE_CALL(sessile_vec_create(la, 4 * v->nodes, &v->x));
+  SESSILE_CALL(sessile_vec_create(la, 4 * v->nodes, &v->b));
+  v->vx = vref_of(v->x), v->vb = vref_of(v->b);
+  return SESSILE_OK;
 }
 
 sessile_status sessile_bmg_create(sessile_la *la, const uint32_t n[3], const sessile_bmg_options *o,
@@ -100,10 +128,14 @@ sessile_status sessile_bmg_create(sessile_la *la, const uint32_t n[3], const ses
                 "block multigrid: bad options (pre %d, post %d, at least one sweep; omega %g in (0, 2]; "
                 "max_levels %d >= 1; coarse_sweeps %d >= 1; cycle %d: 1, 2 or 3; smoother %d)",
                 o->pre, o->post, o->omega, o->max_levels, o->coarse_sweeps, o->cycle, (int)o->smoother);
+  SESSILE_CHECK(o->precision == 64 || o->precision == 32, SESSILE_ERR_USAGE,
+                "block multigrid: precision %d: the cycle runs in 64 (the default) or 32 bits", o->precision);
   sessile_bmg *mg = calloc(1, sizeof *mg);
   SESSILE_CHECK(mg, SESSILE_ERR_NO_MEMORY, "out of host memory");
   mg->la = la;
   mg->o = *o;
+  mg->f32 = o->precision == 32 && la->real_bytes == 8; /* an fp32 context: the same path */
+  mg->rb = mg->f32 ? 4 : la->real_bytes;
   uint32_t g[3] = {n[0], n[1], n[2]};
   sessile_status s = SESSILE_OK;
   while (s == SESSILE_OK) {
@@ -116,15 +148,16 @@ sessile_status sessile_bmg_create(sessile_la *la, const uint32_t n[3], const ses
     if (!v->fixed || !v->dinv) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
     if (s == SESSILE_OK && mg->nl > 1) s = build_pattern(v);
     if (s == SESSILE_OK) s = sessile_buffer_create(la->gpu, (size_t)v->nodes * 4, SESSILE_BUFFER_DEVICE, &v->mask);
-    if (s == SESSILE_OK) s = sessile_vec_create(la, 4 * v->nodes, &v->r);
-    if (s == SESSILE_OK && mg->nl > 1) s = sessile_vec_create(la, 4 * v->nodes, &v->x);
-    if (s == SESSILE_OK && mg->nl > 1) s = sessile_vec_create(la, 4 * v->nodes, &v->b);
+    if (s == SESSILE_OK) s = level_vectors(mg, v);
     int halves = g[0] >= 3 && g[1] >= 3 && g[2] >= 3 && (g[0] - 1) % 2 == 0 && (g[1] - 1) % 2 == 0 &&
                  (g[2] - 1) % 2 == 0;
     if (v->nodes <= o->coarse_dense_max || !halves || mg->nl >= o->max_levels || mg->nl >= BMG_MAX_LEVELS)
       break;
     for (int a = 0; a < 3; a++) g[a] = (g[a] - 1) / 2 + 1;
   }
+  if (s == SESSILE_OK && mg->f32) s = sessile_buffer_create(la->gpu, 16, SESSILE_BUFFER_DEVICE, &mg->stop32);
+  if (s == SESSILE_OK && mg->f32)
+    s = sessile_buffer_create(la->gpu, (size_t)mg->lv[mg->nl - 1].nodes * 16, SESSILE_BUFFER_DEVICE, &mg->zero32);
   if (s != SESSILE_OK) {
     sessile_bmg_destroy(mg);
     return s;
@@ -146,7 +179,7 @@ sessile_status sessile_bmg_vcycle(sessile_bmg *mg, const sessile_vec *r, sessile
                 "bmg vcycle: vectors of %u and %u reals for %u nodes", r->n, z->n, mg->lv[0].nodes);
   sessile_la *la = mg->la;
   SESSILE_CALL(sessile_cmd_begin(la->cmd));
-  SESSILE_CALL(bmg_rec_vcycle(mg, la->cmd, vref_of(r), vref_of(z), -1));
+  SESSILE_CALL(bmg_rec_cycle(mg, la->cmd, vref_of(r), vref_of(z), -1));
   SESSILE_CALL(sessile_cmd_end(la->cmd));
   return sessile_cmd_submit_wait(la->cmd);
 }

@@ -14,8 +14,30 @@
  * start and coarse_sweeps sweeps alternating forward and backward.
  * Smoother and residual dispatch once per row chunk of the level's matrix;
  * a colour sweep covers only the chunk's k-slabs of its colour; both read
- * the matrix and x through texel buffers where the views fit (texel_ok). */
+ * the matrix and x through texel buffers where the views fit (texel_ok).
+ * The fp32 cycle in an fp64 context (mg->f32): bmg_to32 casts r in (and sets
+ * the cycle's stop flag), every pass runs the kernels' f32 variants on the
+ * levels' fp32 data with `s` bound to that flag (guard slot 0), bmg_to64
+ * casts x out; the coarsest dense solve is the residual kernel on the
+ * negated inverse: x = 0 - (-C) b. */
 #include "bmg_internal.h"
+
+/* Kernel `id` in the cycle's precision (f32: made on first use, kept in mg). */
+static sessile_status bmg_kernel(const sessile_bmg *mg, la_kernel_id id, sessile_kernel **out) {
+  if (!mg->f32) return la_kernel(mg->la, id, out);
+  sessile_kernel **k = (sessile_kernel **)&mg->k32[id]; /* a cache, not the hierarchy's state */
+  if (!*k) SESSILE_CALL(sessile_kernel_create_decl(mg->la->gpu, &sessile_la_kernels[id], 4, 0, k));
+  *out = *k;
+  return SESSILE_OK;
+}
+
+static uint32_t groups_of(const sessile_kernel *k, uint32_t items) {
+  uint32_t local = sessile_kernel_local_size(k);
+  return (items + local - 1) / local;
+}
+
+/* The cycle kernels' `s`: la's scalars, or the fp32 cycle's stop flag. */
+static sessile_buffer *bmg_s(const sessile_bmg *mg) { return mg->f32 ? mg->stop32 : mg->la->scalars; }
 
 static bmg_push grid_push(const bmg_level *v, int guard) {
   bmg_push p = {.n0 = v->n[0], .n1 = v->n[1], .n2 = v->n[2], .m0 = la_div_magic(v->n[0]),
@@ -38,8 +60,8 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
   sessile_la *la = mg->la;
   const bmg_level *v = &mg->lv[l];
   sessile_kernel *k, *kt;
-  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH, &k));
-  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH_TEX, &kt));
+  SESSILE_CALL(bmg_kernel(mg, K_BMG_SMOOTH, &k));
+  SESSILE_CALL(bmg_kernel(mg, K_BMG_SMOOTH_TEX, &kt));
   uint32_t par[3] = {colour & 1u, (colour >> 1) & 1u, (colour >> 2) & 1u};
   uint32_t sub[3] = {0, 0, 0};
   for (int a = 0; a < 3; a++) sub[a] = (v->n[a] - par[a] + 1) / 2;
@@ -48,7 +70,7 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
     const mat_chunk *ch = &v->m->chunk[ci];
     bmg_push p = grid_push(v, guard);
     p.colour = colour, p.flags = flags, p.row0 = ch->row0, p.nrows = ch->nrows;
-    p.omega = sessile_push_real_of(mg->o.omega, la->real_bytes);
+    p.omega = sessile_push_real_of(mg->o.omega, mg->rb);
     if (colour < 8) {
       if (!sub[0] || !sub[1] || !sub[2]) continue;
       uint32_t klo = ch->row0 / plane, khi = (ch->row0 + ch->nrows - 1) / plane;
@@ -62,9 +84,8 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
     } else {
       p.items = ch->nrows;
     }
-    sessile_buffer *bufs[8] = {la->scalars, ch->rowptr, ch->col, ch->val, v->dinvb[ci], b.buf, x.buf, y.buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, la_groups(la, K_BMG_SMOOTH, p.items),
-                                      bufs, &p));
+    sessile_buffer *bufs[8] = {bmg_s(mg), ch->rowptr, ch->col, ch->val, v->dinvb[ci], b.buf, x.buf, y.buf};
+    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, groups_of(k, p.items), bufs, &p));
   }
   return SESSILE_OK;
 }
@@ -81,21 +102,31 @@ static sessile_status rec_smooth_wg(const sessile_bmg *mg, sessile_cmd *c, int l
       !texel_ok(la, &v->m->chunk[0], x.buf))
     return SESSILE_OK;
   sessile_kernel *k;
-  SESSILE_CALL(la_kernel(la, K_BMG_SMOOTH_WG, &k));
+  SESSILE_CALL(bmg_kernel(mg, K_BMG_SMOOTH_WG, &k));
   const mat_chunk *ch = &v->m->chunk[0];
   bmg_push p = grid_push(v, guard);
   p.flags = flags, p.sweeps = (uint32_t)sweeps, p.row0 = 0, p.nrows = p.items = ch->nrows;
-  p.omega = sessile_push_real_of(mg->o.omega, la->real_bytes);
-  sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, v->dinvb[0], b.buf, x.buf};
+  p.omega = sessile_push_real_of(mg->o.omega, mg->rb);
+  sessile_buffer *bufs[7] = {bmg_s(mg), ch->rowptr, ch->col, ch->val, v->dinvb[0], b.buf, x.buf};
   *done = 1;
   return sessile_cmd_dispatch(c, k, 1, bufs, &p);
+}
+
+/* x = a (n reals, whole vectors of the cycle's precision). */
+static sessile_status rec_copy(const sessile_bmg *mg, sessile_cmd *c, uint32_t n, vref a, vref x, int guard) {
+  vref none = {0};
+  if (!mg->f32) return rec_vec(mg->la, c, K_COPY, n, a, x, none, -1, 0, guard);
+  sessile_kernel *k;
+  SESSILE_CALL(bmg_kernel(mg, K_COPY, &k));
+  sessile_buffer *bufs[3] = {mg->stop32, a.buf, x.buf};
+  vec_push p = {.n4 = (n + 3) / 4, .n = n, .a_slot = -1, .guard = guard};
+  return sessile_cmd_dispatch(c, k, groups_of(k, p.n4), bufs, &p);
 }
 
 /* `sweeps` smoothing sweeps of x on level l (after the start from zero when zero). */
 static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int sweeps,
                                  int zero, int backward, int guard) {
   const bmg_level *v = &mg->lv[l];
-  vref none = {0};
   int done;
   uint32_t flags = (zero ? BMG_ZERO : 0) | (backward ? BMG_BACKWARD : 0) | (l == mg->nl - 1 ? BMG_ALTERNATE : 0);
   SESSILE_CALL(rec_smooth_wg(mg, c, l, b, x, sweeps, flags, guard, &done));
@@ -103,8 +134,8 @@ static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, v
   if (zero) SESSILE_CALL(rec_pass(mg, c, l, b, x, x, 8, BMG_ZERO, guard));
   for (int s = 0; s < sweeps; s++) {
     if (mg->o.smoother == SESSILE_BMG_JACOBI) {
-      SESSILE_CALL(rec_pass(mg, c, l, b, x, vref_of(v->r), 8, 0, guard));
-      SESSILE_CALL(rec_vec(mg->la, c, K_COPY, 4 * v->nodes, vref_of(v->r), x, none, -1, 0, guard));
+      SESSILE_CALL(rec_pass(mg, c, l, b, x, v->vr, 8, 0, guard));
+      SESSILE_CALL(rec_copy(mg, c, 4 * v->nodes, v->vr, x, guard));
       continue;
     }
     int back = backward ^ (s & 1 && l == mg->nl - 1); /* the coarsest alternates */
@@ -113,59 +144,78 @@ static sessile_status rec_smooth(const sessile_bmg *mg, sessile_cmd *c, int l, v
   return SESSILE_OK;
 }
 
-static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int guard) {
+/* y = b - M x on level l (M: the level's operator, or the fp32 cycle's
+ * negated coarsest inverse). */
+static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l, const sessile_mat *m, vref b,
+                                   vref x, vref y, int guard) {
   sessile_la *la = mg->la;
   const bmg_level *v = &mg->lv[l];
   sessile_kernel *k, *kt;
-  SESSILE_CALL(la_kernel(la, K_BMG_RESIDUAL, &k));
-  SESSILE_CALL(la_kernel(la, K_BMG_RESIDUAL_TEX, &kt));
-  for (uint32_t ci = 0; ci < v->m->nchunks; ci++) {
-    const mat_chunk *ch = &v->m->chunk[ci];
+  SESSILE_CALL(bmg_kernel(mg, K_BMG_RESIDUAL, &k));
+  SESSILE_CALL(bmg_kernel(mg, K_BMG_RESIDUAL_TEX, &kt));
+  for (uint32_t ci = 0; ci < m->nchunks; ci++) {
+    const mat_chunk *ch = &m->chunk[ci];
     bmg_push p = grid_push(v, guard);
     p.row0 = ch->row0, p.nrows = p.items = ch->nrows;
-    sessile_buffer *bufs[7] = {la->scalars, ch->rowptr, ch->col, ch->val, b.buf, x.buf, v->r->buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, la_groups(la, K_BMG_RESIDUAL, p.items),
-                                      bufs, &p));
+    sessile_buffer *bufs[7] = {bmg_s(mg), ch->rowptr, ch->col, ch->val, b.buf, x.buf, y.buf};
+    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, groups_of(k, p.items), bufs, &p));
   }
   return SESSILE_OK;
 }
 
 /* b_{l+1} = R r_l, or x_l += P x_{l+1} (prolong). */
 static sessile_status rec_transfer(const sessile_bmg *mg, sessile_cmd *c, int l, vref x, int prolong, int guard) {
-  sessile_la *la = mg->la;
   const bmg_level *f = &mg->lv[l], *cv = &mg->lv[l + 1];
   la_kernel_id id = prolong ? K_BMG_PROLONG : K_BMG_RESTRICT;
   sessile_kernel *k;
-  SESSILE_CALL(la_kernel(la, id, &k));
+  SESSILE_CALL(bmg_kernel(mg, id, &k));
   const bmg_level *run = prolong ? f : cv, *other = prolong ? cv : f;
   bmg_push p = grid_push(run, guard);
   p.f0 = other->n[0], p.f1 = other->n[1], p.f2 = other->n[2];
   p.items = run->nodes;
   if (prolong) {
-    sessile_buffer *bufs[4] = {la->scalars, f->mask, cv->x->buf, x.buf};
-    return sessile_cmd_dispatch(c, k, la_groups(la, id, p.items), bufs, &p);
+    sessile_buffer *bufs[4] = {bmg_s(mg), f->mask, cv->vx.buf, x.buf};
+    return sessile_cmd_dispatch(c, k, groups_of(k, p.items), bufs, &p);
   }
-  sessile_buffer *bufs[5] = {la->scalars, f->mask, cv->mask, f->r->buf, cv->b->buf};
-  return sessile_cmd_dispatch(c, k, la_groups(la, id, p.items), bufs, &p);
+  sessile_buffer *bufs[5] = {bmg_s(mg), f->mask, cv->mask, f->vr.buf, cv->vb.buf};
+  return sessile_cmd_dispatch(c, k, groups_of(k, p.items), bufs, &p);
 }
 
 static sessile_status rec_level(const sessile_bmg *mg, sessile_cmd *c, int l, vref b, vref x, int guard) {
   if (l == mg->nl - 1) {
+    vref zero = {mg->zero32, 0};
+    if (mg->cinvm && mg->f32) return rec_residual(mg, c, l, mg->cinvm, zero, b, x, guard);
     if (mg->cinvm) return rec_spmv(mg->la, c, mg->cinvm, b, x, guard);
     return rec_smooth(mg, c, l, b, x, mg->o.coarse_sweeps, 1, 0, guard);
   }
-  const bmg_level *cv = &mg->lv[l + 1];
+  const bmg_level *v = &mg->lv[l], *cv = &mg->lv[l + 1];
   SESSILE_CALL(rec_smooth(mg, c, l, b, x, mg->o.pre, 1, 0, guard));
   int corr = bmg_corrections(mg, l);
   for (int k = 0; k < corr; k++) {
-    SESSILE_CALL(rec_residual(mg, c, l, b, x, guard));
+    SESSILE_CALL(rec_residual(mg, c, l, v->m, b, x, v->vr, guard));
     SESSILE_CALL(rec_transfer(mg, c, l, x, 0, guard));
-    SESSILE_CALL(rec_level(mg, c, l + 1, vref_of(cv->b), vref_of(cv->x), guard));
+    SESSILE_CALL(rec_level(mg, c, l + 1, cv->vb, cv->vx, guard));
     SESSILE_CALL(rec_transfer(mg, c, l, x, 1, guard));
   }
   return rec_smooth(mg, c, l, b, x, mg->o.post, 0, 1, guard);
 }
 
-sessile_status bmg_rec_vcycle(const sessile_bmg *mg, sessile_cmd *c, vref r, vref out, int guard) {
-  return rec_level(mg, c, 0, r, out, guard);
+/* The fp32 cycle's cast in (K_BMG_TO32: r into the finest b32, and the stop
+ * flag) or out (K_BMG_TO64: the finest x32 into v). */
+static sessile_status rec_cast(const sessile_bmg *mg, sessile_cmd *c, la_kernel_id id, vref v, int guard) {
+  sessile_la *la = mg->la;
+  const bmg_level *f = &mg->lv[0];
+  sessile_kernel *k;
+  SESSILE_CALL(la_kernel(la, id, &k));
+  bmg_cast_push p = {.n4 = f->nodes, .off4 = v.off4, .guard = guard};
+  sessile_buffer *in[4] = {la->scalars, mg->stop32, v.buf, f->b32}, *out[3] = {la->scalars, f->x32, v.buf};
+  return sessile_cmd_dispatch(c, k, groups_of(k, p.n4), id == K_BMG_TO32 ? in : out, &p);
+}
+
+sessile_status bmg_rec_cycle(const sessile_bmg *mg, sessile_cmd *c, vref r, vref out, int guard) {
+  if (!mg->f32) return rec_level(mg, c, 0, r, out, guard);
+  const bmg_level *f = &mg->lv[0];
+  SESSILE_CALL(rec_cast(mg, c, K_BMG_TO32, r, guard));
+  SESSILE_CALL(rec_level(mg, c, 0, f->vb, f->vx, guard < 0 ? -1 : 0));
+  return rec_cast(mg, c, K_BMG_TO64, out, guard);
 }

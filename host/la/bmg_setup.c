@@ -158,7 +158,7 @@ static sessile_status level_inverses(sessile_bmg *mg, int l) {
    * memory costs lavapipe page faults: la.h, sessile_mat_refill_bcsr4) */
   int same = v->ndinv == v->m->nchunks;
   for (uint32_t c = 0; same && c < v->ndinv; c++)
-    same = v->dinvb[c] && sessile_buffer_size(v->dinvb[c]) == (size_t)v->m->chunk[c].nrows * 16 * mg->la->real_bytes;
+    same = v->dinvb[c] && sessile_buffer_size(v->dinvb[c]) == (size_t)v->m->chunk[c].nrows * 16 * mg->rb;
   if (!same) {
     for (uint32_t c = 0; c < v->ndinv; c++) sessile_buffer_destroy(v->dinvb[c]);
     free(v->dinvb);
@@ -171,8 +171,8 @@ static sessile_status level_inverses(sessile_bmg *mg, int l) {
     const mat_chunk *ch = &v->m->chunk[c];
     size_t n = (size_t)ch->nrows * 16;
     if (!same)
-      SESSILE_CALL(sessile_buffer_create(mg->la->gpu, n * mg->la->real_bytes, SESSILE_BUFFER_DEVICE, &v->dinvb[c]));
-    SESSILE_CALL(sessile_buffer_upload_reals(v->dinvb[c], 0, v->dinv + 16 * (size_t)ch->row0, n));
+      SESSILE_CALL(sessile_buffer_create(mg->la->gpu, n * mg->rb, SESSILE_BUFFER_DEVICE, &v->dinvb[c]));
+    SESSILE_CALL(la_upload_vals(mg->la, v->dinvb[c], v->dinv + 16 * (size_t)ch->row0, n, mg->rb));
   }
   return SESSILE_OK;
 }
@@ -207,6 +207,16 @@ static int dense_inverse(int n, double *a, double *inv) {
   return 1;
 }
 
+/* *m holds a's values on the device, in the cycle's precision: refilled in
+ * place when it has a's pattern (fresh device memory costs lavapipe page
+ * faults), else made anew. */
+static sessile_status device_operator(sessile_bmg *mg, const sessile_bcsr4 *a, sessile_mat **m) {
+  if (*m && sessile_mat_refill_bcsr4(*m, a) == SESSILE_OK) return SESSILE_OK;
+  sessile_mat_destroy(*m);
+  *m = NULL;
+  return mg->f32 ? la_mat_create_bcsr4_f32(mg->la, a, m) : sessile_mat_create_bcsr4(mg->la, a, m);
+}
+
 /* The coarsest level's dense inverse as a full block matrix. */
 static sessile_status coarse_inverse(sessile_bmg *mg) {
   const bmg_level *v = &mg->lv[mg->nl - 1];
@@ -215,6 +225,7 @@ static sessile_status coarse_inverse(sessile_bmg *mg) {
   double *d = calloc((size_t)n * n, sizeof *d);
   if (!mg->cinv) mg->cinv = malloc((size_t)n * n * sizeof *mg->cinv);
   sessile_bcsr4 full = {0};
+  double sign = mg->f32 ? -1.0 : 1.0; /* the fp32 cycle applies it as a residual: 0 - (-C) b */
   sessile_status s = d && mg->cinv ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   const sessile_bcsr4 *a = v->ah;
   for (uint32_t i = 0; s == SESSILE_OK && i < nb; i++)
@@ -230,14 +241,10 @@ static sessile_status coarse_inverse(sessile_bmg *mg) {
       uint64_t k = (uint64_t)i * nb + j;
       full.col[k] = j;
       for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) full.val[16 * k + 4 * r + c] = mg->cinv[(size_t)(4 * i + r) * n + 4 * j + c];
+        for (int c = 0; c < 4; c++) full.val[16 * k + 4 * r + c] = sign * mg->cinv[(size_t)(4 * i + r) * n + 4 * j + c];
     }
   }
-  if (s == SESSILE_OK && (!mg->cinvm || sessile_mat_refill_bcsr4(mg->cinvm, &full) != SESSILE_OK)) {
-    sessile_mat_destroy(mg->cinvm);
-    mg->cinvm = NULL;
-    s = sessile_mat_create_bcsr4(mg->la, &full, &mg->cinvm);
-  }
+  if (s == SESSILE_OK) s = device_operator(mg, &full, &mg->cinvm);
   sessile_bcsr4_free(&full);
   free(d);
   return s;
@@ -252,6 +259,11 @@ sessile_status sessile_bmg_setup(sessile_bmg *mg, const sessile_mat *a) {
   bmg_level *v0 = &mg->lv[0];
   v0->ah = &a->hostb;
   v0->m = a;
+  if (mg->f32) { /* the cycle's own fp32 copy of the fine values (a's stay for the solver) */
+    v0->m = NULL;
+    SESSILE_CALL(device_operator(mg, &a->hostb, &v0->own));
+    v0->m = v0->own;
+  }
   for (int l = 1; l < mg->nl; l++) {
     bmg_level *c = &mg->lv[l];
     c->ah = &c->a;
@@ -265,11 +277,7 @@ sessile_status sessile_bmg_setup(sessile_bmg *mg, const sessile_mat *a) {
     bmg_level *c = &mg->lv[l + 1];
     if (!c->given) SESSILE_CALL(bmg_galerkin(mg, l));
     c->m = NULL;
-    if (!c->own || sessile_mat_refill_bcsr4(c->own, c->ah) != SESSILE_OK) {
-      sessile_mat_destroy(c->own);
-      c->own = NULL;
-      SESSILE_CALL(sessile_mat_create_bcsr4(mg->la, c->ah, &c->own));
-    }
+    SESSILE_CALL(device_operator(mg, c->ah, &c->own));
     c->m = c->own;
   }
   for (int l = 0; l < mg->nl; l++) SESSILE_CALL(level_inverses(mg, l));

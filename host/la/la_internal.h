@@ -62,8 +62,10 @@ struct sessile_mat {
   uint32_t nchunks;        /* CSR, BCSR4: >= 1; STENCIL7: 0 */
   mat_chunk *chunk;
   uint64_t chunk_limit;    /* bytes per matrix buffer (also bounds the ILU(0) factors) */
+  uint32_t val_bytes;      /* BCSR4: bytes of a stored value: the context's real_bytes, or 4
+                              for an fp32 copy in an fp64 context (la_mat_create_bcsr4_f32) */
   sessile_csr host;        /* CSR: kept for fp32 refinement residuals and Jacobi */
-  sessile_bcsr4 hostb;     /* BCSR4: likewise */
+  sessile_bcsr4 hostb;     /* BCSR4: likewise (an fp32 copy: the pattern only, val NULL) */
   uint32_t rows_per;       /* rows per invocation in the SpMV kernel */
   int texel;               /* CSR: read through texel buffers (sizes within the
                               device's maxTexelBufferElements and la->spmv_texel) */
@@ -76,6 +78,16 @@ struct sessile_mat {
                               (stencil_cut_adv.c), not owned; NULL: all 1 */
   struct la_ilu *ilu;      /* ILU(0) factors, computed on first use (ilu.c) */
 };
+
+/* A device-only copy of the block matrix a with its values as floats, in any
+ * context, chunked for 4-byte values: the block multigrid's fp32 cycle
+ * (bmg_setup.c) reads it with its f32 kernels.  Its hostb holds the pattern
+ * but no values, so nothing else (SpMV, Jacobi, ILU, references) may take
+ * it; sessile_mat_refill_bcsr4 refreshes its values. */
+sessile_status la_mat_create_bcsr4_f32(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out);
+/* n values from the host's doubles into b at offset 0, stored in `bytes`
+ * each: the context's real_bytes (sessile_buffer_upload_reals) or 4 (floats). */
+sessile_status la_upload_vals(sessile_la *la, sessile_buffer *b, const double *src, size_t n, uint32_t bytes);
 
 /* A vector inside a buffer: `off4` REAL4 chunks from its start. */
 typedef struct { sessile_buffer *buf; uint32_t off4; } vref;

@@ -189,9 +189,25 @@ sessile_status sessile_mat_create_csr(sessile_la *la, const sessile_csr *a, sess
   return SESSILE_OK;
 }
 
+sessile_status la_upload_vals(sessile_la *la, sessile_buffer *b, const double *src, size_t n, uint32_t bytes) {
+  if (bytes == la->real_bytes) return sessile_buffer_upload_reals(b, 0, src, n);
+  float *f = malloc(n * sizeof *f);
+  SESSILE_CHECK(f, SESSILE_ERR_NO_MEMORY, "out of host memory");
+  for (size_t i = 0; i < n; i++) f[i] = (float)src[i];
+  sessile_status s = sessile_buffer_upload(b, 0, f, n * sizeof *f);
+  free(f);
+  return s;
+}
+
+/* n values into b in the matrix's stored precision. */
+static sessile_status upload_vals(const sessile_mat *m, sessile_buffer *b, const double *src, size_t n) {
+  return la_upload_vals(m->la, b, src, n, m->val_bytes);
+}
+
 /* Block rows r0..r1-1 of `a` into one chunk (row pointers rebased). */
-static sessile_status upload_bcsr4_chunk(sessile_la *la, const sessile_bcsr4 *a, uint32_t r0,
+static sessile_status upload_bcsr4_chunk(const sessile_mat *m, const sessile_bcsr4 *a, uint32_t r0,
                                          uint32_t r1, mat_chunk *ch) {
+  sessile_la *la = m->la;
   ch->row0 = r0;
   ch->nrows = r1 - r0;
   uint64_t k0 = a->rowptr[r0], nnzb = a->rowptr[r1] - k0;
@@ -205,17 +221,17 @@ static sessile_status upload_bcsr4_chunk(sessile_la *la, const sessile_bcsr4 *a,
   if (s == SESSILE_OK) s = sessile_buffer_create(la->gpu, nb * 4, SESSILE_BUFFER_DEVICE, &ch->col);
   if (s == SESSILE_OK && nnzb) s = sessile_buffer_upload(ch->col, 0, a->col + k0, (size_t)nnzb * 4);
   if (s == SESSILE_OK)
-    s = sessile_buffer_create(la->gpu, nb * 16 * la->real_bytes, SESSILE_BUFFER_DEVICE, &ch->val);
-  if (s == SESSILE_OK && nnzb) s = sessile_buffer_upload_reals(ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16);
+    s = sessile_buffer_create(la->gpu, nb * 16 * m->val_bytes, SESSILE_BUFFER_DEVICE, &ch->val);
+  if (s == SESSILE_OK && nnzb) s = upload_vals(m, ch->val, a->val + k0 * 16, (size_t)nnzb * 16);
   free(rp);
   return s;
 }
 
 /* Greedy split into block-row chunks whose arrays each fit m->chunk_limit
- * (the values, 16 reals per block, are the largest), then the uploads. */
-static sessile_status upload_bcsr4(sessile_la *la, sessile_mat *m) {
-  const sessile_bcsr4 *a = &m->hostb;
-  const uint64_t lim = m->chunk_limit, per = 16 * (uint64_t)la->real_bytes;
+ * (the values, 16 per block of m->val_bytes each, are the largest), then the
+ * uploads of a's rows (a: the values; m->hostb may hold the pattern only). */
+static sessile_status upload_bcsr4(sessile_mat *m, const sessile_bcsr4 *a) {
+  const uint64_t lim = m->chunk_limit, per = 16 * (uint64_t)m->val_bytes;
   uint32_t *first = malloc(((size_t)a->nbrows + 1) * sizeof *first);
   SESSILE_CHECK(first, SESSILE_ERR_NO_MEMORY, "out of host memory");
   sessile_status s = SESSILE_OK;
@@ -242,12 +258,15 @@ static sessile_status upload_bcsr4(sessile_la *la, sessile_mat *m) {
     s = alloc_chunks(m, n);
   }
   for (uint32_t c = 0; s == SESSILE_OK && c < n; c++)
-    s = upload_bcsr4_chunk(la, a, first[c], first[c + 1], &m->chunk[c]);
+    s = upload_bcsr4_chunk(m, a, first[c], first[c + 1], &m->chunk[c]);
   free(first);
   return s;
 }
 
-sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out) {
+/* A block matrix of values stored in val_bytes; values_on_host: hostb keeps
+ * a copy of the values (else the pattern only). */
+static sessile_status create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, uint32_t val_bytes,
+                                   int values_on_host, sessile_mat **out) {
   *out = NULL;
   SESSILE_CHECK(a->nbrows > 0 && a->nbrows == a->nbcols, SESSILE_ERR_USAGE,
                 "block matrix must be square and non-empty (got %u x %u blocks)", a->nbrows,
@@ -262,6 +281,7 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   SESSILE_CHECK(m, SESSILE_ERR_NO_MEMORY, "out of host memory");
   m->la = la;
   m->kind = MAT_BCSR4;
+  m->val_bytes = val_bytes;
   m->nrows = a->nbrows * 4;
   m->nnz = a->nnzb * 16;
   m->rows_per = 1;
@@ -270,8 +290,9 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   if (s == SESSILE_OK) {
     memcpy(m->hostb.rowptr, a->rowptr, ((size_t)a->nbrows + 1) * sizeof *a->rowptr);
     memcpy(m->hostb.col, a->col, (size_t)a->nnzb * sizeof *a->col);
-    memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
-    s = upload_bcsr4(la, m);
+    if (values_on_host) memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
+    else free(m->hostb.val), m->hostb.val = NULL;
+    s = upload_bcsr4(m, a);
   }
   if (s != SESSILE_OK) {
     sessile_mat_destroy(m);
@@ -279,6 +300,14 @@ sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, 
   }
   *out = m;
   return SESSILE_OK;
+}
+
+sessile_status sessile_mat_create_bcsr4(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out) {
+  return create_bcsr4(la, a, la->real_bytes, 1, out);
+}
+
+sessile_status la_mat_create_bcsr4_f32(sessile_la *la, const sessile_bcsr4 *a, sessile_mat **out) {
+  return create_bcsr4(la, a, 4, 0, out);
 }
 
 sessile_status sessile_mat_refill_bcsr4(sessile_mat *m, const sessile_bcsr4 *a) {
@@ -290,11 +319,11 @@ sessile_status sessile_mat_refill_bcsr4(sessile_mat *m, const sessile_bcsr4 *a) 
                 "refill: the context's chunk limit changed since the matrix was made");
   la_ilu_destroy(m->ilu); /* the factors of the old values */
   m->ilu = NULL;
-  memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
+  if (m->hostb.val) memcpy(m->hostb.val, a->val, (size_t)a->nnzb * 16 * sizeof *a->val);
   for (uint32_t c = 0; c < m->nchunks; c++) {
     const mat_chunk *ch = &m->chunk[c];
     uint64_t k0 = a->rowptr[ch->row0], nnzb = a->rowptr[ch->row0 + ch->nrows] - k0;
-    if (nnzb) SESSILE_CALL(sessile_buffer_upload_reals(ch->val, 0, a->val + k0 * 16, (size_t)nnzb * 16));
+    if (nnzb) SESSILE_CALL(upload_vals(m, ch->val, a->val + k0 * 16, (size_t)nnzb * 16));
   }
   return SESSILE_OK;
 }

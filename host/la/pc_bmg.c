@@ -4,7 +4,8 @@
  * (pc_mg.c); sessile_pc_mg_set_block turns an "mg" pc into this one before
  * its setup.  The setup builds the hierarchy's operators from the matrix
  * (sessile_bmg_setup).  The kernels read whole vectors, so an r or z inside
- * a larger buffer (GMRES's basis) goes through a scratch vector.
+ * a larger buffer (GMRES's basis) goes through a scratch vector; the fp32
+ * cycle's casts read and write them in place (no scratch).
  * Nonsymmetric (Gauss-Seidel, and the Jacobian is): CG refuses it. */
 #include <stdlib.h>
 #include "bmg_internal.h"
@@ -28,6 +29,7 @@ static sessile_status bmg_setup(sessile_pc *pc, const sessile_mat *a) {
   bmg_scratch *s = calloc(1, sizeof *s);
   SESSILE_CHECK(s, SESSILE_ERR_NO_MEMORY, "out of host memory");
   pc->data = s;
+  if (mg->f32) return SESSILE_OK;
   SESSILE_CALL(sessile_vec_create(pc->la, a->nrows, &s->in));
   return sessile_vec_create(pc->la, a->nrows, &s->out);
 }
@@ -36,12 +38,13 @@ static sessile_status bmg_rec(const sessile_pc *pc, sessile_cmd *c, vref r, vref
   const bmg_scratch *s = pc->data;
   sessile_la *la = pc->la;
   vref none = {0};
+  if (!s->in) return bmg_rec_cycle(pc->conf, c, r, z, guard); /* fp32: the casts take offsets */
   if (r.off4) {
     SESSILE_CALL(rec_vec(la, c, K_COPY, pc->n, r, vref_of(s->in), none, -1, 0, guard));
     r = vref_of(s->in);
   }
   vref out = z.off4 ? vref_of(s->out) : z;
-  SESSILE_CALL(bmg_rec_vcycle(pc->conf, c, r, out, guard));
+  SESSILE_CALL(bmg_rec_cycle(pc->conf, c, r, out, guard));
   if (z.off4) SESSILE_CALL(rec_vec(la, c, K_COPY, pc->n, out, z, none, -1, 0, guard));
   return SESSILE_OK;
 }

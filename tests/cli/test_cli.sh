@@ -74,7 +74,8 @@ for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4" \
             "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "bench coral particles" "bench sponge nope" "sds" "sds grow" "sds run" "bench sds --x" \
-            "bench sds --kernels --rock-t 0"; do
+            "bench sds --kernels --rock-t 0" "bench fluid --mg-precision 48" "bench fluid --mg-precision 16" \
+            "bench fluid --set fluid_mg_precision=40"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
 done

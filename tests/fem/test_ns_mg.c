@@ -25,7 +25,33 @@
  *    beyond two levels: docs/fluid.md); block-Jacobi smoothing converges
  *    (factor < 1), the VW(2,2) cycle (V on the finest level, W below) to
  *    factor <= 0.5 on 17x17x13; a second setup with the same fixed unknowns does not
- *    rebuild the masks. */
+ *    rebuild the masks.
+ * With --mg32 (ctest test_ns_mg32), the cycle in fp32 inside the fp64 context
+ * (sessile_bmg_options.precision 32; docs/la.md, "The cycle in fp32"):
+ *  - the Stokes and Oseen factors stay <= 0.5 and h-independent within 0.1,
+ *    and within 1e-5 of the fp64 cycle's factors (fp32 rounding is ~6e-8
+ *    relative per operation and scale-invariant, so it perturbs each cycle's
+ *    output by ~1e-6 relative whatever the residual's size; measured ~1e-7);
+ *  - the device's fp32 cycle against the fp64 plain-C reference: 1e-4 relative
+ *    (max norm; fp32's 6e-8 unit roundoff amplified by the cycle's thousands
+ *    of operations per unknown and the coarse inverse; measured ~1e-6);
+ *    storage reads = texel reads and one-workgroup = per-colour smoothing bit
+ *    for bit, chunked (fp32 values) = unchunked to 1e-12; block Jacobi
+ *    smoothing converges; a set stop slot (S_STOP 1 or 3, the solver's
+ *    fp64 scalars) skips the whole fp32 cycle and a clear one runs it;
+ *  - the fluid's Newton solve from rest on 33x33x25 (no nested start): the
+ *    same Newton steps as with the fp64 cycle, every linear solve at true
+ *    relres <= 1e-6 in at most 2 more GMRES iterations than fp64's (each
+ *    iteration's residual reduction differs by ~1e-6 relative, so the counts
+ *    differ only where a solve ends within a hair of the tolerance), and
+ *    the velocities within 1e-4 of the fp64 solve's (max norm, relative to
+ *    the inlet speed; both take the same Newton steps, each solved to the
+ *    linear tolerance 1e-6, so they differ by about 1e-6 of the steps'
+ *    sizes, amplified by the steps after; 1e-4 stays well inside the
+ *    Newton tolerance 1e-3 that bounds either's distance to the discrete
+ *    solution; measured ~1e-8).
+ * In an fp32 context (SESSILE_PRECISION=32) precision 32 is the context's own
+ * cycle: --mg32 then checks that it gives the bits of precision 64. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +63,7 @@
 #include "sessile/mesh/box.h"
 #include "sessile/mesh/tetmesh.h"
 #include "testutil.h"
+#include "la/bmg_internal.h" /* bmg_rec_cycle: the fp32 cycle's stop-slot guard */
 
 static sessile_gpu *gpu;
 static sessile_la *la;
@@ -249,9 +276,238 @@ static void fallback(void) {
   scene_free(&sc);
 }
 
+/* --- --mg32: the cycle in fp32 inside the fp64 context ------------------- */
+
+static sessile_bmg_options opts32(void) {
+  sessile_bmg_options o;
+  sessile_bmg_options_default(&o);
+  o.precision = 32;
+  return o;
+}
+
+/* The cycle recorded as GMRES records it, guarded by la's fp64 stop slot
+ * (set to `stop` for the run). */
+static void guarded_cycle(sessile_bmg *mg, sessile_vec *rv, sessile_vec *zv, double stop) {
+  la_scalar_set(la, S_STOP, stop);
+  t_must("begin", sessile_cmd_begin(la->cmd));
+  t_must("record", bmg_rec_cycle(mg, la->cmd, vref_of(rv), vref_of(zv), S_STOP));
+  t_must("end", sessile_cmd_end(la->cmd));
+  t_must("run", sessile_cmd_submit_wait(la->cmd));
+  la_scalar_set(la, S_STOP, 0);
+}
+
+/* A set stop slot skips every f32 dispatch (the finest x32 and z keep their
+ * values); a clear one runs the cycle. */
+static void guard32_checks(sessile_bmg *mg, sessile_vec *rv, sessile_vec *zv, const double *b, const double *z) {
+  size_t n4 = (size_t)mg->lv[0].nodes * 4;
+  float *x0 = t_xalloc(n4 * sizeof *x0), *x1 = t_xalloc(n4 * sizeof *x1);
+  double *r2 = t_dalloc(n4), *zg = t_dalloc(n4);
+  t_must("download x32", sessile_buffer_download(mg->lv[0].x32, 0, x0, n4 * sizeof *x0));
+  for (size_t i = 0; i < n4; i++) r2[i] = 2 * b[i];
+  t_must("upload", sessile_vec_upload(rv, r2));
+  static const double stops[2] = {1.0, 3.0}; /* STOP_CONVERGED, STOP_BREAKDOWN */
+  for (int k = 0; k < 2; k++) {
+    t_must("fill", sessile_vec_fill(la, 7.0, zv));
+    guarded_cycle(mg, rv, zv, stops[k]);
+    t_must("download", sessile_vec_download(zv, zg));
+    t_must("download x32", sessile_buffer_download(mg->lv[0].x32, 0, x1, n4 * sizeof *x1));
+    int kept = 1;
+    for (size_t i = 0; i < n4; i++) kept &= zg[i] == 7.0;
+    t_true(k ? "S_STOP 3: z untouched" : "S_STOP 1: z untouched", kept);
+    t_true(k ? "S_STOP 3: the fp32 cycle skipped (x32 kept)" : "S_STOP 1: the fp32 cycle skipped (x32 kept)",
+           memcmp(x0, x1, n4 * sizeof *x0) == 0);
+  }
+  guarded_cycle(mg, rv, zv, 0.0);
+  t_must("download", sessile_vec_download(zv, zg));
+  for (size_t i = 0; i < n4; i++) r2[i] = 2 * z[i]; /* the cycle of 2b: 2 z exactly (scaling by 2 is exact) */
+  t_true("S_STOP 0: the guarded cycle runs (z of 2b = 2 z, bit for bit)", memcmp(zg, r2, n4 * sizeof *zg) == 0);
+  t_must("upload", sessile_vec_upload(rv, b));
+  free(x0), free(x1), free(r2), free(zg);
+}
+
+/* The fp32 device cycle against the fp64 reference, its read paths, its
+ * chunking, its guard (the fp64 vcycle_checks' counterparts). */
+static void vcycle32_checks(scene *sc, const sessile_bcsr4 *a, const double *b) {
+  size_t n4 = (size_t)a->nbrows * 4;
+  sessile_bmg_options o = opts32();
+  sessile_bmg *mg = NULL, *mw = NULL;
+  sessile_mat *m = NULL, *mc = NULL;
+  sessile_vec *rv = NULL, *zv = NULL;
+  t_must("bmg (fp32 cycle)", sessile_bmg_create(la, sc->box.n, &o, &mg));
+  t_must("mat", sessile_mat_create_bcsr4(la, a, &m));
+  t_must("bmg setup", sessile_bmg_setup(mg, m));
+  t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &rv));
+  t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &zv));
+  double *z = t_dalloc(n4), *zr = t_dalloc(n4), *zs = t_dalloc(n4);
+  t_must("upload", sessile_vec_upload(rv, b));
+  t_must("vcycle", sessile_bmg_vcycle(mg, rv, zv));
+  t_must("download", sessile_vec_download(zv, z));
+  t_must("ref vcycle", sessile_ref_bmg_vcycle(mg, b, zr));
+  double e = t_relerr(z, zr, n4);
+  printf("    fp32 cycle - fp64 reference: %.2e (max, relative)\n", e);
+  t_check("fp32 device V-cycle = fp64 reference within fp32 rounding (max rel)", e, 1e-4);
+  t_true("... and is not the fp64 cycle (it runs in fp32)", e > 0);
+  sessile_la_options so;
+  sessile_la_options_default(&so);
+  so.spmv_storage = 1;
+  sessile_la_set_options(la, &so);
+  t_must("vcycle (storage reads)", sessile_bmg_vcycle(mg, rv, zv));
+  t_must("download", sessile_vec_download(zv, zs));
+  sessile_la_options_default(&so);
+  sessile_la_set_options(la, &so);
+  t_true("fp32: storage reads = texel reads, bit for bit", memcmp(zs, z, n4 * sizeof *z) == 0);
+  o.wg_max_nodes = 0;
+  t_must("bmg (fp32, no one-workgroup smoothing)", sessile_bmg_create(la, sc->box.n, &o, &mw));
+  t_must("bmg setup", sessile_bmg_setup(mw, m));
+  t_must("vcycle", sessile_bmg_vcycle(mw, rv, zv));
+  t_must("download", sessile_vec_download(zv, zs));
+  t_true("fp32: one-workgroup smoothing = per-colour dispatches, bit for bit", memcmp(zs, z, n4 * sizeof *z) == 0);
+  sessile_bmg_destroy(mw);
+  guard32_checks(mg, rv, zv, b, z);
+  /* the fine matrix and the cycle's fp32 copies in chunks of at most 256 KiB:
+   * the fp32 copy is chunked for 4-byte values, so in about half the chunks */
+  sessile_la_options lo;
+  sessile_la_options_default(&lo);
+  lo.max_matrix_chunk_bytes = 256 << 10;
+  sessile_la_set_options(la, &lo);
+  t_must("mat (chunked)", sessile_mat_create_bcsr4(la, a, &mc));
+  t_must("bmg setup (chunked)", sessile_bmg_setup(mg, mc));
+  sessile_la_options_default(&lo);
+  sessile_la_set_options(la, &lo);
+  uint32_t c64 = sessile_mat_chunks(mc), c32 = mg->lv[0].m->nchunks;
+  printf("    chunks of the fine matrix: %u in fp64, %u in the cycle's fp32 copy\n", c64, c32);
+  t_true("the fp32 copy is in several chunks, fewer than the fp64 matrix's", c32 > 1 && c32 < c64);
+  t_must("vcycle (chunked)", sessile_bmg_vcycle(mg, rv, zv));
+  t_must("download", sessile_vec_download(zv, zs));
+  t_check("fp32: chunked V-cycle = unchunked (max rel)", t_relerr(zs, z, n4), 1e-12);
+  free(z), free(zr), free(zs);
+  sessile_vec_destroy(rv), sessile_vec_destroy(zv);
+  sessile_mat_destroy(m), sessile_mat_destroy(mc);
+  sessile_bmg_destroy(mg);
+}
+
+/* The fluid's Newton solve from rest with the fp64 and the fp32 cycle. */
+static void fluid_newton32(scene *sc) {
+  sessile_fluid_result res[2];
+  double *up[2];
+  for (int k = 0; k < 2; k++) {
+    sessile_fluid_params p;
+    sessile_fluid_params_default(&p);
+    p.pc = SESSILE_PC_MG;
+    p.nested = 0; /* the same Newton steps from rest, step by step */
+    p.mg.precision = k ? 32 : 64;
+    up[k] = t_dalloc((size_t)sc->n * 4);
+    t_must(k ? "fluid solve (fp32 cycle)" : "fluid solve (fp64 cycle)",
+           sessile_fluid_solve(sc->fl, sc->solid, &p, up[k], &res[k]));
+    for (int s = 0; s < res[k].nsteps; s++)
+      printf("    %s cycle, Newton step %d: %d GMRES iterations, true relres %.2e\n", k ? "fp32" : "fp64", s + 1,
+             res[k].step[s].lin_iterations, res[k].step[s].lin_relres);
+  }
+  t_check("fp32 cycle: the fp64 cycle's number of Newton steps (difference)", abs(res[1].nsteps - res[0].nsteps), 0);
+  for (int s = 0; s < res[1].nsteps && s < res[0].nsteps; s++) {
+    const sessile_fluid_step *a = &res[0].step[s], *b = &res[1].step[s];
+    t_true("the step ran pc mg", b->lin_pc == SESSILE_PC_MG);
+    t_check("fp32 cycle: true relres", b->lin_relres, 1e-6);
+    t_check("fp32 cycle: GMRES iterations - fp64 cycle's (<= 2)", b->lin_iterations - a->lin_iterations, 2);
+  }
+  double d = 0;
+  for (uint32_t i = 0; i < sc->n; i++)
+    for (int c = 0; c < 3; c++) d = fmax(d, fabs(up[1][4 * i + c] - up[0][4 * i + c]));
+  sessile_fluid_params p;
+  sessile_fluid_params_default(&p);
+  printf("    velocities, fp32 - fp64 cycle: %.2e m/s (inlet %.2g m/s)\n", d, p.inlet[0]);
+  t_check("fp32 cycle: velocities - fp64 cycle's (max, relative to the inlet)", d / p.inlet[0], 1e-4);
+  free(up[0]), free(up[1]);
+}
+
+static int mg32_main(void) {
+  gpu = t_gpu(0);
+  t_must("la", sessile_la_create(gpu, &la));
+  fp64 = sessile_la_real_bytes(la) == 8;
+  if (!fp64) { /* precision 32 is then the fp32 context's own cycle: the same bits as 64 */
+    scene sc;
+    scene_make(3, 6.0, &sc);
+    sessile_bcsr4 a;
+    size_t n4 = (size_t)sc.n * 4;
+    double *b = t_dalloc(n4), *z[2] = {t_dalloc(n4), t_dalloc(n4)};
+    system_of(&sc, 1, &a, b);
+    sessile_mat *m = NULL;
+    sessile_vec *rv = NULL, *zv = NULL;
+    t_must("mat", sessile_mat_create_bcsr4(la, &a, &m));
+    t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &rv));
+    t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &zv));
+    t_must("upload", sessile_vec_upload(rv, b));
+    for (int k = 0; k < 2; k++) {
+      sessile_bmg_options o = opts32();
+      if (!k) sessile_bmg_options_default(&o);
+      sessile_bmg *mg = NULL;
+      t_must("bmg", sessile_bmg_create(la, sc.box.n, &o, &mg));
+      t_must("bmg setup", sessile_bmg_setup(mg, m));
+      t_must("vcycle", sessile_bmg_vcycle(mg, rv, zv));
+      t_must("download", sessile_vec_download(zv, z[k]));
+      sessile_bmg_destroy(mg);
+    }
+    t_true("fp32 context: precision 32 = 64, bit for bit", memcmp(z[0], z[1], n4 * sizeof *b) == 0);
+    free(b), free(z[0]), free(z[1]);
+    sessile_vec_destroy(rv), sessile_vec_destroy(zv);
+    sessile_mat_destroy(m);
+    sessile_bcsr4_free(&a);
+    scene_free(&sc);
+    sessile_la_destroy(la);
+    return t_finish(gpu);
+  }
+  static const char *const kind[2] = {"Stokes", "Oseen Re 120"};
+  for (int stokes = 1; stokes >= 0; stokes--) {
+    double f[3];
+    for (int lev = 2; lev <= 4; lev++) {
+      scene sc;
+      scene_make(lev, 6.0, &sc);
+      sessile_bcsr4 a;
+      double *b = t_dalloc((size_t)sc.n * 4);
+      system_of(&sc, stokes, &a, b);
+      sessile_bmg_options o64, o32 = opts32();
+      sessile_bmg_options_default(&o64);
+      int nl;
+      double f64 = mg_factor(lev, stokes, 0, &a, b, &o64, &nl);
+      f[lev - 2] = mg_factor(lev, stokes, 0, &a, b, &o32, &nl);
+      printf("  %s %ux%ux%u: %d levels, factor fp32 cycle %.4f, fp64 cycle %.4f\n", kind[!stokes], sc.box.n[0],
+             sc.box.n[1], sc.box.n[2], nl, f[lev - 2], f64);
+      char what[128];
+      snprintf(what, sizeof what, "%s %ux%ux%u: fp32-cycle factor", kind[!stokes], sc.box.n[0], sc.box.n[1],
+               sc.box.n[2]);
+      t_check(what, f[lev - 2], 0.5);
+      snprintf(what, sizeof what, "%s %ux%ux%u: |fp32 - fp64 cycle factor|", kind[!stokes], sc.box.n[0],
+               sc.box.n[1], sc.box.n[2]);
+      t_check(what, fabs(f[lev - 2] - f64), 1e-5);
+      if (lev == 3 && stokes) {
+        vcycle32_checks(&sc, &a, b);
+        o32.smoother = SESSILE_BMG_JACOBI;
+        o32.omega = 0.6;
+        double fj = mg_factor(lev, stokes, 0, &a, b, &o32, &nl);
+        printf("  fp32 cycle, block Jacobi (omega 0.6): factor %.3f\n", fj);
+        t_check("fp32 cycle, block-Jacobi smoothing converges: factor", fj, 0.99);
+      }
+      sessile_bcsr4_free(&a);
+      free(b);
+      scene_free(&sc);
+    }
+    double lo = fmin(f[0], fmin(f[1], f[2])), hi = fmax(f[0], fmax(f[1], f[2]));
+    char what[96];
+    snprintf(what, sizeof what, "%s: fp32-cycle factors h-independent (max - min)", kind[!stokes]);
+    t_check(what, hi - lo, 0.1);
+  }
+  scene sc;
+  scene_make(4, 6.0, &sc);
+  fluid_newton32(&sc);
+  scene_free(&sc);
+  sessile_la_destroy(la);
+  return t_finish(gpu);
+}
+
 int main(int argc, char **argv) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   int fp32 = 0;
+  if (argc == 2 && !strcmp(argv[1], "--mg32")) return mg32_main();
   if (argc == 7 && !strcmp(argv[1], "--explore")) { /* --explore LEVEL PRE POST OMEGA CYCLE: factors only */
     gpu = t_gpu(0);
     fp64 = 1;

@@ -1,10 +1,12 @@
 /* The fluid's solver choices in the grow table (fluid_ksp_type,
  * fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it, fluid_ksp_restart,
- * fluid_newton_rtol, fluid_newton_max_it): the table's defaults map onto the fluid
+ * fluid_newton_rtol, fluid_newton_max_it, fluid_nested, fluid_mg_precision): the table's defaults map onto the fluid
  * library's own defaults (today's behaviour), fluid_pc_type's names are the
  * pc registry's (every registered pc but mg, in sessile_pc_type's order),
- * every value set by name arrives in sessile_fluid_params, and a small flow
- * solve reports the Krylov method and preconditioner it ran with. */
+ * every value set by name arrives in sessile_fluid_params (a precision
+ * other than 64 or 32 is refused), the memory estimate counts the fp32
+ * cycle's copies, and a small flow solve reports the Krylov method and
+ * preconditioner it ran with. */
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/fem/fluid.h"
@@ -24,7 +26,7 @@ static void defaults_are_the_fluids(void) {
   got.ksp = SESSILE_KSP_CG;
   got.pc = SESSILE_PC_BLOCK_JACOBI;
   got.linear_rtol = got.newton_rtol = -1;
-  got.linear_max = got.restart = got.newton_max = got.nested = -1;
+  got.linear_max = got.restart = got.newton_max = got.nested = got.mg.precision = -1;
   sessile_params_fluid_solver(&p, &got);
   t_true("default fluid_ksp_type is the fluid's (gmres)", got.ksp == lib.ksp);
   t_true("default fluid_pc_type is the fluid's (mg)", got.pc == lib.pc);
@@ -34,10 +36,11 @@ static void defaults_are_the_fluids(void) {
   t_check("default fluid_newton_rtol", got.newton_rtol - lib.newton_rtol, 0);
   t_check("default fluid_newton_max_it", got.newton_max - lib.newton_max, 0);
   t_check("default fluid_nested", got.nested - lib.nested, 0);
+  t_check("default fluid_mg_precision (64)", got.mg.precision - lib.mg.precision, 0);
   /* The mapping touches only the solver's fields. */
   got.ksp = lib.ksp, got.pc = lib.pc, got.linear_rtol = lib.linear_rtol, got.linear_max = lib.linear_max;
   got.restart = lib.restart, got.newton_rtol = lib.newton_rtol, got.newton_max = lib.newton_max;
-  got.nested = lib.nested;
+  got.nested = lib.nested, got.mg.precision = lib.mg.precision;
   t_true("no other field changed", memcmp(&got, &lib, sizeof got) == 0);
 }
 
@@ -72,6 +75,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_ok("fluid_newton_rtol", sessile_params_set(p, "fluid_newton_rtol", "1e-5"));
   t_ok("fluid_newton_max_it", sessile_params_set(p, "fluid_newton_max_it", "7"));
   t_ok("fluid_nested", sessile_params_set(p, "fluid_nested", "false"));
+  t_ok("fluid_mg_precision", sessile_params_set(p, "fluid_mg_precision", "32"));
   t_ok("valid", sessile_params_validate(p));
   sessile_fluid_params_default(fp);
   sessile_params_fluid_solver(p, fp);
@@ -83,13 +87,27 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_check("Newton rtol arrives", fp->newton_rtol - 1e-5, 0);
   t_check("Newton max arrives", fp->newton_max - 7, 0);
   t_check("nested off arrives", fp->nested, 0);
+  t_check("fluid_mg_precision 32 arrives", fp->mg.precision - 32, 0);
   /* Refused by name: an unknown pc, cg (nonsymmetric Jacobian), a restart
    * past la's GMRES basis. */
   sessile_grow_params q = *p;
   t_true("fluid_pc_type=amg refused", sessile_params_set(&q, "fluid_pc_type", "amg") == SESSILE_ERR_USAGE);
   t_true("fluid_ksp_type=cg refused", sessile_params_set(&q, "fluid_ksp_type", "cg") == SESSILE_ERR_USAGE);
   t_true("fluid_ksp_restart=65 refused", sessile_params_set(&q, "fluid_ksp_restart", "65") == SESSILE_ERR_USAGE);
+  t_true("fluid_mg_precision=16 refused", sessile_params_set(&q, "fluid_mg_precision", "16") == SESSILE_ERR_USAGE);
   t_true("refusals leave the values", memcmp(&q, p, sizeof q) == 0);
+  t_ok("fluid_mg_precision=48 is in the table's range ...", sessile_params_set(&q, "fluid_mg_precision", "48"));
+  t_true("... but refused by the validation", sessile_params_validate(&q) == SESSILE_ERR_USAGE);
+  /* the memory estimate with the flow on: the fp32 cycle adds its copies */
+  sessile_grow_params e64, e32;
+  sessile_params_default(&e64);
+  t_ok("diffusion_limited", sessile_params_set(&e64, "diffusion_limited", "false"));
+  e32 = e64;
+  t_ok("fluid_mg_precision", sessile_params_set(&e32, "fluid_mg_precision", "32"));
+  double b64 = sessile_params_device_bytes(&e64), b32 = sessile_params_device_bytes(&e32);
+  printf("  memory estimate with the flow: %.1f MiB (fp64 cycle), %.1f MiB (fp32 cycle)\n", b64 / 1048576,
+         b32 / 1048576);
+  t_true("the estimate counts the fp32 cycle's copies", b32 > b64);
 }
 
 /* A Stokes-like flow in a small empty box (inflow at x-min, no solid): the

@@ -50,6 +50,11 @@ typedef struct sessile_bmg_options {
   uint32_t wg_max_nodes;         /* Gauss-Seidel on a level of at most this many nodes (in one
                                     row chunk) runs all its sweeps in one workgroup, one dispatch
                                     (default 1024; 0: never); the same bits either way */
+  int precision;                 /* 64 (default): the cycle in the context's precision; 32: in an
+                                    fp64 context the whole cycle (every level's matrix values,
+                                    inverse diagonal blocks, coarsest inverse, vectors) in fp32,
+                                    cast from and to the fp64 r and z; in an fp32 context the same
+                                    as 64 (docs/la.md, "Block multigrid", "The cycle in fp32") */
 } sessile_bmg_options;
 
 void sessile_bmg_options_default(sessile_bmg_options *o);
@@ -74,14 +79,17 @@ sessile_status sessile_bmg_set_operator(sessile_bmg *mg, int l, const sessile_bc
  * diagonal blocks, the coarsest inverse, uploaded.  The fixed-unknown masks
  * and what depends on them are rebuilt only when they changed (reported by
  * sessile_bmg_rebuilds).  a must stay alive while the V-cycle is applied
- * (level 0 is a itself).  SESSILE_ERR_NUMERIC for a singular diagonal block. */
+ * (level 0 is a itself; precision 32 in an fp64 context: an fp32 copy of a's
+ * values, made here, so a setup must follow every change of a's values).
+ * SESSILE_ERR_NUMERIC for a singular diagonal block. */
 sessile_status sessile_bmg_setup(sessile_bmg *mg, const sessile_mat *a);
 unsigned sessile_bmg_rebuilds(const sessile_bmg *mg);
 
 /* z = one V-cycle applied to r (set up; distinct vectors of 4 nodes reals); waits. */
 sessile_status sessile_bmg_vcycle(sessile_bmg *mg, const sessile_vec *r, sessile_vec *z);
 
-/* The same V-cycle in plain C and double (the reference the device is tested against). */
+/* The same V-cycle in plain C and double (the reference the device is tested
+ * against; for precision 32 within fp32 rounding: docs/la.md). */
 sessile_status sessile_ref_bmg_vcycle(const sessile_bmg *mg, const double *r, double *z);
 
 #ifdef __cplusplus
