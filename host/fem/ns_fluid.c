@@ -30,6 +30,7 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->restart = 50;
   p->nested = 1;
   sessile_bmg_options_default(&p->mg);
+  p->mg.precision = 32; /* the cycle in fp32 inside the fp64 GMRES: 7-19 % faster (docs/fluid.md, "Multigrid") */
 }
 
 void sessile_fluid_destroy(sessile_fluid *fl) {

@@ -36,7 +36,8 @@ static void defaults_are_the_fluids(void) {
   t_check("default fluid_newton_rtol", got.newton_rtol - lib.newton_rtol, 0);
   t_check("default fluid_newton_max_it", got.newton_max - lib.newton_max, 0);
   t_check("default fluid_nested", got.nested - lib.nested, 0);
-  t_check("default fluid_mg_precision (64)", got.mg.precision - lib.mg.precision, 0);
+  t_check("default fluid_mg_precision (32, the fluid's)", got.mg.precision - lib.mg.precision, 0);
+  t_check("... which is 32", got.mg.precision - 32, 0);
   /* The mapping touches only the solver's fields. */
   got.ksp = lib.ksp, got.pc = lib.pc, got.linear_rtol = lib.linear_rtol, got.linear_max = lib.linear_max;
   got.restart = lib.restart, got.newton_rtol = lib.newton_rtol, got.newton_max = lib.newton_max;
@@ -75,7 +76,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_ok("fluid_newton_rtol", sessile_params_set(p, "fluid_newton_rtol", "1e-5"));
   t_ok("fluid_newton_max_it", sessile_params_set(p, "fluid_newton_max_it", "7"));
   t_ok("fluid_nested", sessile_params_set(p, "fluid_nested", "false"));
-  t_ok("fluid_mg_precision", sessile_params_set(p, "fluid_mg_precision", "32"));
+  t_ok("fluid_mg_precision", sessile_params_set(p, "fluid_mg_precision", "64"));
   t_ok("valid", sessile_params_validate(p));
   sessile_fluid_params_default(fp);
   sessile_params_fluid_solver(p, fp);
@@ -87,7 +88,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_check("Newton rtol arrives", fp->newton_rtol - 1e-5, 0);
   t_check("Newton max arrives", fp->newton_max - 7, 0);
   t_check("nested off arrives", fp->nested, 0);
-  t_check("fluid_mg_precision 32 arrives", fp->mg.precision - 32, 0);
+  t_check("fluid_mg_precision 64 arrives", fp->mg.precision - 64, 0);
   /* Refused by name: an unknown pc, cg (nonsymmetric Jacobian), a restart
    * past la's GMRES basis. */
   sessile_grow_params q = *p;
@@ -102,6 +103,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   sessile_grow_params e64, e32;
   sessile_params_default(&e64);
   t_ok("diffusion_limited", sessile_params_set(&e64, "diffusion_limited", "false"));
+  t_ok("fluid_mg_precision 64", sessile_params_set(&e64, "fluid_mg_precision", "64"));
   e32 = e64;
   t_ok("fluid_mg_precision", sessile_params_set(&e32, "fluid_mg_precision", "32"));
   double b64 = sessile_params_device_bytes(&e64), b32 = sessile_params_device_bytes(&e32);

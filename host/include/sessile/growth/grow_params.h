@@ -116,7 +116,7 @@ extern "C" {
   X(fluid_nested, BOOL, 1, 0, 1, 0, "", "ours (docs/fluid.md)",                                      \
     "start a flow far from its solution from the solution on the box of twice the spacing "      \
     "(nested iteration; the same tolerance)")                                                     \
-  X(fluid_mg_precision, INT, 64, 32, 64, 0, "", "ours (docs/fluid.md)",                         \
+  X(fluid_mg_precision, INT, 32, 32, 64, 0, "", "ours (docs/fluid.md)",                         \
     "bits of the block multigrid cycle of fluid_pc_type=mg: 64, or 32 (the cycle in fp32 inside "  \
     "the fp64 GMRES: half its memory traffic; docs/fluid.md, \"Multigrid\")")                    \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
