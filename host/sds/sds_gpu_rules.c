@@ -109,8 +109,8 @@ sessile_status sds_gpu_rules_clear(sds_gpu_rules *r) {
   return sessile_buffer_upload(r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
-static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm, double time,
-                               double dt, uint32_t mode, uint32_t batch) {
+static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                               sessile_buffer *phi, double time, double dt, uint32_t mode, uint32_t batch) {
   SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
   sds_rules_push p;
   memset(&p, 0, sizeof p);
@@ -122,18 +122,19 @@ static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffe
   for (int i = 0; i <= R_EVENT; i++) b[i] = r->b[i];
   if (pos) b[R_POS] = pos;
   if (rm) b[R_RM] = rm;
+  if (phi) b[R_PHI] = phi;
   uint32_t l = sessile_kernel_local_size(r->k);
   return sessile_cmd_dispatch(cmd, r->k, (r->ncells + l - 1) / l, b, &p);
 }
 
 sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                          double time) {
-  return dispatch(r, cmd, pos, rm, time, 0, 0, 0);
+  return dispatch(r, cmd, pos, rm, NULL, time, 0, 0, 0);
 }
 
 sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                           double dt) {
-  return dispatch(r, cmd, pos, rm, 0, dt, 1, 0);
+  return dispatch(r, cmd, pos, rm, NULL, 0, dt, 1, 0);
 }
 
 sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which) {
@@ -181,24 +182,34 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
   return sessile_cmd_dispatch(cmd, r->k_bound, 1, b, &p);
 }
 
+/* The amounts' buffer after j sub-steps of a batch (0: R_PHI, where the
+ * batch began; the sub-steps ping-pong with R_PHI2). */
+static sessile_buffer *phi_after(const sds_gpu_rules *r, uint32_t j) { return r->b[j & 1u ? R_PHI2 : R_PHI]; }
+
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
-                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub_max) {
-  SESSILE_CALL(dispatch(r, cmd, pos, rm, 0, 0, 0, batch));
+                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub) {
+  uint32_t j0 = (batch - 1) * nsub; /* sub-steps recorded before this step's */
+  SESSILE_CALL(dispatch(r, cmd, pos, rm, phi_after(r, j0), 0, 0, 0, batch));
   if (r->nmorph) {
     sds_morph_push mp;
     memset(&mp, 0, sizeof mp);
     mp.ncells = r->ncells, mp.nmorph = r->nmorph, mp.ctl = r->nk;
     uint32_t l = sessile_kernel_local_size(r->k_morph);
-    /* an even count: the amounts end where they began, in R_PHI */
-    for (uint32_t j = 0; j < nsub_max + (nsub_max & 1u); j++) {
+    for (uint32_t j = 0; j < nsub; j++) {
       mp.sub = j + 1;
-      int in = j & 1;
-      sessile_buffer *b[] = {pos,           rm, r->b[R_OFF], r->b[R_NBR], r->b[R_DCOEF], r->b[R_SRC],
-                             r->b[in ? R_PHI2 : R_PHI], r->b[in ? R_PHI : R_PHI2], r->b[R_KONST], r->b[R_EVENT]};
+      sessile_buffer *b[] = {pos,           rm,          r->b[R_OFF], r->b[R_NBR],        r->b[R_DCOEF],
+                             r->b[R_SRC],   phi_after(r, j0 + j), phi_after(r, j0 + j + 1), r->b[R_KONST],
+                             r->b[R_EVENT]};
       SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_morph, (r->ncells + l - 1) / l, b, &mp));
     }
   }
-  return dispatch(r, cmd, pos, rm, 0, 0, 1, batch);
+  return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);
+}
+
+void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub) {
+  if (!r->nmorph || !((steps * nsub) & 1u)) return;
+  sessile_buffer *t = r->b[R_PHI]; /* the amounts are in R_PHI2: it becomes R_PHI */
+  r->b[R_PHI] = r->b[R_PHI2], r->b[R_PHI2] = t;
 }
 
 sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *state) {

@@ -57,13 +57,15 @@ sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s);
 /* Inside a batch of physics steps (sds_gpu_batch_rules.c; kernels.def,
  * "The rules' step inside a batch"): morph_bound for step batch - 1 (its
  * result at pos, the batch's log in step, the physics' events pev); then
- * rules mode 0, nsub_max morphogen sub-steps (rounded up to even: the
- * amounts end in their own buffer), mode 1, each reading the step's time
- * and dt from the control morph_bound left. */
+ * rules mode 0, nsub morphogen sub-steps (the amounts ping-pong between
+ * two buffers over the batch), mode 1, each reading the step's time and dt
+ * from the control morph_bound left.  After the batch, batch_done with the
+ * steps whose rules ran on the device: the amounts' buffer is R_PHI again. */
 sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *step,
                                           sessile_buffer *pev, uint32_t batch, uint32_t nsub_max);
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
-                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub_max);
+                                               sessile_buffer *rm, uint32_t batch, uint32_t nsub);
+void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub);
 /* A batch's rules (sds_gpu_batch_rules.c): with r (NULL: none) every
  * accepted step of s's batches makes its rules' step on the device, at most
  * nsub_max morphogen sub-steps (beyond, and for a step that inverted a tet,

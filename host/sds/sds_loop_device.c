@@ -45,7 +45,7 @@ static sessile_status sync_device(sds_sim *s) {
 }
 
 /* Sub-steps to record per step: those of twice the next step at today's
- * positions (a step grows by at most 1.25x a step), even, at most SUB_CAP.
+ * positions (a step grows by at most 1.25x a step), at most SUB_CAP.
  * Only speed depends on it: a step that needs more is completed by the host. */
 static uint32_t sub_steps(const sds_sim *s) {
   if (s->o.nmorph == 0) return 0;
@@ -53,8 +53,7 @@ static uint32_t sub_steps(const sds_sim *s) {
   sessile_morph_coef coef = sessile_sds_model_coef(s->model);
   double bound = sessile_morph_dt_max(&cells, &coef), n = 1;
   if (bound > 0 && isfinite(bound) && 2 * s->dt > bound) n = ceil(2 * s->dt / bound);
-  uint32_t k = n < SUB_CAP ? (uint32_t)n : SUB_CAP;
-  return k + (k & 1u);
+  return n < SUB_CAP ? (uint32_t)n : SUB_CAP;
 }
 
 /* The divisions the device's rules asked for in the batch's last step. */
@@ -79,7 +78,8 @@ static sessile_status divide_requested(sds_sim *s) {
 sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop) {
   sessile_sds_run_stats *t = s->st;
   SESSILE_CALL(sync_device(s));
-  sds_gpu_batch_rules(s->pg, s->rules_dev, sub_steps(s));
+  uint32_t nsub = sub_steps(s);
+  sds_gpu_batch_rules(s->pg, s->rules_dev, nsub);
   double w0 = sessile_wall_seconds(), tb = s->time;
   /* the steps asked: at most those to the stop time at today's step (+1:
    * a step grows; a batch that stops early costs its later steps'
@@ -93,6 +93,7 @@ sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop) {
   uint32_t ev[SDS_EV_COUNT], nreq = 0;
   SESSILE_CALL(sds_gpu_rules_read_events(s->rules_dev, ev, NULL, &nreq));
   uint32_t done = b.done, dev = ev[SDS_EV_LAST]; /* steps whose rules ran on the device */
+  sds_gpu_rules_batch_done(s->rules_dev, dev, nsub);
   SESSILE_CHECK(dev <= done && dev + 1 >= done, SESSILE_ERR_INTERNAL,
                 "sds: a batch of %u accepted steps made the rules of %u on the device", done, dev);
   /* the next batch's size: the last event's distance (a step more), or
