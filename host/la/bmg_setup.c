@@ -217,6 +217,36 @@ static sessile_status device_operator(sessile_bmg *mg, const sessile_bcsr4 *a, s
   return mg->f32 ? la_mat_create_bcsr4_f32(mg->la, a, m) : sessile_mat_create_bcsr4(mg->la, a, m);
 }
 
+/* Level 0's fp32 values f from the solver's fp64 matrix a, of the same
+ * pattern, on the device: one dispatch per overlap of their row chunks
+ * (the fp32 chunks hold twice the rows).  A refill from the host would
+ * convert and upload every value at each Newton step: at level 3 (2.8 GB of
+ * fp32 values) that cost more than the fp32 cycle saved (docs/la.md). */
+static sessile_status cast_fine(sessile_bmg *mg, const sessile_mat *a, sessile_mat *f) {
+  sessile_la *la = mg->la;
+  sessile_kernel *k = NULL;
+  SESSILE_CALL(la_kernel(la, K_BMG_VALS32, &k));
+  const uint64_t *rp = a->hostb.rowptr;
+  uint32_t local = sessile_kernel_local_size(k);
+  SESSILE_CALL(sessile_cmd_begin(la->cmd));
+  for (uint32_t i = 0; i < a->nchunks; i++)
+    for (uint32_t j = 0; j < f->nchunks; j++) {
+      const mat_chunk *ca = &a->chunk[i], *cf = &f->chunk[j];
+      uint32_t r0 = ca->row0 > cf->row0 ? ca->row0 : cf->row0;
+      uint32_t ea = ca->row0 + ca->nrows, ef = cf->row0 + cf->nrows, r1 = ea < ef ? ea : ef;
+      if (r0 >= r1 || rp[r1] == rp[r0]) continue;
+      /* 4 vec4s per 4x4 block */
+      bmg_vals_push p = {.n4 = (uint32_t)(4 * (rp[r1] - rp[r0])), .src4 = (uint32_t)(4 * (rp[r0] - rp[ca->row0])),
+                         .dst4 = (uint32_t)(4 * (rp[r0] - rp[cf->row0]))};
+      uint32_t groups = (p.n4 + local - 1) / local;
+      if (groups > 65535) groups = 65535; /* the kernel strides over the rest */
+      sessile_buffer *b[] = {ca->val, cf->val};
+      SESSILE_CALL(sessile_cmd_dispatch(la->cmd, k, groups, b, &p));
+    }
+  SESSILE_CALL(sessile_cmd_end(la->cmd));
+  return sessile_cmd_submit_wait(la->cmd);
+}
+
 /* The coarsest level's dense inverse as a full block matrix. */
 static sessile_status coarse_inverse(sessile_bmg *mg) {
   const bmg_level *v = &mg->lv[mg->nl - 1];
@@ -261,7 +291,12 @@ sessile_status sessile_bmg_setup(sessile_bmg *mg, const sessile_mat *a) {
   v0->m = a;
   if (mg->f32) { /* the cycle's own fp32 copy of the fine values (a's stay for the solver) */
     v0->m = NULL;
-    SESSILE_CALL(device_operator(mg, &a->hostb, &v0->own));
+    if (v0->own && v0->own->chunk_limit == la_chunk_limit(mg->la) && v0->own->hostb.nnzb == a->hostb.nnzb &&
+        !memcmp(v0->own->hostb.rowptr, a->hostb.rowptr, ((size_t)a->hostb.nbrows + 1) * sizeof *a->hostb.rowptr) &&
+        !memcmp(v0->own->hostb.col, a->hostb.col, (size_t)a->hostb.nnzb * sizeof *a->hostb.col))
+      SESSILE_CALL(cast_fine(mg, a, v0->own)); /* the same pattern: the values cast on the device */
+    else
+      SESSILE_CALL(device_operator(mg, &a->hostb, &v0->own));
     v0->m = v0->own;
   }
   for (int l = 1; l < mg->nl; l++) {

@@ -380,6 +380,21 @@ static void vcycle32_checks(scene *sc, const sessile_bcsr4 *a, const double *b) 
   t_must("vcycle (chunked)", sessile_bmg_vcycle(mg, rv, zv));
   t_must("download", sessile_vec_download(zv, zs));
   t_check("fp32: chunked V-cycle = unchunked (max rel)", t_relerr(zs, z, n4), 1e-12);
+  /* a second setup of the same pattern refreshes the fp32 copy on the device
+   * from the fp64 chunks (bmg_vals32: 25 fp64 chunks over 13 fp32 ones) */
+  double *zd = t_dalloc(n4);
+  lo.max_matrix_chunk_bytes = 256 << 10;
+  sessile_la_set_options(la, &lo);
+  t_must("bmg setup again (chunked: the device's cast)", sessile_bmg_setup(mg, mc));
+  sessile_la_options_default(&lo);
+  sessile_la_set_options(la, &lo);
+  t_must("vcycle (cast on the device)", sessile_bmg_vcycle(mg, rv, zv));
+  t_must("download", sessile_vec_download(zv, zd));
+  double dc = t_relerr(zd, zs, n4);
+  printf("    the device's cast against the host's: %s (max rel %.3g)\n",
+         memcmp(zd, zs, n4 * sizeof *zd) ? "differs" : "the same bits", dc);
+  t_check("fp32: the copy cast on the device = the host's, the cycle within an fp32 rounding (max rel)", dc, 1e-6);
+  free(zd);
   free(z), free(zr), free(zs);
   sessile_vec_destroy(rv), sessile_vec_destroy(zv);
   sessile_mat_destroy(m), sessile_mat_destroy(mc);
