@@ -76,12 +76,21 @@ static void sweep_all(int dfd) {
   each_entry(dfd, sweep_subdir, NULL);
 }
 
-static void count_foreign(int dfd, const char *name, void *user) {
-  (void)dfd;
-  if (strcmp(name, RUN_LOCK)) ++*(int *)user;
+/* What a run killed while taking a new folder can leave before its manifest
+ * exists: the lock's owner file, empty records and temporaries.  Such a
+ * folder has nothing to resume and nothing to lose, so a new run may use it. */
+static int startup_leftover(int dfd, const char *name) {
+  if (!strcmp(name, RUN_LOCK) || sessile_is_temp_name(name)) return 1;
+  struct stat st;
+  return !strcmp(name, RUN_RECORDS) && fstatat(dfd, name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+         S_ISREG(st.st_mode) && st.st_size == 0;
 }
 
-/* Whether the folder holds anything but our lock file. */
+static void count_foreign(int dfd, const char *name, void *user) {
+  if (!startup_leftover(dfd, name)) ++*(int *)user;
+}
+
+/* Whether the folder holds nothing but a killed start's leftovers. */
 static int folder_empty(int dfd) {
   int n = 0;
   each_entry(dfd, count_foreign, &n);
@@ -259,7 +268,9 @@ static sessile_status admit(sessile_run *r, const sessile_run_options *o) {
   sessile_status s = SESSILE_OK;
   if (o->mode == SESSILE_RUN_RESUME) {
     if (!old)
-      return sessile_error_set(SESSILE_ERR_USAGE, "nothing to resume in '%s': it holds no %s", o->dir, RUN_MANIFEST);
+      return sessile_error_set(SESSILE_ERR_USAGE,
+                               "nothing to resume in '%s': it holds no %s (a run stopped before it wrote one "
+                               "has nothing saved: start it again with --out)", o->dir, RUN_MANIFEST);
     const cJSON *g = cJSON_GetObjectItemCaseSensitive(old, "generator");
     if (!cJSON_IsString(g) || strcmp(g->valuestring, r->generator)) {
       s = sessile_error_set(SESSILE_ERR_USAGE, "'%s' holds a run of another generator ('%.40s'), not '%s'",

@@ -45,7 +45,11 @@ for k in 1 2 3 4 5; do
   kill -KILL $pid 2>/dev/null
   wait $pid 2>/dev/null
   echo "  kill $k after ${at}s: $(wc -l <"$T/k/records.jsonl" 2>/dev/null || echo 0) records"
-  "$S" grow --resume "$T/k" --quiet >/dev/null 2>>"$T/kerr" &
+  # killed before its manifest existed, the run has nothing to resume: the
+  # user starts it again (into the leftovers of its start, if any)
+  if [ -f "$T/k/manifest.json" ]; then again=(--resume "$T/k" --quiet)
+  else echo "  (no manifest yet: started again)"; again=($SMALL --iterations $ITS --every 3 --out "$T/k"); fi
+  "$S" grow "${again[@]}" >/dev/null 2>>"$T/kerr" &
   pid=$!
 done
 wait $pid

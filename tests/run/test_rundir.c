@@ -194,6 +194,32 @@ int main(void) {
   snprintf(path, sizeof path, "%s/.sessile.lock", dir);
   t_true("... and nothing is written into it (no lock file)", lstat(path, &lk) != 0);
   t_true("nothing to resume in a non-run folder", open_run(SESSILE_RUN_RESUME, &r) == SESSILE_ERR_USAGE);
+
+  /* What a run killed before its manifest leaves (lock owner, empty
+   * records, a temporary) is not a foreign folder: a new run takes it,
+   * with nothing to resume; non-empty records would be someone's data. */
+  snprintf(dir, sizeof dir, "%.180s/killed", outside);
+  mkdir(dir, 0700);
+  const char *left[] = {".sessile.lock", "records.jsonl", ".manifest.json.sessile-tmp.1234"};
+  for (int i = 0; i < 3; i++) {
+    snprintf(path, sizeof path, "%s/%s", dir, left[i]);
+    int lf = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (lf >= 0 && i == 0) t_true("write a dead owner", write(lf, "pid 1\n", 6) == 6);
+    if (lf >= 0) close(lf);
+  }
+  t_true("a killed start's folder has nothing to resume", open_run(SESSILE_RUN_RESUME, &r) == SESSILE_ERR_USAGE &&
+                                                             strstr(sessile_error_message(), "start it again"));
+  t_ok("a new run takes a killed start's folder", open_run(SESSILE_RUN_NEW, &r));
+  t_ok("close", sessile_run_close(r, SESSILE_OK));
+  t_true("... and its temporary is swept", !exists(".manifest.json.sessile-tmp.1234"));
+  t_true("... and it holds a manifest now", exists("manifest.json"));
+  snprintf(dir, sizeof dir, "%.180s/killed2", outside);
+  mkdir(dir, 0700);
+  snprintf(path, sizeof path, "%s/records.jsonl", dir);
+  FILE *rf = fopen(path, "w");
+  if (rf) fputs("{\"iteration\":1}\n", rf);
+  if (rf) fclose(rf);
+  t_true("records with data are not a leftover: refused", open_run(SESSILE_RUN_NEW, &r) == SESSILE_ERR_USAGE);
   cJSON_Delete(rec);
   char cmd[300];
   outside[strlen(outside) - strlen("-outside")] = 0;

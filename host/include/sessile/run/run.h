@@ -30,7 +30,7 @@ typedef struct sessile_run sessile_run;
 typedef struct sessile_ckpt sessile_ckpt;
 
 typedef enum sessile_run_mode {
-  SESSILE_RUN_NEW = 0,     /* the folder must be new, empty, or hold nothing but this run's lock */
+  SESSILE_RUN_NEW = 0,     /* the folder must be new, empty, or hold only what a killed start leaves (lock, empty records, temporaries) */
   SESSILE_RUN_REPLACE = 1, /* --force: an older run's files (its manifest's list) are removed first */
   SESSILE_RUN_RESUME = 2   /* --resume: continue the run in the folder from its checkpoint */
 } sessile_run_mode;
