@@ -462,7 +462,17 @@ CASES
 )
 
 # The folder's listing: type, mode, size and sha256 of every entry.
+# Whether folder $1 holds nothing at all (no process: most cases' folders
+# stay empty, and ~350 cases of forks are most of this test's time).
+empty() {
+  local x
+  for x in "$1"/* "$1"/.[!.]* "$1"/..?*; do
+    if [ -e "$x" ] || [ -L "$x" ]; then return 1; fi
+  done
+  return 0
+}
 listing() {
+  empty "$1" && return 0
   (cd "$1" && find . -mindepth 1 -printf '%y %m %s %p\n' | LC_ALL=C sort &&
     find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r sha256sum)
 }
