@@ -27,20 +27,22 @@ static const char *help =
     "true linear residual, assembly and solve time.  Figures are for the record\n"
     "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
-    "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it, fluid_nested and\n"
-    "fluid_mg_precision (--set;\n"
+    "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it, fluid_nested,\n"
+    "fluid_mg_precision and fluid_mg_cycle (--set;\n"
     "docs/fluid.md: a start far from the solution, here from rest, begins from the\n"
     "solution on the box of twice the spacing; --set fluid_nested=false for plain\n"
     "Newton from rest); the\n"
     "flags are short for some: --pc NAME is --set fluid_pc_type=NAME (none, jacobi,\n"
     "ilu0, block_jacobi, mg; docs/la.md), mg (block multigrid) by default (ilu0 runs\n"
     "Jacobi where the matrix exceeds maxStorageBufferRange and is stored in chunks;\n"
-    "the pc column says which ran); --ksp K is --set fluid_ksp_type=K; --restart M is --set fluid_ksp_restart=M\n"
-    "(GMRES(M)); --mg-precision B is --set fluid_mg_precision=B (pc mg's cycle in 64 bits,\n"
-    "the default, or in 32 inside the fp64 GMRES; on an fp32 device it is fp32 either\n"
-    "way); --block-scale is --pc block_jacobi (the inverse of each node's 4x4 diagonal\n"
-    "block).  --picard K takes K Picard (Oseen) steps before Newton;\n"
-    "--no-lsic drops the grad-div term.  --verbose prints each step to stderr as it goes.\n"
+    "the pc column says which ran); --ksp K is --set fluid_ksp_type=K; --restart M is\n"
+    "--set fluid_ksp_restart=M (GMRES(M)); --mg-precision B is --set\n"
+    "fluid_mg_precision=B (pc mg's cycle in 32 bits inside the fp64 GMRES, the\n"
+    "default, or in 64; on an fp32 device it is fp32 either way); --mg-cycle C is\n"
+    "--set fluid_mg_cycle=C; --block-scale is --pc block_jacobi (the inverse of each\n"
+    "node's 4x4 diagonal block).  --picard K takes K Picard (Oseen) steps before\n"
+    "Newton; --no-lsic drops the grad-div term.  --verbose prints each step to stderr\n"
+    "as it goes.\n"
     "\n"
     "Unless --no-compare (or the pc is ilu0), the same two solves run first with\n"
     "ilu0 (--baseline storage: the chosen pc reading its matrices through storage\n"
@@ -50,8 +52,8 @@ static const char *help =
     "threads included: on a loaded machine the fairer figure) and the ratios.\n"
     "pc mg's hierarchy (docs/fluid.md, \"Multigrid\"): --mg-smoother (8-colour block\n"
     "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (pre and\n"
-    "post, default 2), --mg-cycle (default w; vw: V on the finest level, W below),\n"
-    "--mg-galerkin (Galerkin coarse operators instead of the rediscretised ones),\n"
+    "post, default 2), --mg-cycle (v, w, the default, or vw: V on the finest level,\n"
+    "W below), --mg-galerkin (Galerkin coarse operators instead of the rediscretised ones),\n"
     "--mg-wg-max N (levels of at most N nodes smoothed in one workgroup, one dispatch\n"
     "for all their sweeps; default 1024, 0: never).\n"
     "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
@@ -222,12 +224,6 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       if (v[0] == 'j') mgo.omega = 0.6;
       continue;
     }
-    if (!strcmp(a, "--mg-cycle")) {
-      if (strcmp(v, "v") && strcmp(v, "w") && strcmp(v, "vw"))
-        return cli_usage_error("bench fluid", "--mg-cycle: v, w or vw (got '%.40s')", v);
-      mgo.cycle = !strcmp(v, "vw") ? 3 : v[0] == 'w' ? 2 : 1;
-      continue;
-    }
     if (!strcmp(a, "--mg-sweeps")) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 1, 8, &u)) return EXIT_USAGE;
@@ -240,10 +236,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, SESSILE_FLUID_MAX_STEPS, &u)) return EXIT_USAGE;
       picard = (int)u;
-    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp") || !strcmp(a, "--mg-precision")) {
+    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp") || !strcmp(a, "--mg-precision") ||
+               !strcmp(a, "--mg-cycle")) {
       /* the table's parameters under a short flag: one parser, one list of names */
       const char *key = a[2] == 'r' ? "fluid_ksp_restart" : a[2] == 'p' ? "fluid_pc_type"
-                      : a[2] == 'k' ? "fluid_ksp_type" : "fluid_mg_precision";
+                      : a[2] == 'k' ? "fluid_ksp_type" : a[5] == 'p' ? "fluid_mg_precision" : "fluid_mg_cycle";
       s = sessile_params_set(&p, key, v);
       if (s != SESSILE_OK) return cli_usage_error("bench fluid", "%s: %s", a, sessile_error_message());
     } else if (!strcmp(a, "--set")) {
@@ -286,7 +283,8 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   if (lsic >= 0) fp.lsic = lsic;
   if (verbose) fp.monitor = print_line;
   fp.mg = mgo;
-  fp.mg.precision = p.fluid_mg_precision; /* the table's (--mg-precision, --set) */
+  fp.mg.precision = p.fluid_mg_precision; /* the table's (--mg-precision, --mg-cycle, --set) */
+  fp.mg.cycle = p.fluid_mg_cycle + 1;
   fp.mg_galerkin = galerkin;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
@@ -301,7 +299,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle in fp%d, %s coarse operators, levels of at most %u nodes "
              "smoothed in one workgroup\n",
              mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", mgo.pre, mgo.post,
-             mgo.cycle == 3 ? "VW" : mgo.cycle == 2 ? "W" : "V", gi->precision == 32 ? 32 : fp.mg.precision,
+             fp.mg.cycle == 3 ? "VW" : fp.mg.cycle == 2 ? "W" : "V", gi->precision == 32 ? 32 : fp.mg.precision,
              galerkin ? "Galerkin" : "rediscretised", mgo.wg_max_nodes);
     printf("mesh and solver setup: %.2f s\n\n", t_setup);
     fflush(stdout);

@@ -22,6 +22,8 @@ static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
  * the conforming mesh); tests/growth/test_grow_solver_params.c checks them
  * against the registry. */
 static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", "mg", NULL};
+/* fluid_mg_cycle: sessile_fluid_cycle's order (bmg's cycle 1, 2, 3). */
+static const char *const cycle_names[] = {"v", "w", "vw", NULL};
 
 #define PT_REAL SESSILE_PT_REAL, NULL
 #define PT_INT SESSILE_PT_INT, NULL
@@ -35,6 +37,7 @@ static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi",
 #define PT_ENUM_ADV SESSILE_PT_ENUM, adv_names
 #define PT_ENUM_KSP SESSILE_PT_ENUM, ksp_names
 #define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
+#define PT_ENUM_CYCLE SESSILE_PT_ENUM, cycle_names
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \

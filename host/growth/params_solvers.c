@@ -18,4 +18,5 @@ void sessile_params_fluid_solver(const sessile_grow_params *p, sessile_fluid_par
   fp->newton_max = p->fluid_newton_max_it;
   fp->nested = p->fluid_nested;
   fp->mg.precision = p->fluid_mg_precision;
+  fp->mg.cycle = p->fluid_mg_cycle + 1; /* sessile_fluid_cycle: v, w, vw = bmg's 1, 2, 3 */
 }

@@ -119,6 +119,9 @@ extern "C" {
   X(fluid_mg_precision, INT, 32, 32, 64, 0, "", "ours (docs/fluid.md)",                         \
     "bits of the block multigrid cycle of fluid_pc_type=mg: 64, or 32 (the cycle in fp32 inside "  \
     "the fp64 GMRES: half its memory traffic; docs/fluid.md, \"Multigrid\")")                    \
+  X(fluid_mg_cycle, ENUM_CYCLE, SESSILE_FLUID_CYCLE_W, 0, 2, 0, "", "ours (docs/fluid.md)",       \
+    "coarse corrections of fluid_pc_type=mg's cycle: v (one per level), w (two per level) or vw " \
+    "(one on the finest level, two below; docs/fluid.md, \"Multigrid\")")                         \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, 0, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
@@ -138,6 +141,8 @@ typedef enum { SESSILE_ADVECTION_CUT = 0, SESSILE_ADVECTION_TET = 1 } sessile_ad
 /* fluid_ksp_type's values; fluid_pc_type's value is la's sessile_pc_type
  * itself (its names are the pc registry's, in the enum's order). */
 typedef enum { SESSILE_FLUID_KSP_GMRES = 0, SESSILE_FLUID_KSP_BICGSTAB = 1 } sessile_fluid_ksp;
+/* fluid_mg_cycle's values: sessile_bmg_options.cycle minus one. */
+typedef enum { SESSILE_FLUID_CYCLE_V = 0, SESSILE_FLUID_CYCLE_W = 1, SESSILE_FLUID_CYCLE_VW = 2 } sessile_fluid_cycle;
 
 typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_REAL(n) double n;
@@ -152,6 +157,7 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_ADV(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_KSP(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_PC(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_CYCLE(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
