@@ -98,7 +98,7 @@ void sds_teardown(sds_sim *s) {
   s->pg = NULL, s->mg = NULL;
   sessile_sds_free(&s->o);
   sessile_surface_free(&s->rock);
-  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog);
+  free(s->nbr_off), free(s->nbr), free(s->xprev), free(s->retry_at), free(s->sliver), free(s->steplog), free(s->divlog);
   free(s->frame_time);
 }
 

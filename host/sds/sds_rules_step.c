@@ -84,7 +84,10 @@ sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n
       double z = sessile_rng_range(&s->rng, -1, 1), phi = sessile_rng_range(&s->rng, 0, 2 * SDS_PI), q = sqrt(1 - z * z);
       d[0] = q * cos(phi), d[1] = q * sin(phi), d[2] = z;
     }
-    st = sds_divide(s, (uint32_t)req[i].cell, d);
+    uint32_t c = (uint32_t)req[i].cell, before = o->ncells;
+    double at[3] = {o->x[3 * (size_t)c], o->x[3 * (size_t)c + 1], o->x[3 * (size_t)c + 2]}, r = o->r[c];
+    st = sds_divide(s, c, d);
+    if (st == SESSILE_OK && o->ncells > before) st = sds_divlog_row(s, c, o->ncells - 1, at, r);
     if (st != SESSILE_OK)
       st = sessile_error_set(st, "sds: cell %d cannot divide at t = %g: %s", req[i].cell, s->time,
                              sessile_error_message());

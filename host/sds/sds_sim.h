@@ -3,7 +3,7 @@
  * starting organism), sds_rules_step.c (neighbours, morphogens, rules),
  * sds_divide.c (division through the complex), sds_inversions.c (§3.1.2
  * and the repairs), sds_frames.c (frames and records), sds_steplog.c
- * (sds/steps.csv) and sds_loop.c (one step, the loop, checkpoints). */
+ * (sds/steps.csv, sds/divisions.csv) and sds_loop.c (one step, the loop, checkpoints). */
 #ifndef SESSILE_SDS_SIM_H
 #define SESSILE_SDS_SIM_H
 #include <stdint.h>
@@ -54,6 +54,8 @@ typedef struct sds_sim {
   double *frame_time;         /* the simulated time of each frame written (frames + 1 entries) */
   char *steplog;              /* sds/steps.csv rows not yet appended (flushed before each checkpoint) */
   size_t steplog_len, steplog_cap;
+  char *divlog;               /* sds/divisions.csv rows not yet appended (flushed with the step log's) */
+  size_t divlog_len, divlog_cap;
   /* the loop on the device (device_loop; sds_loop_device.c) */
   struct sds_gpu_rules *rules_dev; /* the rules' kernels and the cells' amounts and states */
   int rules_sync;             /* the device holds the host's cells, amounts and states */
@@ -106,6 +108,10 @@ sessile_status sds_steplog_start(sessile_run *run);
 sessile_status sds_steplog_row(sds_sim *s, sessile_run *run, double dt, double ms, uint64_t divisions,
                                uint64_t inversions);
 sessile_status sds_steplog_flush(sds_sim *s, sessile_run *run);
+/* sds/divisions.csv, one row per division (time, the dividing cell, its
+ * daughter, the cell's place and radius before it divided): which limb
+ * divided when (Figure 12's simultaneous limbs; tools/sds/figures.py). */
+sessile_status sds_divlog_row(sds_sim *s, uint32_t cell, uint32_t daughter, const double x[3], double r);
 
 /* sds_loop.c: a blow-up (docs/sds.md, "Blow-ups"): the message, and the
  * run's stats say what happened when. */

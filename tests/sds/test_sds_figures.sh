@@ -7,8 +7,11 @@
 # 1.5x the neck, the tip two radii behind the front, cells growing
 # exponentially); the same for Figures 8, 10 and 11 (tips turned 30 degrees
 # against straight ones, tips drawn 0.5 u toward a point, buds that grow
-# 3.375x in volume against buds that keep their size).  Then it runs on real frames (the limb and rock models to a
-# few time units) and its slices account for every cell of the frame.
+# 3.375x in volume against buds that keep their size) and Figure 12's divisions
+# (six limbs dividing together against one late).  Then it runs on real
+# frames (the limb and rock models to a few time units): its slices account
+# for every cell of the frame, and sds/divisions.csv holds one row per
+# division the step log counts, each daughter the next new cell.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -203,6 +206,53 @@ expect("... buds that keep their size: growth 1, they do not", abs(m["growth"] -
 m = fig("buds", T + "/buds", "--frame", "0")
 expect("... before any bud cell: no growth to measure, not expanding", m["growth"] is None
        and not m["criteria"]["buds_expand"])
+
+# Figure 11's buds at the limbs' ends: six straight limbs of 21 cells (the
+# tip the 21st), bud cells the three below each tip (mean distance 0.2 from
+# it, every cell's 1.0) or the limbs' first twelve (1.45 on average from it)
+def bud_limbs(d, which):
+    os.makedirs(d + "/sds")
+    x = np.concatenate([[0.1 * k * D6[i] for k in range(21)] for i in range(6)])
+    tets = np.concatenate([chain(21) + 21 * i for i in range(6)])
+    n = len(x)
+    tipv, bud = np.zeros(n), np.zeros(n)
+    tipv[20::21] = 1
+    for i in range(6):
+        bud[21 * i + np.array(which)] = 1
+    write_vtu(d + "/sds/frame_0000.vtu", x, {"radius": np.full(n, 0.05), "surface": np.ones(n), "tip": tipv,
+              "budcell": bud}, tets)
+bud_limbs(T + "/bud_ends", [17, 18, 19])
+bud_limbs(T + "/bud_body", list(range(12)))
+m = fig("buds", T + "/bud_ends")
+expect("Figure 11: buds the three cells below each tip: 3 a limb, distance 0.2 against 1.0, at the ends",
+       m["bud_cells_per_limb"] == [3] * 6 and abs(m["bud_tip_distance"] - 0.2) < 1e-9
+       and abs(m["cell_tip_distance"] - 1.0) < 1e-9 and m["criteria"]["buds_at_limb_ends"])
+m = fig("buds", T + "/bud_body")
+expect("... buds the limbs' first twelve cells (1.45 from their tip): not at the ends",
+       abs(m["bud_tip_distance"] - 1.45) < 1e-9 and not m["criteria"]["buds_at_limb_ends"])
+
+# Figure 12's divisions: the six tips of six_run (frames 0 and 1, t = 0 and
+# 1) each divide four times, 0.1 apart, limb i 0.005 i after limb 0; then the
+# same with limb 3 0.3 later (its last division past the last frame).
+def div_run(d, late):
+    six_run(d, [D6, 2 * D6])
+    rows = sorted((0.1 + 0.1 * k + 0.005 * i + (0.3 if late and i == 3 else 0), i) for i in range(6) for k in range(4))
+    with open(d + "/sds/divisions.csv", "w") as fh:
+        fh.write("time,cell,daughter,x,y,z,radius\n")
+        for j, (t, i) in enumerate(rows):
+            fh.write("%.17g,%d,%d,%g,%g,%g,0.1\n" % (t, i, 13 + j, *D6[i]))
+div_run(T + "/div_sync", False)
+div_run(T + "/div_late", True)
+m = fig("divisions", T + "/div_sync", "--window", "0.5")
+expect("Figure 12: four divisions per limb, each rank within 0.025 of the others, interval 0.1: simultaneous",
+       m["per_limb"] == [4] * 6 and len(m["ranks"]) == 4 and all(abs(r["spread"] - 0.025) < 1e-9 for r in m["ranks"])
+       and abs(m["interval"] - 0.1) < 1e-9 and m["criteria"]["limbs_divide_near_simultaneously"])
+m = fig("divisions", T + "/div_late", "--window", "0.5")
+expect("... one limb 0.3 late (its last division past the last frame, still its own): not simultaneous",
+       m["per_limb"] == [4] * 6 and all(abs(r["spread"] - 0.315) < 1e-9 for r in m["ranks"])
+       and not m["criteria"]["limbs_divide_near_simultaneously"])
+m = fig("divisions", T + "/div_sync", "--first", "2")
+expect("... --first 2 compares two ranks", len(m["ranks"]) == 2)
 sys.exit(0 if ok else 1)
 PYEOF
 
@@ -239,6 +289,20 @@ a = fig("attract", T + "/r", "--point", "0", "0", "5")
 print("rock at t = %.2f: the limbs' turns %s deg, tips %.3f u from (0, 0, 5)" % (
     b["time"], ["%.2f" % d for d in b["turn_deg"]], a["mean_distance"]))
 ok &= len(b["turn_deg"]) == 6 and b["excess_deg"] == 0 and len(a["distance"]) == 6
+# sds/divisions.csv: one row per division the step log counts, in time
+# order, each cell existing before it divided and its daughter the next new index
+import numpy as np
+for run in ("l", "r"):
+    steps = np.loadtxt(T + "/%s/sds/steps.csv" % run, delimiter=",", skiprows=1, ndmin=2)
+    dv = np.loadtxt(T + "/%s/sds/divisions.csv" % run, delimiter=",", skiprows=1, ndmin=2).reshape(-1, 7)
+    n0 = int(steps[0, 3] - steps[0, 6])  # cells before the first step
+    born = n0 + np.arange(len(dv))
+    good = len(dv) == int(steps[:, 6].sum()) and (np.diff(dv[:, 0]) >= 0).all()
+    good &= (dv[:, 2] == born).all() and (dv[:, 1] < born).all()
+    print("%s: %d divisions logged, %d counted by the step log" % (run, len(dv), int(steps[:, 6].sum())))
+    ok &= bool(good)
+d = fig("divisions", T + "/l")
+ok &= d["divisions"] == int(np.loadtxt(T + "/l/sds/steps.csv", delimiter=",", skiprows=1)[:, 6].sum())
 sys.exit(0 if ok else 1)
 PYEOF
 finish

@@ -46,11 +46,13 @@ check "the first resume, killed (SIGKILL) after frame 4, before its end" eval 'r
 # rows appended after the last checkpoint (a run killed between its log's
 # append and its checkpoint) are cut by the resume, not kept twice
 echo "99999,1,1,1,1,1,0,0" >>"$T/b/sds/steps.csv"
+echo "99999,1,2,0,0,0,1" >>"$T/b/sds/divisions.csv"
 run sds run --resume "$T/b" --quiet
 check "the second resume completes" eval 'rc_is 0 && [ ! -s "$T/err" ]'
-# 22 files: frames 0-5 as PLY, .vtp and VTU, the final PLY and .vtp, model.sds, series.pvd
+# 23 files: frames 0-5 as PLY, .vtp and VTU, the final PLY and .vtp, model.sds, series.pvd,
+# the division log (its planted row cut like the step log's)
 check "every file under sds/ is the same bytes as the uninterrupted run's" eval \
-  'sums "$T/a" >"$T/a.sum"; sums "$T/b" >"$T/b.sum"; [ "$(wc -l <"$T/a.sum")" -eq 22 ] && cmp -s "$T/a.sum" "$T/b.sum"'
+  'sums "$T/a" >"$T/a.sum"; sums "$T/b" >"$T/b.sum"; [ "$(wc -l <"$T/a.sum")" -eq 23 ] && cmp -s "$T/a.sum" "$T/b.sum"'
 check "the step log: each step once, in order (1..steps), the same rows as the uninterrupted run's but for ms" \
   "$PY" - "$T/a" "$T/b" <<'PYEOF'
 import csv, json, sys

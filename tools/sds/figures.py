@@ -15,9 +15,16 @@
   figures.py attract RUN_DIR [--ref REF_DIR] [--frame K | --time T] [--point X Y Z]
       Figure 10: the tips' mean distance to the attraction point, against the
       same in a run without the attraction (REF_DIR) or at the start.
-  figures.py buds RUN_DIR [--frame K | --time T] [--field NAME] [--min-growth F]
+  figures.py buds RUN_DIR [--frame K | --time T] [--field NAME] [--min-growth F] [--max-distance F]
       Figure 11: the bud cells' total volume, at the frame chosen against
-      the first frame that has bud cells.
+      the first frame that has bud cells; and where they are (their mean
+      distance to the nearest tip through the complex against every cell's).
+  figures.py divisions RUN_DIR [--first K] [--window W]
+      Figure 12: which limb divided when (sds/divisions.csv; each dividing
+      cell goes to the limb of the tip nearest it through the complex in the
+      first frame at or after the division): per limb its divisions per
+      window of W time units, and whether the limbs' k-th divisions (k <= K)
+      fall within one inter-division interval of each other.
 
 Each prints a small table, then one JSON line (the last line) with the
 metrics and the acceptance criteria of issue 33.  The definitions and the
@@ -399,7 +406,76 @@ def cmd_buds(args):
                  growth=vol / first[3])
     print("frame %d, t = %.3f: %d bud cells, volume %.4f; first buds at %s" % (
         k, t, n, vol, "frame %d, t = %.3f: %d cells, volume %.4f" % first if first else "no frame"))
-    m["criteria"] = {"buds_expand": m["growth"] is not None and m["growth"] >= args.min_growth}
+    # where the buds are: their graph distance to the nearest tip against
+    # every cell's (the paper's buds are at the limbs' ends)
+    tips, at_ends = tip_cells(c) if c["complex"] else [], False
+    m.update(bud_fraction=n / max(int(c["used"].sum()), 1), bud_cells_per_limb=None, bud_tip_distance=None,
+             cell_tip_distance=None)
+    if n and len(tips):
+        dist, owner = graph_distance(c["x"], c["tets"], tips)
+        on, used = (c[args.field] >= 0.5) & c["used"], c["used"] & np.isfinite(dist)
+        per = [int((on & (owner == i)).sum()) for i in range(len(tips))]
+        bd, cd = float(dist[on & used].mean()), float(dist[used].mean())
+        m.update(bud_cells_per_limb=per, bud_tip_distance=bd, cell_tip_distance=cd)
+        at_ends = min(per) > 0 and bd <= args.max_distance * cd
+        print("bud cells per limb %s (%.0f %% of the cells); mean distance to their tip %.3f against every cell's %.3f"
+              % (per, 100 * m["bud_fraction"], bd, cd))
+    m["criteria"] = {"buds_expand": m["growth"] is not None and m["growth"] >= args.min_growth,
+                     "buds_at_limb_ends": bool(at_ends)}
+    print(json.dumps(m))
+
+
+def read_divisions(run):
+    """sds/divisions.csv as (times, cells), in the order the run divided."""
+    rows = np.loadtxt(run + "/sds/divisions.csv", delimiter=",", skiprows=1, ndmin=2)
+    if rows.size == 0:
+        return np.zeros(0), np.zeros(0, int)
+    return rows[:, 0], rows[:, 1].astype(int)
+
+
+def cmd_divisions(args):
+    times, cells = read_divisions(args.run)
+    fr = frames(args.run)
+    tips0 = tip_cells(load_frame(args.run, fr[0][0]))
+    limb_of = np.full(len(times), -1)
+    # each division to the limb owning its cell in the first frame at or after it
+    for j, (k, t) in enumerate(fr):
+        t_prev = fr[j - 1][1] if j else -np.inf
+        pick = (times > t_prev + 1e-12) & (times <= t + 1e-9) if j else times <= t + 1e-9
+        if j == len(fr) - 1:
+            pick |= times > t + 1e-9  # past the last frame: its owners
+        if not pick.any():
+            continue
+        c = load_frame(args.run, k)
+        tips = tip_cells(c)
+        assert len(tips) == len(tips0) and (tips == tips0).all(), "the tips changed index by frame %d" % k
+        _, owner = graph_distance(c["x"], c["tets"], tips)
+        limb_of[pick] = owner[cells[pick]]
+    nl = len(tips0)
+    per = [np.sort(times[limb_of == i]) for i in range(nl)]
+    w = args.window
+    t_end = fr[-1][1]
+    nb = max(1, int(np.ceil(t_end / w)))
+    print("divisions per limb (tip cell) in windows of %g time units; %d divisions in all" % (w, len(times)))
+    print("%-12s" % "window" + "".join("%8s" % ("limb %d" % i) for i in range(nl)))
+    for b in range(nb):
+        lo, hi = b * w, (b + 1) * w
+        print("%-12s" % ("%g-%g" % (lo, hi)) + "".join("%8d" % int(((p > lo) & (p <= hi)).sum()) for p in per))
+    kmax = min([len(p) for p in per] + [args.first])
+    ranks = []
+    for k in range(kmax):
+        tk = [float(p[k]) for p in per]
+        ranks.append({"rank": k + 1, "times": tk, "spread": max(tk) - min(tk)})
+    gaps = [float(np.mean(np.diff(p[:kmax]))) for p in per if kmax >= 2]
+    interval = float(np.median(gaps)) if gaps else None
+    for r in ranks:
+        print("division %d of each limb at t = %s: spread %.3f" % (
+            r["rank"], " ".join("%.3f" % x for x in r["times"]), r["spread"]))
+    print("median interval between a limb's first %d divisions: %s" % (kmax, "%.3f" % interval if interval else "-"))
+    m = {"figure": 12, "divisions": int(len(times)), "limbs": nl, "tip_cells": tips0.tolist(),
+         "per_limb": [int(len(p)) for p in per], "ranks": ranks, "interval": interval,
+         "criteria": {"limbs_divide_near_simultaneously": bool(ranks) and interval is not None and
+                      all(r["spread"] <= interval for r in ranks)}}
     print(json.dumps(m))
 
 
@@ -426,13 +502,20 @@ def main(argv=None):
     sub.choices["buds"].add_argument("--field", default="budcell", help="the bud state (default: budcell)")
     sub.choices["buds"].add_argument("--min-growth", type=float, default=2,
                                      help="the bud volume's growth over its first frame (default 2)")
+    sub.choices["buds"].add_argument("--max-distance", type=float, default=0.5,
+                                     help="buds at the ends: their mean distance to the nearest tip at most this "
+                                          "fraction of every cell's (default 0.5)")
+    p = sub.add_parser("divisions")
+    p.add_argument("run")
+    p.add_argument("--first", type=int, default=5, help="compare the limbs' first K divisions (default 5)")
+    p.add_argument("--window", type=float, default=50, help="the table's window in time units (default 50)")
     p = sub.add_parser("cells")
     p.add_argument("run")
     p.add_argument("--from", dest="t0", type=float, default=100)
     p.add_argument("--to", dest="t1", type=float, default=400)
     args = ap.parse_args(argv)
     {"limb": cmd_limb, "stripes": cmd_stripes, "cells": cmd_cells, "bend": cmd_bend, "attract": cmd_attract,
-     "buds": cmd_buds}[args.cmd](args)
+     "buds": cmd_buds, "divisions": cmd_divisions}[args.cmd](args)
 
 
 if __name__ == "__main__":
