@@ -455,12 +455,12 @@ def cmd_divisions(args):
     per = [np.sort(times[limb_of == i]) for i in range(nl)]
     w = args.window
     t_end = fr[-1][1]
-    nb = max(1, int(np.ceil(t_end / w)))
+    nb = max(1, int(np.ceil(t_end / w - 1e-3)))  # the last frame is up to a step past its time: no window for it
     print("divisions per limb (tip cell) in windows of %g time units; %d divisions in all" % (w, len(times)))
     print("%-12s" % "window" + "".join("%8s" % ("limb %d" % i) for i in range(nl)))
     for b in range(nb):
-        lo, hi = b * w, (b + 1) * w
-        print("%-12s" % ("%g-%g" % (lo, hi)) + "".join("%8d" % int(((p > lo) & (p <= hi)).sum()) for p in per))
+        lo, hi = b * w, (b + 1) * w if b + 1 < nb else np.inf
+        print("%-12s" % ("%g-%g" % (lo, (b + 1) * w)) + "".join("%8d" % int(((p > lo) & (p <= hi)).sum()) for p in per))
     kmax = min([len(p) for p in per] + [args.first])
     ranks = []
     for k in range(kmax):

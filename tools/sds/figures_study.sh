@@ -9,7 +9,7 @@
 #   attractor        to t = 250, and with the attraction 0    Figure 10 (attract)
 #   budded           to t = 400                                Figure 11 (buds)
 #   rock             to t = 400, and with the timer's decay halved
-#                                            Figures 9 and 12 (stripes, cells)
+#                                            Figures 9 and 12 (stripes, cells, divisions)
 #
 # About 20 minutes on 2 cores (lavapipe); the rock runs are the longest.
 #
@@ -52,4 +52,5 @@ last() { tail -n 1; }
   $FIG stripes "$OUT/rock" --time 400 | last
   $FIG stripes "$OUT/rock_half" --time 400 | last
   echo "== Figure 12: rock's cells from t = 100 to 400"; $FIG cells "$OUT/rock" | last
+  echo "== Figure 12: which of rock's limbs divided when"; $FIG divisions "$OUT/rock" | last
 } | tee "$OUT/figures_study.txt"
