@@ -80,10 +80,11 @@ static void sweep_all(int dfd) {
  * exists: the lock's owner file, empty records and temporaries.  Such a
  * folder has nothing to resume and nothing to lose, so a new run may use it. */
 static int startup_leftover(int dfd, const char *name) {
-  if (!strcmp(name, RUN_LOCK) || sessile_is_temp_name(name)) return 1;
+  if (!strcmp(name, RUN_LOCK)) return 1;
   struct stat st;
-  return !strcmp(name, RUN_RECORDS) && fstatat(dfd, name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
-         S_ISREG(st.st_mode) && st.st_size == 0;
+  if (fstatat(dfd, name, &st, AT_SYMLINK_NOFOLLOW) != 0) return 0;
+  if (sessile_is_temp_name(name)) return !S_ISDIR(st.st_mode); /* the sweep unlinks it */
+  return !strcmp(name, RUN_RECORDS) && S_ISREG(st.st_mode) && st.st_size == 0;
 }
 
 static void count_foreign(int dfd, const char *name, void *user) {
