@@ -59,6 +59,16 @@ static const char *help =
     "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
     "them (timestamps around every dispatch; the baseline's are not timed).\n";
 
+/* The grow table's parameter a short flag sets, or NULL. */
+static const char *table_key(const char *flag) {
+  static const char *const map[][2] = {{"--restart", "fluid_ksp_restart"}, {"--pc", "fluid_pc_type"},
+                                       {"--ksp", "fluid_ksp_type"}, {"--mg-precision", "fluid_mg_precision"},
+                                       {"--mg-cycle", "fluid_mg_cycle"}};
+  for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
+    if (!strcmp(flag, map[i][0])) return map[i][1];
+  return NULL;
+}
+
 /* --verbose: the fluid solver's monitor lines to stderr. */
 static void print_line(void *user, const char *line) {
   (void)user;
@@ -236,12 +246,8 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, SESSILE_FLUID_MAX_STEPS, &u)) return EXIT_USAGE;
       picard = (int)u;
-    } else if (!strcmp(a, "--restart") || !strcmp(a, "--pc") || !strcmp(a, "--ksp") || !strcmp(a, "--mg-precision") ||
-               !strcmp(a, "--mg-cycle")) {
-      /* the table's parameters under a short flag: one parser, one list of names */
-      const char *key = a[2] == 'r' ? "fluid_ksp_restart" : a[2] == 'p' ? "fluid_pc_type"
-                      : a[2] == 'k' ? "fluid_ksp_type" : a[5] == 'p' ? "fluid_mg_precision" : "fluid_mg_cycle";
-      s = sessile_params_set(&p, key, v);
+    } else if (table_key(a)) { /* the table's parameters under a short flag: one parser, one list of names */
+      s = sessile_params_set(&p, table_key(a), v);
       if (s != SESSILE_OK) return cli_usage_error("bench fluid", "%s: %s", a, sessile_error_message());
     } else if (!strcmp(a, "--set")) {
       s = cli_params_set_kv(&p, v);

@@ -23,7 +23,7 @@ static sessile_status room(char **buf, size_t len, size_t *cap, size_t row) {
   if (*cap - len >= row) return SESSILE_OK;
   size_t c = *cap ? 2 * *cap : 1u << 16;
   char *b = realloc(*buf, c);
-  SESSILE_CHECK(b, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the step log");
+  SESSILE_CHECK(b, SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the step and division logs");
   *buf = b, *cap = c;
   return SESSILE_OK;
 }
