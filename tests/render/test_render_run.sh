@@ -157,9 +157,12 @@ check "a symlink planted at a picture's name is replaced by the picture, its tar
 
 # a run holding its folder's lock (flock on the folder, as the run framework takes it)
 rm -rf "$T/p2/renders"
-(exec 9<"$T/p2" && flock -x 9 && exec sleep 30) >/dev/null 2>&1 &
+# The holder says when it has the lock (a fixed pause may end before a loaded
+# machine has run flock) and keeps it until killed below.
+(exec 9<"$T/p2" && flock -x 9 && : >"$T/p2.locked" && exec sleep 300) >/dev/null 2>&1 &
 holder=$! # the subshell becomes the sleep holding the lock: killing it frees the lock
-sleep 0.3
+for _ in $(seq 1 1200); do [ -e "$T/p2.locked" ] && break; sleep 0.05; done
+check "the holder has the run's lock" test -e "$T/p2.locked"
 run render "$T/p2" --quiet
 check "a locked run: renders/ refused (exit 2, one line naming the run), nothing written" eval \
   'rc_is 2 && [ "$(wc -l <"$T/err")" = 1 ] && grep -q "in use by a running sessile run" "$T/err" && test ! -e "$T/p2/renders"'
