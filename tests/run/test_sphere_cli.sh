@@ -45,9 +45,13 @@ check "--config files merge in order, then --set" eval 'rc_is 0 && grep -q "^noi
 
 if command -v flock >/dev/null; then
   mkdir "$T/held"
-  flock "$T/held" sleep 5 &
+  # The holder says when it has the lock (a fixed pause may end before a
+  # loaded machine has run flock) and keeps it until killed below (the
+  # subshell becomes the sleep: killing it frees the lock).
+  (exec 9<"$T/held" && flock -x 9 && : >"$T/held.locked" && exec sleep 300) >/dev/null 2>&1 &
   holder=$!
-  sleep 0.5
+  for _ in $(seq 1 1200); do [ -e "$T/held.locked" ] && break; sleep 0.05; done
+  check "the holder has the folder's lock" test -e "$T/held.locked"
   run sphere --out "$T/held" --quiet
   check "a folder locked by another process is refused (exit 2, 'in use')" eval 'rc_is 2 && grep -q "in use" "$T/err"'
   check "... and nothing is written into it" eval '[ -z "$(ls -A "$T/held")" ]'
