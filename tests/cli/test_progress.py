@@ -25,6 +25,10 @@ def run_tty(args):
     os.close(slave)
     got = b""
     while True:
+        # whether it had ended BEFORE this select: then all it wrote is
+        # readable now (asked after a select that found nothing, a command
+        # that wrote and ended in between would lose its last output)
+        ended = p.poll() is not None
         r, _, _ = select.select([master], [], [], 0.2)
         if r:
             try:
@@ -34,7 +38,7 @@ def run_tty(args):
             if not chunk:
                 break
             got += chunk
-        elif p.poll() is not None:
+        elif ended:
             break
     os.close(master)
     out = p.stdout.read().decode()
