@@ -85,15 +85,20 @@ NOFLOW="$SMALL --set fluid_at_snapshots=false --iterations 40 --every 10"
 "$S" grow $NOFLOW --out "$T/ref2" >/dev/null 2>&1
 outputs "$T/ref2" >"$T/ref2.sum"
 
-# Two runs into one folder.
+# Two runs into one folder.  The first is held stopped (SIGSTOP; it keeps its
+# lock) while the others try: running on, it could end before a loaded
+# machine has started them, and --force would then replace it.
 "$S" grow $NOFLOW --out "$T/c" >/dev/null 2>"$T/c1err" &
 pid=$!
-for _ in $(seq 1 600); do [ -s "$T/c/manifest.json" ] && break; sleep 0.05; done
+for _ in $(seq 1 1200); do [ -s "$T/c/manifest.json" ] && break; sleep 0.05; done
+kill -STOP $pid
+check "the first run is held while it runs (state running)" eval '[ "$(state "$T/c")" = running ]'
 run grow $SMALL --iterations 2 --out "$T/c"
 check "a second run into a folder in use exits 2 naming the first's pid" eval \
   'rc_is 2 && grep -q "in use by another sessile run (pid $pid on host" "$T/err" && [ "$(wc -l <"$T/err")" = 1 ]'
 run grow $SMALL --iterations 2 --out "$T/c" --force
 check "... --force does not break the lock either" rc_is 2
+kill -CONT $pid
 wait $pid
 check "the first run completes" eval '[ $? = 0 ] && [ "$(state "$T/c")" = completed ]'
 outputs "$T/c" >"$T/c.sum"
