@@ -100,7 +100,8 @@ run grow $SMALL --iterations 2 --out "$T/c" --force
 check "... --force does not break the lock either" rc_is 2
 kill -CONT $pid
 wait $pid
-check "the first run completes" eval '[ $? = 0 ] && [ "$(state "$T/c")" = completed ]'
+rc=$?
+check "the first run completes" eval '[ $rc = 0 ] && [ "$(state "$T/c")" = completed ]'
 outputs "$T/c" >"$T/c.sum"
 check "the first run's outputs are untouched" cmp -s "$T/ref2.sum" "$T/c.sum"
 
@@ -123,7 +124,8 @@ for f in sponge/final.ply sponge/iter_0010.ply slices/iter_0020_x.exr fields/ser
   rm -f "$T/p/$f"; ln -s "$T/outside/victim" "$T/p/$f"
 done
 "$S" grow $NOFLOW --out "$T/p" --force >/dev/null 2>"$T/perr"
-check "a run among planted symlinks completes" eval '[ $? = 0 ]'
+rc=$?
+check "a run among planted symlinks completes" eval '[ $rc = 0 ]'
 check "the file outside is unchanged" eval '[ "$(cat "$T/outside/victim")" = precious ]'
 check "the final names hold the run's own files again" eval \
   '[ -f "$T/p/sponge/final.ply" ] && [ ! -L "$T/p/sponge/final.ply" ] && [ ! -L "$T/p/fields/series.pvd" ]'
