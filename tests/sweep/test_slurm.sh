@@ -42,7 +42,7 @@ munged -F --force --socket="$T/munge/munge.sock" --key-file="$T/munge/munge.key"
   --pid-file="$T/munge/munged.pid" --log-file="$T/munge/munged.log" --seed-file="$T/munge/munge.seed" \
   >"$T/munged.out" 2>&1 &
 PIDS+=($!)
-for _ in $(seq 100); do [ -S "$T/munge/munge.sock" ] && break; sleep 0.05; done
+for _ in $(seq 1200); do [ -S "$T/munge/munge.sock" ] && break; sleep 0.05; done # at most 60 s
 [ -S "$T/munge/munge.sock" ] || fatal "Slurm cannot start: munged did not make its socket: $(tail -3 "$T/munged.out" "$T/munge/munged.log" 2>&1)"
 
 cat >"$T/slurm.conf" <<EOF
@@ -80,7 +80,7 @@ PIDS+=($!)
 slurmd -D -f "$T/slurm.conf" >"$T/slurmd.out" 2>&1 &
 PIDS+=($!)
 idle=0
-for _ in $(seq 300); do
+for _ in $(seq 1200); do # at most 120 s: slurmd registers with slurmctld
   [ "$(sinfo -h -o %T 2>/dev/null)" = idle ] && idle=1 && break
   sleep 0.1
 done
@@ -124,7 +124,7 @@ check "the long sweep's local reference completes" eval '"$S" sweep status "$T/l
 run sweep submit "$T/s2" --max-parallel 1
 j2=$(job_of)
 running=0
-for _ in $(seq 600); do
+for _ in $(seq 2400); do # at most 120 s: scheduled, started, 20 000 iterations done
   if [ -e "$T/s2/runs/0000/checkpoint.bin" ] && squeue -h -r -j "$j2" -o "%i %T" | grep -q "^${j2}_0 RUNNING"; then running=1; break; fi
   sleep 0.05
 done
