@@ -106,9 +106,11 @@ static sessile_status rec_end(sessile_la *la, sessile_cmd *c, const sessile_mat 
  * all m iterations, each dispatch guarded, cost a converged solve its
  * remaining iterations' dispatches anyway (lavapipe pays ~0.1 ms a dispatch
  * that returns at once): 10 useful iterations of 50 were 17 600 dispatches
- * where 2 900 did work (docs/la.md, "GMRES").  The same operations in the
- * same order, so the same bits. */
-enum { GM_SEG_FIRST = 8, GM_SEG_NEXT = 4 };
+ * where 2 900 did work (docs/la.md, "GMRES").  Segments of 2: an inexact
+ * Newton step's solve of 1-4 iterations paid for a first segment of 8
+ * (docs/fluid.md, "Each Newton step's linear tolerance").  The same
+ * operations in the same order, so the same bits. */
+enum { GM_SEG_FIRST = 2, GM_SEG_NEXT = 2 };
 
 typedef struct gm_segs {
   sessile_cmd **cmd; /* [0]: the end; [1 + k]: segment k (recorded when first needed) */
