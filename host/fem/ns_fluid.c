@@ -24,6 +24,7 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->picard_steps = 0;
   p->linear_rtol = 1e-6;
   p->linear_max = 100;
+  p->forcing = SESSILE_FLUID_FORCING_FIXED;
   p->ksp = SESSILE_KSP_GMRES;
   p->pc = SESSILE_PC_MG; /* 10-12 GMRES iterations per Newton step on the default box
                             (ILU(0): 47-100), 2x faster (docs/fluid.md, "Multigrid") */

@@ -56,7 +56,7 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
   /* la factorises ILU(0) only on a matrix stored in one piece */
   st->lin_pc = t == SESSILE_PC_ILU0 && st->lin_chunks > 1 ? SESSILE_PC_JACOBI : t;
   o.pc = st->lin_pc;
-  o.rtol = p->linear_rtol;
+  o.rtol = st->lin_rtol; /* the Newton loop's forcing (params.forcing) */
   o.max_it = p->linear_max;
   o.restart = p->restart;
   sessile_solve_result lr;

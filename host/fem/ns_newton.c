@@ -9,6 +9,24 @@
 
 #include "fem/ns_internal.h"
 
+/* Each step's linear tolerance (params.forcing; the constants are
+ * Eisenstat-Walker choice 2 with PETSc's defaults, fluid.h). */
+#define EW_ETA0 0.3
+#define EW_ETA_MAX 0.9
+#define EW_ALPHA 1.6180339887498949 /* (1 + sqrt 5) / 2 */
+#define EW_THRESHOLD 0.1
+static double forcing(const sessile_fluid_params *p, int it, double rn, double rn_last, double eta_last) {
+  if (p->forcing != SESSILE_FLUID_FORCING_EW) return p->linear_rtol;
+  double eta = EW_ETA0;
+  if (it > 0 && rn_last > 0) {
+    eta = pow(rn / rn_last, EW_ALPHA);
+    double keep = pow(eta_last, EW_ALPHA); /* no sudden tightening (EW's safeguard) */
+    if (keep > EW_THRESHOLD && keep > eta) eta = keep;
+  }
+  if (eta > EW_ETA_MAX) eta = EW_ETA_MAX;
+  return eta > p->linear_rtol ? eta : p->linear_rtol;
+}
+
 void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -46,6 +64,7 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     if (p->nested) s = ns_nested_start(fl, solid, p, bc, up, r, res);
   }
   int stalled = 0; /* Newton steps running whose line search found no decrease */
+  double rn_last = 0, eta_last = 0;
   for (int it = 0; s == SESSILE_OK; it++) {
     int picard = it < p->picard_steps;
     double ta = sessile_wall_seconds();
@@ -98,6 +117,8 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     st->residual = rn;
     st->picard = picard;
     st->assembly_s = tass;
+    st->lin_rtol = eta_last = forcing(p, it, rn, rn_last, eta_last);
+    rn_last = rn;
     double ts = sessile_wall_seconds();
     s = ns_linear_solve(fl, p, solid, up, picard ? 0.0 : 1.0, r, du, b, x, st);
     st->solve_s = sessile_wall_seconds() - ts;
@@ -124,9 +145,9 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
       lam *= 0.5;
     }
     st->step_length = lam;
-    ns_monitor(p, "fluid %s %d: |R| %.3e (rel %.2e)  step %.3g  lin %d it relres %.2e %s  asm %.2f s solve %.2f s",
+    ns_monitor(p, "fluid %s %d: |R| %.3e (rel %.2e)  step %.3g  lin %d it relres %.2e (aim %.1e) %s  asm %.2f s solve %.2f s",
                   picard ? "picard" : "newton", it, rn, rn / res->residual_rest, lam, st->lin_iterations,
-                  st->lin_relres, sessile_solve_status_name(st->lin_status), tass, st->solve_s);
+                  st->lin_relres, st->lin_rtol, sessile_solve_status_name(st->lin_status), tass, st->solve_s);
   }
   if (s == SESSILE_OK)
     ns_monitor(p, "fluid: %s after %d steps, |R| %.3e (rel %.2e)",

@@ -107,6 +107,7 @@ static void record_fluid(cJSON *fl, const sessile_fluid_result *res, uint32_t no
     cJSON_AddNumberToObject(o, "residual", st->residual);
     cJSON_AddStringToObject(o, "kind", st->picard ? "picard" : "newton");
     cJSON_AddNumberToObject(o, "linear_iterations", st->lin_iterations);
+    cJSON_AddNumberToObject(o, "linear_rtol", st->lin_rtol);
     cJSON_AddNumberToObject(o, "linear_true_relres", st->lin_relres);
     cJSON_AddStringToObject(o, "linear_status", sessile_solve_status_name(st->lin_status));
     cJSON_AddStringToObject(o, "krylov", sessile_ksp_type_name(st->lin_ksp));

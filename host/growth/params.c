@@ -24,6 +24,8 @@ static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
 static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", "mg", NULL};
 /* fluid_mg_cycle: sessile_fluid_cycle's order (bmg's cycle 1, 2, 3). */
 static const char *const cycle_names[] = {"v", "w", "vw", NULL};
+/* fluid_newton_forcing: sessile_fluid_forcing's order. */
+static const char *const forcing_names[] = {"fixed", "ew", NULL};
 
 #define PT_REAL SESSILE_PT_REAL, NULL
 #define PT_INT SESSILE_PT_INT, NULL
@@ -38,6 +40,7 @@ static const char *const cycle_names[] = {"v", "w", "vw", NULL};
 #define PT_ENUM_KSP SESSILE_PT_ENUM, ksp_names
 #define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
 #define PT_ENUM_CYCLE SESSILE_PT_ENUM, cycle_names
+#define PT_ENUM_FORCING SESSILE_PT_ENUM, forcing_names
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \

@@ -33,6 +33,12 @@
  *    the coarse start is taken, the fine Newton needs fewer steps, and the
  *    two solutions agree within 1e-6 of the largest velocity (both are the
  *    fine problem's solution; only the start differs);
+ *  - the Eisenstat-Walker forcing (params.forcing EW): the same dome solved
+ *    with the fixed and the EW linear tolerance to Newton 1e-9: each EW
+ *    step aims at the tolerance recomputed here from the step residuals
+ *    (choice 2, PETSc's constants), reaches it, the fixed schedule aims at
+ *    linear_rtol throughout, EW takes fewer linear iterations, and the two
+ *    solutions agree within 1e-6 of the largest velocity;
  *  (the default scene, inlet/outlet/substratum and an immersed dome, runs in
  *  --bench only).
  * `test_ns --bench [resolution]` (not run by ctest) times the default box
@@ -509,17 +515,32 @@ static void assembly_threads(int shuffle) {
 }
 
 /* ---- the nested start -------------------------------------------------------- */
-static void nested_start(void) {
+/* A dome of radius 4 on the floor of a 20 x 20 x 16 box of 1.2 spacing
+ * (7 497 nodes; the coarse box 1 089): its solid mask. */
+static uint8_t *dome_scene(sessile_tetmesh *m) {
   sessile_box box;
-  sessile_tetmesh m = {0};
   double o[3] = {0, 0, 0};
-  make_mesh(o, 1.2, 20, 20, 16, &box, &m); /* 7 497 nodes; the coarse box 1 089 */
-  uint8_t *solid = t_xalloc(m.nnodes);
-  for (uint32_t i = 0; i < m.nnodes; i++) {
-    const double *x = m.xyz + 3 * i;
+  make_mesh(o, 1.2, 20, 20, 16, &box, m);
+  uint8_t *solid = t_xalloc(m->nnodes);
+  for (uint32_t i = 0; i < m->nnodes; i++) {
+    const double *x = m->xyz + 3 * i;
     double dx = x[0] - 12, dy = x[1] - 12, dz = x[2];
     solid[i] = dx * dx + dy * dy + dz * dz <= 4.0 * 4.0;
   }
+  return solid;
+}
+
+/* max |u1 - u0| over the velocity components, over max |u0|. */
+static double velocity_gap(double *const u[2], size_t n4) {
+  double d = 0, um = 0;
+  for (size_t k = 0; k < n4; k++)
+    if (k % 4 != 3) d = fmax(d, fabs(u[1][k] - u[0][k])), um = fmax(um, fabs(u[0][k]));
+  return d / um;
+}
+
+static void nested_start(void) {
+  sessile_tetmesh m = {0};
+  uint8_t *solid = dome_scene(&m);
   size_t n4 = (size_t)m.nnodes * 4;
   double *u[2];
   sessile_fluid_result r[2];
@@ -545,10 +566,63 @@ static void nested_start(void) {
   t_true("nested start: on: the coarse solution taken", r[1].coarse_tried && r[1].started_coarse);
   t_true("nested start: its start is nearer than rest", r[1].residual0 < 0.5 * r[1].residual_rest);
   t_true("nested start: fewer fine Newton steps", r[1].nsteps < r[0].nsteps);
-  double d = 0, um = 0;
-  for (size_t k = 0; k < n4; k++)
-    if (k % 4 != 3) d = fmax(d, fabs(u[1][k] - u[0][k])), um = fmax(um, fabs(u[0][k]));
-  t_check("nested start: the same solution (max velocity difference / max velocity)", d / um, 1e-6);
+  t_check("nested start: the same solution (max velocity difference / max velocity)", velocity_gap(u, n4), 1e-6);
+  free(u[0]), free(u[1]), free(solid);
+  sessile_tetmesh_free(&m);
+}
+
+/* ---- the Eisenstat-Walker forcing ---------------------------------------------- */
+/* The choice-2 tolerance written out again from fluid.h's description. */
+static double ew_aim(const sessile_fluid_result *r, int k, double floor_rtol) {
+  double eta = 0.3;
+  for (int j = 1; j <= k; j++) {
+    double e = pow(r->step[j].residual / r->step[j - 1].residual, (1.0 + sqrt(5.0)) / 2.0);
+    double keep = pow(eta, (1.0 + sqrt(5.0)) / 2.0);
+    eta = keep > 0.1 && keep > e ? keep : e;
+    eta = fmax(fmin(eta, 0.9), floor_rtol);
+  }
+  return fmax(fmin(eta, 0.9), floor_rtol);
+}
+
+static void forcing_ew(void) {
+  sessile_tetmesh m = {0};
+  uint8_t *solid = dome_scene(&m);
+  size_t n4 = (size_t)m.nnodes * 4;
+  double *u[2];
+  sessile_fluid_result r[2];
+  const double floor_rtol = 1e-10;
+  for (int ew = 0; ew < 2; ew++) {
+    sessile_fluid *fl = NULL;
+    t_must("fluid create", sessile_fluid_create(la, &m, &fl));
+    sessile_fluid_params p = test_params();
+    p.linear_rtol = floor_rtol;
+    p.linear_max = 200;
+    p.newton_rtol = 1e-9;
+    p.nested = 0;
+    p.forcing = ew ? SESSILE_FLUID_FORCING_EW : SESSILE_FLUID_FORCING_FIXED;
+    u[ew] = t_xalloc(n4 * sizeof *u[ew]);
+    memset(u[ew], 0, n4 * sizeof *u[ew]);
+    t_must("fluid solve", sessile_fluid_solve(fl, solid, &p, u[ew], &r[ew]));
+    printf("  forcing %s: %s in %d Newton steps, %d linear iterations; aims", ew ? "ew" : "fixed",
+           r[ew].converged ? "converged" : "NOT converged", r[ew].nsteps, r[ew].lin_iterations);
+    for (int k = 0; k < r[ew].nsteps; k++) printf(" %.1e (%d its)", r[ew].step[k].lin_rtol, r[ew].step[k].lin_iterations);
+    printf("\n");
+    sessile_fluid_destroy(fl);
+  }
+  t_true("forcing: both converge", r[0].converged && r[1].converged);
+  int fixed_aims = 1, ew_aims = r[1].nsteps > 1, reached = 1;
+  for (int k = 0; k < r[0].nsteps; k++) fixed_aims &= r[0].step[k].lin_rtol == floor_rtol;
+  for (int k = 0; k < r[1].nsteps; k++) {
+    double want = ew_aim(&r[1], k, floor_rtol);
+    ew_aims &= fabs(r[1].step[k].lin_rtol - want) <= 1e-12 * want;
+    reached &= r[1].step[k].lin_status == SESSILE_SOLVE_CONVERGED &&
+               r[1].step[k].lin_relres <= r[1].step[k].lin_rtol * (1 + 1e-9);
+  }
+  t_true("forcing fixed: every step aims at linear_rtol", fixed_aims);
+  t_true("forcing ew: each step aims at choice 2's tolerance from the step residuals", ew_aims);
+  t_true("forcing ew: each step's true relative residual reaches its aim", reached);
+  t_true("forcing ew: fewer linear iterations than fixed", r[1].lin_iterations < r[0].lin_iterations);
+  t_check("forcing: the same solution (max velocity difference / max velocity)", velocity_gap(u, n4), 1e-6);
   free(u[0]), free(u[1]), free(solid);
   sessile_tetmesh_free(&m);
 }
@@ -672,6 +746,7 @@ int main(int argc, char **argv) {
   printf("  (%.1f s so far)\n", sessile_wall_seconds() - tstart);
   newton_quadratic();
   nested_start();
+  forcing_ew();
   printf("  (%.1f s in all)\n", sessile_wall_seconds() - tstart);
 
 

@@ -45,6 +45,15 @@ typedef double (*sessile_fluid_pressure_fn)(const double x[3], uint32_t tags, vo
 /* Optional body force f (N/m^3) at x (metres); the paper has F = 0. */
 typedef void (*sessile_fluid_force_fn)(const double x[3], double f[3], void *ctx);
 
+/* How tightly each Newton step's linear system is solved.  FIXED: to
+ * linear_rtol every step (the paper's 1e-6).  EW: Eisenstat and Walker's
+ * choice 2 (SIAM J. Sci. Comput. 17, 1996), with PETSc's defaults: 0.3 on the
+ * first step, then (|R_k| / |R_k-1|)^1.618, kept at least eta_k-1^1.618
+ * when that exceeds 0.1, at most 0.9 and at least linear_rtol: loose while
+ * the residual falls slowly, tight as Newton converges.  The stopping rule is
+ * the same newton_rtol either way. */
+typedef enum { SESSILE_FLUID_FORCING_FIXED = 0, SESSILE_FLUID_FORCING_EW = 1 } sessile_fluid_forcing;
+
 typedef struct sessile_fluid_params {
   double rho;          /* kg/m^3, default 1000 (0: Stokes flow, no convection) */
   double eta;          /* Pa s, default 5.0e-2 */
@@ -62,7 +71,9 @@ typedef struct sessile_fluid_params {
                           fails with SESSILE_ERR_NUMERIC and a message */
   int picard_steps;    /* Picard (Oseen) steps before Newton, default 0 */
   double newton_atol;  /* stop also when ||R|| <= atol (default 0) */
-  double linear_rtol;  /* default 1e-6 */
+  double linear_rtol;  /* default 1e-6; with forcing EW the floor of each step's tolerance */
+  sessile_fluid_forcing forcing; /* each Newton step's linear tolerance: FIXED (linear_rtol,
+                          the paper's; the default) or EW (Eisenstat-Walker, docs/fluid.md) */
   int linear_max;      /* default 100 */
   sessile_ksp_type ksp;/* default GMRES */
   sessile_pc_type pc;  /* la's preconditioner (sessile/la/pc.h), default MG; ILU0:
@@ -106,6 +117,7 @@ typedef struct sessile_fluid_step {
   int picard;            /* 1 for a Picard step */
   double step_length;    /* backtracking factor taken (1 = full Newton step) */
   int lin_iterations;
+  double lin_rtol;       /* the relative tolerance it aimed at (params.forcing) */
   double lin_relres;     /* true relative residual of the linear solve */
   sessile_solve_status lin_status;
   sessile_ksp_type lin_ksp; /* the Krylov method used (params.ksp) */

@@ -109,6 +109,10 @@ extern "C" {
     "multigrid on the immersed box; ilu0 on the conforming mesh)")                               \
   X(fluid_ksp_rtol, REAL, 1e-6, 1e-14, 0.1, 0, "", "paper §4.2 (linear 1e-6)",                      \
     "true relative residual each Newton step's linear solve aims at")                             \
+  X(fluid_newton_forcing, ENUM_FORCING, 1, 0, 1, 0, "", "ours (docs/fluid.md)",                       \
+    "each Newton step's linear tolerance: ew (Eisenstat-Walker: loose while the residual falls "  \
+    "slowly, tight near the solution, never below fluid_ksp_rtol; the same Newton stopping rule) " \
+    "or fixed (fluid_ksp_rtol every step, the paper's)")                                         \
   X(fluid_ksp_max_it, INT, 100, 1, 1000000, 0, "", "paper §4.2 (linear 100)",                       \
     "Krylov iterations per Newton step at most (past it the step is taken as it is)")             \
   X(fluid_ksp_restart, INT, 50, 1, 64, 0, "", "ours (docs/fluid.md)",                               \
@@ -158,6 +162,7 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_KSP(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_PC(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_CYCLE(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_FORCING(n) int n;
 #define X(name, type, def, lo, hi, bounds, unit, src, desc) SESSILE_PARAM_FIELD_##type(name)
   SESSILE_PARAMS(X)
 #undef X
