@@ -19,13 +19,13 @@ run coral venation --set auxins_per_iteration=12 --print-config
 check "--print-config: the table with units and the paper's names, --set applied" eval \
   'rc_is 0 && grep -q "^auxins_per_iteration *12 " "$T/out" && grep -q "Auxin Kill Radius" "$T/out" && grep -q "^vein_step .*cm.*Vein Radius" "$T/out" && grep -q "Open Ended" "$T/out"'
 
-# "in seconds": CPU seconds (user + system, its threads included), which a
-# loaded machine does not stretch as it stretches the wall time
+# Its time is printed for the record, not asserted (tests never assert
+# times: `sessile bench coral` measures it; ctest's TIMEOUT catches a hang).
 TIMEFORMAT='%R %U %S'
 { time run coral venation --out "$T/a" --quiet; } 2>"$T/time"
 read -r wall user sys <"$T/time"
-cpu=$(echo "$user + $sys" | bc)
-check "the default run completes in seconds ($cpu s CPU, $wall s wall)" eval 'rc_is 0 && [ "$(echo "$cpu < 20" | bc)" = 1 ]'
+echo "  the default run: $wall s wall, $user + $sys s CPU"
+check "the default run completes (exit 0)" rc_is 0
 check "snapshots every 20, final.ply and final.obj" eval \
   'for f in iter_0020.ply iter_0040.ply iter_0060.ply final.ply final.obj; do test -s "$T/a/coral/$f" || exit 1; done'
 check "PLY: a per-vertex thickness_index whose maximum is the node count; records per iteration" \
