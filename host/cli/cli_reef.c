@@ -17,7 +17,7 @@ static const sessile_param_desc descs[] = {
     {"device_exposure", SESSILE_PT_BOOL, offsetof(reef_params, device_exposure), 1, 0, 1, 0, "", "ours",
      "exposure to currents on the device (false: the host reference)", NULL},
 };
-static const sessile_param_table table = {"reef", sizeof(reef_params), 1, descs, NULL, NULL};
+static const sessile_param_table table = {"reef", sizeof(reef_params), 1, descs, NULL, NULL, NULL};
 
 typedef struct reef_args {
   char *path, *text;

@@ -62,7 +62,7 @@ static sessile_status validate(const void *values) {
 }
 
 const sessile_param_table sessile_coral_lsystem_param_table = {"coral lsystem", sizeof(sessile_coral_lsystem_params),
-                                                               (int)(sizeof descs / sizeof descs[0]), descs, validate, NULL};
+                                                               (int)(sizeof descs / sizeof descs[0]), descs, validate, NULL, NULL};
 
 void sessile_coral_lsystem_result_free(sessile_coral_lsystem_result *r) {
   if (!r) return;

@@ -105,4 +105,4 @@ static sessile_status validate(const void *values) {
 }
 
 const sessile_param_table sessile_venation_param_table = {
-    "coral venation", sizeof(sessile_venation_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, NULL};
+    "coral venation", sizeof(sessile_venation_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, NULL, NULL};

@@ -65,8 +65,12 @@ static const sessile_param_alias aliases[] = {{"linear_rtol", "nutrient_ksp_rtol
                                               {"max_nvs_iterations", "fluid_newton_max_it"},
                                               {NULL, NULL}};
 
+/* Runs made before fluid_newton_forcing solved every Newton step to the
+ * fixed tolerance: they resume with it (docs/fluid.md). */
+static const sessile_param_before before[] = {{"fluid_newton_forcing", "fixed"}, {NULL, NULL}};
+
 const sessile_param_table sessile_grow_param_table = {
-    "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, aliases};
+    "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, aliases, before};
 
 void sessile_params_default(sessile_grow_params *p) { sessile_params_defaults(&sessile_grow_param_table, p); }
 

@@ -41,6 +41,8 @@ sessile_status sessile_run_config_take(const cJSON *cfg, const sessile_param_tab
   *iterations = (int)its->valuedouble;
   *every = (int)ev->valuedouble;
   sessile_params_defaults(t, params);
+  for (const sessile_param_before *b = t->before; b && b->name; b++) /* a run made before b existed */
+    if (!cJSON_GetObjectItemCaseSensitive(pj, b->name)) SESSILE_CALL(sessile_params_set_text(t, params, b->name, b->value));
   SESSILE_CALL(sessile_params_apply_json(t, params, pj, "the run's stored configuration"));
   return sessile_params_check(t, params);
 }

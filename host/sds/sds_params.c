@@ -55,7 +55,7 @@ static const sessile_param_desc descs[] = {
 };
 
 const sessile_param_table sessile_sds_run_param_table = {
-    "sds run MODEL", sizeof(sessile_sds_run_params), (int)(sizeof descs / sizeof descs[0]), descs, NULL, NULL};
+    "sds run MODEL", sizeof(sessile_sds_run_params), (int)(sizeof descs / sizeof descs[0]), descs, NULL, NULL, NULL};
 
 /* A model line that sets a table parameter: one number, checked as --set
  * would check it ("%.17g" gives the parsed double back bit for bit). */

@@ -19,7 +19,7 @@ static const sessile_param_desc descs[] = {
      "relative radial step per iteration (uniform in [-noise, noise])", NULL},
 };
 const sessile_param_table sessile_sphere_param_table = {
-    "sphere", sizeof(sessile_sphere_params), (int)(sizeof descs / sizeof descs[0]), descs, NULL, NULL};
+    "sphere", sizeof(sessile_sphere_params), (int)(sizeof descs / sizeof descs[0]), descs, NULL, NULL, NULL};
 
 typedef struct sphere {
   sessile_sphere_params p;

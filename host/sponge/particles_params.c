@@ -86,4 +86,4 @@ static sessile_status validate(const void *values) {
 
 const sessile_param_table sessile_sponge_particles_param_table = {
     "sponge particles", sizeof(sessile_sponge_particles_params), (int)(sizeof descs / sizeof descs[0]), descs,
-    validate, NULL};
+    validate, NULL, NULL};

@@ -2,7 +2,8 @@
  * defaults, text and JSON parsing (strict: duplicates, trailing bytes, NUL,
  * kinds, integers, open bounds), the cross-parameter hook, printing to a
  * failing stream, and the config round trip that a resume relies on (exact
- * to the last bit).  Also: the grow table's defaults are the kernels'
+ * to the last bit), a stored config made before a parameter existed taking
+ * the table's `before` value for it (and its own when it has it).  Also: the grow table's defaults are the kernels'
  * defaults (one source), and an error message may quote the previous one. */
 #include <math.h>
 #include <stddef.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 #include "sessile/growth/growth_ref.h"
 #include "sessile/run/param_table.h"
+#include "sessile/run/run.h"
 #include "sessile/growth/grow_params.h"
 #include "testutil.h"
 
@@ -32,7 +34,10 @@ static const sessile_param_desc descs[] = {
 };
 /* "length" is x's earlier name (sessile_param_alias): still read everywhere. */
 static const sessile_param_alias aliases[] = {{"length", "x"}, {NULL, NULL}};
-static const sessile_param_table table = {"demo", sizeof(demo), 4, descs, demo_validate, aliases};
+/* "kind" came later, with a default (beta) the code before it did not
+ * behave as: a stored config without it resumes with alpha. */
+static const sessile_param_before kind_before[] = {{"kind", "alpha"}, {NULL, NULL}};
+static const sessile_param_table table = {"demo", sizeof(demo), 4, descs, demo_validate, aliases, kind_before};
 
 /* JSON text refused with a message holding `part`, values left as they were
  * up to the failing key. */
@@ -137,6 +142,32 @@ int main(void) {
   t_true("the config round trip is exact", !memcmp(&back, &d, sizeof d));
   free(text);
   cJSON_Delete(cfg);
+
+  /* A stored run configuration made before "kind" existed resumes with the
+   * old behaviour (alpha), one that has it with its own; the grow table's
+   * fluid_newton_forcing is fixed for runs made before it. */
+  const char *old_cfg = "{\"seed\": \"3\", \"iterations\": 5, \"every\": 1, \"parameters\": {\"x\": 2}}";
+  const char *new_cfg = "{\"seed\": \"3\", \"iterations\": 5, \"every\": 1, \"parameters\": {\"kind\": \"beta\"}}";
+  uint64_t seed;
+  int its, every;
+  cJSON *oc = cJSON_Parse(old_cfg), *nc = cJSON_Parse(new_cfg);
+  t_ok("a stored config without kind", sessile_run_config_take(oc, &table, &d, &seed, &its, &every));
+  t_true("... resumes with the before value (alpha), its x kept", d.kind == 0 && d.x == 2 && seed == 3 && its == 5);
+  t_ok("a stored config with kind", sessile_run_config_take(nc, &table, &d, &seed, &its, &every));
+  t_true("... keeps its own (beta)", d.kind == 1 && d.x == 1.5);
+  sessile_params_defaults(&table, &d);
+  t_true("a new run's default is beta", d.kind == 1);
+  cJSON *gc = cJSON_Parse("{\"seed\": \"1\", \"iterations\": 5, \"every\": 1, \"parameters\": {\"growth_rate\": 0.5}}");
+  sessile_grow_params gold;
+  memset(&gold, 0xff, sizeof gold);
+  t_ok("a grow config from before fluid_newton_forcing",
+       sessile_run_config_take(gc, &sessile_grow_param_table, &gold, &seed, &its, &every));
+  t_true("... resumes with the fixed forcing", gold.fluid_newton_forcing == 0 && gold.growth_rate == 0.5);
+  sessile_params_default(&gold);
+  t_true("... where a new grow run's is ew", gold.fluid_newton_forcing == 1);
+  cJSON_Delete(gc);
+  cJSON_Delete(oc);
+  cJSON_Delete(nc);
 
   /* Printing reports a failing stream (`--print-config > /dev/full`). */
   FILE *full = fopen("/dev/full", "w");

@@ -19,7 +19,7 @@ static const sessile_param_desc descs[] = {
     {"step", SESSILE_PT_REAL, offsetof(walk_params, step), 0.5, 0, 10, SESSILE_PARAM_LO_OPEN, "cm", "test",
      "largest step per iteration", NULL},
 };
-static const sessile_param_table table = {"testwalk", sizeof(walk_params), 2, descs, NULL, NULL};
+static const sessile_param_table table = {"testwalk", sizeof(walk_params), 2, descs, NULL, NULL, NULL};
 
 typedef struct walk {
   walk_params p;

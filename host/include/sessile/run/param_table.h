@@ -48,6 +48,14 @@ typedef struct sessile_param_alias {
   const char *old_name, *name;
 } sessile_param_alias;
 
+/* A parameter added with a default that behaves otherwise than the code
+ * before it: a stored run's configuration that lacks it (a run made before
+ * the parameter existed) resumes with this value, the behaviour it started
+ * with, so a resume across the upgrade goes on as it began. */
+typedef struct sessile_param_before {
+  const char *name, *value; /* value as text, as --set takes it */
+} sessile_param_before;
+
 typedef struct sessile_param_table {
   const char *generator; /* "grow", "sphere": named in messages */
   size_t struct_size;
@@ -57,6 +65,7 @@ typedef struct sessile_param_table {
    * sessile_params_check after each parameter passed its own range. */
   sessile_status (*validate)(const void *values);
   const sessile_param_alias *aliases; /* ends with a NULL old_name; NULL: none */
+  const sessile_param_before *before; /* ends with a NULL name; NULL: none */
 } sessile_param_table;
 
 /* Every parameter to its default. */
