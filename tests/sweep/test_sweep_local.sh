@@ -87,14 +87,15 @@ unfinished() { # DIR: the points with a resumable manifest (it holds the config)
     [ -e "$m" ] && grep -q '"config"' "$m" && ! grep -q '"state":[[:space:]]*"completed"' "$m" && basename "$(dirname "$m")"
   done
 }
-wait_running() { for _ in $(seq 400); do grep -qs '"state":[[:space:]]*"running"' "$1"/runs/*/manifest.json && return 0; sleep 0.01; done; return 1; }
+# DIR PID: until a point runs (at most 60 s), or the engine has ended
+wait_running() { for _ in $(seq 6000); do grep -qs '"state":[[:space:]]*"running"' "$1"/runs/*/manifest.json && return 0; kill -0 "$2" 2>/dev/null || return 1; sleep 0.01; done; return 1; }
 caught=""
 for attempt in 1 2 3 4 5; do
   c="$T/c$attempt"
   "$S" sweep plan "$T/sweep.json" --out "$c" >/dev/null 2>&1 || fatal "sweep plan for the kill"
   "$S" sweep run "$c" -j 2 >/dev/null 2>&1 &
   eng=$!
-  wait_running "$c"
+  wait_running "$c" "$eng"
   kill -9 "$eng"; wait "$eng" 2>/dev/null
   no_running "$c" || break # the check below reports it
   caught=$(unfinished "$c" | tr '\n' ' ')
