@@ -65,9 +65,11 @@ static const sessile_param_alias aliases[] = {{"linear_rtol", "nutrient_ksp_rtol
                                               {"max_nvs_iterations", "fluid_newton_max_it"},
                                               {NULL, NULL}};
 
-/* Runs made before fluid_newton_forcing solved every Newton step to the
- * fixed tolerance: they resume with it (docs/fluid.md). */
-static const sessile_param_before before[] = {{"fluid_newton_forcing", "fixed"}, {NULL, NULL}};
+/* Runs made before these parameters existed ran otherwise than their
+ * defaults: every Newton step to the fixed tolerance, and no nested start;
+ * they resume as they began (docs/run.md, docs/fluid.md). */
+static const sessile_param_before before[] = {
+    {"fluid_newton_forcing", "fixed"}, {"fluid_nested", "false"}, {NULL, NULL}};
 
 const sessile_param_table sessile_grow_param_table = {
     "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, aliases, before};

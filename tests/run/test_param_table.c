@@ -162,9 +162,10 @@ int main(void) {
   memset(&gold, 0xff, sizeof gold);
   t_ok("a grow config from before fluid_newton_forcing",
        sessile_run_config_take(gc, &sessile_grow_param_table, &gold, &seed, &its, &every));
-  t_true("... resumes with the fixed forcing", gold.fluid_newton_forcing == 0 && gold.growth_rate == 0.5);
+  t_true("... resumes with the fixed forcing and no nested start",
+         gold.fluid_newton_forcing == 0 && gold.fluid_nested == 0 && gold.growth_rate == 0.5);
   sessile_params_default(&gold);
-  t_true("... where a new grow run's is ew", gold.fluid_newton_forcing == 1);
+  t_true("... where a new grow run's are ew and nested", gold.fluid_newton_forcing == 1 && gold.fluid_nested == 1);
   cJSON_Delete(gc);
   cJSON_Delete(oc);
   cJSON_Delete(nc);
