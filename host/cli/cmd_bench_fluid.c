@@ -292,13 +292,11 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.rho = p.fluid_density;
   fp.eta = p.fluid_viscosity;
   fp.inlet[0] = p.inlet_velocity;
+  fp.mg = mgo; /* the bench's own mg options; the table's (precision, cycle) over them */
   sessile_params_fluid_solver(&p, &fp);
   if (picard >= 0) fp.picard_steps = picard;
   if (lsic >= 0) fp.lsic = lsic;
   if (verbose) fp.monitor = print_line;
-  fp.mg = mgo;
-  fp.mg.precision = p.fluid_mg_precision; /* the table's (--mg-precision, --mg-cycle, --set) */
-  fp.mg.cycle = p.fluid_mg_cycle + 1;
   fp.mg_galerkin = galerkin;
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
