@@ -7,12 +7,14 @@
  *    and 1 on the outer (r = b): c = (1/a - 1/r) / (1/a - 1/b); the same
  *    symmetric cut-cell discretisation (the cut fractions and the lift
  *    computed from the exact spheres), solved by the production operator;
- *    on h, h/2, h/4 the rms nodal error converges at order >= 1.8 (measured
- *    2.05, 2.01) and the max at >= 1.5 (measured 1.60, 1.73: a few nodes next
- *    to the surface, still pre-asymptotic; docs/nutrient.md);
+ *    on 21^3, 41^3, 81^3 nodes (h = 0.26, 0.13, 0.065; 27, 53, 105 before,
+ *    2.6x the time for the same orders) the rms nodal error converges at
+ *    order >= 1.8 (measured 2.16, 2.09) and the max at >= 1.5 (measured
+ *    1.63, 1.79: a few nodes next to the surface, still pre-asymptotic;
+ *    docs/nutrient.md);
  *  - the extension across the surface: trilinear interpolation of the
  *    extended field at points 0.3 outside the inner sphere (where the probe
- *    samples) converges at order >= 1.8 (measured 2.06, 1.94);
+ *    samples) converges at order >= 1.8 (measured 2.05, 2.28);
  *  - the whole solve on a sphere resting on the floor: c = 0 on the solid
  *    nodes, 1 at the far field, in [0, 1], the extension negative inside. */
 #include <math.h>
@@ -216,7 +218,7 @@ static void spheres(uint32_t n, double *err_nodes, double *err_rms, double *err_
 }
 
 static void convergence(void) {
-  uint32_t ns[3] = {27, 53, 105};
+  uint32_t ns[3] = {21, 41, 81};
   double en[3], er[3], ep[3];
   for (int i = 0; i < 3; i++) {
     int its;
