@@ -88,7 +88,7 @@ sessile_status sessile_cut_nutrient_create(sessile_la *la, const sessile_box *bo
                 box->n[1], box->n[2]);
   double top = box->h * (box->n[2] - 1);
   SESSILE_CHECK(bc->far_field == SESSILE_FAR_FIELD_HEIGHT || bc->far_field == SESSILE_FAR_FIELD_WALLS ||
-                    bc->far_field == SESSILE_FAR_FIELD_INLET,
+                    bc->far_field == SESSILE_FAR_FIELD_INLET || bc->far_field == SESSILE_FAR_FIELD_PROFILE,
                 SESSILE_ERR_USAGE, "unknown far field %d", (int)bc->far_field);
   SESSILE_CHECK(bc->far_field == SESSILE_FAR_FIELD_WALLS ||
                     (bc->height > box->h && bc->height <= top * (1 + 1e-12)),
@@ -149,7 +149,8 @@ cut_push nutrient_cut_push(const sessile_cut_nutrient *nt, const sessile_box *b,
   cut_push p = {.n0 = b->n[0], .n1 = b->n[1], .n2 = b->n[2],
                 .far_field = nt->bc.far_field == SESSILE_FAR_FIELD_WALLS   ? FAR_WALLS
                              : nt->bc.far_field == SESSILE_FAR_FIELD_INLET ? FAR_INLET
-                                                                         : FAR_HEIGHT,
+                             : nt->bc.far_field == SESSILE_FAR_FIELD_PROFILE ? FAR_PROFILE
+                                                                           : FAR_HEIGHT,
                 .want_lift = flag,
                 .h = sessile_push_real_of(b->h, rb),
                 .oz = sessile_push_real_of(b->origin[2], rb),

@@ -19,6 +19,11 @@ static int node_dirichlet(const ctx *x, const uint32_t c[3], double *value) {
   if (x->bc->far_field == SESSILE_FAR_FIELD_WALLS)
     return c[0] == 0 || c[1] == 0 || c[0] == n[0] - 1 || c[1] == n[1] - 1 || c[2] == n[2] - 1;
   if (x->bc->far_field == SESSILE_FAR_FIELD_INLET && c[0] == 0) return 1;
+  if (x->bc->far_field == SESSILE_FAR_FIELD_PROFILE && c[0] == 0) {
+    double z = zk(x, c[2]) / x->bc->height;
+    *value = z < 1 ? z : 1;
+    return 1;
+  }
   return !(zk(x, c[2]) < x->bc->height - 1e-9 * x->box->h);
 }
 

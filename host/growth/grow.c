@@ -66,8 +66,12 @@ sessile_status grow_setup(grow_run *r) {
   SESSILE_CALL(sessile_la_create(r->gpu, &r->la));
   sessile_cut_bc bc;
   sessile_cut_bc_default(&bc);
+  /* With the current, far_field = height's inflow wall carries the bare
+   * profile (nutrient_inflow = profile; docs/nutrient.md "The inflow"). */
+  int profile = !p->diffusion_limited && p->nutrient_inflow == SESSILE_INFLOW_PROFILE;
   bc.far_field = p->far_field == SESSILE_FAR_WALLS   ? SESSILE_FAR_FIELD_WALLS
                  : p->far_field == SESSILE_FAR_INLET ? SESSILE_FAR_FIELD_INLET
+                 : profile                           ? SESSILE_FAR_FIELD_PROFILE
                                                      : SESSILE_FAR_FIELD_HEIGHT;
   bc.height = sessile_params_far_field_height(p);
   SESSILE_CALL(sessile_cut_nutrient_create(r->la, &r->box, &bc,

@@ -24,6 +24,8 @@ static const char *const ksp_names[] = {"gmres", "bicgstab", NULL};
 static const char *const pc_names[] = {"none", "jacobi", "ilu0", "block_jacobi", "mg", NULL};
 /* fluid_mg_cycle: sessile_fluid_cycle's order (bmg's cycle 1, 2, 3). */
 static const char *const cycle_names[] = {"v", "w", "vw", NULL};
+/* nutrient_inflow: SESSILE_INFLOW_*'s order. */
+static const char *const inflow_names[] = {"profile", "zero_flux", NULL};
 /* fluid_newton_forcing: sessile_fluid_forcing's order. */
 static const char *const forcing_names[] = {"fixed", "ew", NULL};
 
@@ -41,6 +43,7 @@ static const char *const forcing_names[] = {"fixed", "ew", NULL};
 #define PT_ENUM_PC SESSILE_PT_ENUM, pc_names
 #define PT_ENUM_CYCLE SESSILE_PT_ENUM, cycle_names
 #define PT_ENUM_FORCING SESSILE_PT_ENUM, forcing_names
+#define PT_ENUM_INFLOW SESSILE_PT_ENUM, inflow_names
 #define BOUNDS_0 0
 #define BOUNDS_LO_OPEN SESSILE_PARAM_LO_OPEN
 #define DESC(type_, names_, name, def, lo, hi, bounds, unit, src, desc) \
@@ -69,7 +72,7 @@ static const sessile_param_alias aliases[] = {{"linear_rtol", "nutrient_ksp_rtol
  * defaults: every Newton step to the fixed tolerance, and no nested start;
  * they resume as they began (docs/run.md, docs/fluid.md). */
 static const sessile_param_before before[] = {
-    {"fluid_newton_forcing", "fixed"}, {"fluid_nested", "false"}, {NULL, NULL}};
+    {"fluid_newton_forcing", "fixed"}, {"fluid_nested", "false"}, {"nutrient_inflow", "zero_flux"}, {NULL, NULL}};
 
 const sessile_param_table sessile_grow_param_table = {
     "grow", sizeof(sessile_grow_params), (int)(sizeof descs / sizeof descs[0]), descs, validate, aliases, before};

@@ -17,7 +17,9 @@ REAL cut_z(uint k) { return pc.h * REAL(k); }
 
 // The Dirichlet nodes that are not the sponge: the substratum (c = 0), and
 // the far field (c = 1): the layers at or above the far-field height, or
-// every other wall.  Returns 1 and the value for them.
+// every other wall; FAR_PROFILE's inflow wall x = 0 carries the bare
+// substratum's profile z / height (the water the current brings, undisturbed
+// by the sponge).  Returns 1 and the value for them.
 bool cut_node_dirichlet(uint c[3], out REAL value) {
   value = REAL(0);
   if (c[2] == 0u) return true;
@@ -29,6 +31,10 @@ bool cut_node_dirichlet(uint c[3], out REAL value) {
   }
   value = REAL(1);
   if (pc.far_field == FAR_INLET && c[0] == 0u) return true; // fresh water through the inlet
+  if (pc.far_field == FAR_PROFILE && c[0] == 0u) {
+    value = min(cut_z(c[2]) / pc.height, REAL(1));
+    return true;
+  }
   // a layer within 1e-9 h of the plane is on it (28.8 is not 24 x 1.2 in binary)
   return !(cut_z(c[2]) < pc.height - REAL(1e-9) * pc.h);
 }

@@ -32,12 +32,13 @@ typedef struct {
   sessile_surface s;
 } t_dome;
 
-static inline void t_dome_make(sessile_la *la, double radius, t_dome *d) {
+static inline void t_dome_make_far(sessile_la *la, double radius, sessile_far_field ff, t_dome *d) {
   const double o[3] = {0, 0, 0}, c0[3] = {9.6, 9.6, 0};
   const uint32_t cells[3] = {16, 16, 12};
   t_must("box", sessile_box_make(o, 1.2, cells, 2, &d->b));
   sessile_cut_bc bc;
   sessile_cut_bc_default(&bc);
+  bc.far_field = ff;
   bc.height = 1.2 * 12;
   t_must("create", sessile_cut_nutrient_create(la, &d->b, &bc, 12, &d->nt));
   t_must("growth", sessile_growth_gpu_create(la, &d->gg));
@@ -52,6 +53,10 @@ static inline void t_dome_make(sessile_la *la, double radius, t_dome *d) {
     sessile_cut_nutrient_level(d->nt, l, &lb, &sb, &tb);
     t_must("cut", sessile_growth_gpu_cut(d->gg, &lb, sb, tb));
   }
+}
+
+static inline void t_dome_make(sessile_la *la, double radius, t_dome *d) {
+  t_dome_make_far(la, radius, SESSILE_FAR_FIELD_HEIGHT, d);
 }
 
 static inline void t_dome_free(t_dome *d) {

@@ -71,7 +71,8 @@ static void setup_vs_ref(sessile_far_field ff) {
   sessile_cut_ref_ghost(&b, &bc, mask, theta, c, ext);
   size_t dm = 0;
   for (size_t i = 0; i < n; i++) dm += mask[i] != gmask[i];
-  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet" : "height";
+  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet"
+                   : ff == SESSILE_FAR_FIELD_PROFILE ? "profile" : "height";
   char what[160];
   snprintf(what, sizeof what, "far field %s: setup mask GPU vs reference, differing nodes", nm);
   t_check(what, (double)dm, 0);
@@ -291,6 +292,7 @@ int main(int argc, char **argv) {
   setup_vs_ref(SESSILE_FAR_FIELD_HEIGHT);
   setup_vs_ref(SESSILE_FAR_FIELD_WALLS);
   setup_vs_ref(SESSILE_FAR_FIELD_INLET);
+  setup_vs_ref(SESSILE_FAR_FIELD_PROFILE);
   dome_solve(SESSILE_CUT_SOLVER_JACOBI);
   dome_solve(SESSILE_CUT_SOLVER_MG);
   convergence();

@@ -15,7 +15,11 @@
  *    h, h/2, h/4;
  *  - a dome on the floor in a uniform current: c = 0 on the solid, in [0, 1]
  *    (the fitted operator is an M-matrix), MG and Jacobi agree, the wake is
- *    depleted downstream. */
+ *    depleted downstream;
+ *  - the far field PROFILE (also in the reference comparison above): its
+ *    inflow wall holds the bare profile z / H, and upstream of the dome the
+ *    field keeps it within 1e-3, where the zero-flux wall of HEIGHT lets the
+ *    dome's depletion reach the inflow (inflow()). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -188,7 +192,8 @@ static void solve_vs_ref(sessile_far_field ff) {
   ko.rtol = 1e-12;
   ko.max_it = 2000;
   sessile_solve_result res;
-  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet" : "height";
+  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet"
+                   : ff == SESSILE_FAR_FIELD_PROFILE ? "profile" : "height";
   for (int s = 0; s < 2; s++) {
     sessile_cut_solver solver = s ? SESSILE_CUT_SOLVER_JACOBI : SESSILE_CUT_SOLVER_MG;
     t_must("fill", sessile_vec_fill(la, 0.5, cv));
@@ -423,6 +428,63 @@ static void dome(void) {
   t_dome_free(&dm);
 }
 
+/* The inflow wall (docs/nutrient.md, "The inflow"): the dome in a 5 cm/s
+ * current along +x, under PROFILE and under HEIGHT (zero flux through x = 0),
+ * max |c - z/H| over the wall x = 0 and over the column plane x = 2h (1.2 cm
+ * downstream of it, 3.4 cm upstream of the dome):
+ *  - level flow (w = 0): z / H solves the bare box exactly and the dome's
+ *    depletion reaches upstream over D/U = 2 mm only, so both keep the bare
+ *    profile there (PROFILE within 1e-3);
+ *  - a gentle updraft w = 2.5 mm/s (the flow rising over a sponge): PROFILE's
+ *    wall holds z / H exactly and x = 2h is lifted by w/U x 1.2 cm = 0.6 mm
+ *    (|c - z/H| <= 0.01); the zero-flux wall takes its neighbour's value, so
+ *    the inflow settles where w c_z = D c_zz (w H / D = 3.6: far from linear),
+ *    set by the grid next to the wall (the resolution and box dependence of
+ *    grow's advected runs before PROFILE): at least 5x PROFILE's deviation. */
+static void inflow(void) {
+  const double D = 1e-4, H = 1.2 * 12;
+  double dev[2][2], wall[2][2];
+  for (int up = 0; up < 2; up++)
+    for (int k = 0; k < 2; k++) {
+      t_dome dm;
+      t_dome_make_far(la, 5.0, k ? SESSILE_FAR_FIELD_HEIGHT : SESSILE_FAR_FIELD_PROFILE, &dm);
+      const sessile_box b = dm.b;
+      size_t n = sessile_box_nodes(&b);
+      double *vel = t_dalloc(3 * n), *x = t_dalloc(n);
+      for (size_t i = 0; i < n; i++) vel[3 * i] = 0.05, vel[3 * i + 2] = up ? 0.0025 : 0;
+      sessile_vec *c;
+      t_must("vec", sessile_vec_create(la, (uint32_t)n, &c));
+      sessile_ksp_options ko;
+      sessile_ksp_options_default(&ko);
+      ko.rtol = 1e-10;
+      ko.max_it = 3000;
+      sessile_solve_result res;
+      t_must("fill", sessile_vec_fill(la, 0, c));
+      t_must("solve", sessile_cut_nutrient_solve_advected(dm.nt, SESSILE_CUT_SOLVER_MG, vel, D, c, &ko, &res));
+      t_true("inflow: the solve converged", res.status == SESSILE_SOLVE_CONVERGED);
+      t_must("download", sessile_vec_download(c, x));
+      wall[up][k] = dev[up][k] = 0;
+      for (uint32_t kk = 0; kk < b.n[2]; kk++)
+        for (uint32_t j = 0; j < b.n[1]; j++) {
+          double bare = fmin(b.h * kk / H, 1);
+          size_t w = (size_t)b.n[0] * (j + (size_t)b.n[1] * kk); /* x = 0; w + 2: x = 2h */
+          wall[up][k] = fmax(wall[up][k], fabs(x[w] - bare));
+          dev[up][k] = fmax(dev[up][k], fabs(x[w + 2] - bare));
+        }
+      sessile_vec_destroy(c);
+      free(vel), free(x);
+      t_dome_free(&dm);
+    }
+  for (int up = 0; up < 2; up++)
+    printf("   inflow, %s: max |c - z/H| profile: %.1e on the wall, %.2e at x = 2h; zero flux: %.2e on the wall, "
+           "%.2e at x = 2h\n", up ? "updraft 2.5 mm/s" : "level flow", wall[up][0], dev[up][0], wall[up][1], dev[up][1]);
+  t_check("inflow, profile, level flow: the wall holds z / H", wall[0][0], tol_k);
+  t_check("inflow, profile, level flow: max |c - z/H| at x = 2h", dev[0][0], 1e-3);
+  t_check("inflow, profile, updraft: the wall holds z / H", wall[1][0], tol_k);
+  t_check("inflow, profile, updraft: max |c - z/H| at x = 2h (lifted 0.6 mm)", dev[1][0], 1e-2);
+  t_true("inflow, updraft: the zero-flux wall drifts at least 5x further from z / H", dev[1][1] >= 5 * dev[1][0]);
+}
+
 int main(int argc, char **argv) {
   int prec = argc > 1 && strcmp(argv[1], "--fp32") == 0 ? 32 : 0;
   sessile_gpu *g = t_gpu(prec);
@@ -432,7 +494,9 @@ int main(int argc, char **argv) {
   solve_vs_ref(SESSILE_FAR_FIELD_HEIGHT);
   solve_vs_ref(SESSILE_FAR_FIELD_WALLS);
   solve_vs_ref(SESSILE_FAR_FIELD_INLET);
+  solve_vs_ref(SESSILE_FAR_FIELD_PROFILE);
   dome();
+  inflow();
   convergence();
   sessile_la_destroy(la);
   return t_finish(g);

@@ -30,12 +30,20 @@ enum { SESSILE_CUT_FREE = 0, SESSILE_CUT_SOLID = 1, SESSILE_CUT_NODE = 2 };
 
 /* HEIGHT: c = 1 at and above the plane, zero-flux side walls; WALLS: c = 1 on
  * every wall but the substratum; INLET: HEIGHT, and c = 1 on the wall x = 0
- * above the substratum (fresh water arriving with a current along +x). */
-typedef enum { SESSILE_FAR_FIELD_HEIGHT = 0, SESSILE_FAR_FIELD_WALLS = 1, SESSILE_FAR_FIELD_INLET = 2 } sessile_far_field;
+ * above the substratum (fresh water arriving with a current along +x);
+ * PROFILE: HEIGHT, and on the wall x = 0 the bare substratum's profile
+ * c = min(z / height, 1): the water a current along +x brings, undisturbed by
+ * the sponge (the advected nutrient's inflow, docs/nutrient.md). */
+typedef enum {
+  SESSILE_FAR_FIELD_HEIGHT = 0,
+  SESSILE_FAR_FIELD_WALLS = 1,
+  SESSILE_FAR_FIELD_INLET = 2,
+  SESSILE_FAR_FIELD_PROFILE = 3
+} sessile_far_field;
 
 typedef struct sessile_cut_bc {
   sessile_far_field far_field;
-  double height;    /* HEIGHT, INLET: the far-field plane, cm above the substratum (<= the box top) */
+  double height;    /* HEIGHT, INLET, PROFILE: the far-field plane, cm above the substratum (<= the box top) */
   double theta_min; /* cut fractions are raised to at least this (default 1e-3) */
 } sessile_cut_bc;
 void sessile_cut_bc_default(sessile_cut_bc *bc); /* WALLS off: HEIGHT at the caller's top */

@@ -47,6 +47,11 @@ extern "C" {
     "far_field = height or inlet: c = 1 at and above this height over the substratum (<= the box top); "  \
     "-1 = 4.8 sponge_radius (28.8 cm for the paper's 6 cm sponge), whatever the box (at most "    \
     "its top, at least two node spacings over the sponge)")                                         \
+  X(nutrient_inflow, ENUM_INFLOW, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                          \
+    "diffusion_limited = false and far_field = height: what the current brings through the inflow " \
+    "wall x = 0: profile (the bare substratum's c = z / far_field_height, undisturbed by the "    \
+    "sponge) or zero_flux (no diffusive flux there, the earlier model: the box then recirculates " \
+    "the sponge's depletion, and the result depends on the box and the grid)")                   \
   X(nutrient_pc_type, ENUM_SOLVER, 0, 0, 1, 0, "", "ours (docs/nutrient.md)",                         \
     "mg (multigrid-preconditioned CG on the nested box levels) or jacobi (Jacobi-PCG, for comparison)") \
   X(box_resolution, INT, 2, 1, 6, 0, "", "Table 1",                                                   \
@@ -139,6 +144,8 @@ typedef enum { SESSILE_SKELETON_RADIATE = 0, SESSILE_SKELETON_HALICHONDRID = 1 }
 typedef enum { SESSILE_DOMAIN_IMMERSED = 0, SESSILE_DOMAIN_CONFORMING = 1 } sessile_domain;
 typedef enum { SESSILE_PROBE_FLUX = 0, SESSILE_PROBE_PAPER = 1 } sessile_probe;
 typedef enum { SESSILE_FAR_HEIGHT = 0, SESSILE_FAR_WALLS = 1, SESSILE_FAR_INLET = 2 } sessile_far;
+/* nutrient_inflow: the inflow wall of the advected nutrient under far_field = height. */
+typedef enum { SESSILE_INFLOW_PROFILE = 0, SESSILE_INFLOW_ZERO_FLUX = 1 } sessile_inflow;
 typedef enum { SESSILE_SOLVER_MG = 0, SESSILE_SOLVER_JACOBI = 1 } sessile_solver;
 typedef enum { SESSILE_TRANSLOCATE_PARALLEL = 0, SESSILE_TRANSLOCATE_SEQUENTIAL = 1 } sessile_translocate;
 typedef enum { SESSILE_ADVECTION_CUT = 0, SESSILE_ADVECTION_TET = 1 } sessile_advection;
@@ -156,6 +163,7 @@ typedef struct sessile_grow_params {
 #define SESSILE_PARAM_FIELD_ENUM_DOMAIN(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_PROBE(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_FAR(n) int n;
+#define SESSILE_PARAM_FIELD_ENUM_INFLOW(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_SOLVER(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_TRANSLOCATE(n) int n;
 #define SESSILE_PARAM_FIELD_ENUM_ADV(n) int n;
