@@ -32,6 +32,13 @@ typedef struct {
   sessile_surface s;
 } t_dome;
 
+static inline const char *t_far_name(sessile_far_field ff) {
+  return ff == SESSILE_FAR_FIELD_WALLS     ? "walls"
+         : ff == SESSILE_FAR_FIELD_INLET   ? "inlet"
+         : ff == SESSILE_FAR_FIELD_PROFILE ? "profile"
+                                           : "height";
+}
+
 static inline void t_dome_make_far(sessile_la *la, double radius, sessile_far_field ff, t_dome *d) {
   const double o[3] = {0, 0, 0}, c0[3] = {9.6, 9.6, 0};
   const uint32_t cells[3] = {16, 16, 12};

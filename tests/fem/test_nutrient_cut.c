@@ -71,8 +71,7 @@ static void setup_vs_ref(sessile_far_field ff) {
   sessile_cut_ref_ghost(&b, &bc, mask, theta, c, ext);
   size_t dm = 0;
   for (size_t i = 0; i < n; i++) dm += mask[i] != gmask[i];
-  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet"
-                   : ff == SESSILE_FAR_FIELD_PROFILE ? "profile" : "height";
+  const char *nm = t_far_name(ff);
   char what[160];
   snprintf(what, sizeof what, "far field %s: setup mask GPU vs reference, differing nodes", nm);
   t_check(what, (double)dm, 0);

@@ -192,8 +192,7 @@ static void solve_vs_ref(sessile_far_field ff) {
   ko.rtol = 1e-12;
   ko.max_it = 2000;
   sessile_solve_result res;
-  const char *nm = ff == SESSILE_FAR_FIELD_WALLS ? "walls" : ff == SESSILE_FAR_FIELD_INLET ? "inlet"
-                   : ff == SESSILE_FAR_FIELD_PROFILE ? "profile" : "height";
+  const char *nm = t_far_name(ff);
   for (int s = 0; s < 2; s++) {
     sessile_cut_solver solver = s ? SESSILE_CUT_SOLVER_JACOBI : SESSILE_CUT_SOLVER_MG;
     t_must("fill", sessile_vec_fill(la, 0.5, cv));
@@ -379,6 +378,25 @@ static void convergence(void) {
   }
 }
 
+/* The advected solve from c = 0 to rtol (at most 3000 iterations) into x. */
+static sessile_solve_result adv_solve(sessile_cut_nutrient *nt, sessile_cut_solver solver, const double *vel,
+                                      double D, double rtol, double *x) {
+  sessile_box b;
+  sessile_cut_nutrient_level(nt, 0, &b, NULL, NULL);
+  sessile_vec *c;
+  t_must("vec", sessile_vec_create(la, (uint32_t)sessile_box_nodes(&b), &c));
+  sessile_ksp_options ko;
+  sessile_ksp_options_default(&ko);
+  ko.rtol = rtol;
+  ko.max_it = 3000;
+  sessile_solve_result res;
+  t_must("fill", sessile_vec_fill(la, 0, c));
+  t_must("solve", sessile_cut_nutrient_solve_advected(nt, solver, vel, D, c, &ko, &res));
+  t_must("download", sessile_vec_download(c, x));
+  sessile_vec_destroy(c);
+  return res;
+}
+
 /* A dome on the floor in a uniform current along x. */
 static void dome(void) {
   t_dome dm;
@@ -389,23 +407,14 @@ static void dome(void) {
   size_t n = sessile_box_nodes(&b);
   double *vel = t_dalloc(3 * n), *x[2] = {t_dalloc(n), t_dalloc(n)};
   for (size_t i = 0; i < n; i++) vel[3 * i] = 0.05;
-  sessile_vec *c;
-  t_must("vec", sessile_vec_create(la, (uint32_t)n, &c));
-  sessile_ksp_options ko;
-  sessile_ksp_options_default(&ko);
-  ko.rtol = 1e-9;
-  ko.max_it = 3000;
   int its[2];
   uint32_t *m = calloc(n, 4);
   for (int k = 0; k < 2; k++) {
-    sessile_solve_result res;
-    t_must("fill", sessile_vec_fill(la, 0, c));
-    t_must("solve", sessile_cut_nutrient_solve_advected(nt, k ? SESSILE_CUT_SOLVER_JACOBI : SESSILE_CUT_SOLVER_MG,
-                                                        vel, D, c, &ko, &res));
+    sessile_solve_result res =
+        adv_solve(nt, k ? SESSILE_CUT_SOLVER_JACOBI : SESSILE_CUT_SOLVER_MG, vel, D, 1e-9, x[k]);
     t_true(k ? "dome, jacobi: converged to 1e-9" : "dome, mg: converged to 1e-9",
            res.status == SESSILE_SOLVE_CONVERGED && res.true_relres <= 1e-9);
     its[k] = res.iterations;
-    t_must("download", sessile_vec_download(c, x[k]));
   }
   t_must("download", sessile_buffer_download(sessile_cut_nutrient_mask(nt), 0, m, n * 4));
   double lo = INFINITY, hi = -INFINITY, smax = 0;
@@ -423,7 +432,6 @@ static void dome(void) {
   t_true("dome: 0 <= c <= 1 (M-matrix: discrete maximum principle)", lo >= -1e-12 && hi <= 1 + 1e-12);
   t_true("dome: the wake is depleted (c downstream < c upstream)", cd < cu);
   t_true("dome: MG needs fewer iterations than Jacobi", its[0] < its[1]);
-  sessile_vec_destroy(c);
   free(vel), free(x[0]), free(x[1]), free(m);
   t_dome_free(&dm);
 }
@@ -452,17 +460,8 @@ static void inflow(void) {
       size_t n = sessile_box_nodes(&b);
       double *vel = t_dalloc(3 * n), *x = t_dalloc(n);
       for (size_t i = 0; i < n; i++) vel[3 * i] = 0.05, vel[3 * i + 2] = up ? 0.0025 : 0;
-      sessile_vec *c;
-      t_must("vec", sessile_vec_create(la, (uint32_t)n, &c));
-      sessile_ksp_options ko;
-      sessile_ksp_options_default(&ko);
-      ko.rtol = 1e-10;
-      ko.max_it = 3000;
-      sessile_solve_result res;
-      t_must("fill", sessile_vec_fill(la, 0, c));
-      t_must("solve", sessile_cut_nutrient_solve_advected(dm.nt, SESSILE_CUT_SOLVER_MG, vel, D, c, &ko, &res));
+      sessile_solve_result res = adv_solve(dm.nt, SESSILE_CUT_SOLVER_MG, vel, D, 1e-10, x);
       t_true("inflow: the solve converged", res.status == SESSILE_SOLVE_CONVERGED);
-      t_must("download", sessile_vec_download(c, x));
       wall[up][k] = dev[up][k] = 0;
       for (uint32_t kk = 0; kk < b.n[2]; kk++)
         for (uint32_t j = 0; j < b.n[1]; j++) {
@@ -471,7 +470,6 @@ static void inflow(void) {
           wall[up][k] = fmax(wall[up][k], fabs(x[w] - bare));
           dev[up][k] = fmax(dev[up][k], fabs(x[w + 2] - bare));
         }
-      sessile_vec_destroy(c);
       free(vel), free(x);
       t_dome_free(&dm);
     }
