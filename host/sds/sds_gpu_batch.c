@@ -51,25 +51,51 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
                 "sds: steps per batch must be 1..%d (got %u)", SDS_BATCH_MAX, b->steps);
   b->done = 0, b->events = 0;
   SESSILE_CALL(sds_gpu_lists_ensure(s));
-  SESSILE_CALL(sds_gpu_batch_rules_start(s));
-  /* the control's scalars (kernels.def, step): the step asked, the time, the
-   * stop time, the lists' growth term of sds_gpu_lists_stale */
+  /* The batch's inputs and results ride in its own submission
+   * (sessile_cmd_upload/download): on a discrete GPU each blocking transfer
+   * is a submission and a wait of its own, seven a batch before (docs/sds.md,
+   * "The loop on the device").  The control's scalars (kernels.def, step):
+   * the step asked, the time, the stop time, the lists' growth term of
+   * sds_gpu_lists_stale. */
   double ctl[5] = {b->dt, b->time, b->t_stop, s->p.contact_scale * s->grown, 0};
-  SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_STEP], 3, ctl, 5));
   const uint32_t zero[4] = {0, 0, 0, 0};
-  SESSILE_CALL(sessile_buffer_upload(s->b[B_EVENT], 0, zero, sizeof zero));
+  uint32_t ev[4];
+  double st[SDS_STEP_LOG];
   SESSILE_CALL(sds_gpu_begin(s));
+  SESSILE_CALL(sds_gpu_batch_rules_start(s));
+  SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_STEP], 3, ctl, 5));
+  SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_EVENT], 0, zero, sizeof zero));
   SESSILE_CALL(record_batch(s, b->steps));
+  SESSILE_CALL(sessile_cmd_download(s->cmd, s->b[B_EVENT], 0, ev, sizeof ev));
+  SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_STEP], 0, st, SDS_STEP_LOG));
+  /* every step's row; the accepted ones (done, below) are read */
+  if (b->log) SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_STEP], SDS_STEP_LOG, b->log, 2 * (size_t)b->steps));
+  /* Unmapped buffers (a discrete GPU): what the loop reads after a batch
+   * comes down in it too: x, v of both pairs (the batch may end on either),
+   * the radii its rules grew, the rules' events and cells. */
+  int rec = !sessile_buffer_host_ptr(s->b[B_X0]);
+  size_t n3 = 3 * (size_t)s->ncells;
+  if (rec) {
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_X0], 0, s->hx, n3));
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_V0], 0, s->hv, n3));
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_X1], 0, s->hx2, n3));
+    SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_V1], 0, s->hv2, n3));
+    SESSILE_CALL(sds_gpu_batch_rules_end(s));
+  }
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   s->flags_cur = -1, s->mirror = -1;
   SESSILE_CALL(sds_gpu_submit(s));
-  uint32_t ev[4];
-  double st[SDS_STEP_LOG];
-  SESSILE_CALL(sessile_buffer_download(s->b[B_EVENT], 0, ev, sizeof ev));
-  SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], 0, st, SDS_STEP_LOG));
   uint32_t done = ev[1], e = ev[0];
   SESSILE_CHECK(done <= b->steps, SESSILE_ERR_INTERNAL, "sds: a batch of %u steps accepted %u", b->steps, done);
-  if (b->log && done) SESSILE_CALL(sessile_buffer_download_reals(s->b[B_STEP], SDS_STEP_LOG, b->log, 2 * (size_t)done));
+  if (rec) { /* hx, hv hold pair 0, hx2, hv2 pair 1: the current pair into hx, hv */
+    if ((s->cur + (int)done) & 1) {
+      double *t = s->hx;
+      s->hx = s->hx2, s->hx2 = t;
+      t = s->hv, s->hv = s->hv2, s->hv2 = t;
+    }
+    s->mirror = (s->cur + (int)done) & 1;
+    sds_gpu_batch_rules_ready(s);
+  }
   s->cur = (s->cur + (int)done) & 1; /* a rejected step wrote the other pair */
   b->done = done, b->events = e;
   if (done) b->time = st[4], b->dt = st[3];

@@ -20,9 +20,21 @@ static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int 
 
 sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
   if (!s->rules || s->hook != rules_hook) return SESSILE_OK;
-  SESSILE_CALL(sds_gpu_rules_clear(s->rules));
-  if (s->rb && sds_gpu_contacts_on(s)) SESSILE_CALL(sessile_buffer_upload_reals(s->b[B_RB], 0, s->rb, s->ncells));
+  SESSILE_CALL(sds_gpu_rules_record_clear(s->rules, s->cmd));
+  if (s->rb && sds_gpu_contacts_on(s)) SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_RB], 0, s->rb, s->ncells));
   return SESSILE_OK;
+}
+
+sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s) {
+  if (!s->rules || s->hook != rules_hook) return SESSILE_OK;
+  SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_RM], 0, s->rm, 2 * (size_t)s->ncells));
+  return sds_gpu_rules_record_results(s->rules, s->cmd);
+}
+
+void sds_gpu_batch_rules_ready(sessile_sds_gpu *s) {
+  if (!s->rules || s->hook != rules_hook) return;
+  s->rm_fresh = 1;
+  sds_gpu_rules_results_ready(s->rules);
 }
 
 void sds_gpu_batch_rules(sessile_sds_gpu *s, sds_gpu_rules *r, uint32_t nsub_max) {
@@ -33,6 +45,7 @@ void sds_gpu_batch_rules(sessile_sds_gpu *s, sds_gpu_rules *r, uint32_t nsub_max
 
 sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s) {
   SESSILE_CHECK(!s->rm_pending, SESSILE_ERR_INTERNAL, "sds: radii pulled over an upload not yet made");
+  if (s->rm_fresh) return SESSILE_OK; /* the batch's submission brought them */
   return sessile_buffer_download_reals(s->b[B_RM], 0, s->rm, 2 * (size_t)s->ncells);
 }
 

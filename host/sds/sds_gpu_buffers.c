@@ -24,7 +24,7 @@ sessile_status sds_gpu_ensure(sessile_sds_gpu *s, int i, size_t bytes) {
 /* Starts a recording: r, m first when update_radii left them pending. */
 sessile_status sds_gpu_begin(sessile_sds_gpu *s) {
   SESSILE_CALL(sessile_cmd_begin(s->cmd));
-  s->rm_in_rec = s->rm_pending;
+  s->rm_in_rec = s->rm_pending, s->rm_fresh = 0;
   if (s->rm_pending) return sessile_cmd_upload_reals(s->cmd, s->b[B_RM], 0, s->rm, 2 * (size_t)s->ncells);
   return SESSILE_OK;
 }
@@ -176,7 +176,7 @@ sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sd
   size_t n = o->ncells;
   /* they go up with the next recording (begin) */
   for (size_t c = 0; c < n; c++) s->rm[2 * c] = dev_real(s, o->r[c]), s->rm[2 * c + 1] = dev_real(s, o->m[c]);
-  s->rm_pending = 1;
+  s->rm_pending = 1, s->rm_fresh = 0;
   memcpy(s->r_up, o->r, n * sizeof *s->r_up);
   if (s->lists_valid) sds_gpu_lists_check_moves(s, o); /* the topology is the same */
   s->h_self = SDS_HASH_CELL * sds_mean_side(o->x, o->face, o->nfaces);
@@ -271,13 +271,15 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   double *sc = realloc(s->scratch, (n ? 3 * n : 1) * sizeof *sc);
   SESSILE_CHECK(sc, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
   s->scratch = sc;
-  double *rm = realloc(s->rm, (n ? 2 * n : 1) * sizeof *rm), *hx = NULL, *hv = NULL;
+  double *rm = realloc(s->rm, (n ? 2 * n : 1) * sizeof *rm), *hx = NULL, *hv = NULL, *hx2 = NULL, *hv2 = NULL;
   if (rm) s->rm = rm, hx = realloc(s->hx, (n ? 3 * n : 1) * sizeof *hx);
   if (hx) s->hx = hx, hv = realloc(s->hv, (n ? 3 * n : 1) * sizeof *hv);
-  SESSILE_CHECK(rm && hx && hv, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
-  s->hv = hv;
+  if (hv) s->hv = hv, hx2 = realloc(s->hx2, (n ? 3 * n : 1) * sizeof *hx2);
+  if (hx2) s->hx2 = hx2, hv2 = realloc(s->hv2, (n ? 3 * n : 1) * sizeof *hv2);
+  SESSILE_CHECK(rm && hx && hv && hx2 && hv2, SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu cells", n);
+  s->hv2 = hv2;
   for (size_t c = 0; c < n; c++) s->rm[2 * c] = dev_real(s, o->r[c]), s->rm[2 * c + 1] = dev_real(s, o->m[c]);
-  s->rm_pending = 0, s->mirror = -1;
+  s->rm_pending = 0, s->mirror = -1, s->rm_fresh = 0;
   s->ncells = (uint32_t)n, s->nedges = (uint32_t)E, s->ntets = (uint32_t)T;
   s->nfaces = (uint32_t)F, s->tsize = tsize, s->nsurf = (uint32_t)nsurf;
   /* hash cell size: the mean boundary side (Teschner et al.: about the mean
@@ -316,7 +318,7 @@ void sessile_sds_gpu_destroy(sessile_sds_gpu *s) {
   for (int i = 0; i < SDS_MORPH_STEP; i++) sessile_kernel_destroy(s->k[i]);
   sessile_cmd_destroy(s->cmd);
   free(s->scratch), free(s->xb), free(s->rb), free(s->r_up), free(s->topo_up), free(s->sub);
-  free(s->rm), free(s->hx), free(s->hv);
+  free(s->rm), free(s->hx), free(s->hv), free(s->hx2), free(s->hv2);
   free(s);
 }
 

@@ -55,9 +55,12 @@ struct sessile_sds_gpu {
    * rm holds r, m as the device holds them (it never writes them), and goes
    * up with the next recording when rm_pending; a step of the loop downloads
    * its x, v into hx, hv inside its own submission (pair `mirror`, -1: none)
-   * when the buffers are not mapped. */
-  double *rm, *hx, *hv;
-  int rm_pending, rm_in_rec, mirror;
+   * when the buffers are not mapped.  A batch, which ends on either pair,
+   * downloads both in its submission: the other into hx2, hv2 (swapped in
+   * when it is the current), and the radii its rules grew (rm_fresh until
+   * the next recording). */
+  double *rm, *hx, *hv, *hx2, *hv2;
+  int rm_pending, rm_in_rec, mirror, rm_fresh;
   uint32_t *topo_up; /* the topology words of the last upload (a change invalidates the lists) */
   size_t ntopo_up;
   uint64_t builds;  /* list builds so far (partial ones included) */

@@ -19,6 +19,12 @@ struct sds_gpu_rules {
   uint32_t ncells, nmorph, nstate;
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
   double density;
+  /* A batch's results downloaded in its own submission (record_results):
+   * the event words, the amounts in R_PHI and R_PHI2, the states; `fresh`
+   * from the submission until the next recording or upload on r. */
+  uint32_t ev_host[SDS_EV_COUNT];
+  double *phi_host, *phi2_host, *state_host;
+  int fresh;
 };
 
 static sessile_status ensure(sds_gpu_rules *r, int i, size_t bytes) {
@@ -66,6 +72,7 @@ sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, 
 void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   if (!r) return;
   for (int i = 0; i < R_COUNT; i++) sessile_buffer_destroy(r->b[i]);
+  free(r->phi_host), free(r->phi2_host), free(r->state_host);
   sessile_kernel_destroy(r->k);
   sessile_kernel_destroy(r->k_bound);
   sessile_kernel_destroy(r->k_morph);
@@ -76,6 +83,16 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
                                        const double *state, double density) {
   SESSILE_CHECK(cl->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: no cells");
   size_t n = (size_t)cl->ncells, ne = cl->nbr_off[n], nm = r->nmorph, ns = r->nstate;
+  r->fresh = 0;
+  double *h[3] = {r->phi_host, r->phi2_host, r->state_host};
+  for (int i = 0; i < 3; i++) {
+    double *g = realloc(h[i], (n * (i < 2 ? nm : ns) + 1) * sizeof *g);
+    SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
+    h[i] = g;
+    if (i == 0) r->phi_host = g;
+    else if (i == 1) r->phi2_host = g;
+    else r->state_host = g;
+  }
   double *rm = malloc(2 * n * sizeof *rm);
   uint32_t *surf = malloc(n * sizeof *surf);
   sessile_status st =
@@ -102,16 +119,19 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
 static const uint32_t ev_zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0, 0}; /* BAD starts above every cell */
 
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
+  r->fresh = 0;
   return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
 sessile_status sds_gpu_rules_clear(sds_gpu_rules *r) {
+  r->fresh = 0;
   return sessile_buffer_upload(r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
 static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                sessile_buffer *phi, double time, double dt, uint32_t mode, uint32_t batch) {
   SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
+  r->fresh = 0;
   sds_rules_push p;
   memset(&p, 0, sizeof p);
   p.time = sessile_push_real_of(time, 8), p.dt = sessile_push_real_of(dt, 8);
@@ -148,7 +168,8 @@ static int by_cell(const void *a, const void *b) {
 }
 
 sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[SDS_EV_COUNT], double *req, uint32_t *nreq) {
-  SESSILE_CALL(sessile_buffer_download(r->b[R_EVENT], 0, ev, SDS_EV_COUNT * 4));
+  if (r->fresh) memcpy(ev, r->ev_host, sizeof r->ev_host);
+  else SESSILE_CALL(sessile_buffer_download(r->b[R_EVENT], 0, ev, SDS_EV_COUNT * 4));
   *nreq = ev[SDS_EV_NREQ] < r->ncells ? ev[SDS_EV_NREQ] : r->ncells;
   if (!*nreq || !req) return SESSILE_OK; /* req NULL: the event words only */
   SESSILE_CALL(sessile_buffer_download_reals(r->b[R_DIVREQ], 0, req, (size_t)SDS_REQ * *nreq));
@@ -178,6 +199,7 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
   memset(&p, 0, sizeof p);
   p.fudge = sessile_push_real_of(1 + 1e-9, 8); /* sds_rules' sub-step count, rounded as there */
   p.ncells = r->ncells, p.nmorph = r->nmorph, p.batch = batch, p.nsub_max = nsub_max, p.ctl = r->nk;
+  r->fresh = 0;
   sessile_buffer *b[] = {pos, r->b[R_OFF], r->b[R_NBR], r->b[R_DCOEF], step, pev, r->b[R_EVENT], r->b[R_KONST]};
   return sessile_cmd_dispatch(cmd, r->k_bound, 1, b, &p);
 }
@@ -210,10 +232,31 @@ void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub) {
   if (!r->nmorph || !((steps * nsub) & 1u)) return;
   sessile_buffer *t = r->b[R_PHI]; /* the amounts are in R_PHI2: it becomes R_PHI */
   r->b[R_PHI] = r->b[R_PHI2], r->b[R_PHI2] = t;
+  double *h = r->phi_host; /* and its download with it */
+  r->phi_host = r->phi2_host, r->phi2_host = h;
 }
+
+sessile_status sds_gpu_rules_record_results(sds_gpu_rules *r, sessile_cmd *cmd) {
+  size_t n = r->ncells;
+  r->fresh = 0;
+  SESSILE_CALL(sessile_cmd_download(cmd, r->b[R_EVENT], 0, r->ev_host, sizeof r->ev_host));
+  if (r->nmorph) {
+    SESSILE_CALL(sessile_cmd_download_reals(cmd, r->b[R_PHI], 0, r->phi_host, n * r->nmorph));
+    SESSILE_CALL(sessile_cmd_download_reals(cmd, r->b[R_PHI2], 0, r->phi2_host, n * r->nmorph));
+  }
+  if (r->nstate) SESSILE_CALL(sessile_cmd_download_reals(cmd, r->b[R_STATE], 0, r->state_host, n * r->nstate));
+  return SESSILE_OK;
+}
+
+void sds_gpu_rules_results_ready(sds_gpu_rules *r) { r->fresh = 1; }
 
 sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *state) {
   size_t n = r->ncells;
+  if (r->fresh) {
+    if (r->nmorph) memcpy(phi, r->phi_host, n * r->nmorph * sizeof *phi);
+    if (r->nstate) memcpy(state, r->state_host, n * r->nstate * sizeof *state);
+    return SESSILE_OK;
+  }
   if (r->nmorph) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_PHI], 0, phi, n * r->nmorph));
   if (r->nstate) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_STATE], 0, state, n * r->nstate));
   return SESSILE_OK;

@@ -45,6 +45,13 @@ sessile_buffer *sds_gpu_rules_buffer(const sds_gpu_rules *r, int which);
  * the cell count), read after the submission ran.  req: SDS_REQ per request
  * (NULL: the event words and the count only). */
 sessile_status sds_gpu_rules_read_events(sds_gpu_rules *r, uint32_t ev[SDS_EV_COUNT], double *req, uint32_t *nreq);
+/* Records into cmd, after its last dispatch, the downloads of the event
+ * words, amounts and states, which read_events and get_cells then give
+ * without a submission of their own once results_ready says the recording
+ * ran (until the next recording or upload on r).  For a discrete GPU, where
+ * each blocking read is a submission and a wait. */
+sessile_status sds_gpu_rules_record_results(sds_gpu_rules *r, sessile_cmd *cmd);
+void sds_gpu_rules_results_ready(sds_gpu_rules *r);
 
 /* The batched loop's entry (issue 33): with r attached to s, record mode 0
  * into s's open recording, reading s's positions and r, m (which mode 1 then
@@ -77,6 +84,11 @@ void sds_gpu_batch_rules(sessile_sds_gpu *s, sds_gpu_rules *r, uint32_t nsub_max
 /* A batch's start (sessile_sds_gpu_batch, after the lists' build): the
  * rules' events cleared, the radii at the lists' build up. */
 sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s);
+/* Its end, on unmapped buffers: the radii, events, amounts and states
+ * downloaded in the batch's submission (recorded after its last dispatch);
+ * ready after the submission ran. */
+sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s);
+void sds_gpu_batch_rules_ready(sessile_sds_gpu *s);
 sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s);
 sessile_status sds_gpu_download_prev_x(sessile_sds_gpu *s, double *x);
 /* The amounts and states as the device holds them. */

@@ -11,6 +11,9 @@
 #    sub-steps than a batch records (those steps' rules then the host's);
 #  - the rock model (an obstacle: the contact lists and their skin) to t = 5;
 #  - a run stopped by SIGINT after frame 1 and resumed: the same bytes;
+#  - a discrete GPU's paths (SESSILE_STAGED=1): a batch's transfers ride in
+#    its own submission, so the loop on the device makes under half the
+#    host-driven loop's submissions a step (counted by `bench sds`);
 #  - refusals: a rule the device cannot run (exp), a bad value.
 set -u
 S="$1"
@@ -76,6 +79,13 @@ check "device loop, SIGINT after frame 1: exit 130 (or it finished first: 0)" ev
 run sds run --resume "$T/b" --quiet
 check "... resumed: completes" rc_is 0
 check "... the bytes of the uninterrupted runs" same_run "$T/fast-h" "$T/b"
+
+# a discrete GPU's paths: every blocking transfer is a submission of its own
+# unless it rides in a recording (the batch's inputs, results and state)
+SESSILE_STAGED=1 "$S" bench sds --no-physics --rock-t 2 >"$T/bench" 2>&1
+check "staged: bench sds runs both loops" eval '[ $(grep -c "submissions (" "$T/bench") -eq 2 ]'
+check "staged: the loop on the device, under half the host-driven loop's submissions a step" \
+  "$PY" -c 'import re,sys; a=[float(x) for x in re.findall(r"submissions \(([0-9.]+) a step\)", open(sys.argv[1]).read())]; print("submissions a step:", a); sys.exit(0 if len(a) == 2 and a[1] < 0.5 * a[0] else 1)' "$T/bench"
 
 # refusals
 sed 's/^rule r2: tip == 0 \&\& phi > K \* volume -> grow Delta/rule r2: tip == 0 \&\& phi > K * volume -> grow Delta * exp(phi)/' \
