@@ -305,4 +305,36 @@ d = fig("divisions", T + "/l")
 ok &= d["divisions"] == int(np.loadtxt(T + "/l/sds/steps.csv", delimiter=",", skiprows=1)[:, 6].sum())
 sys.exit(0 if ok else 1)
 PYEOF
+
+# tools/sds/ensemble_figures.sh over a folder of realisations (the rock model
+# from two starts, to its first divisions): each row is figures.py's own
+# measure of that run, the means and standard errors those of the rows
+M="$(dirname "$0")/../../host/sds/models"
+{ cat "$M/rock.sds"; echo "start_jitter = 0.1"; } >"$T/rockj.sds"
+mkdir -p "$T/ens"
+for sd in 1 2; do "$S" sds run "$T/rockj.sds" --seed $sd --t-end 22 --frames 4 --out "$T/ens/s$sd" --quiet; done
+"$(dirname "$0")/../../tools/sds/ensemble_figures.sh" "$T/ens" 22 0 22 >"$T/ens.out" 2>&1
+check "ensemble_figures: one row per realisation, each figures.py's stripes, R^2 and first divisions" \
+  "$PY" -B - "$T/ens.out" "$T/ens" "$FIG" <<'PYEOF'
+import json, math, subprocess, sys
+import numpy as np
+out, ens, fig = sys.argv[1:4]
+m = json.loads(open(out).read().strip().splitlines()[-1])
+def last(*a):
+    return json.loads(subprocess.run(["/usr/bin/python3", "-B", fig, *a], capture_output=True, text=True,
+                                     check=True).stdout.strip().splitlines()[-1])
+ok = [r["seed"] for r in m["runs"]] == [1, 2]
+r2, sp = [], []
+for r in m["runs"]:
+    run = "%s/s%d" % (ens, r["seed"])
+    st, ce, dv = last("stripes", run, "--time", "22"), last("cells", run, "--from", "0", "--to", "22"), last("divisions", run)
+    ok &= r["stripes"] == [l["stripes"] for l in st["limbs"]] and r["r2"] == ce["r2"] and r["slope"] == ce["slope"]
+    ok &= r["spread1"] == dv["ranks"][0]["spread"] and r["simultaneous"] == dv["criteria"]["limbs_divide_near_simultaneously"]
+    r2.append(ce["r2"]), sp.append(dv["ranks"][0]["spread"])
+ok &= None not in r2 and r2[0] != r2[1]  # two starts, two histories
+ok &= abs(m["r2_mean"] - np.mean(r2)) < 1e-12 and abs(m["r2_se"] - np.std(r2, ddof=1) / math.sqrt(2)) < 1e-12
+ok &= abs(m["spread1_mean"] - np.mean(sp)) < 1e-12
+print("rows", m["runs"])
+sys.exit(0 if ok else 1)
+PYEOF
 finish
