@@ -84,14 +84,11 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   SESSILE_CHECK(cl->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: no cells");
   size_t n = (size_t)cl->ncells, ne = cl->nbr_off[n], nm = r->nmorph, ns = r->nstate;
   r->fresh = 0;
-  double *h[3] = {r->phi_host, r->phi2_host, r->state_host};
+  double **h[3] = {&r->phi_host, &r->phi2_host, &r->state_host};
   for (int i = 0; i < 3; i++) {
-    double *g = realloc(h[i], (n * (i < 2 ? nm : ns) + 1) * sizeof *g);
+    double *g = realloc(*h[i], (n * (i < 2 ? nm : ns) + 1) * sizeof *g);
     SESSILE_CHECK(g, SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
-    h[i] = g;
-    if (i == 0) r->phi_host = g;
-    else if (i == 1) r->phi2_host = g;
-    else r->state_host = g;
+    *h[i] = g;
   }
   double *rm = malloc(2 * n * sizeof *rm);
   uint32_t *surf = malloc(n * sizeof *surf);
@@ -121,11 +118,6 @@ static const uint32_t ev_zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0, 0}; /* B
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
   r->fresh = 0;
   return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
-}
-
-sessile_status sds_gpu_rules_clear(sds_gpu_rules *r) {
-  r->fresh = 0;
-  return sessile_buffer_upload(r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
 static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,

@@ -35,7 +35,6 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
 /* Records into cmd: the event words cleared (a batch's start), mode 0 at
  * `time`, mode 1 with step dt.  pos and rm NULL: its own POS and RM. */
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd);
-sessile_status sds_gpu_rules_clear(sds_gpu_rules *r); /* the same, now */
 sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                          double time);
 sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
