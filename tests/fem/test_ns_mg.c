@@ -68,8 +68,10 @@
 #include "la/bmg_internal.h" /* bmg_rec_cycle: the fp32 cycle's stop-slot guard */
 
 static sessile_gpu *gpu;
+static double dome_radius = 6.0; /* cm; --explore may change it */
 static sessile_la *la;
 static int fp64;
+static int explore; /* --explore: print where the slow mode sits */
 
 typedef struct {
   sessile_box box;
@@ -127,14 +129,13 @@ static double mg_factor(int lev, int stokes, int galerkin, const sessile_bcsr4 *
   sessile_mat *m = NULL;
   sessile_vec *rv = NULL, *zv = NULL;
   scene fine;
-  scene_make(lev, 6.0, &fine);
+  scene_make(lev, dome_radius, &fine);
   t_must("bmg", sessile_bmg_create(la, fine.box.n, o, &mg));
-  scene_free(&fine);
   sessile_bcsr4 ca[8];
   int nc = galerkin ? 0 : sessile_bmg_levels(mg) - 1;
   for (int l = 1; l <= nc; l++) { /* the rediscretised coarse operators */
     scene c;
-    scene_make(lev - l, 6.0, &c);
+    scene_make(lev - l, dome_radius, &c);
     system_of(&c, stokes, &ca[l - 1], NULL);
     t_must("coarse operator", sessile_bmg_set_operator(mg, l, &ca[l - 1]));
     scene_free(&c);
@@ -156,6 +157,19 @@ static double mg_factor(int lev, int stokes, int galerkin, const sessile_bcsr4 *
     for (size_t i = 0; i < n4; i++) r[i] = b[i] - r[i];
     nr[k + 1] = norm(r, n4);
   }
+  if (explore) { /* where the slowest mode's residual sits: its three largest entries */
+    static const char comp[4] = {'u', 'v', 'w', 'p'};
+    for (int t = 0; t < 3; t++) {
+      size_t im = 0;
+      for (size_t i = 0; i < n4; i++)
+        if (fabs(r[i]) > fabs(r[im])) im = i;
+      double xp[3];
+      sessile_box_node_pos(&fine.box, (uint32_t)(im / 4), xp);
+      printf("    largest residual %d: %c at (%.1f, %.1f, %.1f) cm, %.2e of the first\n", t + 1, comp[im % 4], xp[0],
+             xp[1], xp[2], fabs(r[im]) / nr[0]);
+      r[im] = 0;
+    }
+  }
   printf("    residuals:");
   for (int k = 0; k <= 12; k++) printf(" %.2e", nr[k] / nr[0]);
   printf("\n");
@@ -164,6 +178,7 @@ static double mg_factor(int lev, int stokes, int galerkin, const sessile_bcsr4 *
   sessile_mat_destroy(m);
   sessile_bmg_destroy(mg);
   for (int l = 0; l < nc; l++) sessile_bcsr4_free(&ca[l]);
+  scene_free(&fine);
   return pow(nr[12] / nr[4], 1.0 / 8);
 }
 
@@ -525,21 +540,29 @@ int main(int argc, char **argv) {
   setvbuf(stdout, NULL, _IOLBF, 0);
   int fp32 = 0;
   if (argc == 2 && !strcmp(argv[1], "--mg32")) return mg32_main();
-  if (argc == 7 && !strcmp(argv[1], "--explore")) { /* --explore LEVEL PRE POST OMEGA CYCLE: factors only */
+  /* --explore LEVEL PRE POST OMEGA CYCLE [RADIUS [MAX_LEVELS [COARSE_DENSE_MAX]]]: factors only
+   * (LEVEL 2-5: 9x9x7 to 65x65x49; RADIUS the dome's in cm, 0 for none but
+   * the floor's centre node; docs/fluid.md, "Multigrid") */
+  if (argc >= 7 && argc <= 10 && !strcmp(argv[1], "--explore")) {
     gpu = t_gpu(0);
     fp64 = 1;
+    explore = 1;
+    if (argc >= 8) dome_radius = atof(argv[7]);
     t_must("la", sessile_la_create(gpu, &la));
     for (int stokes = 1; stokes >= 0; stokes--) {
       scene sc;
-      scene_make(atoi(argv[2]), 6.0, &sc);
+      scene_make(atoi(argv[2]), dome_radius, &sc);
       sessile_bcsr4 a;
       double *b = t_dalloc((size_t)sc.n * 4);
       system_of(&sc, stokes, &a, b);
       sessile_bmg_options o;
       sessile_bmg_options_default(&o);
       o.pre = atoi(argv[3]), o.post = atoi(argv[4]), o.omega = atof(argv[5]), o.cycle = atoi(argv[6]);
+      if (argc >= 9) o.max_levels = atoi(argv[8]);
+      if (argc >= 10) o.coarse_dense_max = (uint32_t)atoi(argv[9]);
       int nl;
-      printf("%s: factor %.3f\n", stokes ? "Stokes" : "Oseen", mg_factor(atoi(argv[2]), stokes, 0, &a, b, &o, &nl));
+      double f = mg_factor(atoi(argv[2]), stokes, 0, &a, b, &o, &nl);
+      printf("%s: %u nodes, %d levels, factor %.3f\n", stokes ? "Stokes" : "Oseen", sc.n, nl, f);
       sessile_bcsr4_free(&a);
       free(b);
       scene_free(&sc);
