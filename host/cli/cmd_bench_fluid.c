@@ -29,7 +29,7 @@ static const char *help =
     "(docs/performance.md), never pass/fail.  The solver choices are the grow\n"
     "table's fluid_ksp_type, fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it,\n"
     "fluid_ksp_restart, fluid_newton_rtol, fluid_newton_max_it, fluid_nested,\n"
-    "fluid_mg_precision, fluid_mg_cycle and fluid_newton_forcing (--set;\n"
+    "fluid_mg_precision, fluid_mg_cycle, fluid_mg_sweeps and fluid_newton_forcing (--set;\n"
     "docs/fluid.md: a start far from the solution, here from rest, begins from the\n"
     "solution on the box of twice the spacing; --set fluid_nested=false for plain\n"
     "Newton from rest); the\n"
@@ -55,9 +55,9 @@ static const char *help =
     "GMRES iterations per step, wall and CPU seconds (the process's, lavapipe's\n"
     "threads included: on a loaded machine the fairer figure) and the ratios.\n"
     "pc mg's hierarchy (docs/fluid.md, \"Multigrid\"): --mg-smoother (8-colour block\n"
-    "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (pre and\n"
-    "post, default 2), --mg-cycle (v, w, the default, or vw: V on the finest level,\n"
-    "W below), --mg-galerkin (Galerkin coarse operators instead of the rediscretised ones),\n"
+    "Gauss-Seidel, default, or block Jacobi with omega 0.6), --mg-sweeps N (--set\n"
+    "fluid_mg_sweeps=N: sweeps before and after each coarse correction, default 3),\n"
+    "--mg-cycle (v, w, the default, or vw: V on the finest level, W below), --mg-galerkin (Galerkin coarse operators instead of the rediscretised ones),\n"
     "--mg-wg-max N (levels of at most N nodes smoothed in one workgroup, one dispatch\n"
     "for all their sweeps; default 1024, 0: never).\n"
     "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
@@ -67,7 +67,7 @@ static const char *help =
 static const char *table_key(const char *flag) {
   static const char *const map[][2] = {{"--restart", "fluid_ksp_restart"}, {"--pc", "fluid_pc_type"},
                                        {"--ksp", "fluid_ksp_type"}, {"--mg-precision", "fluid_mg_precision"},
-                                       {"--mg-cycle", "fluid_mg_cycle"},
+                                       {"--mg-cycle", "fluid_mg_cycle"}, {"--mg-sweeps", "fluid_mg_sweeps"},
                                        {"--forcing", "fluid_newton_forcing"}};
   for (size_t i = 0; i < sizeof map / sizeof map[0]; i++)
     if (!strcmp(flag, map[i][0])) return map[i][1];
@@ -242,12 +242,6 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
       if (v[0] == 'j') mgo.omega = 0.6;
       continue;
     }
-    if (!strcmp(a, "--mg-sweeps")) {
-      unsigned u;
-      if (cli_parse_uint("bench fluid", a, v, 1, 8, &u)) return EXIT_USAGE;
-      mgo.pre = mgo.post = (int)u;
-      continue;
-    }
     if (!strcmp(a, "--resolution")) {
       if (cli_parse_uint("bench fluid", a, v, 1, 4, &res)) return EXIT_USAGE;
     } else if (!strcmp(a, "--picard")) {
@@ -292,7 +286,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   fp.rho = p.fluid_density;
   fp.eta = p.fluid_viscosity;
   fp.inlet[0] = p.inlet_velocity;
-  fp.mg = mgo; /* the bench's own mg options; the table's (precision, cycle) over them */
+  fp.mg = mgo; /* the bench's own mg options; the table's (precision, cycle, sweeps) over them */
   sessile_params_fluid_solver(&p, &fp);
   if (picard >= 0) fp.picard_steps = picard;
   if (lsic >= 0) fp.lsic = lsic;
@@ -310,7 +304,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     if (fp.pc == SESSILE_PC_MG)
       printf("pc mg: %s smoother, %d+%d sweeps, %s-cycle in fp%d, %s coarse operators, levels of at most %u nodes "
              "smoothed in one workgroup\n",
-             mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", mgo.pre, mgo.post,
+             mgo.smoother == SESSILE_BMG_JACOBI ? "block Jacobi" : "8-colour block Gauss-Seidel", fp.mg.pre, fp.mg.post,
              fp.mg.cycle == 3 ? "VW" : fp.mg.cycle == 2 ? "W" : "V", gi->precision == 32 ? 32 : fp.mg.precision,
              galerkin ? "Galerkin" : "rediscretised", mgo.wg_max_nodes);
     if (fp.forcing == SESSILE_FLUID_FORCING_EW)

@@ -32,6 +32,8 @@ void sessile_fluid_params_default(sessile_fluid_params *p) {
   p->nested = 1;
   sessile_bmg_options_default(&p->mg);
   p->mg.precision = 32; /* the cycle in fp32 inside the fp64 GMRES: 7-19 % faster (docs/fluid.md, "Multigrid") */
+  p->mg.pre = p->mg.post = 3; /* W(3,3): 8 GMRES iterations a Newton step at box levels 1 and 2
+                                 where W(2,2) took 11 and 14, and less time (docs/fluid.md, "Multigrid") */
 }
 
 void sessile_fluid_destroy(sessile_fluid *fl) {

@@ -1,5 +1,6 @@
 /* The fluid's solver choices in the grow table (fluid_ksp_*, fluid_pc_type,
- * the Newton tolerance and bound, the nested start, the multigrid cycle's precision) mapped onto sessile_fluid_params: the one
+ * the Newton tolerance and bound, the nested start, the multigrid cycle's precision, kind and
+ * sweeps) mapped onto sessile_fluid_params: the one
  * place `sessile grow` and `sessile bench fluid` take them from. */
 #include "sessile/fem/fluid.h"
 #include "sessile/growth/grow_params.h"
@@ -23,4 +24,5 @@ void sessile_params_fluid_solver(const sessile_grow_params *p, sessile_fluid_par
   fp->nested = p->fluid_nested;
   fp->mg.precision = p->fluid_mg_precision;
   fp->mg.cycle = p->fluid_mg_cycle + 1; /* sessile_fluid_cycle: v, w, vw = bmg's 1, 2, 3 */
+  fp->mg.pre = fp->mg.post = p->fluid_mg_sweeps;
 }

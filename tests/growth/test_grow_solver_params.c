@@ -1,12 +1,12 @@
 /* The fluid's solver choices in the grow table (fluid_ksp_type,
  * fluid_pc_type, fluid_ksp_rtol, fluid_ksp_max_it, fluid_ksp_restart,
  * fluid_newton_rtol, fluid_newton_max_it, fluid_nested, fluid_mg_precision,
- * fluid_mg_cycle, fluid_newton_forcing): the table's defaults map onto the
+ * fluid_mg_cycle, fluid_mg_sweeps, fluid_newton_forcing): the table's defaults map onto the
  * fluid library's own defaults (today's behaviour) but for the forcing (the
  * table's ew, the library's the paper's fixed), fluid_pc_type's names are the
  * pc registry's (every registered pc but mg, in sessile_pc_type's order),
  * every value set by name arrives in sessile_fluid_params (a precision
- * other than 64 or 32 is refused), the memory estimate counts the fp32
+ * other than 64 or 32 is refused, and sweeps outside 1-8), the memory estimate counts the fp32
  * cycle's copies, and a small flow solve reports the Krylov method and
  * preconditioner it ran with. */
 #include <stdlib.h>
@@ -29,6 +29,7 @@ static void defaults_are_the_fluids(void) {
   got.pc = SESSILE_PC_BLOCK_JACOBI;
   got.linear_rtol = got.newton_rtol = -1;
   got.linear_max = got.restart = got.newton_max = got.nested = got.mg.precision = -1;
+  got.mg.pre = got.mg.post = -1;
   sessile_params_fluid_solver(&p, &got);
   t_true("default fluid_ksp_type is the fluid's (gmres)", got.ksp == lib.ksp);
   t_true("default fluid_pc_type is the fluid's (mg)", got.pc == lib.pc);
@@ -40,12 +41,16 @@ static void defaults_are_the_fluids(void) {
   t_check("default fluid_nested", got.nested - lib.nested, 0);
   t_check("default fluid_mg_precision (32, the fluid's)", got.mg.precision - lib.mg.precision, 0);
   t_check("... which is 32", got.mg.precision - 32, 0);
+  t_check("default fluid_mg_sweeps: the fluid's pre-smoothing", got.mg.pre - lib.mg.pre, 0);
+  t_check("... and post-smoothing", got.mg.post - lib.mg.post, 0);
+  t_check("... which are 3", got.mg.pre - 3, 0);
   t_true("the library's forcing is the paper's (fixed)", lib.forcing == SESSILE_FLUID_FORCING_FIXED);
   t_true("the table's fluid_newton_forcing is ew (docs/fluid.md)", got.forcing == SESSILE_FLUID_FORCING_EW);
   /* The mapping touches only the solver's fields. */
   got.ksp = lib.ksp, got.pc = lib.pc, got.linear_rtol = lib.linear_rtol, got.linear_max = lib.linear_max;
   got.restart = lib.restart, got.newton_rtol = lib.newton_rtol, got.newton_max = lib.newton_max;
   got.nested = lib.nested, got.mg.precision = lib.mg.precision, got.forcing = lib.forcing;
+  got.mg.pre = lib.mg.pre, got.mg.post = lib.mg.post;
   t_true("no other field changed", memcmp(&got, &lib, sizeof got) == 0);
 }
 
@@ -81,6 +86,7 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_ok("fluid_newton_max_it", sessile_params_set(p, "fluid_newton_max_it", "7"));
   t_ok("fluid_nested", sessile_params_set(p, "fluid_nested", "false"));
   t_ok("fluid_mg_precision", sessile_params_set(p, "fluid_mg_precision", "64"));
+  t_ok("fluid_mg_sweeps", sessile_params_set(p, "fluid_mg_sweeps", "2"));
   t_ok("fluid_newton_forcing", sessile_params_set(p, "fluid_newton_forcing", "fixed"));
   t_ok("valid", sessile_params_validate(p));
   sessile_fluid_params_default(fp);
@@ -94,6 +100,8 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_check("Newton max arrives", fp->newton_max - 7, 0);
   t_check("nested off arrives", fp->nested, 0);
   t_check("fluid_mg_precision 64 arrives", fp->mg.precision - 64, 0);
+  t_check("fluid_mg_sweeps 2 arrives (pre)", fp->mg.pre - 2, 0);
+  t_check("fluid_mg_sweeps 2 arrives (post)", fp->mg.post - 2, 0);
   t_true("fluid_newton_forcing fixed arrives", fp->forcing == SESSILE_FLUID_FORCING_FIXED);
   /* Refused by name: an unknown pc, cg (nonsymmetric Jacobian), a restart
    * past la's GMRES basis. */
@@ -102,6 +110,8 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   t_true("fluid_ksp_type=cg refused", sessile_params_set(&q, "fluid_ksp_type", "cg") == SESSILE_ERR_USAGE);
   t_true("fluid_ksp_restart=65 refused", sessile_params_set(&q, "fluid_ksp_restart", "65") == SESSILE_ERR_USAGE);
   t_true("fluid_mg_precision=16 refused", sessile_params_set(&q, "fluid_mg_precision", "16") == SESSILE_ERR_USAGE);
+  t_true("fluid_mg_sweeps=0 refused", sessile_params_set(&q, "fluid_mg_sweeps", "0") == SESSILE_ERR_USAGE);
+  t_true("fluid_mg_sweeps=9 refused", sessile_params_set(&q, "fluid_mg_sweeps", "9") == SESSILE_ERR_USAGE);
   t_true("fluid_newton_forcing=exact refused", sessile_params_set(&q, "fluid_newton_forcing", "exact") == SESSILE_ERR_USAGE);
   t_true("refusals leave the values", memcmp(&q, p, sizeof q) == 0);
   t_ok("fluid_mg_precision=48 is in the table's range ...", sessile_params_set(&q, "fluid_mg_precision", "48"));

@@ -131,6 +131,10 @@ extern "C" {
   X(fluid_mg_cycle, ENUM_CYCLE, SESSILE_FLUID_CYCLE_W, 0, 2, 0, "", "ours (docs/fluid.md)",       \
     "coarse corrections of fluid_pc_type=mg's cycle: v (one per level), w (two per level) or vw " \
     "(one on the finest level, two below; docs/fluid.md, \"Multigrid\")")                         \
+  X(fluid_mg_sweeps, INT, 3, 1, 8, 0, "", "ours (docs/fluid.md)",                                \
+    "Gauss-Seidel sweeps of fluid_pc_type=mg's smoother before and after each coarse correction " \
+    "(3: 8 GMRES iterations a Newton step at box levels 1 and 2 where 2 took 11 and 14; "       \
+    "docs/fluid.md, \"Multigrid\")")                                                            \
   X(diffusion_coefficient, REAL, 1e-4, 1e-12, 10, 0, "m^2/s", "ours",                                 \
     "D in eq 5 (an eddy diffusivity; docs/advdiff.md); unused while diffusion_limited")           \
   X(conforming_quality, REAL, 1.5, 1.05, 10, 0, "", "ours", "TetGen radius-edge ratio bound (-q)")     \
