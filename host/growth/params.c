@@ -140,7 +140,8 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
   /* nutrient: ~12 reals per node (solution, CG vectors, operator diagonal)
    * plus the solid mask; flow: block-CSR (4x4 reals, ~15 neighbours) for the
    * Jacobian and its ILU(0) (or the multigrid's levels), and GMRES(50)'s basis
-   * of 4 reals per node. */
+   * of 4 reals per node, with its first 16 preconditioned vectors kept for
+   * a pc that is not diagonal (host/la/gmres.c). */
   double nutrient = box_nodes(p, p->box_resolution) * (12 * 8 + 4);
   /* advected on the cut cells: 6 weights and 3 velocities per node, and
    * BiCGSTAB's vectors */
@@ -150,6 +151,7 @@ double sessile_params_device_bytes(const sessile_grow_params *p) {
   if (p->fluid_nested) fn *= 8.0 / 7.0; /* the nested start's coarser boxes: 1/8 + 1/64 + ... more */
   int flow = !p->diffusion_limited || p->fluid_every_iteration || p->fluid_at_snapshots;
   double per = 2 * 15 * 16 * 8 + 52 * 4 * 8;
+  if (p->fluid_pc_type != SESSILE_PC_JACOBI && p->fluid_pc_type != SESSILE_PC_NONE) per += 16 * 4 * 8;
   /* fluid_mg_precision 32: the cycle's fp32 copy of the fine block values and
    * its three fp32 vectors on the finest level (its coarse levels, an eighth
    * and less, shrink against the fp64 ones counted in the ILU(0) share) */

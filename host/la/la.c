@@ -43,14 +43,14 @@ sessile_status sessile_la_create_with(sessile_gpu *g, const sessile_la_options *
 void sessile_la_set_options(sessile_la *la, const sessile_la_options *opt) {
   la->spmv_texel = !opt->spmv_storage;
   la->max_chunk_bytes = opt->max_matrix_chunk_bytes;
+  la->gm_textbook = opt->gmres_textbook_update;
 }
 
 void sessile_la_destroy(sessile_la *la) {
   if (!la) return;
   for (int i = 0; i < K_COUNT; i++) sessile_kernel_destroy(la->k[i]);
-  sessile_buffer_destroy(la->gm_basis);
-  for (uint32_t i = 0; i < la->gm_neach; i++) sessile_buffer_destroy(la->gm_each[i]);
-  free(la->gm_each);
+  la_vstore_free(&la->gm_v);
+  la_vstore_free(&la->gm_zs);
   sessile_vec_destroy(la->gm_z);
   sessile_vec_destroy(la->gm_ones);
   sessile_cmd_destroy(la->cmd);

@@ -10,6 +10,14 @@
  * MAXG, NSETS, COEF_*: generated from shaders/la/kernels.def. */
 #include "la_kernels.h"
 
+/* Vectors kept one after another in one buffer, or one buffer each when
+ * that would exceed the per-buffer limit. */
+typedef struct {
+  sessile_buffer *one;
+  sessile_buffer **each;
+  uint32_t neach;
+} la_vstore;
+
 struct sessile_la {
   sessile_gpu *gpu;
   uint32_t real_bytes;
@@ -20,13 +28,13 @@ struct sessile_la {
   int spmv_texel;             /* CSR SpMV may read through texel buffers (default
                                  on; sessile_la_options.spmv_storage forces storage buffers) */
   uint64_t max_chunk_bytes;   /* sessile_la_options.max_matrix_chunk_bytes (0: none) */
+  int gm_textbook;            /* sessile_la_options.gmres_textbook_update */
   uint64_t vec_serial;        /* the last vector's serial (sessile_vec.serial) */
   /* GMRES's scratch, kept between solves (la_gmres): fresh device memory on
    * lavapipe is host memory page-faulted in on first touch, ~45 MB a solve
    * of the fluid's level-1 system */
-  sessile_buffer *gm_basis;   /* the basis in one buffer, or ... */
-  sessile_buffer **gm_each;   /* ... one buffer per vector (gm_neach) when it would not fit one */
-  uint32_t gm_neach;
+  la_vstore gm_v;             /* the Krylov basis */
+  la_vstore gm_zs;            /* the preconditioned basis vectors z_j = M^-1 v_j (gmres.c) */
   sessile_vec *gm_z, *gm_ones;
   uint32_t fused_groups;      /* at most this many groups for the grid-stride kernels with
                                  a reduction of the cut-cell operator and the multigrid:
@@ -172,6 +180,10 @@ sessile_status la_ones(sessile_la *la, uint32_t n, sessile_vec **out);
  * maxStorageBufferRange, lowered by the la's max_matrix_chunk_bytes when set
  * (a testing knob: small problems then split). mat.c. */
 uint64_t la_chunk_limit(const sessile_la *la);
+/* GMRES's kept vectors (gmres.c): `count` vectors of `per` bytes, in one
+ * buffer unless `split`; what is there is kept when it is large enough. */
+sessile_status la_vstore_ensure(sessile_la *la, la_vstore *v, uint32_t count, uint64_t per, int split);
+void la_vstore_free(la_vstore *v);
 /* solver_loop.c: submit `iter` until the device sets S_STOP; reset the slots. */
 sessile_status la_solver_loop(sessile_la *la, sessile_cmd *iter, int per_submit, int max_it,
                               const sessile_ksp_options *o, const char *name, int est_slot,

@@ -127,6 +127,9 @@ static void set_by_name(sessile_grow_params *p, sessile_fluid_params *fp) {
   printf("  memory estimate with the flow: %.1f MiB (fp64 cycle), %.1f MiB (fp32 cycle)\n", b64 / 1048576,
          b32 / 1048576);
   t_true("the estimate counts the fp32 cycle's copies", b32 > b64);
+  sessile_grow_params ej = e64;
+  t_ok("fluid_pc_type jacobi", sessile_params_set(&ej, "fluid_pc_type", "jacobi"));
+  t_true("... and GMRES's kept z_j for a pc that is not diagonal", sessile_params_device_bytes(&ej) < b64);
 }
 
 /* A Stokes-like flow in a small empty box (inflow at x-min, no solid): the

@@ -36,6 +36,10 @@ typedef struct sessile_la_options {
    * at or above the device's maxStorageBufferRange, means that range; a
    * smaller value makes small matrices split into row chunks (tests). */
   uint64_t max_matrix_chunk_bytes;
+  /* 1: GMRES always updates x += M^-1 (V y), the textbook right-preconditioned
+   * update (default 0: x += Z y from the kept z_j = M^-1 v_j in a cycle of at
+   * most 16 iterations, one preconditioner application fewer; tests). */
+  int gmres_textbook_update;
 } sessile_la_options;
 
 void sessile_la_options_default(sessile_la_options *o);
