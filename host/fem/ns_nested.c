@@ -17,7 +17,7 @@
 
 #define NEST_MIN_NODES 1000u /* the coarse box's nodes at least */
 #define NEST_FROM 0.2        /* tried when the start's residual exceeds this of the rest state's */
-#define NEST_NEWTON_FACTOR 30.0 /* the coarse Newton's tolerance over the fine one's (at most 0.1) */
+#define NEST_NEWTON_FACTOR 100.0 /* the coarse Newton's tolerance over the fine one's (at most 0.1) */
 #define NEST_LINEAR_RTOL 1e-2   /* the coarse linear solves' tolerance (docs/fluid.md, "Nested start") */
 
 /* The coarse box's nodes per axis (0 when the grid does not halve). */
@@ -67,8 +67,9 @@ sessile_status ns_nested_start(sessile_fluid *fl, const uint8_t *solid, const se
   q.monitor = NULL; /* one line for the whole coarse solve, below */
   /* looser than the fine solve: the interpolated start is judged by the fine
    * residual, which interpolation alone leaves at about a fifth of the rest
-   * state's; a coarse solution within a thirtieth of its own rest state's
-   * (linear solves to 1e-2) starts the fine Newton as well as a tight one */
+   * state's; a coarse solution within a tenth of its own rest state's
+   * (linear solves to 1e-2) starts the fine Newton as well as a tight one
+   * (the same fine steps; docs/fluid.md, "Nested start: measured") */
   q.newton_rtol = NEST_NEWTON_FACTOR * p->newton_rtol;
   if (q.newton_rtol > 0.1) q.newton_rtol = 0.1;
   if (q.linear_rtol < NEST_LINEAR_RTOL) q.linear_rtol = NEST_LINEAR_RTOL;
