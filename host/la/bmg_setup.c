@@ -197,10 +197,14 @@ static int dense_inverse(int n, double *a, double *inv) {
       }
     double s = 1.0 / piv;
     for (int j = 0; j < n; j++) a[(size_t)c * n + j] *= s, inv[(size_t)c * n + j] *= s;
+    /* rows in parallel (each element sees the same operations in the same
+     * order: the same bits); a's row c is exactly 0 left of c (eliminated,
+     * or swapped with a row that was), so its update starts at c */
+#pragma omp parallel for schedule(static) if (n >= 128)
     for (int r = 0; r < n; r++) {
       double m = a[(size_t)r * n + c];
       if (r == c || m == 0) continue;
-      for (int j = 0; j < n; j++) a[(size_t)r * n + j] -= m * a[(size_t)c * n + j];
+      for (int j = c; j < n; j++) a[(size_t)r * n + j] -= m * a[(size_t)c * n + j];
       for (int j = 0; j < n; j++) inv[(size_t)r * n + j] -= m * inv[(size_t)c * n + j];
     }
   }
