@@ -85,9 +85,10 @@ sessile_status ns_mg_operators(sessile_fluid *fl, const sessile_fluid_params *p,
 void ns_mg_free(sessile_fluid *fl);
 /* The nested start (params.nested, ns_nested.c): may replace up (its
  * boundary values imposed, bc the nodes' flags) by the interpolated solution
- * on the box of twice the spacing; r is scratch (4 per node). */
+ * on the box of twice the spacing; r is scratch (4 per node).  r_up >= 0:
+ * ||R(up)||, already known (a start from rest), else it is assembled. */
 sessile_status ns_nested_start(sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
-                               const uint8_t *bc, double *up, double *r, sessile_fluid_result *res);
+                               const uint8_t *bc, double *up, double r_up, double *r, sessile_fluid_result *res);
 /* One line to the caller's monitor (nothing when it is NULL). */
 void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -57,6 +57,7 @@ sessile_status ns_linear_solve(sessile_fluid *fl, const sessile_fluid_params *p,
   st->lin_pc = t == SESSILE_PC_ILU0 && st->lin_chunks > 1 ? SESSILE_PC_JACOBI : t;
   o.pc = st->lin_pc;
   o.rtol = st->lin_rtol; /* the Newton loop's forcing (params.forcing) */
+  o.x_zero = 1;           /* x is filled with 0 below */
   o.max_it = p->linear_max;
   o.restart = p->restart;
   sessile_solve_result lr;

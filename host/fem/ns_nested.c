@@ -43,11 +43,14 @@ static sessile_status make_nest(sessile_fluid *fl, const uint32_t m[3]) {
 }
 
 sessile_status ns_nested_start(sessile_fluid *fl, const uint8_t *solid, const sessile_fluid_params *p,
-                               const uint8_t *bc, double *up, double *r, sessile_fluid_result *res) {
+                               const uint8_t *bc, double *up, double r_up, double *r, sessile_fluid_result *res) {
   uint32_t m[3];
   if (!fl->grid[0] || coarse_grid(fl->grid, m) < NEST_MIN_NODES) return SESSILE_OK;
-  ns_assemble(fl, p, up, 1.0, 0, r);
-  double r0 = ns_apply_bc_rows(fl, bc, 0, r);
+  double r0 = r_up;
+  if (r0 < 0) {
+    ns_assemble(fl, p, up, 1.0, 0, r);
+    r0 = ns_apply_bc_rows(fl, bc, 0, r);
+  }
   if (!(r0 > NEST_FROM * res->residual_rest)) return SESSILE_OK; /* a good warm start */
   SESSILE_CALL(make_nest(fl, m));
   sessile_fluid *c = fl->nest;

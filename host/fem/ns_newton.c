@@ -61,7 +61,9 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     ns_assemble(fl, p, du, 1.0, 0, r);
     res->residual_rest = ns_apply_bc_rows(fl, bc, 0, r);
     ns_impose_bc(fl, solid, p, bc, up);
-    if (p->nested) s = ns_nested_start(fl, solid, p, bc, up, r, res);
+    /* from rest, up is the rest state: its residual is the one just assembled */
+    double r_up = memcmp(up, du, n4 * sizeof *up) ? -1.0 : res->residual_rest;
+    if (p->nested) s = ns_nested_start(fl, solid, p, bc, up, r_up, r, res);
   }
   int stalled = 0; /* Newton steps running whose line search found no decrease */
   double rn_last = 0, eta_last = 0;

@@ -76,12 +76,17 @@ void la_vstore_free(la_vstore *v) {
 /* The cycle in pieces: the start (residual, beta, v0), iterations j0..j1-1,
  * the end (back substitution, x update, the cycle's convergence test). */
 #define VJ(j) vj(V, (uint32_t)(j))
+/* x_zero: x is zero, r = b (b - A 0 is b, bit for bit). */
 static sessile_status rec_start(sessile_la *la, sessile_cmd *c, const sessile_mat *a, const sessile_vec *b,
-                                const sessile_vec *x, const gm_basis *V, uint32_t m) {
+                                const sessile_vec *x, const gm_basis *V, uint32_t m, int x_zero) {
   uint32_t n = a->nrows, cnt;
   vref none = {0};
-  SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), VJ(1), S_STOP));
-  SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, VJ(1), vref_of(b), VJ(0), -1, COEF_NEG, S_STOP));
+  if (x_zero) {
+    SESSILE_CALL(rec_vec(la, c, K_COPY, n, vref_of(b), VJ(0), none, -1, 0, S_STOP));
+  } else {
+    SESSILE_CALL(rec_spmv(la, c, a, vref_of(x), VJ(1), S_STOP));
+    SESSILE_CALL(rec_vec(la, c, K_WAXPY, n, VJ(1), vref_of(b), VJ(0), -1, COEF_NEG, S_STOP));
+  }
   SESSILE_CALL(rec_dot(la, c, n, VJ(0), VJ(0), 0, S_STOP, &cnt));
   SESSILE_CALL(rec_reduce(la, c, cnt, 0, 1, GM_BETA, 1, S_STOP));
   SESSILE_CALL(gm_op(la, c, 0, 0, m));
@@ -179,6 +184,8 @@ typedef struct gm_segs {
   uint32_t nseg;
   sessile_cmd *end_z; /* the end from the kept z_j, recorded for end_nz of them (0: not yet) */
   uint32_t end_nz;
+  sessile_cmd *first0; /* x_zero: the first cycle's segment 0, started from r = b */
+  uint8_t first0_done;
 } gm_segs;
 
 static uint32_t seg_lo(uint32_t k, uint32_t m) {
@@ -193,7 +200,7 @@ static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const
                              const sessile_vec *ones, uint32_t m, gm_segs *sg, sessile_solve_result *res) {
   sessile_kernel *k;
   static const la_kernel_id ids[] = {K_GMRES_SCALAR, K_GMRES_UPDATE, K_DOT, K_REDUCE, K_WAXPY,
-                                     K_PMUL, K_AXPY, K_SCALE};
+                                     K_PMUL, K_AXPY, K_SCALE, K_COPY};
   for (size_t i = 0; i < sizeof ids / sizeof ids[0]; i++) SESSILE_CALL(la_kernel(la, ids[i], &k));
   SESSILE_CALL(la_kernel(la, a->kind == MAT_CSR ? K_SPMV_CSR : K_SPMV_BCSR4, &k));
   la_solver_reset(la, o);
@@ -217,13 +224,15 @@ static sessile_status gm_run(sessile_la *la, const sessile_ksp_options *o, const
                   o->max_it);
     uint32_t ran = 0; /* the cycle's iterations are at most this */
     for (uint32_t s = 0; s < sg->nseg; s++) {
-      sessile_cmd *c = sg->cmd[1 + s];
-      if (!sg->done[s]) {
+      int zero = s == 0 && cyc == 0 && o->x_zero; /* only the first cycle starts from x = 0 */
+      sessile_cmd *c = zero ? sg->first0 : sg->cmd[1 + s];
+      uint8_t *done = zero ? &sg->first0_done : &sg->done[s];
+      if (!*done) {
         SESSILE_CALL(sessile_cmd_begin(c));
-        if (s == 0) SESSILE_CALL(rec_start(la, c, a, b, x, V, m));
+        if (s == 0) SESSILE_CALL(rec_start(la, c, a, b, x, V, m, zero));
         SESSILE_CALL(rec_iters(la, c, a, pc, V, Z, nz, z, m, seg_lo(s, m), seg_hi(s, m)));
         SESSILE_CALL(sessile_cmd_end(c));
-        sg->done[s] = 1;
+        *done = 1;
       }
       SESSILE_CALL(sessile_cmd_submit_wait(c));
       ran = seg_hi(s, m);
@@ -264,7 +273,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
   if (split)
     la_monitorf(o, "gmres: the basis (%u vectors of %llu bytes) exceeds the per-buffer limit: one buffer a vector",
                 m + 1, (unsigned long long)per);
-  gm_segs sg = {NULL, NULL, 0, NULL, 0};
+  gm_segs sg = {NULL, NULL, 0, NULL, 0, NULL, 0};
   while (seg_lo(sg.nseg, m) < m) sg.nseg++;
   /* the basis, the kept z_j, z and ones of the last solve when they fit
    * (la_internal.h); no z_j kept for a diagonal pc (its update is one pass) */
@@ -291,9 +300,11 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
   }
   for (uint32_t i = 0; s == SESSILE_OK && i <= sg.nseg; i++) s = sessile_cmd_create(la->gpu, &sg.cmd[i]);
   if (s == SESSILE_OK && nz) s = sessile_cmd_create(la->gpu, &sg.end_z);
+  if (s == SESSILE_OK && o->x_zero) s = sessile_cmd_create(la->gpu, &sg.first0);
   if (s == SESSILE_OK) s = gm_run(la, o, a, b, x, pc, &V, &Z, nz, z, ones, m, &sg, res);
   for (uint32_t i = 0; sg.cmd && i <= sg.nseg; i++) sessile_cmd_destroy(sg.cmd[i]);
   sessile_cmd_destroy(sg.end_z);
+  sessile_cmd_destroy(sg.first0);
   free(sg.cmd), free(sg.done);
   return s;
 }

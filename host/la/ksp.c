@@ -157,6 +157,7 @@ sessile_status la_solve_refined(sessile_la *la, const sessile_ksp_options *o, co
   double bnorm = sessile_ref_nrm2(n, bh);
   sessile_ksp_options in = *o;
   in.rtol = fmax(o->rtol, 1e-4); /* what fp32 Krylov reliably reaches */
+  in.x_zero = 1;                  /* each correction d starts from 0 */
   for (int k = 0; s == SESSILE_OK && k < 30; k++) {
     host_residual(a, mask, diag, coef, bh, xh, rh);
     double rel = sessile_ref_nrm2(n, rh) / bnorm;

@@ -266,6 +266,21 @@ static void test_bcsr4(void) {
   if (s != SESSILE_OK)
     printf("   ksp_solve: %s: \"%s\"\n", sessile_status_name(s), sessile_error_message());
   check_converged("GMRES(30) bcsr4 16^3 (n = 16384)", s, &r, relres_bcsr4(&a, b, x));
+  /* x_zero: the first cycle starts from r = b without A x, later cycles
+   * from b - A x: the same x bit for bit (b - A 0 is b); GMRES(3), so that
+   * several cycles run */
+  double *x0 = t_dalloc(n);
+  sessile_solve_result r0;
+  o.restart = 3;
+  fill(x, n, 0.0);
+  t_must("solve (restart 3)", solve(&o, m, b, x, &r));
+  fill(x0, n, 0.0);
+  o.x_zero = 1;
+  t_must("solve (restart 3, x_zero)", solve(&o, m, b, x0, &r0));
+  printf("   GMRES(3): %d iterations, %d with x_zero\n", r.iterations, r0.iterations);
+  t_true("GMRES(3) x_zero: several cycles, the same iterations and x, bit for bit",
+         r.iterations > 3 && r0.iterations == r.iterations && memcmp(x0, x, n * sizeof *x) == 0);
+  free(x0);
   sessile_mat_destroy(m);
   sessile_bcsr4_free(&a);
   sessile_csr_free(&pat);

@@ -193,6 +193,9 @@ typedef struct sessile_ksp_options {
   int max_it;       /* default 1000 */
   int restart;      /* GMRES(m): m, default 30 */
   int check_every;  /* iterations recorded per submit (CG/BiCGSTAB); default 16 */
+  int x_zero;       /* 1: x is zero on entry, so GMRES starts from r = b without
+                       computing A x (PETSc's default; the same bits); default 0:
+                       x is any initial guess */
   sessile_monitor_fn monitor; /* iteration and residual at every check, restarts and
                                  the outcome; default NULL (silent) */
   void *monitor_user;
