@@ -27,6 +27,13 @@ static double forcing(const sessile_fluid_params *p, int it, double rn, double r
   return eta > p->linear_rtol ? eta : p->linear_rtol;
 }
 
+/* The residual and Jacobian at up, the boundary rows applied: ||R||. */
+static double assemble_jacobian(sessile_fluid *fl, const sessile_fluid_params *p, const uint8_t *bc,
+                                const double *up, int picard, double *r) {
+  ns_assemble(fl, p, up, picard ? 0.0 : 1.0, 1, r);
+  return ns_apply_bc_rows(fl, bc, 1, r);
+}
+
 void ns_monitor(const sessile_fluid_params *p, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
@@ -75,11 +82,7 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     int picard = it < p->picard_steps;
     double ta = sessile_wall_seconds();
     int have_jac = rn_known < 0;
-    double rn = rn_known;
-    if (have_jac) {
-      ns_assemble(fl, p, up, picard ? 0.0 : 1.0, 1, r);
-      rn = ns_apply_bc_rows(fl, bc, 1, r);
-    }
+    double rn = have_jac ? assemble_jacobian(fl, p, bc, up, picard, r) : rn_known;
     rn_known = -1;
     double tass = sessile_wall_seconds() - ta;
     if (!isfinite(rn)) {
@@ -126,8 +129,7 @@ sessile_status sessile_fluid_solve(sessile_fluid *fl, const uint8_t *solid, cons
     }
     if (!have_jac) {
       ta = sessile_wall_seconds();
-      ns_assemble(fl, p, up, picard ? 0.0 : 1.0, 1, r);
-      ns_apply_bc_rows(fl, bc, 1, r);
+      assemble_jacobian(fl, p, bc, up, picard, r);
       double tj = sessile_wall_seconds() - ta;
       tass += tj;
       res->assembly_s += tj;

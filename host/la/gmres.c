@@ -273,7 +273,7 @@ sessile_status la_gmres(sessile_la *la, const sessile_ksp_options *o, const sess
   if (split)
     la_monitorf(o, "gmres: the basis (%u vectors of %llu bytes) exceeds the per-buffer limit: one buffer a vector",
                 m + 1, (unsigned long long)per);
-  gm_segs sg = {NULL, NULL, 0, NULL, 0, NULL, 0};
+  gm_segs sg = {0};
   while (seg_lo(sg.nseg, m) < m) sg.nseg++;
   /* the basis, the kept z_j, z and ones of the last solve when they fit
    * (la_internal.h); no z_j kept for a diagonal pc (its update is one pass) */

@@ -121,6 +121,20 @@ static double norm(const double *v, size_t n) {
   return sqrt(s);
 }
 
+/* The rediscretised coarse operators of grid lev's hierarchy into ca[0..],
+ * set on mg; how many (the caller frees them). */
+static int coarse_operators(sessile_bmg *mg, int lev, int stokes, sessile_bcsr4 *ca) {
+  int nc = sessile_bmg_levels(mg) - 1;
+  for (int l = 1; l <= nc; l++) {
+    scene c;
+    scene_make(lev - l, dome_radius, &c);
+    system_of(&c, stokes, &ca[l - 1], NULL);
+    t_must("coarse operator", sessile_bmg_set_operator(mg, l, &ca[l - 1]));
+    scene_free(&c);
+  }
+  return nc;
+}
+
 /* Mean convergence factor of x += V(b - A x) over iterations 4..12, with
  * the hierarchy for grid g and options o (levels: how many it made). */
 static double mg_factor(int lev, int stokes, int galerkin, const sessile_bcsr4 *a, const double *b,
@@ -133,14 +147,7 @@ static double mg_factor(int lev, int stokes, int galerkin, const sessile_bcsr4 *
   scene_make(lev, dome_radius, &fine);
   t_must("bmg", sessile_bmg_create(la, fine.box.n, o, &mg));
   sessile_bcsr4 ca[8];
-  int nc = galerkin ? 0 : sessile_bmg_levels(mg) - 1;
-  for (int l = 1; l <= nc; l++) { /* the rediscretised coarse operators */
-    scene c;
-    scene_make(lev - l, dome_radius, &c);
-    system_of(&c, stokes, &ca[l - 1], NULL);
-    t_must("coarse operator", sessile_bmg_set_operator(mg, l, &ca[l - 1]));
-    scene_free(&c);
-  }
+  int nc = galerkin ? 0 : coarse_operators(mg, lev, stokes, ca);
   t_must("mat", sessile_mat_create_bcsr4(la, a, &m));
   t_must("bmg setup", sessile_bmg_setup(mg, m));
   t_must("vecs", sessile_vec_create(la, (uint32_t)n4, &rv));
@@ -372,15 +379,8 @@ static void gmres_kept_z(int lev, const sessile_bcsr4 *a, const double *b) {
   scene fine;
   scene_make(lev, dome_radius, &fine);
   t_must("bmg (fp32 cycle)", sessile_bmg_create(la, fine.box.n, &o32, &mg));
-  int nc = sessile_bmg_levels(mg) - 1;
   sessile_bcsr4 ca[8];
-  for (int l = 1; l <= nc; l++) { /* the rediscretised coarse operators (Stokes) */
-    scene c;
-    scene_make(lev - l, dome_radius, &c);
-    system_of(&c, 1, &ca[l - 1], NULL);
-    t_must("coarse operator", sessile_bmg_set_operator(mg, l, &ca[l - 1]));
-    scene_free(&c);
-  }
+  int nc = coarse_operators(mg, lev, 1, ca);
   t_must("mat", sessile_mat_create_bcsr4(la, a, &m));
   t_must("pc mg", sessile_pc_create_type(la, SESSILE_PC_MG, &pc));
   t_must("pc mg block", sessile_pc_mg_set_block(pc, mg));
