@@ -14,7 +14,7 @@
  * start and coarse_sweeps sweeps alternating forward and backward.
  * Smoother and residual dispatch once per row chunk of the level's matrix;
  * a colour sweep covers only the chunk's k-slabs of its colour; both read
- * the matrix and x through texel buffers where the views fit (texel_ok).
+ * the matrix and x through texel buffers where the views fit (la_block_texel_ok).
  * The fp32 cycle in an fp64 context (mg->f32): bmg_to32 casts r in (and sets
  * the cycle's stop flag), every pass runs the kernels' f32 variants on the
  * levels' fp32 data with `s` bound to that flag (guard slot 0), bmg_to64
@@ -45,13 +45,13 @@ static bmg_push grid_push(const bmg_level *v, int guard) {
   return p;
 }
 
-/* The _tex twin of a smoother or residual pass when the context allows
- * texel reads and every view it takes (the chunk's rowptr, col and val, and
- * x) fits maxTexelBufferElements; else the storage kernel (the same bits). */
-static int texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x) {
+/* The _tex kernels read b (and the smoother its block inverses) through
+ * texels too: every view within maxTexelBufferElements (RGBA32UI). */
+static int pass_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x, sessile_buffer *b,
+                         sessile_buffer *dinv) {
   uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  return la->spmv_texel && sessile_buffer_size(ch->rowptr) / 4 <= maxt && sessile_buffer_size(ch->col) / 4 <= maxt &&
-         sessile_buffer_size(ch->val) / 16 <= maxt && sessile_buffer_size(x) / 16 <= maxt;
+  return la_block_texel_ok(la, ch, x) && sessile_buffer_size(b) / 16 <= maxt &&
+         (!dinv || sessile_buffer_size(dinv) / 16 <= maxt);
 }
 
 /* One pass of the smoother over level l (every chunk): colour 0..7 or 8 (all). */
@@ -85,7 +85,8 @@ static sessile_status rec_pass(const sessile_bmg *mg, sessile_cmd *c, int l, vre
       p.items = ch->nrows;
     }
     sessile_buffer *bufs[8] = {bmg_s(mg), ch->rowptr, ch->col, ch->val, v->dinvb[ci], b.buf, x.buf, y.buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, groups_of(k, p.items), bufs, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(c, pass_texel_ok(la, ch, x.buf, b.buf, v->dinvb[ci]) ? kt : k,
+                                      groups_of(k, p.items), bufs, &p));
   }
   return SESSILE_OK;
 }
@@ -99,7 +100,7 @@ static sessile_status rec_smooth_wg(const sessile_bmg *mg, sessile_cmd *c, int l
   const bmg_level *v = &mg->lv[l];
   *done = 0;
   if (mg->o.smoother != SESSILE_BMG_GAUSS_SEIDEL || v->nodes > mg->o.wg_max_nodes || v->m->nchunks != 1 ||
-      !texel_ok(la, &v->m->chunk[0], x.buf))
+      !pass_texel_ok(la, &v->m->chunk[0], x.buf, b.buf, v->dinvb[0]))
     return SESSILE_OK;
   sessile_kernel *k;
   SESSILE_CALL(bmg_kernel(mg, K_BMG_SMOOTH_WG, &k));
@@ -158,7 +159,7 @@ static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l,
     bmg_push p = grid_push(v, guard);
     p.row0 = ch->row0, p.nrows = p.items = ch->nrows;
     sessile_buffer *bufs[7] = {bmg_s(mg), ch->rowptr, ch->col, ch->val, b.buf, x.buf, y.buf};
-    SESSILE_CALL(sessile_cmd_dispatch(c, texel_ok(la, ch, x.buf) ? kt : k, groups_of(k, p.items), bufs, &p));
+    SESSILE_CALL(sessile_cmd_dispatch(c, pass_texel_ok(la, ch, x.buf, b.buf, NULL) ? kt : k, groups_of(k, p.items), bufs, &p));
   }
   return SESSILE_OK;
 }

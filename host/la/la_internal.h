@@ -116,6 +116,10 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
                           uint32_t nsets, int dst_slot, int sqrt_flag, int guard);
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard);
+/* A block chunk (rowptr, col, val as raw 32-bit texels) and x's buffer may
+ * be read through texel views: the context allows it and every view fits
+ * maxTexelBufferElements (the block SpMV and pc mg's _tex kernels). */
+int la_block_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x);
 /* y = A x with the partial sums of x·y in set 0 (CG's p·Ap). */
 sessile_status rec_spmv_dot(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                             int guard, uint32_t *count);

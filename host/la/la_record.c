@@ -58,7 +58,14 @@ static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
              sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
 }
 
-/* One dispatch per row chunk (mat.c): the chunk's rows of y, x read whole. */
+int la_block_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x) {
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  return la->spmv_texel && sessile_buffer_size(ch->rowptr) / 4 <= maxt && sessile_buffer_size(ch->col) / 4 <= maxt &&
+         sessile_buffer_size(ch->val) / 16 <= maxt && sessile_buffer_size(x) / 16 <= maxt;
+}
+
+/* One dispatch per row chunk (mat.c): the chunk's rows of y, x read whole;
+ * a block chunk through texel views where they fit (the same bits). */
 sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x, vref y,
                         int guard) {
   if (a->kind == MAT_STENCIL7) return rec_stencil7(la, c, a, x, y, guard, NULL);
@@ -68,13 +75,16 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
   SESSILE_CALL(la_kernel(la, id, &k));
   uint32_t per = a->kind == MAT_CSR ? a->rows_per : 1;
   uint32_t scale = a->kind == MAT_CSR ? 4 : 1; /* CSR offsets in reals, BCSR in REAL4 */
+  sessile_kernel *kt = NULL;
+  if (a->kind != MAT_CSR) SESSILE_CALL(la_kernel(la, K_SPMV_BCSR4_TEX, &kt));
   for (uint32_t i = 0; i < a->nchunks; i++) {
     const mat_chunk *ch = &a->chunk[i];
     sessile_buffer *bufs[6] = {la->scalars, ch->rowptr, ch->col, ch->val, x.buf, y.buf};
     spmv_push p = {.nrows = ch->nrows, .xoff = x.off4 * scale, .yoff = y.off4 * scale + ch->row0,
                    .guard = guard, .rows_per = per};
     uint32_t items = (ch->nrows + per - 1) / per;
-    SESSILE_CALL(sessile_cmd_dispatch(c, k, la_groups(la, id, items), bufs, &p));
+    sessile_kernel *kc = kt && la_block_texel_ok(la, ch, x.buf) ? kt : k;
+    SESSILE_CALL(sessile_cmd_dispatch(c, kc, la_groups(la, id, items), bufs, &p));
   }
   return SESSILE_OK;
 }

@@ -7,5 +7,9 @@ void main() {
   uint g = sessile_gid();
   if (g >= pc.nrows) return;
   uint node = pc.row0 + g;
+#if BMG_TEXEL
+  y[node] = bmg_row_residual(g, bmg_tex4(b_t, node));
+#else
   y[node] = bmg_row_residual(g, b[node]);
+#endif
 }

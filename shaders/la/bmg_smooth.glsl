@@ -9,6 +9,13 @@
 #include "grid_index.glsl"
 #define BMG_ROWS
 #include "bmg_common.glsl"
+#if BMG_TEXEL // b and the block inverses through texels as well
+#define BMG_B(i) bmg_tex4(b_t, i)
+#define BMG_DINV(i) bmg_tex4(dinv_t, i)
+#else
+#define BMG_B(i) b[i]
+#define BMG_DINV(i) dinv[i]
+#endif
 void main() {
   if (pc.guard >= 0 && s[pc.guard] != REAL(0)) return;
   uint g = sessile_gid();
@@ -25,8 +32,8 @@ void main() {
   }
   uint row = node - pc.row0;
   bool zero = (pc.flags & BMG_ZERO) != 0u;
-  REAL4 r = zero ? b[node] : bmg_row_residual(row, b[node]);
+  REAL4 r = zero ? BMG_B(node) : bmg_row_residual(row, BMG_B(node));
   uint d = 4u * row;
-  REAL4 dz = REAL4(dot(dinv[d], r), dot(dinv[d + 1u], r), dot(dinv[d + 2u], r), dot(dinv[d + 3u], r));
+  REAL4 dz = REAL4(dot(BMG_DINV(d), r), dot(BMG_DINV(d + 1u), r), dot(BMG_DINV(d + 2u), r), dot(BMG_DINV(d + 3u), r));
   y[node] = (zero ? REAL4(0) : bmg_x(node)) + pc.omega * dz;
 }

@@ -13,9 +13,11 @@
 
 // One node's update from x (zero: from x = 0).
 void update(uint node, bool zero) {
-  REAL4 r = zero ? b[node] : bmg_row_residual(node, b[node]);
+  REAL4 bn = bmg_tex4(b_t, node);
+  REAL4 r = zero ? bn : bmg_row_residual(node, bn);
   uint d = 4u * node;
-  REAL4 dz = REAL4(dot(dinv[d], r), dot(dinv[d + 1u], r), dot(dinv[d + 2u], r), dot(dinv[d + 3u], r));
+  REAL4 dz = REAL4(dot(bmg_tex4(dinv_t, d), r), dot(bmg_tex4(dinv_t, d + 1u), r), dot(bmg_tex4(dinv_t, d + 2u), r),
+                   dot(bmg_tex4(dinv_t, d + 3u), r));
   x[node] = (zero ? REAL4(0) : x[node]) + pc.omega * dz;
 }
 

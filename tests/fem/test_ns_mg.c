@@ -433,6 +433,24 @@ static void gmres_kept_z(int lev, const sessile_bcsr4 *a, const double *b) {
   scene_free(&fine);
 }
 
+/* A second setup of mg on mc in chunks of at most 256 KiB (the fp32 copy
+ * cast on the device from the fp64 chunks; storage: reading them through
+ * storage buffers, la option spmv_storage), then one cycle of rv into z. */
+static void recast_cycle(sessile_bmg *mg, const sessile_mat *mc, int storage, sessile_vec *rv,
+                         sessile_vec *zv, double *z) {
+  sessile_la_options lo;
+  sessile_la_options_default(&lo);
+  lo.max_matrix_chunk_bytes = 256 << 10;
+  lo.spmv_storage = storage;
+  sessile_la_set_options(la, &lo);
+  t_must(storage ? "bmg setup again (the device's cast, storage reads)" : "bmg setup again (the device's cast)",
+         sessile_bmg_setup(mg, mc));
+  sessile_la_options_default(&lo);
+  sessile_la_set_options(la, &lo);
+  t_must("vcycle (cast on the device)", sessile_bmg_vcycle(mg, rv, zv));
+  t_must("download", sessile_vec_download(zv, z));
+}
+
 static void vcycle32_checks(scene *sc, const sessile_bcsr4 *a, const double *b) {
   size_t n4 = (size_t)a->nbrows * 4;
   sessile_bmg_options o = opts32();
@@ -489,17 +507,16 @@ static void vcycle32_checks(scene *sc, const sessile_bcsr4 *a, const double *b) 
   /* a second setup of the same pattern refreshes the fp32 copy on the device
    * from the fp64 chunks (bmg_vals32: 25 fp64 chunks over 13 fp32 ones) */
   double *zd = t_dalloc(n4);
-  lo.max_matrix_chunk_bytes = 256 << 10;
-  sessile_la_set_options(la, &lo);
-  t_must("bmg setup again (chunked: the device's cast)", sessile_bmg_setup(mg, mc));
-  sessile_la_options_default(&lo);
-  sessile_la_set_options(la, &lo);
-  t_must("vcycle (cast on the device)", sessile_bmg_vcycle(mg, rv, zv));
-  t_must("download", sessile_vec_download(zv, zd));
+  recast_cycle(mg, mc, 0, rv, zv, zd);
   double dc = t_relerr(zd, zs, n4);
   printf("    the device's cast against the host's: %s (max rel %.3g)\n",
          memcmp(zd, zs, n4 * sizeof *zd) ? "differs" : "the same bits", dc);
   t_check("fp32: the copy cast on the device = the host's, the cycle within an fp32 rounding (max rel)", dc, 1e-6);
+  /* the device's cast reading storage (la option spmv_storage) instead of
+   * texel views (bmg_vals32_tex): the same casts, the same bits */
+  recast_cycle(mg, mc, 1, rv, zv, zs);
+  t_true("fp32: the device's cast through storage reads = through texels, bit for bit",
+         memcmp(zd, zs, n4 * sizeof *zd) == 0);
   free(zd);
   free(z), free(zr), free(zs);
   sessile_vec_destroy(rv), sessile_vec_destroy(zv);

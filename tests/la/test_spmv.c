@@ -190,6 +190,10 @@ static void test_structured(void) {
   sessile_csr_free(&a);
 }
 
+/* The texel path's block SpMV result, compared bit for bit with the
+ * storage path's (the same arithmetic in the same order). */
+static double *bcsr4_y_texel;
+
 static void test_bcsr4(void) {
   printf("-- 4x4 block CSR on the p1tet 16^3 pattern\n");
   char what[160];
@@ -223,6 +227,15 @@ static void test_bcsr4(void) {
     }
   t_check("bcsr4 p1tet 16^3: SpMV vs ref_spmv_bcsr4 (row-wise rel.)", rowwise_err(n, y, r, s),
           tol_spmv);
+  if (!bcsr4_y_texel) {
+    bcsr4_y_texel = t_dalloc(n);
+    memcpy(bcsr4_y_texel, y, n * sizeof *y);
+  } else {
+    t_true("bcsr4 p1tet 16^3: the storage path's SpMV equals the texel path's bit for bit",
+           memcmp(bcsr4_y_texel, y, n * sizeof *y) == 0);
+    free(bcsr4_y_texel);
+    bcsr4_y_texel = NULL;
+  }
 
   /* Point Jacobi of the block matrix vs ref_jacobi_bcsr4. */
   sessile_vec *vd = NULL;
@@ -490,6 +503,7 @@ int main(int argc, char **argv) {
   test_random();
   test_ragged_slices();
   test_structured();
+  test_bcsr4();
   test_nonfinite_x();
   test_cg_fused("storage buffers");
   sessile_la_destroy(la);
