@@ -167,7 +167,13 @@ static sessile_status rec_residual(const sessile_bmg *mg, sessile_cmd *c, int l,
 /* b_{l+1} = R r_l, or x_l += P x_{l+1} (prolong). */
 static sessile_status rec_transfer(const sessile_bmg *mg, sessile_cmd *c, int l, vref x, int prolong, int guard) {
   const bmg_level *f = &mg->lv[l], *cv = &mg->lv[l + 1];
-  la_kernel_id id = prolong ? K_BMG_PROLONG : K_BMG_RESTRICT;
+  /* the _tex twin reads the fine mask and the gathered vector through texel
+   * views where they fit (the same bits) */
+  sessile_la *la = mg->la;
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  sessile_buffer *gathered = prolong ? cv->vx.buf : f->vr.buf;
+  int tex = la->spmv_texel && sessile_buffer_size(f->mask) / 4 <= maxt && sessile_buffer_size(gathered) / 16 <= maxt;
+  la_kernel_id id = prolong ? (tex ? K_BMG_PROLONG_TEX : K_BMG_PROLONG) : (tex ? K_BMG_RESTRICT_TEX : K_BMG_RESTRICT);
   sessile_kernel *k;
   SESSILE_CALL(bmg_kernel(mg, id, &k));
   const bmg_level *run = prolong ? f : cv, *other = prolong ? cv : f;
@@ -175,10 +181,10 @@ static sessile_status rec_transfer(const sessile_bmg *mg, sessile_cmd *c, int l,
   p.f0 = other->n[0], p.f1 = other->n[1], p.f2 = other->n[2];
   p.items = run->nodes;
   if (prolong) {
-    sessile_buffer *bufs[4] = {bmg_s(mg), f->mask, cv->vx.buf, x.buf};
+    sessile_buffer *bufs[4] = {bmg_s(mg), f->mask, gathered, x.buf};
     return sessile_cmd_dispatch(c, k, groups_of(k, p.items), bufs, &p);
   }
-  sessile_buffer *bufs[5] = {bmg_s(mg), f->mask, cv->mask, f->vr.buf, cv->vb.buf};
+  sessile_buffer *bufs[5] = {bmg_s(mg), f->mask, cv->mask, gathered, cv->vb.buf};
   return sessile_cmd_dispatch(c, k, groups_of(k, p.items), bufs, &p);
 }
 

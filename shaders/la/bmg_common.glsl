@@ -6,15 +6,12 @@ REAL4 bmg_free(uint m) {
   return REAL4((m & 1u) != 0u ? 1 : 0, (m & 2u) != 0u ? 1 : 0, (m & 4u) != 0u ? 1 : 0,
                (m & 8u) != 0u ? 1 : 0);
 }
-#ifdef BMG_ROWS
-// The matrix rows and x: from storage buffers (BMG_TEXEL 0) or uniform
-// texel buffers of raw bits (BMG_TEXEL 1, the _tex kernels: lavapipe
-// gathers texels with vector loads where it loads storage lane by lane;
-// the same values, so the same bits).  A REAL4 is two RGBA32UI texels in
-// fp64, one in fp32.
+// The _tex kernels (BMG_TEXEL 1) read through uniform texel buffers of raw
+// bits where their storage twins (BMG_TEXEL 0) read storage buffers:
+// lavapipe gathers texels with vector loads where it loads storage lane by
+// lane; the same values, so the same bits.  A REAL4 is two RGBA32UI texels
+// in fp64, one in fp32.
 #if BMG_TEXEL
-uint bmg_rowptr(uint i) { return texelFetch(rowptr_t, int(i)).x; }
-uint bmg_col(uint k) { return texelFetch(col_t, int(k)).x; }
 #if SESSILE_F64
 REAL4 bmg_tex4(usamplerBuffer t, uint i) {
   uvec4 a = texelFetch(t, int(2u * i)), c = texelFetch(t, int(2u * i + 1u));
@@ -23,6 +20,12 @@ REAL4 bmg_tex4(usamplerBuffer t, uint i) {
 #else
 REAL4 bmg_tex4(usamplerBuffer t, uint i) { return uintBitsToFloat(texelFetch(t, int(i))); }
 #endif
+#endif
+#ifdef BMG_ROWS
+// The matrix rows and x.
+#if BMG_TEXEL
+uint bmg_rowptr(uint i) { return texelFetch(rowptr_t, int(i)).x; }
+uint bmg_col(uint k) { return texelFetch(col_t, int(k)).x; }
 REAL4 bmg_val(uint v) { return bmg_tex4(val_t, v); }
 #if defined(BMG_X_STORAGE)
 REAL4 bmg_x(uint i) { return x[i]; } // written in the same dispatch (bmg_smooth_wg)
