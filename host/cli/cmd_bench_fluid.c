@@ -16,7 +16,7 @@ static const char *help =
     "                           [--picard K] [--restart M] [--no-lsic] [--no-compare]\n"
     "                           [--mg-smoother gs|jacobi] [--mg-sweeps N] [--mg-cycle v|w|vw] [--mg-galerkin]\n"
     "                           [--mg-wg-max N] [--mg-precision 64|32] [--baseline ilu0|storage] [--kernels]\n"
-    "                           [--forcing fixed|ew]\n"
+    "                           [--forcing fixed|ew] [--repeat N]\n"
     "                           [--set KEY=VALUE]...\n"
     "                           [--device D]\n"
     "\n"
@@ -46,7 +46,9 @@ static const char *help =
     "paper's 1e-6, where the preconditioners are compared) unless told ew (grow's\n"
     "default, Eisenstat-Walker: docs/fluid.md).  --picard K takes K Picard (Oseen) steps before\n"
     "Newton; --no-lsic drops the grad-div term.  --verbose prints each step to stderr\n"
-    "as it goes.\n"
+    "as it goes.\n";
+/* the rest of --help (one literal would pass the 4095 characters C17 promises) */
+static const char *help2 =
     "\n"
     "Unless --no-compare (or the pc is ilu0), the same two solves run first with\n"
     "ilu0 (--baseline storage: the chosen pc reading its matrices through storage\n"
@@ -62,7 +64,15 @@ static const char *help =
     "--mg-wg-max N (levels of at most N nodes smoothed in one workgroup, one dispatch\n"
     "for all their sweeps; default 1024, 0: never).\n"
     "--kernels: after the chosen pc's two solves, the device time of each kernel in\n"
-    "them (timestamps around every dispatch; the baseline's are not timed).\n";
+    "them (timestamps around every dispatch; the baseline's are not timed; the first\n"
+    "round only).\n"
+    "--repeat N: N rounds (1-20; default 3 at level 1, 1 above), each the baseline's\n"
+    "two solves then the chosen pc's, alternated so that the machine's drift falls\n"
+    "on both; the first round prints every Newton step, later ones a line a pc, and\n"
+    "the table gives the median wall and CPU seconds over the rounds (their range\n"
+    "beside) and the ratios of the medians, each round's ratio listed.  The solves\n"
+    "are deterministic: every round takes the same steps and iterations (a round that\n"
+    "does not is reported).\n";
 
 /* The grow table's parameter a short flag sets, or NULL. */
 static const char *table_key(const char *flag) {
@@ -122,17 +132,17 @@ static sessile_status dome_mask(const sessile_box *b, double radius, double cx, 
  * after it grew by max_growth; CPU seconds of each into cpu[2]. */
 static sessile_status run_pair(sessile_fluid *fl, const sessile_box *box, const sessile_grow_params *p,
                                const sessile_fluid_params *fp, uint8_t *solid, double *up,
-                               sessile_fluid_result r[2], double cpu[2]) {
+                               sessile_fluid_result r[2], double cpu[2], int round) {
   double mx[3];
   sessile_box_max(box, mx);
   uint32_t n = sessile_box_nodes(box);
   memset(up, 0, (size_t)n * 4 * sizeof *up);
-  printf("--- preconditioner %s ---\n", sessile_pc_type_name(fp->pc));
+  if (!round) printf("--- preconditioner %s ---\n", sessile_pc_type_name(fp->pc));
   SESSILE_CALL(dome_mask(box, p->sponge_radius, mx[0] / 2, mx[1] / 2, solid));
   double c0 = cli_cpu_seconds();
   SESSILE_CALL(sessile_fluid_solve(fl, solid, fp, up, &r[0]));
   cpu[0] = cli_cpu_seconds() - c0;
-  print_result("full solve from rest", &r[0]);
+  if (!round) print_result("full solve from rest", &r[0]);
   fflush(stdout);
   SESSILE_CALL(dome_mask(box, p->sponge_radius + p->max_growth, mx[0] / 2, mx[1] / 2, solid));
   for (uint32_t i = 0; i < n; i++)
@@ -140,37 +150,80 @@ static sessile_status run_pair(sessile_fluid *fl, const sessile_box *box, const 
   c0 = cli_cpu_seconds();
   SESSILE_CALL(sessile_fluid_solve(fl, solid, fp, up, &r[1]));
   cpu[1] = cli_cpu_seconds() - c0;
-  printf("\n");
-  print_result("warm-started re-solve (sponge radius +0.3 cm)", &r[1]);
-  printf("\n");
+  if (!round) {
+    printf("\n");
+    print_result("warm-started re-solve (sponge radius +0.3 cm)", &r[1]);
+    printf("\n");
+  } else {
+    printf("round %d, %s: from rest %.2f s (%d steps, %d linear iterations), warm %.2f s (%d, %d)\n", round + 1,
+           sessile_pc_type_name(fp->pc), r[0].seconds, r[0].nsteps, r[0].lin_iterations, r[1].seconds, r[1].nsteps,
+           r[1].lin_iterations);
+  }
   fflush(stdout);
   return SESSILE_OK;
 }
 
-/* The table of the pairs that ran (k0: 0 with the ilu0 reference, else 1) and the ratios. */
-static void print_compare(const sessile_fluid_result r[2][2], const double cpu[2][2], const char *name[2], int k0) {
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* The median of v[0..n-1] (n <= 20; v is left as it was). */
+static double median_of(const double *v, int n) {
+  double w[20];
+  memcpy(w, v, (size_t)n * sizeof *w);
+  qsort(w, (size_t)n, sizeof *w, cmp_double);
+  return n % 2 ? w[n / 2] : 0.5 * (w[n / 2 - 1] + w[n / 2]);
+}
+
+/* The table of the pairs that ran over `rounds` rounds (r[round][pc][rest,
+ * warm]; k0: 0 with the baseline, else 1): steps and iterations of the first
+ * round, median seconds (and their range), and the ratios of the medians. */
+static void print_compare(const sessile_fluid_result (*r)[2][2], const double (*cpu)[2][2], int rounds,
+                          const char *name[2], int k0) {
   double load[3];
   sessile_load_average(load);
-  printf("%s (load %.1f %.1f %.1f):\n", k0 ? "summary" : "comparison in this run", load[0], load[1], load[2]);
-  printf("  %-12s %-5s %5s %8s %9s %8s %9s %8s %8s %10s\n", "pc", "solve", "steps", "lin its", "its/step",
-         "max its", "solve s", "pc set s", "total s", "cpu s");
+  printf("%s (load %.1f %.1f %.1f)%s:\n", k0 ? "summary" : "comparison in this run", load[0], load[1], load[2],
+         rounds > 1 ? ", seconds the median over the rounds" : "");
+  printf("  %-12s %-5s %5s %8s %9s %8s %9s %8s %8s %10s%s\n", "pc", "solve", "steps", "lin its", "its/step",
+         "max its", "solve s", "pc set s", "total s", "cpu s", rounds > 1 ? "   total s over the rounds" : "");
+  double med[2][2] = {{0, 0}, {0, 0}}, medc[2][2] = {{0, 0}, {0, 0}};
   for (int k = k0; k < 2; k++)
     for (int w = 0; w < 2; w++) {
-      const sessile_fluid_result *x = &r[k][w];
-      int mx = 0;
-      double ps = 0;
-      for (int i = 0; i < x->nsteps; i++) {
-        if (x->step[i].lin_iterations > mx) mx = x->step[i].lin_iterations;
-        ps += x->step[i].pc_setup_s;
+      const sessile_fluid_result *x = &r[0][k][w];
+      double tot[20], sol[20], set[20], cp[20];
+      int same = 1;
+      for (int q = 0; q < rounds; q++) {
+        const sessile_fluid_result *y = &r[q][k][w];
+        tot[q] = y->seconds, sol[q] = y->solve_s, cp[q] = cpu[q][k][w], set[q] = 0;
+        for (int i = 0; i < y->nsteps; i++) set[q] += y->step[i].pc_setup_s;
+        same &= y->nsteps == x->nsteps && y->lin_iterations == x->lin_iterations;
       }
-      printf("  %-12s %-5s %5d %8d %9.1f %8d %9.2f %8.2f %8.2f %10.2f%s\n", name[k], w ? "warm" : "rest",
-             x->nsteps, x->lin_iterations, x->nsteps ? (double)x->lin_iterations / x->nsteps : 0.0, mx,
-             x->solve_s, ps, x->seconds, cpu[k][w], x->converged ? "" : "  NOT converged");
+      med[k][w] = median_of(tot, rounds), medc[k][w] = median_of(cp, rounds);
+      int mx = 0;
+      for (int i = 0; i < x->nsteps; i++)
+        if (x->step[i].lin_iterations > mx) mx = x->step[i].lin_iterations;
+      printf("  %-12s %-5s %5d %8d %9.1f %8d %9.2f %8.2f %8.2f %10.2f", name[k], w ? "warm" : "rest", x->nsteps,
+             x->lin_iterations, x->nsteps ? (double)x->lin_iterations / x->nsteps : 0.0, mx, median_of(sol, rounds),
+             median_of(set, rounds), med[k][w], medc[k][w]);
+      if (rounds > 1) {
+        qsort(tot, (size_t)rounds, sizeof *tot, cmp_double);
+        printf("   %.2f-%.2f", tot[0], tot[rounds - 1]);
+      }
+      printf("%s%s\n", x->converged ? "" : "  NOT converged",
+             same ? "" : "  (the rounds took different steps or iterations)");
     }
-  for (int w = 0; w < 2 && !k0; w++)
-    printf("  %s: %s / %s = %.2fx in wall time, %.2fx in CPU time\n", w ? "warm" : "from rest", name[0],
-           name[1], r[1][w].seconds > 0 ? r[0][w].seconds / r[1][w].seconds : 0.0,
-           cpu[1][w] > 0 ? cpu[0][w] / cpu[1][w] : 0.0);
+  for (int w = 0; w < 2 && !k0; w++) {
+    printf("  %s: %s / %s = %.2fx in wall time, %.2fx in CPU time", w ? "warm" : "from rest", name[0], name[1],
+           med[1][w] > 0 ? med[0][w] / med[1][w] : 0.0, medc[1][w] > 0 ? medc[0][w] / medc[1][w] : 0.0);
+    if (rounds > 1) {
+      printf(" (medians of %d rounds; each round's wall ratio:", rounds);
+      for (int q = 0; q < rounds; q++)
+        printf(" %.2f", r[q][1][w].seconds > 0 ? r[q][0][w].seconds / r[q][1][w].seconds : 0.0);
+      printf(")");
+    }
+    printf("\n");
+  }
 }
 
 int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
@@ -185,6 +238,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_bmg_options mgo;
   sessile_bmg_options_default(&mgo);
   int galerkin = 0, storage_base = 0, kernels = 0;
+  unsigned repeat = 0; /* 0: the default, 3 at level 1 and 1 above */
   sessile_status s = SESSILE_OK;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -194,6 +248,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     if (r > 0) continue;
     if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
       fputs(help, stdout);
+      fputs(help2, stdout);
       return EXIT_OK;
     }
     if (!strcmp(a, "--block-scale") || !strcmp(a, "--no-block-scale")) {
@@ -218,12 +273,16 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     }
     static const char *const valued[] = {"--resolution", "--picard", "--restart", "--pc", "--ksp",
                                          "--mg-smoother", "--mg-sweeps", "--mg-cycle", "--mg-wg-max", "--mg-precision",
-                                         "--baseline", "--forcing", "--set"};
+                                         "--baseline", "--forcing", "--repeat", "--set"};
     int k = 0;
-    while (k < 13 && strcmp(a, valued[k])) k++;
-    if (k == 13) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
+    while (k < 14 && strcmp(a, valued[k])) k++;
+    if (k == 14) return cli_usage_error("bench fluid", "unknown option '%.60s'", a);
     const char *v = cli_value("bench fluid", argc, argv, &i);
-    if (!v || (k < 12 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!v || (k < 13 && cli_once("bench fluid", a, a))) return EXIT_USAGE; /* --set repeats */
+    if (!strcmp(a, "--repeat")) {
+      if (cli_parse_uint("bench fluid", a, v, 1, 20, &repeat)) return EXIT_USAGE;
+      continue;
+    }
     if (!strcmp(a, "--mg-wg-max")) {
       unsigned u;
       if (cli_parse_uint("bench fluid", a, v, 0, 1u << 30, &u)) return EXIT_USAGE;
@@ -262,6 +321,7 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
   if (p.fluid_mg_precision != 64 && p.fluid_mg_precision != 32 && sessile_params_validate(&p) != SESSILE_OK)
     return cli_usage_error("bench fluid", "%s", sessile_error_message());
   if (!res) res = (unsigned)p.fluid_resolution;
+  if (!repeat) repeat = res == 1 ? 3 : 1;
   sessile_box box;
   const double origin[3] = {0, 0, 0};
   const uint32_t cells[3] = {(uint32_t)p.box_cells_x, (uint32_t)p.box_cells_y, (uint32_t)p.box_cells_z};
@@ -318,34 +378,39 @@ int cmd_bench_fluid(int argc, char **argv, const cli_gpu_opts *global) {
     fflush(stdout);
   }
   /* ilu0 first (the reference), then the chosen pc */
-  sessile_fluid_result (*r)[2] = calloc(2, sizeof *r);
-  double cpu[2][2] = {{0, 0}, {0, 0}};
+  sessile_fluid_result (*r)[2][2] = calloc(repeat, sizeof *r);
+  double (*cpu)[2][2] = calloc(repeat, sizeof *cpu);
   char base_name[48];
   snprintf(base_name, sizeof base_name, "%s-storage", sessile_pc_type_name(fp.pc));
   const char *name[2] = {storage_base ? base_name : "ilu0", sessile_pc_type_name(fp.pc)};
-  if (!r && s == SESSILE_OK) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
+  if ((!r || !cpu) && s == SESSILE_OK) s = sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory");
   int both = compare && (fp.pc != SESSILE_PC_ILU0 || storage_base);
+  if (s == SESSILE_OK && repeat > 1) printf("%u rounds, alternated; the first in full\n\n", repeat);
+  for (unsigned q = 0; q < repeat && s == SESSILE_OK; q++)
   for (int k = both ? 0 : 1; k < 2 && s == SESSILE_OK; k++) {
-    sessile_fluid_params q = fp;
+    sessile_fluid_params qp = fp;
     /* the baseline: ilu0, or the same pc with storage reads (the option is
      * read when a pass is recorded) */
     sessile_la_options lo;
     sessile_la_options_default(&lo);
     lo.spmv_storage = k == 0 && storage_base;
     sessile_la_set_options(la, &lo);
-    if (k == 0 && !storage_base) q.pc = SESSILE_PC_ILU0;
-    if (k == 1 && kernels) s = sessile_gpu_profile(g, 1);
+    if (k == 0 && !storage_base) qp.pc = SESSILE_PC_ILU0;
+    int prof = k == 1 && kernels && q == 0;
+    if (prof) s = sessile_gpu_profile(g, 1);
     double w0 = sessile_wall_seconds();
-    if (s == SESSILE_OK) s = run_pair(fl, &box, &p, &q, solid, up, r[k], cpu[k]);
-    if (s == SESSILE_OK && k == 1 && kernels) {
+    if (s == SESSILE_OK) s = run_pair(fl, &box, &p, &qp, solid, up, r[q][k], cpu[q][k], (int)q);
+    if (s == SESSILE_OK && prof) {
       char what[64];
       snprintf(what, sizeof what, "the %s solves (from rest and warm)", name[1]);
       cli_print_kernels(g, what, sessile_wall_seconds() - w0);
       s = sessile_gpu_profile(g, 0);
     }
   }
-  if (s == SESSILE_OK) print_compare((const sessile_fluid_result(*)[2])r, (const double(*)[2])cpu, name, !both);
+  if (s == SESSILE_OK)
+    print_compare((const sessile_fluid_result(*)[2][2])r, (const double(*)[2][2])cpu, (int)repeat, name, !both);
   free(r);
+  free(cpu);
   sessile_fluid_destroy(fl);
   sessile_tetmesh_free(&mesh);
   sessile_la_destroy(la);

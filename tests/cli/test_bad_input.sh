@@ -349,6 +349,9 @@ cases=$(cat <<'CASES'
 2 | coral lsystem: error: --seed given twice | - | coral lsystem --seed 1 --seed 1
 2 | bench fluid: error: --picard given twice | - | bench fluid --picard 1 --picard 2
 2 | bench fluid: error: --restart given twice | - | bench fluid --restart 3 --restart 4
+2 | bench fluid: error: --repeat given twice | - | bench fluid --repeat 2 --repeat 3
+2 | bench fluid: error: --repeat: '0' is not an integer in 1..20 | - | bench fluid --repeat 0
+2 | bench fluid: error: --repeat: '21' is not an integer in 1..20 | - | bench fluid --repeat 21
 2 | bench fluid: error: --pc: parameter fluid_pc_type: 'amg' is not one of none, jacobi, ilu0, block_jacobi, mg | - | bench fluid --pc amg
 2 | bench fluid: error: --ksp: parameter fluid_ksp_type: 'cg' is not one of gmres, bicgstab | - | bench fluid --ksp cg
 2 | bench fluid: error: --restart: parameter fluid_ksp_restart: '0' is not an integer in \[1, 64\] | - | bench fluid --restart 0

@@ -97,6 +97,13 @@ run --validation bench sds --no-physics --rock-t 0.25 --kernels
 check "'sessile bench sds --rock-t 0.25 --kernels' prints the rock run's kernels and their sum" eval \
   'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
 check "bench sds --kernels under the validation layer is silent" no_validation
+# bench fluid's rounds: the same deterministic solves each round, the table
+# their medians with the range
+run bench fluid --no-compare --repeat 2
+check "'sessile bench fluid --repeat 2' runs two rounds of the same steps and gives medians" eval \
+  'rc_is 0 && grep -q "^2 rounds, alternated" "$T/out" && grep -q "^round 2, mg: from rest" "$T/out" &&
+   grep -q "seconds the median over the rounds" "$T/out" && grep -Eq "^  mg +rest .* [0-9.]+-[0-9.]+$" "$T/out" &&
+   ! grep -q "different steps" "$T/out"'
 run --precision=32 bench la --size=8 --repeat=1 --no-solvers
 check "'--precision=32 bench la --size=8' runs the fp32 kernels" eval 'rc_is 0 && grep -q "fp32" "$T/out"'
 
