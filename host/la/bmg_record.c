@@ -49,9 +49,7 @@ static bmg_push grid_push(const bmg_level *v, int guard) {
  * texels too: every view within maxTexelBufferElements (RGBA32UI). */
 static int pass_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x, sessile_buffer *b,
                          sessile_buffer *dinv) {
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  return la_block_texel_ok(la, ch, x) && sessile_buffer_size(b) / 16 <= maxt &&
-         (!dinv || sessile_buffer_size(dinv) / 16 <= maxt);
+  return la_block_texel_ok(la, ch, x) && la_texel_fits(la, b, 16) && (!dinv || la_texel_fits(la, dinv, 16));
 }
 
 /* One pass of the smoother over level l (every chunk): colour 0..7 or 8 (all). */
@@ -170,9 +168,8 @@ static sessile_status rec_transfer(const sessile_bmg *mg, sessile_cmd *c, int l,
   /* the _tex twin reads the fine mask and the gathered vector through texel
    * views where they fit (the same bits) */
   sessile_la *la = mg->la;
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
   sessile_buffer *gathered = prolong ? cv->vx.buf : f->vr.buf;
-  int tex = la->spmv_texel && sessile_buffer_size(f->mask) / 4 <= maxt && sessile_buffer_size(gathered) / 16 <= maxt;
+  int tex = la->spmv_texel && la_texel_fits(la, f->mask, 4) && la_texel_fits(la, gathered, 16);
   la_kernel_id id = prolong ? (tex ? K_BMG_PROLONG_TEX : K_BMG_PROLONG) : (tex ? K_BMG_RESTRICT_TEX : K_BMG_RESTRICT);
   sessile_kernel *k;
   SESSILE_CALL(bmg_kernel(mg, id, &k));

@@ -231,7 +231,6 @@ static sessile_status cast_fine(sessile_bmg *mg, const sessile_mat *a, sessile_m
   sessile_kernel *k = NULL, *kt = NULL;
   SESSILE_CALL(la_kernel(la, K_BMG_VALS32, &k));
   SESSILE_CALL(la_kernel(la, K_BMG_VALS32_TEX, &kt));
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
   const uint64_t *rp = a->hostb.rowptr;
   uint32_t local = sessile_kernel_local_size(k);
   SESSILE_CALL(sessile_cmd_begin(la->cmd));
@@ -247,7 +246,7 @@ static sessile_status cast_fine(sessile_bmg *mg, const sessile_mat *a, sessile_m
       uint32_t groups = (p.n4 + local - 1) / local;
       if (groups > 65535) groups = 65535; /* the kernel strides over the rest */
       sessile_buffer *b[] = {ca->val, cf->val};
-      int tex = la->spmv_texel && sessile_buffer_size(ca->val) / 16 <= maxt; /* the same bits */
+      int tex = la->spmv_texel && la_texel_fits(la, ca->val, 16); /* the same bits */
       SESSILE_CALL(sessile_cmd_dispatch(la->cmd, tex ? kt : k, groups, b, &p));
     }
   SESSILE_CALL(sessile_cmd_end(la->cmd));

@@ -58,10 +58,13 @@ static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
              sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
 }
 
+int la_texel_fits(const sessile_la *la, sessile_buffer *b, uint32_t texel_bytes) {
+  return sessile_buffer_size(b) / texel_bytes <= sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+}
+
 int la_block_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x) {
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  return la->spmv_texel && sessile_buffer_size(ch->rowptr) / 4 <= maxt && sessile_buffer_size(ch->col) / 4 <= maxt &&
-         sessile_buffer_size(ch->val) / 16 <= maxt && sessile_buffer_size(x) / 16 <= maxt;
+  return la->spmv_texel && la_texel_fits(la, ch->rowptr, 4) && la_texel_fits(la, ch->col, 4) &&
+         la_texel_fits(la, ch->val, 16) && la_texel_fits(la, x, 16);
 }
 
 /* One dispatch per row chunk (mat.c): the chunk's rows of y, x read whole;
