@@ -81,7 +81,7 @@ done
 
 # The rest needs no flow (it dominates the time of these runs): a longer
 # run without it, and its own reference.
-NOFLOW="$SMALL --set fluid_at_snapshots=false --iterations 40 --every 10"
+NOFLOW="$SMALL --set fluid_at_snapshots=false --iterations 20 --every 10"
 "$S" grow $NOFLOW --out "$T/ref2" >/dev/null 2>&1
 outputs "$T/ref2" >"$T/ref2.sum"
 

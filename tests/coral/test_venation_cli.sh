@@ -69,8 +69,8 @@ run coral venation --out "$T/r" --iterations 30 --quiet
 run coral venation --resume "$T/r" --iterations 60 --quiet
 check "--resume from 30 to 60 gives the bytes of 60 at once" eval 'rc_is 0 && same "$T/a" "$T/r"'
 
-"$S" coral venation --out "$T/full" --iterations 300 --every 1000 --quiet >/dev/null 2>&1
-"$S" coral venation --out "$T/int" --iterations 300 --every 1000 --quiet >/dev/null 2>"$T/int.err" &
+"$S" coral venation --out "$T/full" --iterations 200 --every 1000 --quiet >/dev/null 2>&1
+"$S" coral venation --out "$T/int" --iterations 200 --every 1000 --quiet >/dev/null 2>"$T/int.err" &
 pid=$!
 sleep 1
 kill -INT $pid 2>/dev/null

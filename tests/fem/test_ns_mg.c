@@ -22,8 +22,8 @@
  *    most 30 GMRES(50) iterations each, and its default 3 sweeps take fewer
  *    on the first step than 2; on a mesh that is not a box it falls back to
  *    ILU(0);
- *  - Galerkin coarse operators are measured and printed (they diverge
- *    beyond two levels: docs/fluid.md); block-Jacobi smoothing converges
+ *  - Galerkin coarse operators are measured and printed on the two coarser
+ *    grids (they diverge beyond two levels: docs/fluid.md); block-Jacobi smoothing converges
  *    (factor < 1), the VW(2,2) cycle (V on the finest level, W below) to
  *    factor <= 0.5 on 17x17x13; a second setup with the same fixed unknowns does not
  *    rebuild the masks.
@@ -692,9 +692,11 @@ int main(int argc, char **argv) {
       sessile_bmg_options o;
       sessile_bmg_options_default(&o);
       int nl;
-      double fg = mg_factor(lev, stokes, 1, &a, b, &o, &nl);
-      printf("  %s %ux%ux%u: Galerkin coarse operators: factor %.3f\n", kind[!stokes], sc.box.n[0],
-             sc.box.n[1], sc.box.n[2], fg);
+      if (lev < 4) { /* already divergent at 17x17x13: the finest grid's 4.6 s would show it again */
+        double fg = mg_factor(lev, stokes, 1, &a, b, &o, &nl);
+        printf("  %s %ux%ux%u: Galerkin coarse operators: factor %.3f\n", kind[!stokes], sc.box.n[0],
+               sc.box.n[1], sc.box.n[2], fg);
+      }
       f[lev - 2] = mg_factor(lev, stokes, 0, &a, b, &o, &nl);
       printf("  %s %ux%ux%u: %d levels, factor %.3f\n", kind[!stokes], sc.box.n[0], sc.box.n[1], sc.box.n[2],
              nl, f[lev - 2]);

@@ -82,7 +82,7 @@ check "... the bytes of the uninterrupted runs" same_run "$T/fast-h" "$T/b"
 
 # a discrete GPU's paths: every blocking transfer is a submission of its own
 # unless it rides in a recording (the batch's inputs, results and state)
-SESSILE_STAGED=1 "$S" bench sds --no-physics --rock-t 2 >"$T/bench" 2>&1
+SESSILE_STAGED=1 "$S" bench sds --no-physics --rock-t 1 >"$T/bench" 2>&1
 check "staged: bench sds runs both loops" eval '[ $(grep -c "submissions (" "$T/bench") -eq 2 ]'
 check "staged: the loop on the device, under half the host-driven loop's submissions a step" \
   "$PY" -c 'import re,sys; a=[float(x) for x in re.findall(r"submissions \(([0-9.]+) a step\)", open(sys.argv[1]).read())]; print("submissions a step:", a); sys.exit(0 if len(a) == 2 and a[1] < 0.5 * a[0] else 1)' "$T/bench"

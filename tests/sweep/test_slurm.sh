@@ -108,11 +108,11 @@ check "... status: every point completed" eval 'grep -q "6 points: 6 completed" 
 check "... the bytes of the local engine" same "$T/local" "$T/s1"
 
 # --- scancel a running task, resubmit: it resumes to the same bytes --------------------
-# A sweep of its own, 2 points of 200 000 sphere iterations (seconds each, a
-# checkpoint every 20 000): the 6-point sweep's runs take a fraction of a
+# A sweep of its own, 2 points of 100 000 sphere iterations (seconds each, a
+# checkpoint every 10 000): the 6-point sweep's runs take a fraction of a
 # second, too short to be caught running under load.
 cat >"$T/long.json" <<EOF2
-{"generator": "sphere", "iterations": 200000, "options": ["--no-preview", "--every", "20000"],
+{"generator": "sphere", "iterations": 100000, "options": ["--no-preview", "--every", "10000"],
  "base": {"level": 5},
  "axes": [{"parameter": "noise", "values": [0.01, 0.03]}],
  "seeds": {"count": 1, "first": 1},
@@ -124,7 +124,7 @@ check "the long sweep's local reference completes" eval '"$S" sweep status "$T/l
 run sweep submit "$T/s2" --max-parallel 1
 j2=$(job_of)
 running=0
-for _ in $(seq 2400); do # at most 120 s: scheduled, started, 20 000 iterations done
+for _ in $(seq 2400); do # at most 120 s: scheduled, started, 10 000 iterations done
   if [ -e "$T/s2/runs/0000/checkpoint.bin" ] && squeue -h -r -j "$j2" -o "%i %T" | grep -q "^${j2}_0 RUNNING"; then running=1; break; fi
   sleep 0.05
 done
