@@ -118,7 +118,7 @@ sessile_status rec_spmv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vr
                         int guard);
 /* Buffer b as a texel view of texel_bytes-byte texels fits the device's
  * maxTexelBufferElements. */
-int la_texel_fits(const sessile_la *la, sessile_buffer *b, uint32_t texel_bytes);
+int la_texel_fits(const sessile_la *la, const sessile_buffer *b, uint32_t texel_bytes);
 /* A block chunk (rowptr, col, val as raw 32-bit texels) and x's buffer may
  * be read through texel views: the context allows it and every view fits
  * maxTexelBufferElements (the block SpMV and pc mg's _tex kernels). */

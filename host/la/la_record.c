@@ -53,12 +53,10 @@ sessile_status rec_reduce(sessile_la *la, sessile_cmd *c, uint32_t count, uint32
 /* Texel-buffer SpMV when the matrix allows it and x's whole buffer fits one
  * texel view (x may live inside a larger work buffer). */
 static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
-  return a->kind == MAT_CSR && a->texel &&
-         sessile_buffer_size(x.buf) / la->real_bytes <=
-             sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  return a->kind == MAT_CSR && a->texel && la_texel_fits(la, x.buf, la->real_bytes);
 }
 
-int la_texel_fits(const sessile_la *la, sessile_buffer *b, uint32_t texel_bytes) {
+int la_texel_fits(const sessile_la *la, const sessile_buffer *b, uint32_t texel_bytes) {
   return sessile_buffer_size(b) / texel_bytes <= sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
 }
 

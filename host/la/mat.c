@@ -162,7 +162,7 @@ static sessile_status upload_csr(sessile_la *la, sessile_mat *m) {
   uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
   m->texel = s == SESSILE_OK && la->spmv_texel && a->nrows <= maxt;
   for (uint32_t c = 0; m->texel && c < n; c++)
-    if (sessile_buffer_size(m->chunk[c].val) / 16 > maxt) m->texel = 0;
+    if (!la_texel_fits(la, m->chunk[c].val, 16)) m->texel = 0;
   free(w);
   free(first);
   return s;

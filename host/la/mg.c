@@ -69,9 +69,8 @@ static sessile_status check_level(sessile_la *la, int l, const sessile_mg_level 
   SESSILE_CHECK(!finer || !finer->coef == !v->coef, SESSILE_ERR_USAGE,
                 "multigrid level %d: advective weights on some levels and not others", l);
   /* The multigrid kernels gather through texel buffers (no storage fallback). */
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  SESSILE_CHECK(sessile_buffer_size(v->mask) / 4 <= maxt &&
-                    sessile_buffer_size(v->diag->buf) / la->real_bytes <= maxt,
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements; /* for the message */
+  SESSILE_CHECK(la_texel_fits(la, v->mask, 4) && la_texel_fits(la, v->diag->buf, la->real_bytes),
                 SESSILE_ERR_TOO_LARGE,
                 "multigrid level %d: %u x %u x %u nodes exceed the device's texel buffer limit "
                 "(%llu texels)", l, n[0], n[1], n[2], (unsigned long long)maxt);

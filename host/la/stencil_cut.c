@@ -11,8 +11,7 @@
 
 /* Texel reads need every view within maxTexelBufferElements. */
 static int texel_fits(sessile_la *la, const sessile_buffer *mask, const sessile_vec *diag) {
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  return sessile_buffer_size(mask) / 4 <= maxt && sessile_buffer_size(diag->buf) / la->real_bytes <= maxt;
+  return la_texel_fits(la, mask, 4) && la_texel_fits(la, diag->buf, la->real_bytes);
 }
 
 sessile_status sessile_mat_create_stencil7_cut(sessile_la *la, uint32_t nx, uint32_t ny, uint32_t nz,
@@ -47,9 +46,7 @@ sessile_status rec_stencil7_cut(sessile_la *la, sessile_cmd *c, const sessile_ma
                                 vref y, int guard, uint32_t *count) {
   if (a->coef) return rec_stencil7_cut_adv(la, c, a, x, y, guard, count);
   cut_push p = la_cut_push_of(la, a, x, y, guard);
-  int tex = a->cut_texel &&
-            sessile_buffer_size(x.buf) / la->real_bytes <=
-                sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  int tex = a->cut_texel && la_texel_fits(la, x.buf, la->real_bytes);
   la_kernel_id id = count ? (tex ? K_STENCIL7_CUT_TEX_DOT : K_STENCIL7_CUT_DOT)
                           : (tex ? K_STENCIL7_CUT_TEX : K_STENCIL7_CUT);
   sessile_kernel *k;

@@ -18,8 +18,8 @@ sessile_status sessile_mat_create_stencil7_cut_adv(sessile_la *la, uint32_t nx, 
   SESSILE_CHECK(coef && coef->la == la && coef->n == 6 * nodes, SESSILE_ERR_USAGE,
                 "advective cut-cell operator: coef needs 6 entries per node of the %u x %u x %u "
                 "grid in the same la (got %u)", nx, ny, nz, coef ? coef->n : 0);
-  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
-  SESSILE_CHECK(sessile_buffer_size(coef->buf) / la->real_bytes <= maxt, SESSILE_ERR_TOO_LARGE,
+  uint64_t maxt = sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements; /* for the message */
+  SESSILE_CHECK(la_texel_fits(la, coef->buf, la->real_bytes), SESSILE_ERR_TOO_LARGE,
                 "advective cut-cell operator: %u x %u x %u nodes exceed the device's texel buffer "
                 "limit (%llu texels) for 6 weights per node", nx, ny, nz, (unsigned long long)maxt);
   sessile_mat *m;
@@ -31,9 +31,7 @@ sessile_status sessile_mat_create_stencil7_cut_adv(sessile_la *la, uint32_t nx, 
 
 sessile_status rec_stencil7_cut_adv(sessile_la *la, sessile_cmd *c, const sessile_mat *a, vref x,
                                     vref y, int guard, uint32_t *count) {
-  SESSILE_CHECK(sessile_buffer_size(x.buf) / la->real_bytes <=
-                    sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements,
-                SESSILE_ERR_TOO_LARGE, "advective cut-cell operator: x exceeds the texel limit");
+  SESSILE_CHECK(la_texel_fits(la, x.buf, la->real_bytes), SESSILE_ERR_TOO_LARGE, "advective cut-cell operator: x exceeds the texel limit");
   cut_push p = la_cut_push_of(la, a, x, y, guard);
   la_kernel_id id = count ? K_STENCIL7_CUT_ADV_DOT : K_STENCIL7_CUT_ADV;
   sessile_kernel *k;
