@@ -6,8 +6,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sessile/rng.h"
+#include "sds/sds_internal.h"
 #include "sds/sds_sim.h"
 #include "sds/sds_surface_file.h"
+
+static double mean_edge(const sessile_surface *srf);
 
 double sds_param1(const sessile_sds_model *m, const char *name, double def) {
   const sessile_sds_param *q = sessile_sds_model_param_find(m, name);
@@ -48,6 +51,13 @@ static sessile_status read_physics(sds_sim *s, const char *where) {
     SESSILE_CHECK(rock->nvalues == 4 && rock->values[3] > 0, SESSILE_ERR_USAGE,
                   "%s:%d: rock needs 4 values: centre x y z and a radius > 0", where, rock->line);
     SESSILE_CALL(sessile_surface_icosphere(4, rock->values[3], rock->values, &s->rock));
+    if (s->prm.start_symmetry >= 2) {
+      /* a symmetric start on a symmetric rock (its centre on the axis: the
+       * mirrors are about the rock's vertical axis) */
+      double h = mean_edge(&s->rock);
+      sessile_surface_free(&s->rock);
+      SESSILE_CALL(sessile_sds_symmetric_sphere(s->prm.start_symmetry, rock->values[3], h, rock->values, &s->rock));
+    }
     s->p.obstacle.nv = s->rock.nv, s->p.obstacle.nf = s->rock.nf;
     s->p.obstacle.pos = s->rock.pos, s->p.obstacle.tri = s->rock.tri;
   }
@@ -148,15 +158,19 @@ sessile_status sds_run_length(const sessile_sds_model *m, double t_end_in, int f
  * length x a normal deviate clipped to +-3, drawn from the seed's own stream
  * (2; the division directions draw from 1).  The sphere stays star-shaped
  * about its centre for J <= 0.2, so TetGen meshes it. */
-static void jitter_sphere(sessile_surface *srf, double jitter, uint64_t seed) {
-  double len = 0, c[3] = {0, 0, 0};
+static double mean_edge(const sessile_surface *srf) {
+  double len = 0;
   for (uint32_t f = 0; f < srf->nf; f++)
     for (int k = 0; k < 3; k++) {
       const double *a = srf->pos + 3 * (size_t)srf->tri[3 * (size_t)f + k];
       const double *b = srf->pos + 3 * (size_t)srf->tri[3 * (size_t)f + (k + 1) % 3];
       len += sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
     }
-  len /= srf->nf ? 3.0 * srf->nf : 1.0;
+  return len / (srf->nf ? 3.0 * srf->nf : 1.0);
+}
+
+static void jitter_sphere(sessile_surface *srf, double jitter, uint64_t seed) {
+  double len = mean_edge(srf), c[3] = {0, 0, 0};
   for (uint32_t v = 0; v < srf->nv; v++)
     for (int k = 0; k < 3; k++) c[k] += srf->pos[3 * (size_t)v + k] / srf->nv;
   uint64_t rng = sessile_rng_stream(seed, 2);
@@ -170,6 +184,44 @@ static void jitter_sphere(sessile_surface *srf, double jitter, uint64_t seed) {
   }
 }
 
+/* A realisation of the symmetric ball: its surface cells moved along their
+ * radii as jitter_sphere moves the icosphere's vertices (h the edge, the
+ * same stream), its tets kept, so that every realisation is the exact
+ * start's complex (meshing the moved sphere anew gave starts of 182-228
+ * cells at frame 0 where the exact one has 179, docs/sds.md).  A move that turns a
+ * tet over is refused: the import would orient it the other way. */
+static sessile_status jitter_ball(sds_sim *s, const char *where, int sym, double radius, double h, double jitter,
+                                  uint32_t nm, uint32_t ns) {
+  const double c0[3] = {0, 0, 0};
+  double *x = NULL;
+  uint32_t n = 0, nt = 0, *tet = NULL;
+  SESSILE_CALL(sessile_sds_symmetric_ball_tets(sym, radius, h, c0, &x, &n, &tet, &nt));
+  double *v0 = malloc((size_t)nt * sizeof *v0);
+  sessile_status st = v0 ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "%s: out of host memory", where);
+  for (uint32_t t = 0; st == SESSILE_OK && t < nt; t++) {
+    const uint32_t *q = tet + 4 * (size_t)t;
+    v0[t] = sds_vol4(x + 3 * (size_t)q[0], x + 3 * (size_t)q[1], x + 3 * (size_t)q[2], x + 3 * (size_t)q[3]);
+  }
+  uint64_t rng = sessile_rng_stream(s->seed, 2);
+  for (uint32_t c = 0; st == SESSILE_OK && c < n; c++) {
+    double *p = x + 3 * (size_t)c, d = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    if (d < radius * (1 - 1e-9)) continue; /* inside: kept */
+    double z = fmax(-3.0, fmin(3.0, sessile_rng_normal(&rng)));
+    for (int k = 0; k < 3; k++) p[k] += jitter * h * z * p[k] / d;
+  }
+  for (uint32_t t = 0; st == SESSILE_OK && t < nt; t++) {
+    const uint32_t *q = tet + 4 * (size_t)t;
+    double v = sds_vol4(x + 3 * (size_t)q[0], x + 3 * (size_t)q[1], x + 3 * (size_t)q[2], x + 3 * (size_t)q[3]);
+    if (!(v * v0[t] > 0 && fabs(v) > 0.05 * fabs(v0[t])))
+      st = sessile_error_set(SESSILE_ERR_USAGE, "%s: start_jitter %g flattens or turns over a tet of the symmetric "
+                             "start (seed %llu); a smaller start_jitter keeps them", where, jitter,
+                             (unsigned long long)s->seed);
+  }
+  if (st == SESSILE_OK) st = sessile_sds_from_tets(x, n, tet, nt, nm, ns, s->density, &s->o);
+  free(v0), free(x), free(tet);
+  return st;
+}
+
 /* The starting organism: the model's `surface = "FILE.ply"` (relative to
  * the model file's folder), or the icosphere (sphere_radius,
  * sphere_subdivisions), through TetGen.  A surface that is not closed and
@@ -179,12 +231,25 @@ sessile_status sds_import_organism(sds_sim *s, const char *where, int level, dou
   const sessile_sds_param *sf = sessile_sds_model_param_find(s->model, "surface");
   double jitter = s->prm.start_jitter;
   SESSILE_CHECK(!(sf && jitter > 0), SESSILE_ERR_USAGE,
-                "%s: start_jitter moves the icosphere's vertices; a model with its own surface has none to move", where);
+                "%s: start_jitter moves the starting sphere's vertices; a model with its own surface has none to move",
+                where);
+  int sym = s->prm.start_symmetry;
+  SESSILE_CHECK(sym != 1, SESSILE_ERR_USAGE, "%s: start_symmetry is 0 (the icosphere) or a number of mirrors >= 2",
+                where);
+  SESSILE_CHECK(!(sf && sym), SESSILE_ERR_USAGE, "%s: start_symmetry shapes the starting ball; a model with its own "
+                "surface has none", where);
   if (!sf) {
     const double c0[3] = {0, 0, 0};
-    if (jitter == 0) return sessile_sds_from_icosphere(level, radius, c0, 0, nm, ns, s->density, &s->o);
+    if (jitter == 0 && sym == 0) return sessile_sds_from_icosphere(level, radius, c0, 0, nm, ns, s->density, &s->o);
     sessile_surface srf = {0};
     SESSILE_CALL(sessile_surface_icosphere(level, radius, c0, &srf));
+    if (sym) {
+      /* the symmetric ball at the icosphere's resolution: edges as long as its mean edge */
+      double h = mean_edge(&srf);
+      sessile_surface_free(&srf);
+      if (jitter == 0) return sessile_sds_symmetric_ball(sym, radius, h, c0, nm, ns, s->density, &s->o);
+      return jitter_ball(s, where, sym, radius, h, jitter, nm, ns);
+    }
     jitter_sphere(&srf, jitter, s->seed);
     sessile_status st = sessile_sds_from_surface(&srf, NULL, 0, nm, ns, s->density, &s->o);
     sessile_surface_free(&srf);

@@ -7,9 +7,11 @@
 # cells than it started with; the same seed gives the same bytes; bad models
 # (an unknown morphogen in a rule, an unknown shipped name, a FIFO, physics
 # out of range, springs too stiff to finish, a surface that is open, that
-# TetGen rejects or that is missing) exit 2 with one line and write nothing;
+# TetGen rejects or that is missing, start_symmetry 1, 13 or with a model's
+# own surface) exit 2 with one line and write nothing;
 # a model's own surface (ASCII and binary PLY) is imported; start_jitter gives
-# each seed its own start, the same seed the same bytes.
+# each seed its own start, the same seed the same bytes, and on the symmetric
+# start keeps its complex.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -92,6 +94,20 @@ for sd in 1 1 2; do
 done
 check "start_jitter: the same seed gives the same bytes, another seed another start, both unlike the sphere's" eval \
   'cmp -s "$T/j1/sds/frame_0001.vtu" "$T/j1b/sds/frame_0001.vtu" && ! cmp -s "$T/j1/sds/frame_0000.ply" "$T/j2/sds/frame_0000.ply" && ! cmp -s "$T/j1/sds/frame_0000.ply" "$T/a/sds/frame_0000.ply"'
+# start_jitter with start_symmetry: each seed moves the symmetric ball's
+# surface cells and keeps its complex (the same cells and tets as the exact
+# start's; no tip-below division, which depends on the moved cells)
+for sd in 0 1 2; do
+  jit=0.1; [ $sd = 0 ] && jit=0
+  run sds run limb --set start_symmetry=6 --set start_jitter=$jit --set tips_below=false --seed $((sd > 0 ? sd : 1)) \
+    --t-end 0.5 --frames 1 --out "$T/y$sd" --quiet
+  check "the symmetric start, start_jitter $jit seed $sd: the run completes" rc_is 0
+done
+head_of() { grep -ao 'NumberOfPoints="[0-9]*" NumberOfCells="[0-9]*"' "$1"; }
+check "start_jitter on the symmetric start: the exact start's cells and tets, each seed its own positions" eval \
+  '[ -n "$(head_of "$T/y0/sds/frame_0000.vtu")" ] && [ "$(head_of "$T/y1/sds/frame_0000.vtu")" = "$(head_of "$T/y0/sds/frame_0000.vtu")" ] &&
+   [ "$(head_of "$T/y2/sds/frame_0000.vtu")" = "$(head_of "$T/y0/sds/frame_0000.vtu")" ] &&
+   ! cmp -s "$T/y1/sds/frame_0000.ply" "$T/y2/sds/frame_0000.ply" && ! cmp -s "$T/y1/sds/frame_0000.ply" "$T/y0/sds/frame_0000.ply"'
 # The limb model with the line KEY = VALUE added must be refused: exit 2, one
 # line naming KEY, nothing written.
 limb_refuses() {
@@ -101,6 +117,8 @@ limb_refuses() {
     eval "rc_is 2 && one_line && grep -q '$1' \"\$T/err\" && [ ! -e \"\$T/c\" ]"
 }
 limb_refuses start_jitter 0.5
+limb_refuses start_symmetry 1
+limb_refuses start_symmetry 13
 
 printf 'model bad\nmorphogen phi diffusion=0.1 decay=0\nstate tip = 0\nrule r1: tip == 1 -> set psi = volume\n' >"$T/bad.sds"
 run sds run "$T/bad.sds" --out "$T/c"
@@ -167,6 +185,10 @@ run sds run "$T/s_two.sds" --out "$T/c"
 # (TetGen itself prints the two crossing segments on stdout)
 check "a self-intersecting surface: exit 2, one line on stderr with TetGen's reason, nothing written" eval \
   'rc_is 2 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "TetGen .* rejected the surface: .*self-intersection" "$T/err" && [ ! -e "$T/c" ]'
+{ cat "$T/s_cube.sds"; echo "start_symmetry = 6"; } >"$T/s_sym.sds"
+run sds run "$T/s_sym.sds" --out "$T/c"
+check "start_symmetry with a model's own surface: exit 2, one line naming it, nothing written" eval \
+  'rc_is 2 && one_line && grep -q "start_symmetry" "$T/err" && [ ! -e "$T/c" ]'
 surf missing.ply miss
 run sds run "$T/s_miss.sds" --out "$T/c"
 check "a missing surface file: exit 2, one line, nothing written" eval 'rc_is 2 && one_line && [ ! -e "$T/c" ]'

@@ -124,6 +124,23 @@ sessile_status sessile_sds_from_icosphere(int level, double radius, const double
                                           double max_volume, uint32_t nmorph, uint32_t nstate,
                                           double density, sessile_sds *out);
 
+/* A ball with the mirror symmetry of nfold (2..12) tips round its equator
+ * (the dihedral group D_nfold about the z axis through center): the wedge
+ * 0 <= phi <= pi / nfold meshed by TetGen (SESSILE_SDS_TETGEN_SWITCHES) inside
+ * a boundary of edges about h long, and its 2 nfold mirror images; cells at
+ * phi = 2 pi j / nfold on the equator.  Imported as sessile_sds_from_tets. */
+sessile_status sessile_sds_symmetric_ball(int nfold, double radius, double h, const double center[3],
+                                          uint32_t nmorph, uint32_t nstate, double density, sessile_sds *out);
+/* That ball's cells (3 ncells, its surface cells exactly on the sphere) and
+ * tets (4 ntets, either orientation) before the import, for a realisation
+ * that moves its cells; the caller frees x and tet. */
+sessile_status sessile_sds_symmetric_ball_tets(int nfold, double radius, double h, const double center[3],
+                                               double **x, uint32_t *ncells, uint32_t **tet, uint32_t *ntets);
+/* The sphere of that ball (its surface triangles, outward): a symmetric
+ * obstacle (the rock); out is overwritten (zero it first or free it). */
+sessile_status sessile_sds_symmetric_sphere(int nfold, double radius, double h, const double center[3],
+                                           sessile_surface *out);
+
 /* §3.2.1: r_c = mean over neighbours c' of |x_c - x_c'| / 2 (over the edge
  * list); m = density 4/3 pi r^3.  A cell without edges keeps its radius. */
 void sessile_sds_radii_from_edges(sessile_sds *o, double density);

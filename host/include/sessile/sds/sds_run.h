@@ -26,6 +26,7 @@ typedef struct sessile_sds_run_params {
   double sphere_radius;       /* u */
   int sphere_subdivisions;
   double start_jitter;
+  int start_symmetry;         /* 0: the icosphere; n >= 2: the n-fold symmetric ball */
   int tips_below;             /* bool */
   double density;
   double edge_stiffness, volume_stiffness, surface_multiplier; /* u/s^2 (m u^2/s^2 when uniform) */
