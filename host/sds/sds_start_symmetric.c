@@ -194,8 +194,9 @@ static uint32_t cell_of(tiling *tl, int k, uint32_t v) {
   return tl->ncells++;
 }
 
-/* The n-fold symmetric ball's complex (cells x, tets) and, with srf, its
- * sphere's triangles (the symmetric rock). */
+/* The n-fold symmetric ball's complex (cells x, tets: srf NULL), or its
+ * sphere's triangles alone (srf: the symmetric rock, no mesh inside; x
+ * then holds the cells the triangles use, and no tets). */
 static sessile_status tile(int n, double radius, double h, const double center[3], double **x_out,
                            uint32_t *ncells, uint32_t **tet_out, uint32_t *ntets, sessile_surface *srf) {
   const double alpha = SDS_PI / n;
@@ -206,20 +207,24 @@ static sessile_status tile(int n, double radius, double h, const double center[3
     return st;
   }
   sessile_tetgen_mesh m = {0};
-  char msg[256] = "";
-  st = sessile_tetgen_surface(w.p, (int)w.nv, w.tri, (int)w.nt, SESSILE_SDS_TETGEN_SWITCHES, &m, msg, sizeof msg);
-  if (st != SESSILE_OK) {
-    wedge_free(&w);
-    return sessile_error_set(st, "sds: TetGen could not mesh the symmetric start's wedge: %s", msg);
+  uint32_t nw = w.nv;    /* the wedge's points: its boundary's, then TetGen's inside */
+  const double *pw = w.p;
+  if (!srf) {
+    char msg[256] = "";
+    st = sessile_tetgen_surface(w.p, (int)w.nv, w.tri, (int)w.nt, SESSILE_SDS_TETGEN_SWITCHES, &m, msg, sizeof msg);
+    if (st != SESSILE_OK) {
+      wedge_free(&w);
+      return sessile_error_set(st, "sds: TetGen could not mesh the symmetric start's wedge: %s", msg);
+    }
+    nw = (uint32_t)m.npoints, pw = m.xyz;
   }
   /* TetGen keeps the input points first and in order, and (switch Y) adds
    * none on the boundary: a Steiner point on a mirror plane would have no
    * partner in the next copy */
-  uint32_t nw = (uint32_t)m.npoints;
   uint8_t *cls = malloc(nw);
   st = cls ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the symmetric start");
   for (uint32_t v = 0; st == SESSILE_OK && v < nw; v++) {
-    const double *p = m.xyz + 3 * (size_t)v;
+    const double *p = pw + 3 * (size_t)v;
     if (v < w.nv) {
       cls[v] = w.cls[v];
       if (fabs(p[0] - w.p[3 * v]) + fabs(p[1] - w.p[3 * v + 1]) + fabs(p[2] - w.p[3 * v + 2]) > 1e-12 * radius)
@@ -231,14 +236,14 @@ static sessile_status tile(int n, double radius, double h, const double center[3
         st = sessile_error_set(SESSILE_ERR_NUMERIC, "sds: TetGen put a point on the symmetric wedge's mirror plane");
     }
   }
-  tiling tl = {n, alpha, nw, cls, m.xyz, NULL, NULL, 0};
+  tiling tl = {n, alpha, nw, cls, pw, NULL, NULL, 0};
   uint32_t *tet = NULL;
   size_t nshared = (4 * (size_t)n + 1) * nw;
   if (st == SESSILE_OK) {
     tl.shared = malloc(nshared * sizeof *tl.shared);
     tl.x = malloc(3 * (size_t)2 * n * nw * sizeof *tl.x);
-    tet = malloc(4 * (size_t)2 * n * (size_t)m.ntets * sizeof *tet);
-    if (!tl.shared || !tl.x || !tet)
+    if (!srf) tet = malloc(4 * (size_t)2 * n * (size_t)m.ntets * sizeof *tet);
+    if (!tl.shared || !tl.x || (!srf && !tet))
       st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the symmetric start (%d x %u cells)",
                              2 * n, nw);
   }
@@ -248,6 +253,8 @@ static sessile_status tile(int n, double radius, double h, const double center[3
       for (int t = 0; t < m.ntets; t++)
         for (int c = 0; c < 4; c++)
           tet[4 * ((size_t)k * m.ntets + t) + c] = cell_of(&tl, k, (uint32_t)m.tet[4 * (size_t)t + c]);
+    for (int k = 0; srf && k < 2 * n; k++) /* the sphere alone: its cells */
+      for (uint32_t t = 0; t < 3 * w.nt_sphere; t++) (void)cell_of(&tl, k, w.tri[t]);
     for (uint32_t c = 0; c < tl.ncells; c++)
       for (int d = 0; d < 3; d++) tl.x[3 * (size_t)c + d] += center[d];
   }
@@ -263,7 +270,7 @@ static sessile_status tile(int n, double radius, double h, const double center[3
         for (uint32_t t = 0; t < w.nt_sphere; t++) {
           uint32_t *f = srf->tri + 3 * (size_t)srf->nf++;
           for (int c = 0; c < 3; c++) {
-            uint32_t g = cell_of(&tl, k, w.tri[3 * (size_t)t + c]); /* shared or inner: already made */
+            uint32_t g = cell_of(&tl, k, w.tri[3 * (size_t)t + c]);
             if (idx[g] == UINT32_MAX) {
               idx[g] = srf->nv;
               memcpy(srf->pos + 3 * (size_t)srf->nv++, tl.x + 3 * (size_t)g, 3 * sizeof(double));
@@ -313,7 +320,7 @@ sessile_status sessile_sds_symmetric_sphere(int nfold, double radius, double h, 
   uint32_t n = 0, nt = 0, *tet = NULL;
   sessile_surface s = {0};
   sessile_status st = tile(nfold, radius, h, center, &x, &n, &tet, &nt, &s);
-  free(x), free(tet);
+  free(x);
   if (st != SESSILE_OK) {
     sessile_surface_free(&s);
     return st;
