@@ -57,7 +57,7 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
    * "The loop on the device").  The control's scalars (kernels.def, step):
    * the step asked, the time, the stop time, the lists' growth term of
    * sds_gpu_lists_stale. */
-  double ctl[5] = {b->dt, b->time, b->t_stop, s->p.contact_scale * s->grown, 0};
+  double ctl[5] = {b->dt, b->time, b->t_stop, sds_gpu_reach_scale(s) * s->grown, 0};
   const uint32_t zero[4] = {0, 0, 0, 0};
   uint32_t ev[4];
   double st[SDS_STEP_LOG];

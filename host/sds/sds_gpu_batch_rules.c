@@ -13,7 +13,7 @@ static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int 
   sds_gpu_rules *r = ctx;
   SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
   SESSILE_CALL(sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max));
-  sds_push p = sds_gpu_push_of(s, s->p.contact_scale, 1, 4); /* mode 4 reads contact_scale from dt */
+  sds_push p = sds_gpu_push_of(s, sds_gpu_reach_scale(s), 1, 4); /* mode 4 reads the reach's scale from dt */
   p.batch = (k + 2) | SDS_BATCH_SPLIT;
   return sds_gpu_record_stable_min(s, &p);
 }

@@ -11,14 +11,20 @@
  * the radii grown by at most s->grown?  A list holds the triangles within
  * delta + skin of its cell at the build.  An obstacle triangle does not
  * move: its distance to a cell changes by at most the cell's move, so the
- * obstacle's entries hold while far_all + contact_scale grown <= skin.  A
+ * obstacle's entries hold while far_all + contact_scale grown <= skin (twice
+ * contact_scale with adhesion, whose reach is 2 delta: sds_gpu_reach_scale).  A
  * boundary face's distance changes by at most the cell's move plus its
  * corners' largest move, and both are surface cells (only they query the
  * surface): 2 far_surf + contact_scale grown <= skin.  Interior cells (most
  * daughters of a division) so count once, and only against the obstacle. */
+double sds_gpu_reach_scale(const sessile_sds_gpu *s) {
+  /* the obstacle's reach is 2 delta with adhesion: a radius's growth moves it twice as far */
+  return s->p.obstacle.nf && s->p.adhesion > 0 ? 2 * s->p.contact_scale : s->p.contact_scale;
+}
+
 int sds_gpu_lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf) {
   sds_push p = sds_gpu_push_of(s, 0.0, 0, 0);
-  double g = s->p.contact_scale * s->grown;
+  double g = sds_gpu_reach_scale(s) * s->grown;
   return (p.nobs && !(far_all + g <= s->skin)) || (p.tsize && !(2 * far_surf + g <= s->skin));
 }
 

@@ -106,6 +106,8 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p);
 /* sds_gpu_contacts.c: the lists' staleness after moves, checks at an upload
  * of radii or of a new complex, a build recorded, and the lists made
  * complete before an evaluation. */
+/* contact_scale, or twice it with the obstacle's adhesion: how far a radius's growth moves the lists' reach */
+double sds_gpu_reach_scale(const sessile_sds_gpu *s);
 int sds_gpu_lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf);
 void sds_gpu_lists_check_moves(sessile_sds_gpu *s, const sessile_sds *o);
 sessile_status sds_gpu_lists_check_upload(sessile_sds_gpu *s, const sessile_sds *o, uint32_t *topo, size_t ntopo);

@@ -316,7 +316,8 @@ static void contact_of(const sessile_sds *o, const sessile_sds_params *p, uint32
   double delta = p->contact_scale * o->r[c], w[3];
   ct->tri = -1, ct->obs = -1, ct->s = 0, ct->s_obs = 0;
   if (p->obstacle.nf) {
-    ct->obs = nearest(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf, brute ? NULL : hobs, xc, delta, NULL, 0);
+    ct->obs = nearest(p->obstacle.pos, p->obstacle.tri, p->obstacle.nf, brute ? NULL : hobs, xc,
+                      sessile_sds_obstacle_reach(p, delta), NULL, 0);
     if (ct->obs >= 0)
       ct->s_obs = contact_dist(xc, p->obstacle.pos, p->obstacle.tri + 3 * (size_t)ct->obs, onrm, (uint32_t)ct->obs, w);
   }
@@ -352,18 +353,52 @@ sessile_status sessile_sds_contacts(const sessile_sds *o, const sessile_sds_para
   return st;
 }
 
+double sessile_sds_obstacle_reach(const sessile_sds_params *p, double delta) {
+  return p->adhesion > 0 ? 2 * delta : delta;
+}
+
+/* The signed distance of xc from its obstacle triangle and the outward unit
+ * direction w: the sign is the contact's (found with the pseudo-normals). */
+static double obstacle_dist(const sessile_sds_params *p, const double *xc, const sessile_sds_contact *ct, double *w) {
+  double s = contact_dist(xc, p->obstacle.pos, p->obstacle.tri + 3 * (size_t)ct->obs, NULL, 0, w);
+  if (ct->s_obs < 0 && s > 0) {
+    s = -s;
+    for (int i = 0; i < 3; i++) w[i] = -w[i];
+  }
+  return s;
+}
+
+int sessile_sds_friction_normal(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
+                                const sessile_sds_contact *ct, double *n) {
+  (void)o, (void)c;
+  if (!(p->friction > 0) || ct->obs < 0) return 0;
+  obstacle_dist(p, xc, ct, n);
+  return 1;
+}
+
 double sessile_sds_contact_accel(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
                                  const sessile_sds_contact *ct, double *acc) {
   double delta = p->contact_scale * o->r[c], w[3], u = 0;
   if (ct->obs >= 0) {
-    /* the sign is the contact's (found with the pseudo-normals); w from it */
-    double s = contact_dist(xc, p->obstacle.pos, p->obstacle.tri + 3 * (size_t)ct->obs, NULL, 0, w);
-    if (ct->s_obs < 0 && s > 0) {
-      s = -s;
-      for (int i = 0; i < 3; i++) w[i] = -w[i];
+    double s = obstacle_dist(p, xc, ct, w);
+    if (s < delta) {
+      for (int i = 0; i < 3; i++) acc[i] += p->k_wall * (delta - s) * w[i];
+      u += 0.5 * p->k_wall * (delta - s) * (delta - s);
+      if (p->adhesion > 0) u -= 0.5 * p->adhesion * delta; /* the well's floor: continuous at delta */
+    } else if (p->adhesion > 0) {
+      /* adhesion: a tent of height A over delta <= s <= 2 delta (as
+       * shaders/sds/gather.glsl); its potential rises from -A delta / 2 to 0 */
+      double e = s - delta, a = p->adhesion, pull;
+      if (e < 0.5 * delta) {
+        pull = 2 * a * e / delta;
+        u += a * e * e / delta - 0.5 * a * delta;
+      } else {
+        double g = delta - e > 0 ? delta - e : 0;
+        pull = 2 * a * g / delta;
+        u -= a * g * g / delta;
+      }
+      for (int i = 0; i < 3; i++) acc[i] -= pull * w[i];
     }
-    for (int i = 0; i < 3; i++) acc[i] += p->k_wall * (delta - s) * w[i];
-    u += 0.5 * p->k_wall * (delta - s) * (delta - s);
   }
   if (ct->tri >= 0) {
     double s = contact_dist(xc, o->x, o->face + 3 * (size_t)ct->tri, NULL, 0, w);

@@ -10,12 +10,27 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
   double *f = malloc(3 * (size_t)o->ncells * sizeof *f);
   if (!f) return NAN;
   sessile_sds_forces_ref(o, p, 1, f);
+  /* the friction's normals at the step's start (as the gather) */
+  int fric = p->friction > 0 && p->obstacle.nf;
+  sessile_sds_contact *ct = fric ? malloc((o->ncells ? o->ncells : 1) * sizeof *ct) : NULL;
+  if (ct && sessile_sds_contacts(o, p, ct) != SESSILE_OK) free(ct), ct = NULL;
   double mv = 0;
   for (uint32_t c = 0; c < o->ncells; c++) {
-    double d2 = 0;
+    double d2 = 0, n[3];
     for (int i = 0; i < 3; i++) {
       size_t k = 3 * (size_t)c + i;
       o->v[k] += dt * f[k] / o->m[c];
+    }
+    sessile_sds_contact one;
+    if (fric && !ct) sessile_sds_contact_brute(o, p, c, o->x + 3 * (size_t)c, &one);
+    if (fric && sessile_sds_friction_normal(o, p, c, o->x + 3 * (size_t)c, ct ? &ct[c] : &one, n)) {
+      /* backward Euler on -friction v_t: unconditionally stable, so the
+       * bound needs no term for it */
+      double *v = o->v + 3 * (size_t)c, vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+      for (int i = 0; i < 3; i++) v[i] = vn * n[i] + (v[i] - vn * n[i]) / (1 + dt * p->friction);
+    }
+    for (int i = 0; i < 3; i++) {
+      size_t k = 3 * (size_t)c + i;
       double dx = dt * o->v[k];
       o->x[k] += dx;
       d2 += dx * dx;
@@ -23,7 +38,7 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
     double mm = sqrt(d2) / o->r[c];
     if (mm > mv || mm != mm) mv = mm;
   }
-  free(f);
+  free(f), free(ct);
   return mv;
 }
 
@@ -45,7 +60,8 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
  * (omega dt)^2 + 2 gamma dt < 4.  Per cell, Gershgorin's theorem on M^-1 H
  * at rest bounds omega^2: its edges give 2 K_e (K_e = d2E/dL2 = s_k / R'^2:
  * k_e (m_a + m_b) / R', or k_e / R'^2 with uniform stiffness), its tets s_t / R'^2 |grad_c V| sum_j |grad_j V|, the
- * walls k_wall; gamma likewise from the volume damping (damp_vol in place of
+ * walls k_wall (or the obstacle's adhesion slope 2 A / delta where larger;
+ * its friction is implicit and needs no term); gamma likewise from the volume damping (damp_vol in place of
  * k_vol) plus the viscous c; a surface cell adds k_contact when
  * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells,
  * 0 when out of memory (a bound of dt_min here made a failed allocation read
@@ -75,8 +91,11 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
     for (int k = 0; k < 4; k++) lam[2 * q[k]] += ks * gl[k] * gs, lam[2 * q[k] + 1] += ds * gl[k] * gs;
   }
   double wall = p->box || p->obstacle.nf ? p->k_wall : 0, dt = p->dt_max;
+  /* the adhesion's slope, 2 A / delta, where it exceeds the wall's */
+  double adh = p->obstacle.nf && p->adhesion > 0 ? 2 * p->adhesion / p->contact_scale : 0;
   for (uint32_t c = 0; c < o->ncells; c++) {
-    double w2 = lam[2 * c] / o->m[c] + wall + (p->self_collide && o->surface && o->surface[c] ? p->k_contact : 0),
+    double wc = adh / o->r[c] > wall ? adh / o->r[c] : wall;
+    double w2 = lam[2 * c] / o->m[c] + wc + (p->self_collide && o->surface && o->surface[c] ? p->k_contact : 0),
            gam = lam[2 * c + 1] / o->m[c] + p->damp_visc;
     /* the positive root of w2 dt^2 + 2 gam dt - 4 = 0 */
     double h = w2 > 0 ? 4.0 / (gam + sqrt(gam * gam + 4 * w2)) : (gam > 0 ? 2.0 / gam : p->dt_max);

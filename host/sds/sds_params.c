@@ -46,6 +46,12 @@ static const sessile_param_desc descs[] = {
      "gravity along -z (paper 3.2 names it; the prototype's 10 crushes a body here)", NULL},
     {"self_collide", SESSILE_PT_BOOL, OFF(self_collide), 1, 0, 1, 0, "", "paper 3.2",
      "surface self-collision by spatial hashing (Teschner et al.)", NULL},
+    {"obstacle_adhesion", SESSILE_PT_REAL, OFF(obstacle_adhesion), 0, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "u/s^2",
+     "ours", "the rock's pull on a cell one to two contact distances from it: a tent peaking at this 1.5 contact "
+     "distances out (paper 3.4: a form made to stick to an object; docs/sds.md)", NULL},
+    {"obstacle_friction", SESSILE_PT_REAL, OFF(obstacle_friction), 0, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "ours",
+     "a cell within the rock's reach has its velocity along the rock relaxed at this rate (implicit; 0: frictionless)",
+     NULL},
     {"dt", SESSILE_PT_REAL, OFF(dt), 1e-3, 0, INFINITY, OPEN_BOTH, "s", "ours",
      "the first physics step; the step control adapts it (paper 3.2: adaptive Verlet)", NULL},
     {"max_move", SESSILE_PT_REAL, OFF(max_move), 0.05, 0, 1, SESSILE_PARAM_LO_OPEN, "radii", "ours",

@@ -35,6 +35,8 @@ static sessile_status read_physics(sds_sim *s, const char *where) {
   s->p.stable_safety = q->stable_safety;
   s->density = q->density;
   s->p.self_collide = q->self_collide;
+  s->p.adhesion = q->obstacle_adhesion;
+  s->p.friction = q->obstacle_friction;
   const sessile_sds_param *box = sessile_sds_model_param_find(m, "box");
   if (box) {
     SESSILE_CHECK(box->nvalues == 6, SESSILE_ERR_USAGE, "%s:%d: box needs 6 values: xmin ymin zmin xmax ymax zmax",
@@ -60,6 +62,9 @@ static sessile_status read_physics(sds_sim *s, const char *where) {
     }
     s->p.obstacle.nv = s->rock.nv, s->p.obstacle.nf = s->rock.nf;
     s->p.obstacle.pos = s->rock.pos, s->p.obstacle.tri = s->rock.tri;
+  } else {
+    SESSILE_CHECK(q->obstacle_adhesion == 0 && q->obstacle_friction == 0, SESSILE_ERR_USAGE,
+                  "%s: obstacle_adhesion and obstacle_friction act on a rock, and the model has none", where);
   }
   const sessile_sds_param *att = sessile_sds_model_param_find(m, "attractor");
   if (att) {

@@ -56,7 +56,9 @@ void main() {
     return;
   REAL p[3] = REAL[3](LD_X(3u * c), LD_X(3u * c + 1u), LD_X(3u * c + 2u));
   for (int i = 0; i < 3; i++) xb[3u * c + uint(i)] = p[i];
-  REAL reach = sp[SP_CONTACT] * R_OF(c) + sp[SP_SKIN];
+  REAL delta = sp[SP_CONTACT] * R_OF(c);
+  // the obstacle's force reaches 2 delta with adhesion (sessile_sds_obstacle_reach)
+  REAL reach = (sp[SP_ADHESION] > REAL(0) ? REAL(2) * delta : delta) + sp[SP_SKIN];
   if (pc.nobs > 0u) obstacle_candidates(c, p, reach);
   list[c] = n_in;
   atomicMax(lmax[0], n_in); // the largest count (a maximum: order-free)

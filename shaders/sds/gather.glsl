@@ -1,9 +1,11 @@
 // One cell per invocation: the sum of the forces of its incident edges and
 // tets (in CSR order, ascending element index: the same bytes every run),
-// gravity, the box penalty, attraction, the obstacle and self contacts
-// among the cell's contact list (docs/sds.md, "Collisions") and viscous damping;
+// gravity, the box penalty, attraction, the obstacle (its penalty and
+// adhesion) and self contacts among the cell's contact list (docs/sds.md,
+// "Collisions") and viscous damping;
 // in mode 1 one semi-implicit Euler step (v += dt f/m, x += dt v) into
-// x_out, v_out and the move |dt v| / r; in mode 2 the same step with the dt
+// x_out, v_out and the move |dt v| / r (the obstacle's friction implicit
+// in it); in mode 2 the same step with the dt
 // that stable_min capped (stab[n]).  Mirrors sessile_sds_forces_ref and
 // sessile_sds_step_ref (host/sds).
 #include "sds_common.glsl"
@@ -19,11 +21,14 @@ void obs_corner(uint q, out REAL a[3]) {
 // The cell c at p against its nearest triangles closer than delta among its
 // contact candidates (contact_list.comp: every triangle that can be within
 // delta until the list is rebuilt): the obstacle's, signed by its
-// pseudo-normals, and the surface's (not at c or a neighbour).  The nearest
-// wins, ties to the lower index: the triangle a query of every triangle
-// finds (sessile_sds_contact_brute).
-void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
-  REAL best = delta * delta, best_o = delta * delta;
+// pseudo-normals, within 2 delta with adhesion, and the surface's (not at c
+// or a neighbour).  The nearest wins, ties to the lower index: the triangle
+// a query of every triangle finds (sessile_sds_contact_brute).  fr: the
+// obstacle's friction acts on the cell, along its unit normal fn.
+void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3], out bool fr, out REAL fn[3]) {
+  REAL ro = sp[SP_ADHESION] > REAL(0) ? REAL(2) * delta : delta; // sessile_sds_obstacle_reach
+  REAL best = delta * delta, best_o = ro * ro;
+  fr = false;
   uint bt = 0xffffffffu, bo = 0xffffffffu, base = pc.lbase + c * pc.lcap, n = LD_LIST(c);
   for (uint k = 0u; k < n; k++) {
     uint e = LD_LIST(base + k), t = e & ~SDS_LIST_OBS;
@@ -47,7 +52,20 @@ void contacts(uint c, REAL p[3], REAL delta, inout REAL acc[3]) {
     REAL nrm[21];
     uint n0 = 3u * pc.nattract + 3u * pc.nobs_v + 21u * bo;
     for (int i = 0; i < 21; i++) nrm[i] = LD_WORLD(n0 + uint(i));
-    contact_add(p, a0, a1, a2, delta, sp[SP_K_WALL], true, nrm, acc);
+    REAL w[3];
+    REAL s = contact_geom(p, a0, a1, a2, true, nrm, w);
+    if (s < delta)
+      for (int i = 0; i < 3; i++) acc[i] += sp[SP_K_WALL] * (delta - s) * w[i];
+    else if (sp[SP_ADHESION] > REAL(0)) { // a tent of height A over delta <= s <= 2 delta
+      REAL e = s - delta, a = sp[SP_ADHESION], pull;
+      if (e < REAL(0.5) * delta) pull = REAL(2) * a * e / delta;
+      else {
+        REAL g = delta - e > REAL(0) ? delta - e : REAL(0);
+        pull = REAL(2) * a * g / delta;
+      }
+      for (int i = 0; i < 3; i++) acc[i] -= pull * w[i];
+    }
+    if (sp[SP_FRICTION] > REAL(0)) fr = true, fn = w;
   }
   if (bt != 0xffffffffu) {
     uint of = o_face() + 3u * bt;
@@ -90,7 +108,9 @@ void main() {
       for (int i = 0; i < 3; i++) acc[i] += sp[SP_K_ATTRACT] * d[i] / l;
   }
   REAL delta = sp[SP_CONTACT] * R_OF(c);
-  if (pc.lcap > 0u) contacts(c, p, delta, acc);
+  bool fr = false;
+  REAL fn[3];
+  if (pc.lcap > 0u) contacts(c, p, delta, acc, fr, fn);
   REAL mc = M_OF(c);
   for (int i = 0; i < 3; i++) {
     s[i] += mc * acc[i];
@@ -99,9 +119,14 @@ void main() {
   }
   if (pc.mode != 0u) {
     REAL dt = pc.mode == 2u ? stab[pc.ncells] : pc.dt;
-    REAL d2 = REAL(0);
+    REAL d2 = REAL(0), vq[3];
+    for (int i = 0; i < 3; i++) vq[i] = LD_V(3u * c + i) + dt * s[i] / mc;
+    if (fr) { // the obstacle's friction, backward Euler on -friction v_t (as sessile_sds_step_ref)
+      REAL vn = vq[0] * fn[0] + vq[1] * fn[1] + vq[2] * fn[2];
+      for (int i = 0; i < 3; i++) vq[i] = vn * fn[i] + (vq[i] - vn * fn[i]) / (REAL(1) + dt * sp[SP_FRICTION]);
+    }
     for (int i = 0; i < 3; i++) {
-      REAL vn = LD_V(3u * c + i) + dt * s[i] / mc;
+      REAL vn = vq[i];
       REAL dx = dt * vn;
       v_out[3u * c + i] = vn;
       x_out[3u * c + i] = p[i] + dx;
@@ -111,7 +136,7 @@ void main() {
     if (pc.lcap > 0u) { // how far the cell is from where its contact list was built
       REAL e2 = REAL(0);
       for (int i = 0; i < 3; i++) {
-        REAL d = p[i] + dt * (LD_V(3u * c + i) + dt * s[i] / mc) - xb[3u * c + i]; // x_out, as above
+        REAL d = p[i] + dt * vq[i] - xb[3u * c + i]; // x_out, as above
         e2 += d * d;
       }
       move[pc.ncells + c] = sqrt(e2);

@@ -64,15 +64,14 @@ REAL tri_dist2(REAL p[3], REAL a[3], REAL b[3], REAL c[3]) {
   return dot3(d, d);
 }
 
-// The penalty of a cell at p whose nearest triangle is (a, b, c): with
-// has_nrm (the obstacle) the distance is signed by the pseudo-normal of the
-// closest point's region, nrm[3 region] (negative inside, the push
-// pointing out); without (the organism's surface) it is unsigned, the push
-// away from the closest point.  Acceleration k (delta - s) w.  As
-// contact_dist and sessile_sds_contact_accel (host/sds/sds_hash.c).
-void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k, bool has_nrm, REAL nrm[21],
-                 inout REAL acc[3]) {
-  REAL q[3], e1[3], e2[3], n[3], d[3], w[3];
+// The distance s of a cell at p from its nearest triangle (a, b, c) and
+// the unit direction w of the push: with has_nrm (the obstacle) the
+// distance is signed by the pseudo-normal of the closest point's region,
+// nrm[3 region] (negative inside, the push pointing out); without (the
+// organism's surface) it is unsigned, the push away from the closest point.
+// As contact_dist (host/sds/sds_hash.c).
+REAL contact_geom(REAL p[3], REAL a[3], REAL b[3], REAL c[3], bool has_nrm, REAL nrm[21], out REAL w[3]) {
+  REAL q[3], e1[3], e2[3], n[3], d[3];
   int region = closest_on_tri(p, a, b, c, q);
   for (int i = 0; i < 3; i++) d[i] = p[i] - q[i], e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
   n[0] = e1[1] * e2[2] - e1[2] * e2[1];
@@ -103,6 +102,15 @@ void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k,
     for (int i = 0; i < 3; i++) w[i] = n[i] / ln;
     s = REAL(0);
   }
+  return s;
+}
+
+// The penalty of a cell at p whose nearest triangle is (a, b, c):
+// acceleration k (delta - s) w.  As sessile_sds_contact_accel.
+void contact_add(REAL p[3], REAL a[3], REAL b[3], REAL c[3], REAL delta, REAL k, bool has_nrm, REAL nrm[21],
+                 inout REAL acc[3]) {
+  REAL w[3];
+  REAL s = contact_geom(p, a, b, c, has_nrm, nrm, w);
   for (int i = 0; i < 3; i++) acc[i] += k * (delta - s) * w[i];
 }
 #endif

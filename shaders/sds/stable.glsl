@@ -35,7 +35,9 @@ void main() {
   }
   for (int i = 0; i < 3; i++) stab[pc.ncells + 3u + 3u * c + i] = s[i];
   REAL m = M_OF(c);
-  precise REAL w = w2 / m + sp[SP_STAB_WALL] + (LD_TOPO(o_csurf() + c) != 0u ? sp[SP_STAB_CONTACT] : REAL(0));
+  precise REAL wa = sp[SP_STAB_ADH] / R_OF(c); // the adhesion's slope 2 A / delta, where it exceeds the wall's
+  precise REAL w = w2 / m + (wa > sp[SP_STAB_WALL] ? wa : sp[SP_STAB_WALL]) +
+                   (LD_TOPO(o_csurf() + c) != 0u ? sp[SP_STAB_CONTACT] : REAL(0));
   precise REAL g = gam / m + sp[SP_DAMP_VISC];
   precise REAL h;
   if (w > REAL(0)) h = REAL(4) / (g + sqrt(g * g + REAL(4) * w));

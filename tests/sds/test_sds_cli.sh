@@ -119,6 +119,10 @@ limb_refuses() {
 limb_refuses start_jitter 0.5
 limb_refuses start_symmetry 1
 limb_refuses start_symmetry 13
+# the rock's adhesion and friction on a model without a rock (the limb's)
+limb_refuses obstacle_adhesion 5
+limb_refuses obstacle_friction 100
+limb_refuses obstacle_friction -1
 
 printf 'model bad\nmorphogen phi diffusion=0.1 decay=0\nstate tip = 0\nrule r1: tip == 1 -> set psi = volume\n' >"$T/bad.sds"
 run sds run "$T/bad.sds" --out "$T/c"

@@ -242,6 +242,28 @@ int main(int argc, char **argv) {
     sessile_sds_free(&o);
     sessile_surface_free(&rock);
   }
+  /* (b') the ball held just over the rock with the rock's adhesion: cells
+   * in the penalty and in both halves of the adhesion's tent (docs/sds.md,
+   * "Adhesion and friction"), whose force is -grad of its potential too */
+  {
+    sessile_sds o = {0};
+    sessile_surface rock = {0};
+    ball_and_rock(3, 1.0, 0.0123, 1.04, &o, &rock);
+    contact_only(&p);
+    p.adhesion = 5;
+    p.obstacle.nv = rock.nv, p.obstacle.nf = rock.nf, p.obstacle.pos = rock.pos, p.obstacle.tri = rock.tri;
+    compare(g, "ball over a rock, adhesion", &o, &p, &ns, &no);
+    int band = 0;
+    for (uint32_t c = 0; c < o.ncells; c++) {
+      sessile_sds_contact ct;
+      sessile_sds_contact_brute(&o, &p, c, o.x + 3 * (size_t)c, &ct);
+      band += ct.obs >= 0 && ct.s_obs >= p.contact_scale * o.r[c];
+    }
+    t_true("  cells in the adhesion's band and in contact", band >= 4 && no > band);
+    finite_differences("ball over a rock, adhesion", &o, &p);
+    sessile_sds_free(&o);
+    sessile_surface_free(&rock);
+  }
   /* (c) random clouds: the cells of an import scattered in a cube (the
    * boundary faces become a random triangle soup), an obstacle of random
    * triangles; a quarter of the coordinates put exactly on multiples of

@@ -188,6 +188,14 @@ typedef struct sessile_sds_params {
   double contact_scale; /* contact distance / cell radius (1) */
   double k_contact;    /* self-contact penalty: acceleration per unit depth, 1/s^2 (1000) */
   sessile_sds_obstacle obstacle; /* nf 0: none */
+  /* sticking to the obstacle (docs/sds.md, "Adhesion and friction"): a cell
+   * between one and two contact distances from its nearest obstacle
+   * triangle is pulled toward it, A tent((s - delta) / delta) with the peak
+   * A at 1.5 delta; a cell within reach of the obstacle's force (delta, or
+   * 2 delta with adhesion) has its velocity along the triangle relaxed
+   * implicitly in the step, v_t / (1 + friction dt) */
+  double adhesion;     /* A, u/s^2 (0: none) */
+  double friction;     /* 1/s (0: frictionless) */
   uint32_t nattract;
   const double *attract_pos; /* 3 nattract, not owned */
   double k_attract;    /* attraction: acceleration toward the point, u/s^2 */
@@ -228,7 +236,7 @@ void sessile_sds_forces_ref(const sessile_sds *o, const sessile_sds_params *p, i
 typedef struct sessile_sds_contact {
   int32_t tri;  /* nearest boundary face (index into face) closer than the contact distance, without
                    a corner at the cell or a neighbour of it; -1 none (or not a surface cell) */
-  int32_t obs;  /* nearest obstacle triangle closer than the contact distance, -1 none */
+  int32_t obs;  /* nearest obstacle triangle closer than the contact distance (twice it with adhesion), -1 none */
   double s, s_obs; /* their signed distances from the cell (negative behind the triangle) */
 } sessile_sds_contact;
 /* The reference: cell c placed at xc (3) against every triangle (brute force). */
@@ -238,13 +246,24 @@ void sessile_sds_contact_brute(const sessile_sds *o, const sessile_sds_params *p
  * same triangles as the brute force (ties go to the lower index). */
 sessile_status sessile_sds_contacts(const sessile_sds *o, const sessile_sds_params *p, sessile_sds_contact *ct);
 /* Adds the contact acceleration of cell c at xc for contacts ct to acc (3):
- * k (delta - s) along the triangle's outward direction, delta = contact_scale r_c;
- * returns the contact energy per unit mass, k/2 (delta - s)^2 summed. */
+ * k (delta - s) along the triangle's outward direction, delta = contact_scale r_c,
+ * and the obstacle's adhesion beyond delta; returns the contact energy per
+ * unit mass, k/2 (delta - s)^2 summed, plus the adhesion's potential. */
 double sessile_sds_contact_accel(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
                                  const sessile_sds_contact *ct, double *acc);
+/* The obstacle's reach: the distance within which the obstacle's force (and
+ * friction) acts on a cell of contact distance delta, delta or 2 delta with
+ * adhesion. */
+double sessile_sds_obstacle_reach(const sessile_sds_params *p, double delta);
+/* The friction's direction for cell c at xc: 1 and the unit normal n (3) of
+ * its nearest obstacle triangle when friction acts on it, else 0. */
+int sessile_sds_friction_normal(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
+                                const sessile_sds_contact *ct, double *n);
 
 /* One step of the integrator on the host (semi-implicit Euler = leapfrog
- * Verlet): v += dt f/m, x += dt v.  Returns max over cells of |dt v| / r. */
+ * Verlet): v += dt f/m, the obstacle's friction on v's part along the
+ * triangle (v_t / (1 + friction dt)), x += dt v.  Returns max over cells of
+ * |dt v| / r. */
 double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
 /* The stable step bound of the integrator at the current state (omega dt < 2
  * for the fastest mode, by Gershgorin at rest; docs/sds.md, "Integrator").

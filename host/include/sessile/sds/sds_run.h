@@ -35,6 +35,8 @@ typedef struct sessile_sds_run_params {
   double viscosity;           /* 1/s */
   double gravity;             /* u/s^2 along -z */
   int self_collide;           /* bool */
+  double obstacle_adhesion;   /* u/s^2: the rock's pull on a cell near it */
+  double obstacle_friction;   /* 1/s: the rock's friction on a cell within its reach */
   double dt;                  /* s: the first step */
   double max_move, stable_safety;
   int device_loop;            /* bool: steps in batches on the device, rules included (the same bytes) */
