@@ -289,6 +289,20 @@ a = fig("attract", T + "/r", "--point", "0", "0", "5")
 print("rock at t = %.2f: the limbs' turns %s deg, tips %.3f u from (0, 0, 5)" % (
     b["time"], ["%.2f" % d for d in b["turn_deg"]], a["mean_distance"]))
 ok &= len(b["turn_deg"]) == 6 and b["excess_deg"] == 0 and len(a["distance"]) == 6
+# Figure 9's body upon its rock: at t = 2 the body sits on the rock's axis
+# (upon) with its tips at the equator, above the rock's top (not yet over
+# it); the same frames against a rock moved 3 u sideways: not upon it
+k = fig("rock", T + "/r")
+import shutil
+shutil.copytree(T + "/r", T + "/r_moved")
+mdl = open(T + "/r_moved/sds/model.sds").read()
+open(T + "/r_moved/sds/model.sds", "w").write(mdl.replace("rock = 0 0 -3.45", "rock = 3 0 -3.45"))
+km = fig("rock", T + "/r_moved")
+print("rock at t = %.2f: centroid %.3f u from the rock's axis (%.3f moved), tips %.2f u over its top, %s / %s" % (
+    k["time"], k["centroid_offset"], km["centroid_offset"], k["mean_tip_height_over_top"], k["criteria"],
+    km["criteria"]))
+ok &= k["criteria"] == {"upon_rock": True, "limbs_over_rock": False} and abs(k["mean_tip_height_over_top"] - 1.05) < 0.2
+ok &= not km["criteria"]["upon_rock"] and abs(km["centroid_offset"] - 3) < 0.1
 # sds/divisions.csv: one row per division the step log counts, in time
 # order, each cell existing before it divided and its daughter the next new index
 import numpy as np
@@ -310,11 +324,12 @@ PYEOF
 # symmetric initial conditions": the rock model's six-fold symmetric start
 # (its start_symmetry = 6) divides the six limbs together, each of their first
 # five divisions within one interval of the others; the icosphere start
-# (start_symmetry = 0), with no symmetry of the six tips, does not
-run sds run rock --t-end 36 --frames 4 --out "$T/sym" --quiet
-check "the rock model (symmetric start) runs to t = 36" rc_is 0
-run sds run rock --set start_symmetry=0 --t-end 36 --frames 4 --out "$T/ico" --quiet
-check "the rock model from the icosphere runs to t = 36" rc_is 0
+# (start_symmetry = 0), with no symmetry of the six tips, does not (to t = 40:
+# the fifth division of the stuck body's limbs comes at t = 38.1)
+run sds run rock --t-end 40 --frames 4 --out "$T/sym" --quiet
+check "the rock model (symmetric start) runs to t = 40" rc_is 0
+run sds run rock --set start_symmetry=0 --t-end 40 --frames 4 --out "$T/ico" --quiet
+check "the rock model from the icosphere runs to t = 40" rc_is 0
 check "Figure 12: the symmetric start's limbs divide near-simultaneously, the icosphere's do not" \
   "$PY" -B - "$T" "$FIG" <<'PYEOF'
 import json, subprocess, sys
@@ -328,7 +343,9 @@ for run, want in (("sym", True), ("ico", False)):
     d = fig("divisions", T + "/" + run)
     print("%s: first five divisions' spreads %s against an interval of %.3f" % (
         run, ["%.3f" % r["spread"] for r in d["ranks"]], d["interval"]))
-    ok &= len(d["ranks"]) == 5 and d["criteria"]["limbs_divide_near_simultaneously"] == want
+    # the symmetric start's five ranks; the icosphere's slowest limb may have
+    # fewer by t = 40, and three already tell
+    ok &= len(d["ranks"]) >= (5 if want else 3) and d["criteria"]["limbs_divide_near_simultaneously"] == want
 sys.exit(0 if ok else 1)
 PYEOF
 

@@ -19,6 +19,10 @@
       Figure 11: the bud cells' total volume, at the frame chosen against
       the first frame that has bud cells; and where they are (their mean
       distance to the nearest tip through the complex against every cell's).
+  figures.py rock RUN_DIR [--frame K | --time T]
+      Figure 9: the body upon its rock (the cells' centroid within the body's
+      starting radius of the rock's vertical axis) and its limbs over it
+      (the tips' mean height below the rock's top).
   figures.py divisions RUN_DIR [--first K] [--window W]
       Figure 12: which limb divided when (sds/divisions.csv; each dividing
       cell goes to the limb of the tip nearest it through the complex in the
@@ -479,10 +483,43 @@ def cmd_divisions(args):
     print(json.dumps(m))
 
 
+def rock_of(run):
+    """The model's `rock = x y z radius` line (sds/model.sds)."""
+    for line in open(run + "/sds/model.sds"):
+        f = re.match(r"\s*rock\s*=\s*([-+0-9.eE\s]+)", line)
+        if f:
+            v = [float(w) for w in f.group(1).split()[:4]]
+            if len(v) == 4:
+                return np.array(v[:3]), v[3]
+    raise SystemExit("%s: the model has no rock" % run)
+
+
+def cmd_rock(args):
+    ctr, rad = rock_of(args.run)
+    k, t = pick_frame(args.run, args)
+    c = load_frame(args.run, k)
+    cen = c["x"][c["used"]].mean(0)
+    tips = c["x"][tip_cells(c)]
+    top = ctr[2] + rad
+    off = float(np.hypot(*(cen[:2] - ctr[:2])))
+    r0 = model_value(args.run, "sphere_radius", 1.0)
+    h = tips[:, 2] - top
+    m = {"figure": 9, "frame": k, "time": t, "rock": ctr.tolist() + [rad], "centroid": cen.tolist(),
+         "centroid_offset": off, "body_radius": r0, "tip_height_over_top": h.tolist(),
+         "mean_tip_height_over_top": float(h.mean()),
+         "tip_axis_distance": np.hypot(tips[:, 0] - ctr[0], tips[:, 1] - ctr[1]).tolist()}
+    print("frame %d, t = %.3f: the cells' centroid (%.2f, %.2f, %.2f), %.2f u from the rock's axis (body radius %g)" % (
+        k, t, *cen, off, r0))
+    print("  the tips' heights over the rock's top (z = %.2f): %s; mean %.2f" % (
+        top, " ".join("%.2f" % v for v in h), h.mean()))
+    m["criteria"] = {"upon_rock": bool(off <= r0), "limbs_over_rock": bool(h.mean() < 0)}
+    print(json.dumps(m))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
-    for name in ("limb", "stripes", "bend", "attract", "buds"):
+    for name in ("limb", "stripes", "bend", "attract", "buds", "rock"):
         p = sub.add_parser(name)
         p.add_argument("run")
         p.add_argument("--frame", type=int)
@@ -515,7 +552,7 @@ def main(argv=None):
     p.add_argument("--to", dest="t1", type=float, default=400)
     args = ap.parse_args(argv)
     {"limb": cmd_limb, "stripes": cmd_stripes, "cells": cmd_cells, "bend": cmd_bend, "attract": cmd_attract,
-     "buds": cmd_buds, "divisions": cmd_divisions}[args.cmd](args)
+     "buds": cmd_buds, "divisions": cmd_divisions, "rock": cmd_rock}[args.cmd](args)
 
 
 if __name__ == "__main__":
