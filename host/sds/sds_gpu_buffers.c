@@ -114,7 +114,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   v[SP_STAB_WALL] = p->box || p->obstacle.nf ? p->k_wall : 0;
   v[SP_STAB_CONTACT] = p->self_collide ? p->k_contact : 0;
   v[SP_ADHESION] = p->obstacle.nf ? p->adhesion : 0, v[SP_FRICTION] = p->obstacle.nf ? p->friction : 0;
-  v[SP_STAB_ADH] = p->obstacle.nf && p->adhesion > 0 ? 2 * p->adhesion / p->contact_scale : 0;
+  v[SP_STAB_ADH] = sds_stab_adhesion(p);
   /* a batch's step control (stable_min.comp, as sessile_sds_gpu_advance) */
   v[SP_MAX_MOVE] = p->max_move, v[SP_DT_MIN] = p->dt_min, v[SP_AIM] = SDS_MOVE_AIM, v[SP_GROW] = SDS_GROW;
   /* the obstacle is static: its hash table is built here, once, on the host */

@@ -18,8 +18,8 @@
  * surface): 2 far_surf + contact_scale grown <= skin.  Interior cells (most
  * daughters of a division) so count once, and only against the obstacle. */
 double sds_gpu_reach_scale(const sessile_sds_gpu *s) {
-  /* the obstacle's reach is 2 delta with adhesion: a radius's growth moves it twice as far */
-  return s->p.obstacle.nf && s->p.adhesion > 0 ? 2 * s->p.contact_scale : s->p.contact_scale;
+  /* the reach is linear in delta = contact_scale r: 2 delta with adhesion */
+  return sessile_sds_obstacle_reach(&s->p, s->p.contact_scale);
 }
 
 int sds_gpu_lists_stale(const sessile_sds_gpu *s, double far_all, double far_surf) {

@@ -354,7 +354,7 @@ sessile_status sessile_sds_contacts(const sessile_sds *o, const sessile_sds_para
 }
 
 double sessile_sds_obstacle_reach(const sessile_sds_params *p, double delta) {
-  return p->adhesion > 0 ? 2 * delta : delta;
+  return p->obstacle.nf && p->adhesion > 0 ? 2 * delta : delta;
 }
 
 /* The signed distance of xc from its obstacle triangle and the outward unit
@@ -368,9 +368,8 @@ static double obstacle_dist(const sessile_sds_params *p, const double *xc, const
   return s;
 }
 
-int sessile_sds_friction_normal(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
-                                const sessile_sds_contact *ct, double *n) {
-  (void)o, (void)c;
+int sessile_sds_friction_normal(const sessile_sds_params *p, const double *xc, const sessile_sds_contact *ct,
+                                double *n) {
   if (!(p->friction > 0) || ct->obs < 0) return 0;
   obstacle_dist(p, xc, ct, n);
   return 1;

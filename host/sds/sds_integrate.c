@@ -23,7 +23,7 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
     }
     sessile_sds_contact one;
     if (fric && !ct) sessile_sds_contact_brute(o, p, c, o->x + 3 * (size_t)c, &one);
-    if (fric && sessile_sds_friction_normal(o, p, c, o->x + 3 * (size_t)c, ct ? &ct[c] : &one, n)) {
+    if (fric && sessile_sds_friction_normal(p, o->x + 3 * (size_t)c, ct ? &ct[c] : &one, n)) {
       /* backward Euler on -friction v_t: unconditionally stable, so the
        * bound needs no term for it */
       double *v = o->v + 3 * (size_t)c, vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
@@ -92,7 +92,7 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
   }
   double wall = p->box || p->obstacle.nf ? p->k_wall : 0, dt = p->dt_max;
   /* the adhesion's slope, 2 A / delta, where it exceeds the wall's */
-  double adh = p->obstacle.nf && p->adhesion > 0 ? 2 * p->adhesion / p->contact_scale : 0;
+  double adh = sds_stab_adhesion(p);
   for (uint32_t c = 0; c < o->ncells; c++) {
     double wc = adh / o->r[c] > wall ? adh / o->r[c] : wall;
     double w2 = lam[2 * c] / o->m[c] + wc + (p->self_collide && o->surface && o->surface[c] ? p->k_contact : 0),

@@ -34,6 +34,13 @@ static inline double sds_vol4(const double *p0, const double *p1, const double *
 double sds_edge_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t e);
 double sds_tet_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t t);
 
+/* The stable bound's adhesion term times a cell's radius: its slope 2 A /
+ * delta is this / r (0 without an obstacle's adhesion; docs/sds.md,
+ * "Adhesion and friction"). */
+static inline double sds_stab_adhesion(const sessile_sds_params *p) {
+  return p->obstacle.nf && p->adhesion > 0 ? 2 * p->adhesion / p->contact_scale : 0;
+}
+
 /* Gravity, box penalty and attraction acceleration of a cell at x, and
  * their potential per unit mass (host reference of the GPU's; the contacts
  * are sessile_sds_contact_accel's). */

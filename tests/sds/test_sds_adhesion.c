@@ -123,8 +123,6 @@ int main(int argc, char **argv) {
       t_must("ball", sessile_sds_from_icosphere(2, 1.0, ctr, 0, 0, 0, 1.0, &a));
       t_must("ball", sessile_sds_from_icosphere(2, 1.0, ctr, 0, 0, 0, 1.0, &b));
       sessile_sds_gpu *s0 = NULL, *s1 = NULL;
-      for (uint32_t c = 0; c < o.ncells; c++)
-        for (int i = 0; i < 3; i++) o.v[3 * (size_t)c + i] = V0[i];
       t_must("gpu create", sessile_sds_gpu_create(g, &o, &q0, &s0));
       t_must("gpu create", sessile_sds_gpu_create(g, &o, &q1, &s1));
       t_must("gpu step", sessile_sds_gpu_step(s0, dt, NULL));

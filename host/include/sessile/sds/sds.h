@@ -253,12 +253,13 @@ double sessile_sds_contact_accel(const sessile_sds *o, const sessile_sds_params 
                                  const sessile_sds_contact *ct, double *acc);
 /* The obstacle's reach: the distance within which the obstacle's force (and
  * friction) acts on a cell of contact distance delta, delta or 2 delta with
- * adhesion. */
+ * an obstacle's adhesion. */
 double sessile_sds_obstacle_reach(const sessile_sds_params *p, double delta);
-/* The friction's direction for cell c at xc: 1 and the unit normal n (3) of
- * its nearest obstacle triangle when friction acts on it, else 0. */
-int sessile_sds_friction_normal(const sessile_sds *o, const sessile_sds_params *p, uint32_t c, const double *xc,
-                                const sessile_sds_contact *ct, double *n);
+/* The friction's direction for a cell at xc with contacts ct: 1 and the unit
+ * normal n (3) of its nearest obstacle triangle when friction acts on it,
+ * else 0. */
+int sessile_sds_friction_normal(const sessile_sds_params *p, const double *xc, const sessile_sds_contact *ct,
+                                double *n);
 
 /* One step of the integrator on the host (semi-implicit Euler = leapfrog
  * Verlet): v += dt f/m, the obstacle's friction on v's part along the
