@@ -115,6 +115,7 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
   v[SP_STAB_CONTACT] = p->self_collide ? p->k_contact : 0;
   v[SP_ADHESION] = p->obstacle.nf ? p->adhesion : 0, v[SP_FRICTION] = p->obstacle.nf ? p->friction : 0;
   v[SP_STAB_ADH] = sds_stab_adhesion(p);
+  v[SP_MASS_DT] = p->mass_scaling_dt;
   /* a batch's step control (stable_min.comp, as sessile_sds_gpu_advance) */
   v[SP_MAX_MOVE] = p->max_move, v[SP_DT_MIN] = p->dt_min, v[SP_AIM] = SDS_MOVE_AIM, v[SP_GROW] = SDS_GROW;
   /* the obstacle is static: its hash table is built here, once, on the host */
@@ -205,7 +206,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(sds_gpu_ensure(s, B_ELF, (20 * T + 4 * E) * rb)); /* forces, then the stable bound's terms */
   SESSILE_CALL(sds_gpu_ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(sds_gpu_ensure(s, B_MOVE, 2 * n * rb));
-  SESSILE_CALL(sds_gpu_ensure(s, B_STAB, (4 * n + 3) * rb)); /* bounds, 3 scalars, element sums */
+  SESSILE_CALL(sds_gpu_ensure(s, B_STAB, (5 * n + 3) * rb)); /* bounds, 3 scalars, element sums, inertia */
   SESSILE_CALL(sds_gpu_ensure(s, B_STEP, (SDS_STEP_LOG + 2 * (size_t)SDS_BATCH_MAX) * rb)); /* a batch's log too */
   SESSILE_CALL(sds_gpu_ensure(s, B_EVENT, 4 * 4));
   SESSILE_CALL(sds_gpu_ensure(s, B_RB, n * rb)); /* a batch with the rules: the radii at the lists' build */

@@ -14,12 +14,19 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
   int fric = p->friction > 0 && p->obstacle.nf;
   sessile_sds_contact *ct = fric ? malloc((o->ncells ? o->ncells : 1) * sizeof *ct) : NULL;
   if (ct && sessile_sds_contacts(o, p, ct) != SESSILE_OK) free(ct), ct = NULL;
+  /* the inertia of mass scaling (1 without it) */
+  double *al = p->mass_scaling_dt > 0 ? malloc((o->ncells ? o->ncells : 1) * sizeof *al) : NULL;
+  if (al && sessile_sds_inertia(o, p, al) != SESSILE_OK) free(al), al = NULL;
+  if (p->mass_scaling_dt > 0 && !al) {
+    free(f), free(ct);
+    return NAN;
+  }
   double mv = 0;
   for (uint32_t c = 0; c < o->ncells; c++) {
-    double d2 = 0, n[3];
+    double d2 = 0, n[3], mi = al ? o->m[c] * al[c] : o->m[c];
     for (int i = 0; i < 3; i++) {
       size_t k = 3 * (size_t)c + i;
-      o->v[k] += dt * f[k] / o->m[c];
+      o->v[k] += dt * f[k] / mi;
     }
     sessile_sds_contact one;
     if (fric && !ct) sessile_sds_contact_brute(o, p, c, o->x + 3 * (size_t)c, &one);
@@ -38,7 +45,7 @@ double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double 
     double mm = sqrt(d2) / o->r[c];
     if (mm > mv || mm != mm) mv = mm;
   }
-  free(f), free(ct);
+  free(f), free(ct), free(al);
   return mv;
 }
 
@@ -65,8 +72,11 @@ sessile_status sessile_sds_inverted_ref(const sessile_sds *o, uint32_t **list, u
  * k_vol) plus the viscous c; a surface cell adds k_contact when
  * self-collision is on (the contact penalty's stiffness per unit mass).  Returns the smallest root over the cells,
  * 0 when out of memory (a bound of dt_min here made a failed allocation read
- * as springs too stiff to run). */
-double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) {
+ * as springs too stiff to run).  With mass scaling (p->mass_scaling_dt H > 0)
+ * a cell whose root h is below H takes the inertia alpha m, alpha =
+ * (w2 H^2 + 2 gam H) / 4, whose root is H; alpha (1 elsewhere) goes to
+ * alpha[c] when alpha is not NULL (stable.glsl's, operation for operation). */
+static double stable_cells(const sessile_sds *o, const sessile_sds_params *p, double *alpha) {
   double *lam = calloc(o->ncells ? 2 * (size_t)o->ncells : 1, sizeof *lam); /* omega^2, gamma */
   if (!lam) return 0;
   for (uint32_t e = 0; e < o->nedges; e++) {
@@ -99,10 +109,20 @@ double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) 
            gam = lam[2 * c + 1] / o->m[c] + p->damp_visc;
     /* the positive root of w2 dt^2 + 2 gam dt - 4 = 0 */
     double h = w2 > 0 ? 4.0 / (gam + sqrt(gam * gam + 4 * w2)) : (gam > 0 ? 2.0 / gam : p->dt_max);
+    double H = p->mass_scaling_dt, a = 1;
+    if (H > 0 && h < H) a = (w2 * H * H + 2 * gam * H) / 4, h = H;
+    if (alpha) alpha[c] = a;
     if (h < dt) dt = h;
   }
   free(lam);
   return dt;
+}
+
+double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p) { return stable_cells(o, p, NULL); }
+
+sessile_status sessile_sds_inertia(const sessile_sds *o, const sessile_sds_params *p, double *alpha) {
+  SESSILE_CHECK(stable_cells(o, p, alpha) > 0, SESSILE_ERR_NO_MEMORY, "sds: out of memory for the stable bound");
+  return SESSILE_OK;
 }
 
 /* The critical step of semi-implicit Euler at the current state, undamped:

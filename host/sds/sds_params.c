@@ -58,6 +58,9 @@ static const sessile_param_desc descs[] = {
      "a step moving a cell further than this x its radius is undone and halved", NULL},
     {"stable_safety", SESSILE_PT_REAL, OFF(stable_safety), 0.8, 0, 1, SESSILE_PARAM_LO_OPEN, "", "ours",
      "steps stay below this fraction of the stable-step bound", NULL},
+    {"mass_scaling_dt", SESSILE_PT_REAL, OFF(mass_scaling_dt), 0, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "s", "ours",
+     "selective mass scaling: a cell whose stable bound is below this step moves with the inertia that lifts its "
+     "bound to it, its forces unchanged (0: none; docs/sds.md, \"Mass scaling\")", NULL},
     {"device_loop", SESSILE_PT_BOOL, OFF(device_loop), 0, 0, 1, 0, "", "ours",
      "true: between topology events the steps run in batches on the device, the rules and morphogens included "
      "(needs fp64 and rules the device can run); the same bytes as the host-driven loop (docs/sds.md)", NULL},

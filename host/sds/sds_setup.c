@@ -33,6 +33,7 @@ static sessile_status read_physics(sds_sim *s, const char *where) {
   s->p.dt = q->dt;
   s->p.max_move = q->max_move;
   s->p.stable_safety = q->stable_safety;
+  s->p.mass_scaling_dt = q->mass_scaling_dt;
   s->density = q->density;
   s->p.self_collide = q->self_collide;
   s->p.adhesion = q->obstacle_adhesion;

@@ -120,7 +120,9 @@ void main() {
   if (pc.mode != 0u) {
     REAL dt = pc.mode == 2u ? stab[pc.ncells] : pc.dt;
     REAL d2 = REAL(0), vq[3];
-    for (int i = 0; i < 3; i++) vq[i] = LD_V(3u * c + i) + dt * s[i] / mc;
+    // mode 2: the inertia of mass scaling (stable.glsl; exactly mc where it is 1)
+    REAL mi = pc.mode == 2u ? mc * stab[4u * pc.ncells + 3u + c] : mc;
+    for (int i = 0; i < 3; i++) vq[i] = LD_V(3u * c + i) + dt * s[i] / mi;
     if (fr) { // the obstacle's friction, backward Euler on -friction v_t (as sessile_sds_step_ref)
       REAL vn = vq[0] * fn[0] + vq[1] * fn[1] + vq[2] * fn[2];
       for (int i = 0; i < 3; i++) vq[i] = vn * fn[i] + (vq[i] - vn * fn[i]) / (REAL(1) + dt * sp[SP_FRICTION]);

@@ -10,7 +10,9 @@
 // the same bits where the device rounds as the host does (precise: no fused
 // multiply-adds).  The same loop also sums the elements' forces on the cell
 // (the gather's sum, in its order), which the gather of mode 2 then reads
-// instead of looping over the elements again.
+// instead of looping over the elements again.  With mass scaling a cell
+// whose bound falls below sp[SP_MASS_DT] gets the inertia that lifts it there
+// (docs/sds.md, "Mass scaling"), its factor after the sums.
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
@@ -42,5 +44,10 @@ void main() {
   precise REAL h;
   if (w > REAL(0)) h = REAL(4) / (g + sqrt(g * g + REAL(4) * w));
   else h = g > REAL(0) ? REAL(2) / g : sp[SP_DT_MAX];
+  // selective mass scaling: below H the cell moves with the inertia alpha m
+  // whose bound is H, (w H^2 + 2 g H) / 4 (> 1 there), read by the gather
+  precise REAL H = sp[SP_MASS_DT], alpha = REAL(1);
+  if (H > REAL(0) && h < H) alpha = (w * H * H + REAL(2) * g * H) / REAL(4), h = H;
+  stab[4u * pc.ncells + 3u + c] = alpha;
   stab[c] = h;
 }

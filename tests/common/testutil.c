@@ -74,6 +74,15 @@ int t_finish(sessile_gpu *g) {
   return t_failed ? 1 : 0;
 }
 
+double t_maxdiff(const double *a, const double *b, size_t n) {
+  double e = 0;
+  for (size_t i = 0; i < n; i++) {
+    double d = fabs(a[i] - b[i]);
+    if (!(d <= e)) e = d; /* propagates NaN */
+  }
+  return e;
+}
+
 double t_relerr(const double *a, const double *b, size_t n) {
   double num = 0, den = 1e-300;
   for (size_t i = 0; i < n; i++) {

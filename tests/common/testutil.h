@@ -30,6 +30,8 @@ void t_must(const char *what, sessile_status s);
 /* Zero-filled allocations that stop the test when the host is out of memory. */
 void *t_xalloc(size_t bytes);
 double *t_dalloc(size_t n);
+/* max_i |a_i - b_i| (NaN when any difference is) */
+double t_maxdiff(const double *a, const double *b, size_t n);
 /* max_i |a_i - b_i| / max(max_i |b_i|, tiny) */
 double t_relerr(const double *a, const double *b, size_t n);
 #endif

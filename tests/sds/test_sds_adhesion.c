@@ -54,12 +54,6 @@ static int expected(const sessile_sds *o, const sessile_sds_params *p, uint32_t 
   return zone;
 }
 
-static double max_err(const double *a, const double *b, size_t n) {
-  double e = 0;
-  for (size_t k = 0; k < n; k++) e = fmax(e, fabs(a[k] - b[k]));
-  return e;
-}
-
 int main(int argc, char **argv) {
   int fp32 = 0;
   sessile_gpu *g = t_gpu_args(argc, argv, &fp32);
@@ -98,9 +92,9 @@ int main(int argc, char **argv) {
     snprintf(what, sizeof what,
              "lift %.1f: host step = closed form (%d penalty, %d rising, %d falling, %d free; |dv| / |v|)", lift[k],
              here[0], here[1], here[2], here[3]);
-    t_check(what, max_err(h.v, ve, n3) / vmax, 1e-12);
+    t_check(what, t_maxdiff(h.v, ve, n3) / vmax, 1e-12);
     snprintf(what, sizeof what, "lift %.1f: host step's positions (|dx| / dt |v|)", lift[k]);
-    t_check(what, max_err(h.x, xe, n3) / (dt * vmax), 1e-9);
+    t_check(what, t_maxdiff(h.x, xe, n3) / (dt * vmax), 1e-9);
     /* the device's step */
     sessile_sds_gpu *s = NULL;
     t_must("gpu create", sessile_sds_gpu_create(g, &o, &p, &s));
@@ -108,9 +102,9 @@ int main(int argc, char **argv) {
     t_must("gpu step", sessile_sds_gpu_step(s, dt, &mv));
     t_must("gpu download", sessile_sds_gpu_download(s, &d));
     snprintf(what, sizeof what, "lift %.1f: GPU step = closed form (|dv| / |v|)", lift[k]);
-    t_check(what, max_err(d.v, ve, n3) / vmax, tol);
+    t_check(what, t_maxdiff(d.v, ve, n3) / vmax, tol);
     snprintf(what, sizeof what, "lift %.1f: GPU step's positions (|dx| / dt |v|)", lift[k]);
-    t_check(what, max_err(d.x, xe, n3) / (dt * vmax), fp32 ? 1e-2 : 1e-9);
+    t_check(what, t_maxdiff(d.x, xe, n3) / (dt * vmax), fp32 ? 1e-2 : 1e-9);
     sessile_sds_gpu_destroy(s);
     /* without an obstacle the two keys do nothing: the frictionless free
      * step, bit for bit against the same step with both zero */

@@ -38,7 +38,8 @@ sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
  * so, when t_end is short of the model's). */
 /* stop (may be NULL): a signal's flag, polled by the run; when it is raised
  * the run ends early with SESSILE_ERR_INTERRUPTED and the folder is removed
- * all the same. */
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, const char *scratch,
+ * all the same.  mass_dt > 0: a third run, the host-driven loop with
+ * mass_scaling_dt mass_dt, against the first (another trajectory). */
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, double mass_dt, const char *scratch,
                                       const volatile sig_atomic_t *stop, FILE *out);
 #endif

@@ -208,6 +208,12 @@ typedef struct sessile_sds_params {
    * (an energy) for every spring and the tets' damping unscaled; 0 (default):
    * the prototype's per-spring scaling (docs/sds.md, "Physics") */
   int uniform_stiffness;
+  /* selective mass scaling (docs/sds.md, "Mass scaling"): in a step whose
+   * stable bound is computed (the loop's), a cell whose own bound is below
+   * this step gets the inertia alpha m (alpha > 1) that lifts its bound to
+   * it; every force, drag and gravity included, keeps the cell's mass m, so
+   * a state at rest and the overdamped motion are unchanged.  0: none */
+  double mass_scaling_dt;
 } sessile_sds_params;
 
 /* The prototype's values above; no box, no obstacle, no attraction;
@@ -263,14 +269,21 @@ int sessile_sds_friction_normal(const sessile_sds_params *p, const double *xc, c
 
 /* One step of the integrator on the host (semi-implicit Euler = leapfrog
  * Verlet): v += dt f/m, the obstacle's friction on v's part along the
- * triangle (v_t / (1 + friction dt)), x += dt v.  Returns max over cells of
- * |dt v| / r. */
+ * triangle (v_t / (1 + friction dt)), x += dt v.  With mass scaling the
+ * cells' inertia is sessile_sds_inertia's alpha m.  Returns max over cells of
+ * |dt v| / r (NaN when out of memory). */
 double sessile_sds_step_ref(sessile_sds *o, const sessile_sds_params *p, double dt);
 /* The stable step bound of the integrator at the current state (omega dt < 2
  * for the fastest mode, by Gershgorin at rest; docs/sds.md, "Integrator").
  * sessile_sds_gpu_advance never steps above stable_safety times it.  0 when
- * out of host memory. */
+ * out of host memory.  With mass scaling (mass_scaling_dt H > 0) a cell's
+ * bound below H counts as H: its inertia is lifted (sessile_sds_inertia). */
 double sessile_sds_stable_dt(const sessile_sds *o, const sessile_sds_params *p);
+/* The inertia factor of each cell under mass scaling into alpha (ncells): 1
+ * where the cell's own bound is at least mass_scaling_dt (or scaling is off),
+ * else (w2 H^2 + 2 gam H) / 4 > 1, whose bound is H (docs/sds.md, "Mass
+ * scaling").  The device's stable kernel computes the same operations. */
+sessile_status sessile_sds_inertia(const sessile_sds *o, const sessile_sds_params *p, double *alpha);
 /* The critical step of that scheme at the current state, undamped (2 /
  * sqrt of M^-1 K's largest eigenvalue, K by finite differences of the
  * forces), by `iters` steps of power iteration; *residual (may be NULL) gets
@@ -302,7 +315,8 @@ sessile_status sessile_sds_gpu_set_params(sessile_sds_gpu *s, const sessile_sds_
 /* Forces at the uploaded state into f (3 ncells), as sessile_sds_forces_ref. */
 sessile_status sessile_sds_gpu_forces(sessile_sds_gpu *s, int with_damping, double *f);
 /* One integrator step of fixed dt; *max_move (may be NULL) receives the
- * largest |dt v| / r. */
+ * largest |dt v| / r.  It computes no bound, so mass scaling does not act
+ * in it (sessile_sds_gpu_advance and the batches: it does). */
 sessile_status sessile_sds_gpu_step(sessile_sds_gpu *s, double dt, double *max_move);
 /* `steps` (1..1024) steps of fixed dt in one submission, without the move
  * check: for runs that check every K steps (the bench, inversion checks). */

@@ -39,6 +39,7 @@ typedef struct sessile_sds_run_params {
   double obstacle_friction;   /* 1/s: the rock's friction on a cell within its reach */
   double dt;                  /* s: the first step */
   double max_move, stable_safety;
+  double mass_scaling_dt;     /* s: the step selective mass scaling lifts a stiff cell's bound to (0: none) */
   int device_loop;            /* bool: steps in batches on the device, rules included (the same bytes) */
 } sessile_sds_run_params;
 
