@@ -68,7 +68,7 @@ int main(void) {
     if (i == 2) {
       int k = sessile_sds_model_morph_index(m, "clock");
       t_true("rock: a rock of 4 numbers", sessile_sds_model_param_find(m, "rock")->nvalues == 4);
-      t_true("rock: r4 present (4 limb rules + 2 stripe rules)", sessile_sds_model_nrules(m) == 6);
+      t_true("rock: r4 present (4 limb rules + 4 stripe rules)", sessile_sds_model_nrules(m) == 8);
       t_true("rock: the clock is an uncapped, non-diffusing timer starting at 1",
              k >= 0 && co.diffusion[k] == 0 && co.capped[k] == 0 && sessile_sds_model_morph_start(m, k) == 1);
     }

@@ -2,7 +2,8 @@
 # The figures tool (tools/sds/figures.py, issue 33) measures what it claims:
 # on synthetic frames of a known shape (a limb of rings of cells with a neck
 # and a bulb, one interior cell per ring; two limbs with stripes at known
-# places; cell counts linear and exponential in time) its metrics are the
+# places, and again with every gap doubled (--ref reads a ratio of 2, and 1
+# against itself); cell counts linear and exponential in time) its metrics are the
 # shape's own, and its criteria fail where the shape breaks them (a bulb
 # 1.5x the neck, the tip two radii behind the front, cells growing
 # exponentially); the same for Figures 8, 10 and 11 (tips turned 30 degrees
@@ -121,6 +122,21 @@ a, b = m["limbs"]
 expect("limb +x: 3 stripes 1.0 apart", a["stripes"] == 3 and abs(a["spacing"] - 1.0) < 1e-9)
 expect("limb -x: 2 stripes 0.5 apart", b["stripes"] == 2 and abs(b["spacing"] - 0.5) < 1e-9)
 expect("... so not three per limb", not m["criteria"]["three_stripes_per_limb"] and m["stripes_min"] == 2)
+# --ref: the same limbs with every gap doubled (+x at 1.0-1.2 and 3.0-3.2, -x at 0.5-0.7 and 1.5-1.7)
+d2 = T + "/stripes2"
+os.makedirs(d2 + "/sds")
+on = (((s >= 1 - 1e-9) & (s < 1.2 - 1e-9)) | ((s >= 3 - 1e-9) & (s < 3.2 - 1e-9))).astype(float)
+d_ = dist[len(s):]
+on2 = (((d_ >= 0.5 - 1e-9) & (d_ < 0.7 - 1e-9)) | ((d_ >= 1.5 - 1e-9) & (d_ < 1.7 - 1e-9))).astype(float)
+write_vtu(d2 + "/sds/frame_0000.vtu", x, {"radius": np.full(n, 0.025), "surface": np.ones(n),
+          "tip": tip, "stripe": np.concatenate([on, on2])}, tets)
+m = fig("stripes", d2, "--bin", "0.1", "--ref", d)
+expect("--ref: spacings 2.0 and 1.0 against 1.0 and 0.5, a ratio of 2: the spacing doubles",
+       abs(m["spacing_mean"] - 1.5) < 1e-9 and abs(m["ref_spacing_mean"] - 0.75) < 1e-9
+       and abs(m["spacing_ratio"] - 2) < 1e-9 and m["criteria"]["spacing_doubles_over_ref"])
+m = fig("stripes", d, "--bin", "0.1", "--ref", d)
+expect("--ref against itself: a ratio of 1, not a doubling",
+       abs(m["spacing_ratio"] - 1) < 1e-12 and not m["criteria"]["spacing_doubles_over_ref"])
 
 for name, f in (("line", lambda t: 100 + 5 * t), ("exp", lambda t: 100 * 2 ** (t / 40))):
     os.makedirs("%s/%s" % (T, name))

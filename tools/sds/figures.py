@@ -3,9 +3,11 @@
   figures.py limb RUN_DIR [--frame K | --time T] [--axis X Y Z] [--slice H]
       Figure 7: the profile along the limb's axis (width and interior cells
       per slice), distal width / neck width, the tip's lead, length / neck.
-  figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H]
+  figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H] [--ref REF]
       Figures 9, 12: per limb, the stripe state along the limb (graph distance
-      from its tip through the complex), stripes counted and their spacing.
+      from its tip through the complex), stripes counted and their spacing;
+      with --ref (the model with the timer's decay doubled) the ratio of the
+      mean spacings, which should be 2 (+- --tolerance).
   figures.py cells RUN_DIR [--from T0] [--to T1]
       Figure 12: cells against time from records.jsonl, a line fitted over
       [T0, T1] and its R^2.
@@ -244,17 +246,19 @@ def stripe_runs(frac, centres, threshold):
     return out
 
 
-def cmd_stripes(args):
-    k, t = pick_frame(args.run, args)
-    c = load_frame(args.run, k)
+def stripes_of(run, args, quiet=False):
+    """Figure 9's stripes of one run's frame: the metrics and per-limb rows."""
+    say = (lambda *a: None) if quiet else print
+    k, t = pick_frame(run, args)
+    c = load_frame(run, k)
     assert c["complex"], "stripes need the VTU frames (the complex's edges)"
     assert args.field in c, "no field %r in frame %d" % (args.field, k)
     tips = np.flatnonzero((c["tip"] >= 0.5) & c["used"])
     dist, owner = graph_distance(c["x"], c["tets"], tips)
     h = args.bin or 2 * float(np.median(c["radius"][c["used"]]))
     limbs = []
-    print("frame %d, t = %.3f; field %s > %.3g, bins of %.3f u from each tip; a stripe: fraction >= %.2f"
-          % (k, t, args.field, args.on, h, args.threshold))
+    say("frame %d, t = %.3f; field %s > %.3g, bins of %.3f u from each tip; a stripe: fraction >= %.2f"
+        % (k, t, args.field, args.on, h, args.threshold))
     for i, tip in enumerate(tips):
         mine = (owner == i) & c["used"]
         s, on = dist[mine], c[args.field][mine] > args.on
@@ -268,15 +272,29 @@ def cmd_stripes(args):
         limbs.append({"tip_cell": int(tip), "tip": c["x"][tip].tolist(), "cells": int(mine.sum()),
                       "profile": [round(float(f), 4) for f in frac], "stripes": len(places),
                       "places": places, "spacing": float(sp.mean()) if len(sp) else None})
-        print("limb %d (tip cell %d, %d cells): %d stripes at %s; spacing %s" % (
+        say("limb %d (tip cell %d, %d cells): %d stripes at %s; spacing %s" % (
             i, tip, mine.sum(), len(places), " ".join("%.2f" % p for p in places),
             "%.3f" % sp.mean() if len(sp) else "-"))
-        print("  profile: " + " ".join("%.2f" % f for f in frac))
+        say("  profile: " + " ".join("%.2f" % f for f in frac))
     sps = [l["spacing"] for l in limbs if l["spacing"] is not None]
     m = {"figure": 9, "frame": k, "time": t, "field": args.field, "on": args.on, "threshold": args.threshold,
          "bin": h, "limbs": limbs, "stripes_min": min((l["stripes"] for l in limbs), default=0),
          "spacing_mean": float(np.mean(sps)) if sps else None,
          "criteria": {"three_stripes_per_limb": bool(limbs) and all(l["stripes"] >= 3 for l in limbs)}}
+    return m
+
+
+def cmd_stripes(args):
+    m = stripes_of(args.run, args)
+    if args.ref:  # RUN has the timer's decay halved against REF: its spacing should double
+        r = stripes_of(args.ref, args, quiet=True)
+        ratio = (m["spacing_mean"] / r["spacing_mean"]
+                 if m["spacing_mean"] is not None and r["spacing_mean"] else None)
+        m.update(ref=args.ref, ref_spacing_mean=r["spacing_mean"], ref_stripes_min=r["stripes_min"],
+                 spacing_ratio=ratio)
+        m["criteria"]["spacing_doubles_over_ref"] = ratio is not None and abs(ratio / 2 - 1) <= args.tolerance
+        print("mean spacing %s against the reference's %s: ratio %s" % (
+            m["spacing_mean"], r["spacing_mean"], "-" if ratio is None else "%.3f" % ratio))
     print(json.dumps(m))
 
 
@@ -531,6 +549,9 @@ def main(argv=None):
     st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")
     st.add_argument("--threshold", type=float, default=0.5, help="a stripe: bins with at least this fraction on")
     st.add_argument("--bin", type=float, help="bin width along the limb (default: the median cell diameter)")
+    st.add_argument("--ref", help="the same model with the timer's decay twice RUN's: RUN's mean spacing "
+                    "should be twice the reference's")
+    st.add_argument("--tolerance", type=float, default=0.3, help="the doubling's relative tolerance (default 0.3)")
     for name in ("bend", "attract"):
         sub.choices[name].add_argument("--ref", help="the same model without the box / the attraction")
     sub.choices["bend"].add_argument("--min-bend", type=float, default=10,

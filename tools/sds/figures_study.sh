@@ -50,7 +50,7 @@ last() { tail -n 1; }
   for t in 250 300 350 400; do $FIG buds "$OUT/budded" --time $t | last; done
   echo "== Figure 9: rock, then rock_half, at t = 400"
   $FIG stripes "$OUT/rock" --time 400 | last
-  $FIG stripes "$OUT/rock_half" --time 400 | last
+  $FIG stripes "$OUT/rock_half" --time 400 --ref "$OUT/rock" | last
   echo "== Figure 12: rock's cells from t = 100 to 400"; $FIG cells "$OUT/rock" | last
   echo "== Figure 12: which of rock's limbs divided when"; $FIG divisions "$OUT/rock" | last
 } | tee "$OUT/figures_study.txt"

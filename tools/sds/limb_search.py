@@ -1,0 +1,148 @@
+#!/usr/bin/python3
+"""A random search of the limb model's constants for Figure 7's three criteria
+(issue 33; docs/sds.md, "Figures as measured outcomes").
+
+usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
+                                [--t-end T] [--jitter-seeds K] [--from FILE]
+
+Each point draws the limb model's process constants and a few physics keys
+from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
+search is repeatable), writes a copy of host/sds/models/limb.sds with them,
+runs it to --t-end (default 200) and measures the last frame with
+`figures.py limb`.  Its score is the sum of the three criteria's relative
+shortfalls (0 when all three hold):
+  max(0, distal/neck / 1.2 - 1) + max(0, lag / tip radius - 1) + max(0, 1 - (L/neck) / 3).
+A point with no neck (a limb under two slices) scores 2-3 by its length;
+a point that blows up, passes 1 500 cells or runs past 300 s scores 9.
+--from FILE reruns the points of an earlier search's results.jsonl (its best
+--runs by score) on --jitter-seeds realisations of the start each
+(`start_jitter 0.1`, seeds 1..K), to see whether a point carries past the
+exact sphere.  Every run's folder is removed once measured; OUT/results.jsonl
+holds one JSON line a run (the point, its metrics, its score).
+"""
+import argparse, json, math, os, re, shutil, subprocess, sys, threading
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+MODEL = os.path.join(HERE, "..", "..", "host", "sds", "models", "limb.sds")
+# name: (low, high, log-uniform)
+RANGES = {
+    "Delta": (0.002, 0.008, True),          # growth rate of the zone's cells
+    "phi_decay": (0.15, 1.0, True),         # phi's decay: the zone's reach
+    "phi_diffusion": (0.02, 0.2, True),
+    "K": (0.01, 0.08, True),                # the zone: phi > K volume
+    "R": (1.12, 1.4, False),                # divide at R x birth radius
+    "surface_multiplier": (1.0, 4.0, True),
+    "viscosity": (0.3, 4.0, True),
+}
+
+
+def draw(rng):
+    p = {}
+    for k, (lo, hi, lg) in RANGES.items():
+        u = rng.random()
+        p[k] = float(math.exp(math.log(lo) + u * (math.log(hi) - math.log(lo)))) if lg else lo + u * (hi - lo)
+    p["uniform_stiffness"] = bool(rng.random() < 0.3)
+    return p
+
+
+def model_text(p, jitter_seed=None):
+    s = open(MODEL).read()
+    s = re.sub(r"(?m)^const Delta = \S+", "const Delta = %.6g" % p["Delta"], s)
+    s = re.sub(r"(?m)^const K = \S+", "const K = %.6g" % p["K"], s)
+    s = re.sub(r"(?m)^const R = \S+", "const R = %.6g" % p["R"], s)
+    s = re.sub(r"(?m)^morphogen phi .*$", "morphogen phi diffusion=%.6g decay=%.6g" %
+               (p["phi_diffusion"], p["phi_decay"]), s)
+    s = re.sub(r"(?m)^surface_multiplier = \S+", "surface_multiplier = %.6g" % p["surface_multiplier"], s)
+    s = re.sub(r"(?m)^viscosity = \S+", "viscosity = %.6g" % p["viscosity"], s)
+    extra = []
+    if p.get("uniform_stiffness"):
+        extra.append("uniform_stiffness = 1")
+    if jitter_seed is not None:
+        extra.append("start_jitter = 0.1")
+    return s.replace("\n# --- process model", "\n" + "".join(e + "\n" for e in extra) + "# --- process model", 1)
+
+
+def score(m):
+    if not m:
+        return 9.0
+    if m.get("distal_over_neck") is None:  # no limb to measure: 2-3 by its length
+        return 3.0 - min(1.0, max(0.0, m["length"]))
+    return (max(0.0, m["distal_over_neck"] / 1.2 - 1) + max(0.0, m["tip_behind_front"] / m["tip_radius"] - 1)
+            + max(0.0, 1 - m["length_over_neck"] / 3))
+
+
+def run_point(sessile, out, idx, p, t_end, seed):
+    d = os.path.join(out, "run%04d" % idx)
+    os.makedirs(d, exist_ok=True)
+    f = os.path.join(d, "limb_search.sds")
+    open(f, "w").write(model_text(p, seed))
+    cmd = [sessile, "sds", "run", f, "--t-end", str(t_end), "--frames", "4", "--quiet", "--no-preview",
+           "--max-cells", "1500", "--out", os.path.join(d, "run"), "--seed", str(seed or 1)]
+    m, status = None, "ok"
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+        status = "ok" if r.returncode == 0 else "exit %d: %s" % (
+            r.returncode, (r.stderr.strip().splitlines() or [""])[-1][:160])
+        if r.returncode == 0:
+            fr = subprocess.run(["/usr/bin/python3", os.path.join(HERE, "figures.py"), "limb",
+                                 os.path.join(d, "run")], capture_output=True, text=True, timeout=120)
+            lines = fr.stdout.strip().splitlines()
+            if fr.returncode == 0 and lines:
+                m = json.loads(lines[-1])
+                m.pop("profile", None)
+            else:
+                status = "figures failed"
+    except subprocess.TimeoutExpired:
+        status = "timeout"
+    shutil.rmtree(d, ignore_errors=True)
+    return {"index": idx, "point": p, "jitter_seed": seed, "status": status, "metrics": m, "score": score(m)}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("sessile")
+    ap.add_argument("out")
+    ap.add_argument("--runs", type=int, default=40)
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--t-end", type=float, default=200)
+    ap.add_argument("--from", dest="src")
+    ap.add_argument("--jitter-seeds", type=int, default=3)
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    if a.src:
+        rows = [json.loads(l) for l in open(a.src)]
+        best = sorted(rows, key=lambda r: r["score"])[:a.runs]
+        work = [(r["point"], s) for r in best for s in range(1, a.jitter_seeds + 1)]
+    else:
+        rng = np.random.default_rng(a.seed)
+        work = [(draw(rng), None) for _ in range(a.runs)]
+    lock, nxt = threading.Lock(), [0]
+    res = open(os.path.join(a.out, "results.jsonl"), "a")
+
+    def worker():
+        while True:
+            with lock:
+                i = nxt[0]
+                nxt[0] += 1
+            if i >= len(work):
+                return
+            r = run_point(a.sessile, a.out, i, work[i][0], a.t_end, work[i][1])
+            with lock:
+                res.write(json.dumps(r) + "\n")
+                res.flush()
+                m = r["metrics"] or {}
+                print("%4d score %.3f %s d/n %s lag %s L/n %s" % (
+                    i, r["score"], r["status"], m.get("distal_over_neck"), m.get("tip_behind_front"),
+                    m.get("length_over_neck")), flush=True)
+
+    th = [threading.Thread(target=worker) for _ in range(a.jobs)]
+    for t in th:
+        t.start()
+    for t in th:
+        t.join()
+
+
+if __name__ == "__main__":
+    main()
