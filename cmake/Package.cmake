@@ -27,7 +27,7 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_GENERATE_SHLIBS ON)
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME sessile-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
-  "sessile (= ${PROJECT_VERSION}), pkgconf | pkg-config, libcjson-dev, libvulkan-dev, libopenexr-dev, libmuparser-dev, libcairo2-dev, libpng-dev, zlib1g-dev, libtet1.5-dev")
+  "sessile (= ${PROJECT_VERSION}), pkgconf | pkg-config, libcjson-dev, libvulkan-dev, libopenexr-dev, libmuparser-dev, libcairo2-dev, libpng-dev, zlib1g-dev, libtet1.5-dev, glslang-dev, spirv-tools")
 set(CPACK_COMPONENT_RUNTIME_DESCRIPTION "the sessile command, libsessile.so, man page and shell completion")
 set(CPACK_COMPONENT_DEV_DESCRIPTION "libsessile's headers, static library and pkg-config file")
 include(CPack)

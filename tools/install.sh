@@ -18,7 +18,7 @@ fi
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config \
-  mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools \
+  mesa-vulkan-drivers libvulkan-dev vulkan-tools vulkan-validationlayers glslang-tools glslang-dev \
   libtet1.5-dev libopenexr-dev openexr libcjson-dev libpng-dev libcairo2-dev fonts-dejavu-core zlib1g-dev libmuparser-dev \
   $VTK_PY python3-meshio python3-numpy python3-scipy openimageio-tools python3-openimageio man-db zsh assimp-utils >/dev/null
 /usr/bin/python3 -c "import vtkmodules.vtkIOXML, vtkmodules.vtkIOPLY, vtkmodules.vtkIOGeometry" ||

@@ -49,16 +49,10 @@ static uint8_t resolve_kind(sessile_binding_kind kind, uint32_t real_bytes) {
   return real_bytes == 8 ? SESSILE_TEXEL_RG32UI : SESSILE_TEXEL_R32UI;
 }
 
-sessile_status sessile_kernel_create_decl(sessile_gpu *g, const sessile_kernel_decl *d,
-                                          uint32_t real_bytes, uint32_t local_size,
-                                          sessile_kernel **out) {
-  *out = NULL;
-  if (real_bytes == 0) real_bytes = g->info.precision == 64 ? 8 : 4;
-  char name[64];
-  if (d->per_precision) snprintf(name, sizeof name, "%s.%s", d->name, real_bytes == 8 ? "f64" : "f32");
-  else snprintf(name, sizeof name, "%s", d->name);
-  const sessile_spirv *sp = sessile_spirv_find(name);
-  SESSILE_CHECK(sp, SESSILE_ERR_INTERNAL, "no embedded kernel named \"%s\"", name);
+/* The kernel of declaration d from SPIR-V sp, named `name`. */
+static sessile_status create_from(sessile_gpu *g, const sessile_kernel_decl *d, uint32_t real_bytes,
+                                  uint32_t local_size, const sessile_spirv *sp, const char *name,
+                                  sessile_kernel **out) {
   SESSILE_CHECK(d->nbindings <= 16, SESSILE_ERR_INTERNAL, "kernel %s: %u bindings > 16", name,
                 d->nbindings);
   SESSILE_CHECK(d->push_bytes <= 128 && d->push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
@@ -90,6 +84,37 @@ sessile_status sessile_kernel_create_decl(sessile_gpu *g, const sessile_kernel_d
   }
   *out = k;
   return SESSILE_OK;
+}
+
+sessile_status sessile_kernel_create_decl(sessile_gpu *g, const sessile_kernel_decl *d,
+                                          uint32_t real_bytes, uint32_t local_size,
+                                          sessile_kernel **out) {
+  *out = NULL;
+  if (real_bytes == 0) real_bytes = g->info.precision == 64 ? 8 : 4;
+  char name[64];
+  if (d->per_precision) snprintf(name, sizeof name, "%s.%s", d->name, real_bytes == 8 ? "f64" : "f32");
+  else snprintf(name, sizeof name, "%s", d->name);
+  const sessile_spirv *sp = sessile_spirv_find(name);
+  SESSILE_CHECK(sp, SESSILE_ERR_INTERNAL, "no embedded kernel named \"%s\"", name);
+  return create_from(g, d, real_bytes, local_size, sp, name, out);
+}
+
+sessile_status sessile_kernel_create_glsl(sessile_gpu *g, const sessile_kernel_decl *d, uint32_t real_bytes,
+                                          uint32_t local_size, const char *body, sessile_kernel **out) {
+  *out = NULL;
+  if (real_bytes == 0) real_bytes = g->info.precision == 64 ? 8 : 4;
+  uint32_t *words = NULL;
+  size_t n = 0;
+  char log[2048];
+  sessile_status st = sessile_glsl_to_spirv(d->name, real_bytes == 8, body, &words, &n, log, sizeof log);
+  if (st != SESSILE_OK) return sessile_error_set(st, "kernel %s compiled at run time: %s", d->name, log);
+  char name[64];
+  /* "+": its timings (--kernels) apart from the embedded kernel's */
+  snprintf(name, sizeof name, "%s+.%s", d->name, real_bytes == 8 ? "f64" : "f32");
+  const sessile_spirv sp = {name, words, n * 4};
+  st = create_from(g, d, real_bytes, local_size, &sp, name, out);
+  free(words);
+  return st;
 }
 
 void sessile_kernel_destroy(sessile_kernel *k) {

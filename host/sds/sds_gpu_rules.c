@@ -4,6 +4,8 @@
  * cells after each topology change. */
 #include <stdlib.h>
 #include <string.h>
+#include "rules_glsl.h"
+#include "sessile/sds/sds_run.h"
 #include "rules_internal.h"
 #include "rules_vm.h"
 #include "sds_gpu_internal.h"
@@ -31,7 +33,22 @@ static sessile_status ensure(sds_gpu_rules *r, int i, size_t bytes) {
   return sessile_buffer_reserve(r->gpu, &r->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
+/* The rules kernel: the generated one (rules_glsl.c) or the interpreter. */
+static sessile_status rules_kernel(sessile_gpu *g, const sds_prog *p, int kind, sessile_kernel **k) {
+  if (kind == SESSILE_SDS_RULES_BYTECODE) return sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, k);
+  char why[320];
+  char *body = sds_rules_glsl(p, why, sizeof why);
+  SESSILE_CHECK(body, SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", why);
+  sessile_status st = sessile_kernel_create_glsl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, body, k);
+  free(body);
+  return st;
+}
+
 sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, sds_gpu_rules **out) {
+  return sds_gpu_rules_create_kind(g, m, SESSILE_SDS_RULES_GENERATED, out);
+}
+
+sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model *m, int kind, sds_gpu_rules **out) {
   *out = NULL;
   const char *why = sessile_sds_model_bytecode_refusal(m, 1);
   SESSILE_CHECK(!why, SESSILE_ERR_USAGE, "the rules on the device: %s", why);
@@ -48,7 +65,7 @@ sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, 
   sessile_morph_coef co = sessile_sds_model_coef(m);
   for (int k = 0; k < m->nmorph; k++)
     dc[3 * k] = co.diffusion[k], dc[3 * k + 1] = co.decay[k], dc[3 * k + 2] = (!co.capped || co.capped[k]) ? 1 : 0;
-  sessile_status st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, &r->k);
+  sessile_status st = rules_kernel(g, p, kind, &r->k);
   if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND], 8, 0, &r->k_bound);
   if (st == SESSILE_OK)
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH], 8, 0, &r->k_morph);

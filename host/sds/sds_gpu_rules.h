@@ -26,6 +26,10 @@ enum { SDS_RULES_PHI, SDS_RULES_STATE, SDS_RULES_SRC, SDS_RULES_EVENT, SDS_RULES
 /* Refuses (SESSILE_ERR_USAGE, the rule named) a model whose bytecode has an
  * operation without a device version, and an fp32 context. */
 sessile_status sds_gpu_rules_create(sessile_gpu *g, const sessile_sds_model *m, sds_gpu_rules **out);
+/* The same with the kernel chosen (sessile_sds_rules_kernel): the rules
+ * written out as GLSL and compiled at load (the default above), or the
+ * bytecode interpreter (docs/sds_rules.md, "Generated kernel"). */
+sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model *m, int kind, sds_gpu_rules **out);
 void sds_gpu_rules_destroy(sds_gpu_rules *r);
 /* Uploads cells (after a topology change): positions and radii into its own
  * POS and RM (for runs that do not bind the physics'), neighbours, surface

@@ -19,7 +19,7 @@
 
 sessile_status sds_device_loop_create(sds_sim *s, sessile_gpu *gpu) {
   sds_device_loop_destroy(s);
-  sessile_status st = sds_gpu_rules_create(gpu, s->model, &s->rules_dev);
+  sessile_status st = sds_gpu_rules_create_kind(gpu, s->model, s->prm.device_rules, &s->rules_dev);
   if (st != SESSILE_OK) return sessile_error_set(st, "device_loop: %s", sessile_error_message());
   s->blog = malloc(2 * (size_t)SESSILE_SDS_BATCH_MAX * sizeof *s->blog);
   SESSILE_CHECK(s->blog, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");

@@ -16,6 +16,9 @@
 #define OFF(f) offsetof(sessile_sds_run_params, f)
 #define OPEN_BOTH (SESSILE_PARAM_LO_OPEN | SESSILE_PARAM_HI_OPEN)
 
+/* device_rules: sessile_sds_rules_kernel's order. */
+static const char *const rules_kernel_names[] = {"generated", "bytecode", NULL};
+
 static const sessile_param_desc descs[] = {
     {"sphere_radius", SESSILE_PT_REAL, OFF(sphere_radius), 1, 0, INFINITY, OPEN_BOTH, "u", "ours",
      "radius of the starting icosphere (a model with `surface` has none)", NULL},
@@ -64,6 +67,10 @@ static const sessile_param_desc descs[] = {
     {"device_loop", SESSILE_PT_BOOL, OFF(device_loop), 0, 0, 1, 0, "", "ours",
      "true: between topology events the steps run in batches on the device, the rules and morphogens included "
      "(needs fp64 and rules the device can run); the same bytes as the host-driven loop (docs/sds.md)", NULL},
+    {"device_rules", SESSILE_PT_ENUM, OFF(device_rules), 0, 0, 1, 0, "", "ours",
+     "the device's rules kernel: generated (the rules written out as GLSL, compiled at model load) or bytecode (one "
+     "interpreter for every model); the same bytes either way (docs/sds_rules.md, \"Generated kernel\")",
+     rules_kernel_names},
 };
 
 const sessile_param_table sessile_sds_run_param_table = {

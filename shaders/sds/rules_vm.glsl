@@ -191,63 +191,87 @@ void numeric(uint c, uint base) {
   pflag[2u * c + 1u] = 0u;
 }
 
-void evaluate(uint c) {
-  uint nm = pc.nmorph, base = c * (1u + nm + pc.nstate), fl0 = 0u, fl1 = 0u;
+// What evaluate gathers over a cell's rules, in the host's order.
+struct cell_acc {
+  uint base, fl0, fl1;
+  REAL grow;
+  bool divided;
+};
+
+cell_acc acc_begin(uint c) {
+  uint nm = pc.nmorph;
   for (uint k = 0u; k < nm; k++) src[c * nm + k] = REAL(0);
-  precise REAL grow = REAL(0);
-  bool divided = false;
+  return cell_acc(c * (1u + nm + pc.nstate), 0u, 0u, REAL(0), false);
+}
+
+// Rule r's action (kind word kw) with its value val (finite; 0 for divide
+// and reset, which have none).
+void act(uint c, uint r, uint kw, REAL val, inout cell_acc e) {
+  uint nm = pc.nmorph, kind = kw & 255u, t = (kw >> 8) & 255u;
+  if (kind == A_SET_MORPH || kind == A_SET_STATE || kind == A_RESET) {
+    uint slot = kind == A_SET_STATE ? nm + t : t;
+    pend[e.base + 1u + slot] = kind == A_RESET ? mcoef[2u * t + 1u] : val;
+    if (slot < 32u) e.fl0 |= 1u << slot;
+    else e.fl1 |= 1u << (slot - 32u);
+  } else if (kind == A_PRODUCE) {
+    precise REAL s = src[c * nm + t] + val;
+    src[c * nm + t] = s;
+  } else if (kind == A_GROW) {
+    e.grow += val;
+  } else if (kind == A_DIVIDE && !e.divided) {
+    e.divided = true;
+    REAL g0, g1, g2, d0 = REAL(0), d1 = REAL(0), d2 = REAL(0);
+    if (gradient(c, t, g0, g1, g2)) {
+      precise REAL l = sqrt(g0 * g0 + g1 * g1 + g2 * g2);
+      REAL sg = ((kw >> 16) & 1u) != 0u ? REAL(-1) : REAL(1);
+      precise REAL e0 = sg * g0 / l, e1 = sg * g1 / l, e2 = sg * g2 / l;
+      d0 = e0, d1 = e1, d2 = e2;
+    }
+    uint q = atomicAdd(event[SDS_EV_NREQ], 1u);
+    atomicOr(event[SDS_EV_FLAGS], 1u);
+    if (q < pc.ncells) {
+      uint o = uint(SDS_REQ) * q;
+      divreq[o] = REAL(c), divreq[o + 1u] = REAL(r);
+      divreq[o + 2u] = d0, divreq[o + 3u] = d1, divreq[o + 4u] = d2;
+    }
+  }
+}
+
+void acc_end(uint c, cell_acc e) {
+  pend[e.base] = e.grow;
+  pflag[2u * c] = e.fl0;
+  pflag[2u * c + 1u] = e.fl1;
+}
+
+// The rules by the bytecode interpreter (the generated kernel's evaluate_gen,
+// host/sds/rules_glsl.c, does the same with each expression's code written
+// out).
+void evaluate(uint c) {
+  cell_acc e = acc_begin(c);
   uint nrules = prog[0];
   for (uint r = 0u; r < nrules; r++) {
     uint rec = prog[1u + r];
     REAL v = vm_run(c, prog[rec]);
     if (isnan(v)) {
-      numeric(c, base);
+      numeric(c, e.base);
       return;
     }
     if (v == REAL(0)) continue;
     uint nact = prog[rec + 1u];
     for (uint i = 0u; i < nact; i++) {
-      uint kw = prog[rec + 2u + 2u * i], kind = kw & 255u, t = (kw >> 8) & 255u;
+      uint kw = prog[rec + 2u + 2u * i], kind = kw & 255u;
       REAL val = REAL(0);
       if (kind != A_DIVIDE && kind != A_RESET) {
         val = vm_run(c, prog[rec + 3u + 2u * i]);
         if (!is_finite(val)) {
-          numeric(c, base);
+          numeric(c, e.base);
           return;
         }
       }
-      if (kind == A_SET_MORPH || kind == A_SET_STATE || kind == A_RESET) {
-        uint slot = kind == A_SET_STATE ? nm + t : t;
-        pend[base + 1u + slot] = kind == A_RESET ? mcoef[2u * t + 1u] : val;
-        if (slot < 32u) fl0 |= 1u << slot;
-        else fl1 |= 1u << (slot - 32u);
-      } else if (kind == A_PRODUCE) {
-        precise REAL s = src[c * nm + t] + val;
-        src[c * nm + t] = s;
-      } else if (kind == A_GROW) {
-        grow += val;
-      } else if (kind == A_DIVIDE && !divided) {
-        divided = true;
-        REAL g0, g1, g2, d0 = REAL(0), d1 = REAL(0), d2 = REAL(0);
-        if (gradient(c, t, g0, g1, g2)) {
-          precise REAL l = sqrt(g0 * g0 + g1 * g1 + g2 * g2);
-          REAL sg = ((kw >> 16) & 1u) != 0u ? REAL(-1) : REAL(1);
-          precise REAL e0 = sg * g0 / l, e1 = sg * g1 / l, e2 = sg * g2 / l;
-          d0 = e0, d1 = e1, d2 = e2;
-        }
-        uint q = atomicAdd(event[SDS_EV_NREQ], 1u);
-        atomicOr(event[SDS_EV_FLAGS], 1u);
-        if (q < pc.ncells) {
-          uint o = uint(SDS_REQ) * q;
-          divreq[o] = REAL(c), divreq[o + 1u] = REAL(r);
-          divreq[o + 2u] = d0, divreq[o + 3u] = d1, divreq[o + 4u] = d2;
-        }
-      }
+      act(c, r, kw, val, e);
     }
   }
-  pend[base] = grow;
-  pflag[2u * c] = fl0;
-  pflag[2u * c + 1u] = fl1;
+  acc_end(c, e);
 }
 
 // r^3 rounded once (Dekker's exact products, no fma): pow(r, 3) on the host.
@@ -296,6 +320,10 @@ void apply(uint c) {
   rm[2u * c + 1u] = mass;
 }
 
+#ifdef SDS_RULES_GEN
+void evaluate_gen(uint c); // written after this file by host/sds/rules_glsl.c
+#endif
+
 void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
@@ -305,7 +333,11 @@ void main() {
       return;
     }
     if (pc.batch != 0u && event[SDS_EV_SKIP] != 0u) return; // morph_bound: the host's step
+#ifdef SDS_RULES_GEN
+    evaluate_gen(c);
+#else
     evaluate(c);
+#endif
   } else {
     if (event[SDS_EV_SKIP] != 0u) return;
     apply(c);

@@ -31,6 +31,11 @@ static double ulps(double a, double b) {
  * (sessile_morph_step on the host, from the sources each side computed) and
  * the actions, by the host and by the kernel; radii, amounts, states and
  * division requests must stay the same bits every step. */
+/* The kernel under test: the generated one or the interpreter
+ * (sessile_sds_rules_kernel); every device check runs with both. */
+static int kind;
+static const char *const kind_names[] = {"generated", "bytecode"};
+
 static void device_run(sessile_gpu *g, const sessile_sds_model *m, const char *name, int steps) {
   rvm_cells H = rvm_cells_make(m, 9, 8, 7, 77), D = rvm_cells_make(m, 9, 8, 7, 77);
   sessile_morph_cells ch = rvm_morph_cells(&H), cd = rvm_morph_cells(&D); /* radii: each side's own */
@@ -40,7 +45,7 @@ static void device_run(sessile_gpu *g, const sessile_sds_model *m, const char *n
   double *rm = t_dalloc(2 * n), *req = t_dalloc(SDS_REQ * n);
   sds_gpu_rules *r = NULL;
   sessile_cmd *cmd = NULL;
-  t_must("the rules kernel", sds_gpu_rules_create(g, m, &r));
+  t_must("the rules kernel", sds_gpu_rules_create_kind(g, m, kind, &r));
   t_must("a command buffer", sessile_cmd_create(g, &cmd));
   t_must("cells up", sds_gpu_rules_set_cells(r, &ch, D.phi, D.state, 1.0));
   int ok = 1, same_steps = 0;
@@ -107,7 +112,7 @@ static void device_check(sessile_gpu *g, const sessile_sds_model *m, const char 
   const double density = 1.3, time = 2.5, dt = 0.125;
   sds_gpu_rules *r = NULL;
   sessile_cmd *cmd = NULL;
-  t_must("the rules kernel", sds_gpu_rules_create(g, m, &r));
+  t_must("the rules kernel", sds_gpu_rules_create_kind(g, m, kind, &r));
   t_must("a command buffer", sessile_cmd_create(g, &cmd));
   t_must("cells up", sds_gpu_rules_set_cells(r, &cl, C.phi, C.state, density));
   t_must("record", sessile_cmd_begin(cmd));
@@ -287,20 +292,27 @@ int main(void) {
 
   /* on the device (fp64, under the validation layer) */
   sessile_gpu *g = t_gpu(64);
-  for (int i = 0; i < 5; i++) {
-    char path[700];
-    snprintf(path, sizeof path, "%s/host/sds/models/%s", root, names[i]);
-    t_must(names[i], sessile_sds_model_load(path, &m));
-    device_check(g, m, names[i], 7 + (uint64_t)i, 1);
-    device_check(g, m, names[i], 7 + (uint64_t)i, 2);
-    if (i == 0 || i == 2 || i == 4) device_run(g, m, names[i], 40);
+  for (kind = 0; kind < 2; kind++) {
+    printf("the %s kernel:\n", kind_names[kind]);
+    for (int i = 0; i < 5; i++) {
+      char path[700], name[100];
+      snprintf(path, sizeof path, "%s/host/sds/models/%s", root, names[i]);
+      snprintf(name, sizeof name, "%s (%s)", names[i], kind_names[kind]);
+      t_must(names[i], sessile_sds_model_load(path, &m));
+      device_check(g, m, name, 7 + (uint64_t)i, 1);
+      device_check(g, m, name, 7 + (uint64_t)i, 2);
+      if (i == 0 || i == 2 || i == 4) device_run(g, m, name, 40);
+      sessile_sds_model_destroy(m);
+    }
+    text = expr_model(NDEVICE);
+    t_must("the device's expressions", sessile_sds_model_parse(text, "exprs.sds", &m));
+    for (int seed = 1; seed <= 2; seed++)
+      device_check(g, m, kind ? "the device's expressions (bytecode)" : "the device's expressions (generated)",
+                   200 + (uint64_t)seed, 1);
     sessile_sds_model_destroy(m);
+    free(text);
   }
-  text = expr_model(NDEVICE);
-  t_must("the device's expressions", sessile_sds_model_parse(text, "exprs.sds", &m));
-  for (int seed = 1; seed <= 2; seed++) device_check(g, m, "the device's expressions", 200 + (uint64_t)seed, 1);
-  sessile_sds_model_destroy(m);
-  free(text);
+  kind = 0;
   t_must("the host's expressions", sessile_sds_model_parse(expr_model_text = expr_model(NEXPR), "exprs.sds", &m));
   sds_gpu_rules *r = NULL;
   sessile_status sr = sds_gpu_rules_create(g, m, &r);

@@ -7,7 +7,8 @@
  * finite values, unit or zero division directions, at most one division per
  * cell.  The rules' bytecode (docs/sds_rules.md, "Bytecode") must give the
  * same status and, when it evaluates, the same actions bit for bit; a model
- * it does not compile must say why in one line naming fuzz.sds.  Anything
+ * it does not compile must say why in one line naming fuzz.sds; one the
+ * device accepts must compile as the generated rules kernel.  Anything
  * else aborts.  Built with driver.c (-DFUZZ_WORDS) by CMake's
  * fuzz_sds_short, or with libFuzzer like the other targets. */
 #include <math.h>
@@ -119,6 +120,22 @@ static void evaluate(const sessile_sds_model *m) {
   sessile_sds_actions_free(&a);
 }
 
+/* The rules' generated kernel (docs/sds_rules.md, "Generated kernel"):
+ * every model the device accepts is written out as GLSL and compiled by
+ * glslang; it must compile (a failure is a fault of the writer), into a
+ * SPIR-V module (its magic word).  The first 400 such models of a run only:
+ * glslang takes milliseconds a model, the rest of a case microseconds. */
+static void generated_kernel(const sessile_sds_model *m) {
+  static int compiled;
+  if (sessile_sds_model_bytecode_refusal(m, 1) || compiled >= 400) return;
+  compiled++;
+  uint32_t *w = NULL;
+  size_t n = 0;
+  if (sessile_sds_model_rules_spirv(m, &w, &n) != SESSILE_OK) fail("the generated rules kernel did not compile");
+  if (n < 5 || w[0] != 0x07230203u) fail("the generated rules kernel is not SPIR-V");
+  free(w);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   char *text = malloc(size + 1);
   if (!text) return 0;
@@ -134,6 +151,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (sessile_sds_model_nmorph(m) > 16 || sessile_sds_model_nstate(m) > 32 || sessile_sds_model_nrules(m) < 1)
       fail("model counts out of range");
     evaluate(m);
+    generated_kernel(m);
     sessile_sds_model_destroy(m);
   }
   free(text);

@@ -249,6 +249,26 @@ typedef struct sessile_spirv {
 /* The kernel named `name`, or NULL. */
 const sessile_spirv *sessile_spirv_find(const char *name);
 
+/* The shaders' include files (shaders/<layer>/NAME.glsl, shaders/common/NAME.glsl
+ * and the generated <layer>_kernels.glsl), embedded at build time for GLSL
+ * compiled at run time: the text of `name` ("rules_vm.glsl"), or NULL. */
+const char *sessile_glsl_source_find(const char *name);
+
+/* GLSL compiled at run time by glslang's library (docs/gpu.md, "Kernels
+ * compiled at run time"): `body` is a compute shader without its #version
+ * line, whose #include "name" lines resolve to sessile_glsl_source_find's
+ * files (each once).  It is compiled as the build compiles d's .comp
+ * (SESSILE_F64 and SESSILE_KERNEL_<d's name> defined, Vulkan 1.1 SPIR-V),
+ * then made a pipeline as sessile_kernel_create_decl makes one.  A shader
+ * that does not compile is SESSILE_ERR_INTERNAL with glslang's log. */
+sessile_status sessile_kernel_create_glsl(sessile_gpu *g, const sessile_kernel_decl *d, uint32_t real_bytes,
+                                          uint32_t local_size, const char *body, sessile_kernel **out);
+/* The SPIR-V of such a shader alone (no device): *words malloc'ed, *n its
+ * 32-bit words; for tests and the fuzzer.  log: glslang's messages on
+ * failure (may be NULL). */
+sessile_status sessile_glsl_to_spirv(const char *kernel_name, int f64, const char *body, uint32_t **words,
+                                     size_t *n, char *log, size_t nlog);
+
 /* Monotonic wall clock in seconds. */
 double sessile_wall_seconds(void);
 

@@ -41,7 +41,13 @@ typedef struct sessile_sds_run_params {
   double max_move, stable_safety;
   double mass_scaling_dt;     /* s: the step selective mass scaling lifts a stiff cell's bound to (0: none) */
   int device_loop;            /* bool: steps in batches on the device, rules included (the same bytes) */
+  int device_rules;           /* sessile_sds_rules_kernel: the device's rules kernel (the same bytes either way) */
 } sessile_sds_run_params;
+
+/* The rules kernel on the device (device_rules; docs/sds_rules.md,
+ * "Generated kernel"): the rules written out as GLSL and compiled at model
+ * load, or the bytecode interpreter. */
+typedef enum sessile_sds_rules_kernel { SESSILE_SDS_RULES_GENERATED = 0, SESSILE_SDS_RULES_BYTECODE = 1 } sessile_sds_rules_kernel;
 
 extern const sessile_param_table sessile_sds_run_param_table;
 
