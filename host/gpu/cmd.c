@@ -17,6 +17,10 @@ struct sessile_cmd {
   VkDescriptorPool dpools[MAX_POOLS];
   uint32_t ndpools, cur_pool;
   uint32_t ndispatch;
+  /* sessile_cmd_indirect: dispatches of these group counts read theirs
+   * from ind_args (word 4 + 3 i for ind_groups[i]) */
+  sessile_buffer *ind_args;
+  uint32_t ind_groups[SESSILE_INDIRECT_MAX], nind;
   int recording, recorded;
   uint64_t ts_written; /* bitmask of slots written in this recording */
   uint64_t ts[TIMESTAMPS];
@@ -124,6 +128,7 @@ sessile_status sessile_cmd_begin(sessile_cmd *c) {
   for (uint32_t i = 0; i < c->ndpools; i++) SESSILE_VK(vkResetDescriptorPool(d, c->dpools[i], 0));
   c->cur_pool = 0;
   c->ndispatch = 0;
+  c->ind_args = NULL, c->nind = 0;
   free_retired(c); /* the last submission has been waited for */
   c->stage_used = 0, c->ncopies_up = c->nuploads = 0, c->nreads = 0, c->down_barrier = 0, c->submits = 0;
   c->ts_written = 0;
@@ -213,15 +218,21 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   SESSILE_CHECK(c->nreads == 0, SESSILE_ERR_INTERNAL,
                 "dispatch of %s after a download in the same recording (downloads come last)", k->name);
   vkUpdateDescriptorSets(c->gpu->device, k->nbuffers, w, 0, NULL);
+  /* an indirect dispatch reads its counts, which a kernel before it may have zeroed */
+  int slot = -1;
+  for (uint32_t i = 0; c->ind_args && i < c->nind && slot < 0; i++)
+    if (c->ind_groups[i] == groups) slot = (int)i;
+  VkPipelineStageFlags ind_stage = c->ind_args ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT : 0;
+  VkAccessFlags ind_access = c->ind_args ? VK_ACCESS_INDIRECT_COMMAND_READ_BIT : 0;
   if (c->ndispatch == 0 && c->ncopies_up > 0) { /* the recorded uploads, before the first dispatch */
     VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
-                          .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-    vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &mb, 0,
-                         NULL, 0, NULL);
+                          .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | ind_access};
+    vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | ind_stage, 0, 1,
+                         &mb, 0, NULL, 0, NULL);
   }
   if (c->ndispatch > 0)
-    barrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    barrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | ind_stage,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | ind_access);
   vkCmdBindPipeline(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->pipeline);
   vkCmdBindDescriptorSets(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->layout, 0, 1, &set, 0, NULL);
   if (k->push_bytes)
@@ -236,13 +247,37 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   }
   int timed = c->prof_rec && c->nprof < PROF_MAX;
   if (timed) vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->prof_q, 2 * c->nprof);
-  vkCmdDispatch(c->cb, gx, gy, 1);
+  if (slot >= 0) vkCmdDispatchIndirect(c->cb, c->ind_args->buffer, (VkDeviceSize)(4 + 3 * slot) * 4);
+  else vkCmdDispatch(c->cb, gx, gy, 1);
   if (timed) {
     vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->prof_q, 2 * c->nprof + 1);
     c->prof_name[c->nprof++] = k->name;
   } else if (c->prof_rec)
     c->nuntimed++;
   c->ndispatch++;
+  return SESSILE_OK;
+}
+
+sessile_status sessile_cmd_indirect(sessile_cmd *c, sessile_buffer *args, const uint32_t *groups, uint32_t n) {
+  SESSILE_CHECK(c->recording && c->ndispatch == 0, SESSILE_ERR_INTERNAL,
+                "sessile_cmd_indirect after a dispatch or outside a recording");
+  uint32_t w[4 + 3 * SESSILE_INDIRECT_MAX] = {0}, m = 0, maxx = c->gpu->info.max_workgroup_count_x;
+  for (uint32_t i = 0; i < n; i++) {
+    int seen = groups[i] == 0;
+    for (uint32_t j = 0; j < m; j++) seen |= c->ind_groups[j] == groups[i];
+    if (seen) continue;
+    SESSILE_CHECK(m < SESSILE_INDIRECT_MAX, SESSILE_ERR_INTERNAL, "more than %d indirect group counts",
+                  SESSILE_INDIRECT_MAX);
+    uint32_t gx = groups[i], gy = 1;
+    if (gx > maxx) gy = (groups[i] + maxx - 1) / maxx, gx = (groups[i] + gy - 1) / gy; /* as sessile_cmd_dispatch */
+    c->ind_groups[m] = groups[i];
+    w[4 + 3 * m] = gx, w[5 + 3 * m] = gy, w[6 + 3 * m] = 1;
+    m++;
+  }
+  w[0] = m;
+  SESSILE_CHECK(args->bytes >= sizeof w, SESSILE_ERR_INTERNAL, "the indirect arguments need %zu bytes", sizeof w);
+  SESSILE_CALL(sessile_cmd_upload(c, args, 0, w, (4 + 3 * (size_t)m) * 4));
+  c->ind_args = args, c->nind = m;
   return SESSILE_OK;
 }
 

@@ -34,11 +34,22 @@ static sessile_status record_check(sessile_sds_gpu *s, uint32_t k, int c, uint32
  * then the hook (seven dispatches a step, and the hook's). */
 static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
   uint32_t split = s->batch_split || s->hook ? SDS_BATCH_SPLIT : 0;
+  /* With the rules' hook, the growth check after a step's rules (stable_min
+   * mode 4) is folded into the next step's stable_min (SDS_BATCH_RULES; the
+   * push's dt carries the reach's scale, which no kernel of a batch's
+   * forces reads otherwise), and made alone after the last step. */
+  double reach = s->hook ? sds_gpu_reach_scale(s) : 0.0;
   for (uint32_t k = 0; k < steps; k++) {
     int c = (s->cur + (int)k) & 1;
-    SESSILE_CALL(sds_gpu_record_forces(s, c, 0.0, 1, 2, (k + 1) | split));
+    uint32_t fold = s->hook && k > 0 ? SDS_BATCH_RULES : 0;
+    SESSILE_CALL(sds_gpu_record_forces(s, c, reach, 1, 2, (k + 1) | split | fold));
     if (split) SESSILE_CALL(record_check(s, k, 1 - c, split));
     if (s->hook) SESSILE_CALL(s->hook(s, s->hook_ctx, k, 1 - c));
+  }
+  if (s->hook) {
+    sds_push p = sds_gpu_push_of(s, reach, 1, 4);
+    p.batch = (steps + 1) | SDS_BATCH_SPLIT;
+    SESSILE_CALL(sds_gpu_record_stable_min(s, &p));
   }
   return split ? SESSILE_OK : record_check(s, steps - 1, (s->cur + (int)steps) & 1, 0);
 }
@@ -63,6 +74,15 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   double st[SDS_STEP_LOG];
   SESSILE_CALL(sds_gpu_begin(s));
   SESSILE_CALL(sds_gpu_batch_rules_start(s));
+  /* The dispatches after a stop launch nothing (stable_min zeroes their
+   * counts): on lavapipe each launch, even of a kernel that returns at once,
+   * is a round trip through its thread pool (docs/sds.md, "The loop on the
+   * device"). */
+  uint32_t groups[8] = {sds_gpu_groups(s, SDS_EDGE, s->nedges), sds_gpu_groups(s, SDS_TET, s->ntets),
+                        sds_gpu_groups(s, SDS_STABLE, s->ncells), sds_gpu_groups(s, SDS_GATHER, s->ncells),
+                        sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0};
+  if (s->hook) sds_gpu_batch_rules_groups(s, &groups[6]);
+  SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 8));
   SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_STEP], 3, ctl, 5));
   SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_EVENT], 0, zero, sizeof zero));
   SESSILE_CALL(record_batch(s, b->steps));

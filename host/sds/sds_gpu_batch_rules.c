@@ -12,10 +12,9 @@
 static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int c) {
   sds_gpu_rules *r = ctx;
   SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
-  SESSILE_CALL(sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max));
-  sds_push p = sds_gpu_push_of(s, sds_gpu_reach_scale(s), 1, 4); /* mode 4 reads the reach's scale from dt */
-  p.batch = (k + 2) | SDS_BATCH_SPLIT;
-  return sds_gpu_record_stable_min(s, &p);
+  /* the growth check after them (stable_min mode 4): folded into the next
+   * step's stable_min by the batch (sds_gpu_batch.c, record_batch) */
+  return sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max);
 }
 
 sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
@@ -23,6 +22,11 @@ sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
   SESSILE_CALL(sds_gpu_rules_record_clear(s->rules, s->cmd));
   if (s->rb && sds_gpu_contacts_on(s)) SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_RB], 0, s->rb, s->ncells));
   return SESSILE_OK;
+}
+
+void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[2]) {
+  out[0] = out[1] = 0;
+  if (s->rules && s->hook == rules_hook) sds_gpu_rules_groups(s->rules, out);
 }
 
 sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s) {

@@ -10,7 +10,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_DISP, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which

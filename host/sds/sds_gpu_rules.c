@@ -237,6 +237,11 @@ sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cm
   return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);
 }
 
+void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t out[2]) {
+  uint32_t l = sessile_kernel_local_size(r->k), m = sessile_kernel_local_size(r->k_morph);
+  out[0] = (r->ncells + l - 1) / l, out[1] = (r->ncells + m - 1) / m;
+}
+
 void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub) {
   if (!r->nmorph || !((steps * nsub) & 1u)) return;
   sessile_buffer *t = r->b[R_PHI]; /* the amounts are in R_PHI2: it becomes R_PHI */

@@ -91,6 +91,10 @@ sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s);
  * downloaded in the batch's submission (recorded after its last dispatch);
  * ready after the submission ran. */
 sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s);
+/* The workgroup counts of the rules' and the morphogens' dispatches (for
+ * sessile_cmd_indirect); of a batch's hook, or 0 and 0 without one. */
+void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t out[2]);
+void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[2]);
 void sds_gpu_batch_rules_ready(sessile_sds_gpu *s);
 sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s);
 sessile_status sds_gpu_download_prev_x(sessile_sds_gpu *s, double *x);

@@ -26,7 +26,7 @@ static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
 sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p) {
   sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
   sessile_buffer *bm[] = {s->b[B_SP],   s->b[B_STAB], s->b[B_STEP], s->b[B_EVENT], s->b[B_MOVE],
-                          s->b[B_TOPO], s->b[B_RM],   s->b[B_RB],   rev};
+                          s->b[B_TOPO], s->b[B_RM],   s->b[B_RB],   rev,          s->b[B_DISP]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
 }
 

@@ -38,6 +38,15 @@ REAL group_max(uint l, uint L, REAL v) {
   return r;
 }
 
+// The batch stopped: every later dispatch of its recording launches no
+// workgroup (sessile_cmd_indirect's counts; disp[0] of them, none outside a
+// batch).  Those dispatches would return at once anyway (they honour ev[0]);
+// not launching them saves lavapipe a thread-pool round trip each.
+void stop_dispatches() {
+  uint n = disp[0];
+  for (uint i = 0u; i < n; i++) disp[4u + 3u * i] = 0u;
+}
+
 // The check of the batch's step j (its gather wrote move; inverted flagged
 // ev[2]): the events into ev[0] and evs, the step's dt and end time logged.
 void check_step(uint l, uint L, uint n, uint j) {
@@ -81,6 +90,8 @@ void check_step(uint l, uint L, uint n, uint j) {
     ev[2] = 0u;
     ev[0] = e;
     evs = e;
+    // split: step j's rules still run after this check (stable_min mode 4 stops the dispatches)
+    if (e != 0u && (pc.batch & SDS_BATCH_SPLIT) == 0u) stop_dispatches();
   }
   barrier();
 }
@@ -92,12 +103,20 @@ void check_step(uint l, uint L, uint n, uint j) {
 // (sds_gpu_lists_check_moves: the largest r - rb, then
 // sds_gpu_lists_stale; pc.dt carries contact_scale), and the growth term the
 // next steps' checks use.
-void growth_check(uint l, uint L, uint n) {
-  if (ev[0] != 0u) return; // stopped by the step's check (stab[n] is -1 already)
+// True (on every lane) when the batch stopped, here or before.  Folded into
+// the next step's stable_min (SDS_BATCH_RULES), or a dispatch of its own
+// after the batch's last step: on lavapipe each dispatch is a thread-pool
+// round trip whatever it does.
+shared uint gstop;
+bool growth_check(uint l, uint L, uint n) {
+  if (ev[0] != 0u) { // stopped by the step's check (stab[n] is -1 already), after which its rules ran
+    if (l == 0u) stop_dispatches();
+    return true;
+  }
   uint e = rev[SDS_EV_SKIP] != 0u ? SDS_EV_HOST : rev[SDS_EV_STOP] != 0u ? SDS_EV_DIVIDE : 0u;
   if (e != 0u || pc.lcap == 0u) {
-    if (l == 0u && e != 0u) ev[0] = e, stab[n] = REAL(-1);
-    return;
+    if (l == 0u && e != 0u) ev[0] = e, stab[n] = REAL(-1), stop_dispatches();
+    return e != 0u;
   }
   REAL far = REAL(0), far_surf = REAL(0), grown = REAL(0);
   for (uint c = l; c < n; c += L) {
@@ -112,11 +131,14 @@ void growth_check(uint l, uint L, uint n) {
   grown = group_max(l, L, grown);
   if (l == 0u) {
     precise REAL g = pc.dt * grown;
+    gstop = 0u;
     if ((pc.nobs != 0u && !(far + g <= sp[SP_SKIN])) || (pc.tsize != 0u && !(REAL(2) * far_surf + g <= sp[SP_SKIN])))
-      ev[0] = SDS_EV_LISTS, stab[n] = REAL(-1);
+      ev[0] = SDS_EV_LISTS, stab[n] = REAL(-1), stop_dispatches(), gstop = 1u;
     else
       step[6] = g;
   }
+  barrier();
+  return gstop != 0u;
 }
 
 void main() {
@@ -125,9 +147,11 @@ void main() {
     growth_check(l, L, n);
     return;
   }
-  uint bk = pc.batch & ~SDS_BATCH_SPLIT;
+  uint bk = pc.batch & ~(SDS_BATCH_SPLIT | SDS_BATCH_RULES);
   bool split = (pc.batch & SDS_BATCH_SPLIT) != 0u; // steps checked by their own dispatches (mode 3)
   if (bk != 0u) {
+    // the step before's rules ran after its check: their growth check first
+    if ((pc.batch & SDS_BATCH_RULES) != 0u && growth_check(l, L, n)) return;
     if (ev[0] != 0u) return; // stopped: stab[n] is -1 already
     if (bk == 1u && !split && l == 0u) ev[2] = 0u; // tet_force flagged the batch's start state: not a step's
     if (bk > 1u && (pc.mode == 3u || !split)) {

@@ -264,6 +264,78 @@ static void test_dispatch(sessile_gpu *g) {
   sessile_kernel_destroy(k);
 }
 
+/* sessile_cmd_indirect: dispatches of the counts it was given read them from
+ * its buffer; a kernel that zeroes them (la/fill of 0 over that buffer,
+ * itself of another count, so dispatched directly) skips every later
+ * dispatch of those counts, which then leave their vector untouched; a new
+ * recording uploads the counts again; asked after a dispatch it fails. */
+static void test_indirect(sessile_gpu *g) {
+  printf("-- indirect dispatch: counts that a kernel zeroes skip the dispatches after it\n");
+  const uint32_t rb = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_kernel *k = NULL;
+  sessile_cmd *c = NULL;
+  sessile_buffer *scal = NULL, *args = NULL, *y1 = NULL, *y2 = NULL;
+  sessile_status s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_FILL], 0, 0, &k);
+  uint32_t ls = k ? sessile_kernel_local_size(k) : 1, g1 = 3, g2 = 5;
+  size_t n1 = 4 * (size_t)ls * g1, n2 = 4 * (size_t)ls * g2, nargs = (4 + 3 * SESSILE_INDIRECT_MAX) * 4 / rb;
+  unsigned char zero[64] = {0}, *mark = malloc(n2 * rb), *raw = malloc(n2 * rb);
+  memset(mark, 0x5A, n2 * rb);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 64 * rb, SESSILE_BUFFER_MAPPED, &scal);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(scal, 0, zero, rb); /* s[0] = 0 */
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, (4 + 3 * SESSILE_INDIRECT_MAX) * 4, SESSILE_BUFFER_DEVICE, &args);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, n1 * rb, SESSILE_BUFFER_DEVICE, &y1);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, n2 * rb, SESSILE_BUFFER_DEVICE, &y2);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(y1, 0, mark, n1 * rb);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(y2, 0, mark, n2 * rb);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
+  vec_push p1 = {.n4 = (uint32_t)n1 / 4, .n = (uint32_t)n1, .a_slot = -1, .guard = -1};
+  vec_push p2 = {.n4 = (uint32_t)n2 / 4, .n = (uint32_t)n2, .a_slot = -1, .guard = -1};
+  vec_push pz = {.n4 = (uint32_t)(nargs + 3) / 4, .n = (uint32_t)nargs, .a_slot = 0, .guard = -1};
+  sessile_buffer *b1[2] = {scal, y1}, *b2[2] = {scal, y2}, *bz[2] = {scal, args};
+  const uint32_t counts[2] = {g1, g2};
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_indirect(c, args, counts, 2);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, g1, b1, &p1);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, (pz.n4 + ls - 1) / ls, bz, &pz); /* zeroes the counts */
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, g2, b2, &p2);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  t_ok("three dispatches, two of them indirect", s);
+  int ok1 = 1, ok2 = 0;
+  if (s == SESSILE_OK) s = sessile_buffer_download(y1, 0, raw, n1 * rb);
+  for (size_t e = 0; s == SESSILE_OK && e < n1; e++) {
+    double v;
+    if (rb == 8) memcpy(&v, raw + 8 * e, 8);
+    else {
+      float f;
+      memcpy(&f, raw + 4 * e, 4);
+      v = f;
+    }
+    ok1 &= v == 1.0;
+  }
+  t_true("the indirect dispatch before the zeroing ran: y1 == 1 everywhere", s == SESSILE_OK && ok1);
+  if (s == SESSILE_OK) s = sessile_buffer_download(y2, 0, raw, n2 * rb);
+  ok2 = s == SESSILE_OK && memcmp(raw, mark, n2 * rb) == 0;
+  t_true("the one after it launched nothing: y2 untouched", ok2);
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_indirect(c, args, counts, 2);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, g2, b2, &p2);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  if (s == SESSILE_OK) s = sessile_buffer_download(y2, 0, raw, n2 * rb);
+  t_true("a new recording uploads the counts again: y2 filled", s == SESSILE_OK && memcmp(raw, mark, n2 * rb) != 0);
+  sessile_status late = SESSILE_OK;
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, k, g1, b1, &p1);
+  if (s == SESSILE_OK) late = sessile_cmd_indirect(c, args, counts, 2);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  t_true("sessile_cmd_indirect after a dispatch is refused", s == SESSILE_OK && late == SESSILE_ERR_INTERNAL);
+  free(mark), free(raw);
+  sessile_cmd_destroy(c);
+  sessile_buffer_destroy(y1), sessile_buffer_destroy(y2), sessile_buffer_destroy(args), sessile_buffer_destroy(scal);
+  sessile_kernel_destroy(k);
+}
+
 /* The kernel profile: SESSILE_PROFILE_MAX + 6 dispatches of la/fill in one
  * recording submitted twice give 2 x SESSILE_PROFILE_MAX timed calls of it
  * and 2 x 6 untimed dispatches, with a
@@ -525,6 +597,7 @@ int main(void) {
   test_buffers(g);
   test_kernels(g);
   test_dispatch(g);
+  test_indirect(g);
   test_recorded_transfers(g);
   test_profile(g);
   test_device_choice();

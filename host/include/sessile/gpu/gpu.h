@@ -207,6 +207,16 @@ uint32_t sessile_kernel_local_size(const sessile_kernel *k);
 /* --- command recording -------------------------------------------------- */
 sessile_status sessile_cmd_create(sessile_gpu *g, sessile_cmd **out);
 void sessile_cmd_destroy(sessile_cmd *c);
+/* A recording that its own kernels may cut short (docs/design.md, "Indirect
+ * dispatch"): from here on, a dispatch of one of the n group counts reads
+ * its counts from `args` (uint words: [0] the counts kept, then from word 4
+ * three per count, x y z), uploaded here; a kernel that writes 0 into a
+ * count's x skips every later dispatch of that count without launching
+ * it (a zero-sized dispatch: lavapipe then wakes no thread).  Other counts
+ * dispatch as before.  Before the recording's first dispatch; args needs
+ * (4 + 3 SESSILE_INDIRECT_MAX) words.  Ends with the recording. */
+#define SESSILE_INDIRECT_MAX 16
+sessile_status sessile_cmd_indirect(sessile_cmd *c, sessile_buffer *args, const uint32_t *groups, uint32_t n);
 /* Starts a fresh recording (drops the previous one). */
 sessile_status sessile_cmd_begin(sessile_cmd *c);
 /* Records a dispatch of `groups` workgroups (split into 2-D when above
