@@ -16,7 +16,8 @@ enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STA
 
 struct sds_gpu_rules {
   sessile_gpu *gpu;
-  sessile_kernel *k, *k_bound, *k_morph; /* rules_vm; a batch's morph_bound and morph_step_batch */
+  /* rules_vm; a batch's morph_bound and morph_step_batch (each also through texel buffers) */
+  sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex;
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
@@ -68,7 +69,11 @@ sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model
   sessile_status st = rules_kernel(g, p, kind, &r->k);
   if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND], 8, 0, &r->k_bound);
   if (st == SESSILE_OK)
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND_TEX], 8, 0, &r->k_bound_tex);
+  if (st == SESSILE_OK)
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH], 8, 0, &r->k_morph);
+  if (st == SESSILE_OK)
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH_TEX], 8, 0, &r->k_morph_tex);
   if (st == SESSILE_OK) st = ensure(r, R_PROG, (size_t)p->nw * 4);
   if (st == SESSILE_OK) st = ensure(r, R_KONST, ((size_t)p->nk + SDS_CTL) * 8);
   if (st == SESSILE_OK) st = ensure(r, R_MCOEF, sizeof mc);
@@ -92,7 +97,9 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   free(r->phi_host), free(r->phi2_host), free(r->state_host);
   sessile_kernel_destroy(r->k);
   sessile_kernel_destroy(r->k_bound);
+  sessile_kernel_destroy(r->k_bound_tex);
   sessile_kernel_destroy(r->k_morph);
+  sessile_kernel_destroy(r->k_morph_tex);
   free(r);
 }
 
@@ -202,6 +209,20 @@ sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s) {
 }
 
 /* --- inside a batch of physics steps (sds_gpu_batch_rules.c) ------------- */
+/* Do the views of a batch's rules' inputs (pos, rm when given, the
+ * sources, amounts and neighbour lists) fit maxTexelBufferElements?  Then
+ * morph_bound and the sub-steps read them as texels (vector loads on
+ * lavapipe); else through storage buffers, the same bits. */
+static int texels_fit(const sds_gpu_rules *r, const sessile_buffer *pos, const sessile_buffer *rm) {
+  uint64_t maxt = sessile_gpu_info_of(r->gpu)->max_texel_buffer_elements;
+  const sessile_buffer *reals[] = {pos, rm, r->b[R_SRC], r->b[R_PHI], r->b[R_PHI2]}, *words[] = {r->b[R_OFF], r->b[R_NBR]};
+  for (size_t i = 0; i < 5; i++)
+    if (sessile_buffer_size(reals[i]) / 8 > maxt) return 0;
+  for (size_t i = 0; i < 2; i++)
+    if (sessile_buffer_size(words[i]) / 4 > maxt) return 0;
+  return 1;
+}
+
 sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *step,
                                           sessile_buffer *pev, uint32_t batch, uint32_t nsub_max) {
   sds_mbound_push p;
@@ -210,7 +231,7 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
   p.ncells = r->ncells, p.nmorph = r->nmorph, p.batch = batch, p.nsub_max = nsub_max, p.ctl = r->nk;
   r->fresh = 0;
   sessile_buffer *b[] = {pos, r->b[R_OFF], r->b[R_NBR], r->b[R_DCOEF], step, pev, r->b[R_EVENT], r->b[R_KONST]};
-  return sessile_cmd_dispatch(cmd, r->k_bound, 1, b, &p);
+  return sessile_cmd_dispatch(cmd, texels_fit(r, pos, NULL) ? r->k_bound_tex : r->k_bound, 1, b, &p);
 }
 
 /* The amounts' buffer after j sub-steps of a batch (0: R_PHI, where the
@@ -225,13 +246,14 @@ sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cm
     sds_morph_push mp;
     memset(&mp, 0, sizeof mp);
     mp.ncells = r->ncells, mp.nmorph = r->nmorph, mp.ctl = r->nk;
-    uint32_t l = sessile_kernel_local_size(r->k_morph);
+    sessile_kernel *k = texels_fit(r, pos, rm) ? r->k_morph_tex : r->k_morph;
+    uint32_t l = sessile_kernel_local_size(k);
     for (uint32_t j = 0; j < nsub; j++) {
       mp.sub = j + 1;
       sessile_buffer *b[] = {pos,           rm,          r->b[R_OFF], r->b[R_NBR],        r->b[R_DCOEF],
                              r->b[R_SRC],   phi_after(r, j0 + j), phi_after(r, j0 + j + 1), r->b[R_KONST],
                              r->b[R_EVENT]};
-      SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_morph, (r->ncells + l - 1) / l, b, &mp));
+      SESSILE_CALL(sessile_cmd_dispatch(cmd, k, (r->ncells + l - 1) / l, b, &mp));
     }
   }
   return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);

@@ -16,7 +16,11 @@
 #if MORPH_TEXEL
 #include "texel_real.glsl"
 #define LD_POS(i) texel_real(pos_t, (i))
+#if MORPH_BATCH
+#define LD_RADIUS(i) texel_real(radius_t, 2u * (i))
+#else
 #define LD_RADIUS(i) texel_real(radius_t, (i))
+#endif
 #define LD_OFF(i) texelFetch(nbr_off_t, int(i)).x
 #define LD_NBR(i) texelFetch(nbr_t, int(i)).x
 #define LD_PHI(i) texel_real(phi_in_t, (i))
@@ -57,7 +61,7 @@ void main() {
 #if MORPH_BATCH
   if (rev[SDS_EV_SKIP] != 0u) return; // the host makes this step's rules
   if (REAL(pc.sub) > ctl[pc.ctl]) {   // past the step's sub-steps: the amounts as they are
-    for (uint k = 0u; k < nm; k++) phi_out[c * nm + k] = phi_in[c * nm + k];
+    for (uint k = 0u; k < nm; k++) phi_out[c * nm + k] = LD_PHI(c * nm + k);
     return;
   }
 #endif
