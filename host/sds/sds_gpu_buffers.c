@@ -54,6 +54,7 @@ sessile_kernel *sds_gpu_kern(const sessile_sds_gpu *s, int k) {
   if (s->reads == 0 && texel_fits(s)) switch (k) {
     case SDS_EDGE: return s->k[SDS_EDGE_TEX];
     case SDS_TET: return s->k[SDS_TET_TEX];
+    case SDS_ELEM: return s->k[SDS_ELEM_TEX];
     case SDS_GATHER: return s->k[SDS_GATHER_TEX];
     case SDS_INVERTED: return s->k[SDS_INVERTED_TEX];
     case SDS_CONTACT_LIST: return s->k[SDS_CONTACT_LIST_TEX];

@@ -14,6 +14,14 @@ static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) 
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_EDGE), sds_gpu_groups(s, SDS_EDGE, s->nedges), b, p);
 }
 
+/* Both in one dispatch (elem_force: the edges, then the tets). */
+static sessile_status record_elem(sessile_sds_gpu *s, int c, const sds_push *p) {
+  sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
+                         s->b[B_ELF], s->b[B_EVENT], s->b[B_FLAG]};
+  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), b,
+                              p);
+}
+
 static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
   if (!s->ntets) return SESSILE_OK;
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
@@ -43,8 +51,12 @@ sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int d
   sds_push p = sds_gpu_push_of(s, dt, damping, mode);
   p.batch = batch;
   int nx = 1 - c;
-  SESSILE_CALL(record_edge(s, c, &p));
-  SESSILE_CALL(record_tet(s, c, &p));
+  if (s->nedges && s->ntets) {
+    SESSILE_CALL(record_elem(s, c, &p));
+  } else {
+    SESSILE_CALL(record_edge(s, c, &p));
+    SESSILE_CALL(record_tet(s, c, &p));
+  }
   if (mode == 2) SESSILE_CALL(record_stable(s, &p));
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_LIST],

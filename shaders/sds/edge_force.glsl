@@ -8,8 +8,7 @@
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void main() {
-  uint e = sessile_gid();
+void edge_force_at(uint e) {
   if (e >= pc.nedges || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint a = LD_TOPO(o_edge() + 2u * e), b = LD_TOPO(o_edge() + 2u * e + 1u);
   REAL esm = LD_SM(pc.ntets + e);
@@ -28,3 +27,7 @@ void main() {
     elf[20u * pc.ntets + 3u * pc.nedges + e] = REAL(2) * K;
   }
 }
+
+#ifndef SDS_ELEM_FUSED
+void main() { edge_force_at(sessile_gid()); }
+#endif

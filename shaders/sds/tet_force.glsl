@@ -14,8 +14,7 @@
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void main() {
-  uint t = sessile_gid();
+void tet_force_at(uint t) {
   if (t >= pc.ntets || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint q[4] = uint[4](LD_TOPO(4u * t), LD_TOPO(4u * t + 1u), LD_TOPO(4u * t + 2u), LD_TOPO(4u * t + 3u));
   REAL a[3], b[3], c[3], g[4][3];
@@ -69,3 +68,7 @@ void main() {
     }
   }
 }
+
+#ifndef SDS_ELEM_FUSED
+void main() { tet_force_at(sessile_gid()); }
+#endif
