@@ -138,6 +138,9 @@ sessile_status sessile_buffer_reserve(sessile_gpu *g, sessile_buffer **b, size_t
 }
 
 size_t sessile_buffer_size(const sessile_buffer *b) { return b ? b->bytes : 0; }
+int sessile_buffer_texels_fit(const sessile_buffer *b, size_t texel_bytes) {
+  return !b || b->bytes / texel_bytes <= b->gpu->info.max_texel_buffer_elements;
+}
 void *sessile_buffer_host_ptr(sessile_buffer *b) { return b->mapped; }
 
 static sessile_status check_range(const sessile_buffer *b, size_t offset, size_t bytes) {

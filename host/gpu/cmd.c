@@ -191,6 +191,21 @@ static sessile_status texel_view(sessile_gpu *g, sessile_buffer *b, uint32_t kin
   return SESSILE_OK;
 }
 
+/* Above maxComputeWorkGroupCount[0], `groups` spread over y (kernels use
+ * sessile_gid()). */
+static sessile_status split_groups(const sessile_cmd *c, uint32_t groups, const char *kname, uint32_t *gx,
+                                   uint32_t *gy) {
+  uint32_t maxx = c->gpu->info.max_workgroup_count_x;
+  *gx = groups, *gy = 1;
+  if (groups > maxx) {
+    *gy = (groups + maxx - 1) / maxx;
+    *gx = (groups + *gy - 1) / *gy;
+    SESSILE_CHECK(*gy <= c->gpu->limits.maxComputeWorkGroupCount[1], SESSILE_ERR_TOO_LARGE,
+                  "kernel %s needs %u workgroups, more than the device allows", kname, groups);
+  }
+  return SESSILE_OK;
+}
+
 sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
                                     sessile_buffer *const *buffers, const void *push) {
   SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "dispatch of %s outside a recording", k->name);
@@ -237,14 +252,8 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   vkCmdBindDescriptorSets(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->layout, 0, 1, &set, 0, NULL);
   if (k->push_bytes)
     vkCmdPushConstants(c->cb, k->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, k->push_bytes, push);
-  /* Above maxComputeWorkGroupCount[0], spread over y; kernels use sessile_gid(). */
-  uint32_t gx = groups, gy = 1, maxx = c->gpu->info.max_workgroup_count_x;
-  if (gx > maxx) {
-    gy = (groups + maxx - 1) / maxx;
-    gx = (groups + gy - 1) / gy;
-    SESSILE_CHECK(gy <= c->gpu->limits.maxComputeWorkGroupCount[1], SESSILE_ERR_TOO_LARGE,
-                  "kernel %s needs %u workgroups, more than the device allows", k->name, groups);
-  }
+  uint32_t gx, gy;
+  SESSILE_CALL(split_groups(c, groups, k->name, &gx, &gy));
   int timed = c->prof_rec && c->nprof < PROF_MAX;
   if (timed) vkCmdWriteTimestamp(c->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, c->prof_q, 2 * c->nprof);
   if (slot >= 0) vkCmdDispatchIndirect(c->cb, c->ind_args->buffer, (VkDeviceSize)(4 + 3 * slot) * 4);
@@ -261,15 +270,15 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
 sessile_status sessile_cmd_indirect(sessile_cmd *c, sessile_buffer *args, const uint32_t *groups, uint32_t n) {
   SESSILE_CHECK(c->recording && c->ndispatch == 0, SESSILE_ERR_INTERNAL,
                 "sessile_cmd_indirect after a dispatch or outside a recording");
-  uint32_t w[4 + 3 * SESSILE_INDIRECT_MAX] = {0}, m = 0, maxx = c->gpu->info.max_workgroup_count_x;
+  uint32_t w[4 + 3 * SESSILE_INDIRECT_MAX] = {0}, m = 0;
   for (uint32_t i = 0; i < n; i++) {
     int seen = groups[i] == 0;
     for (uint32_t j = 0; j < m; j++) seen |= c->ind_groups[j] == groups[i];
     if (seen) continue;
     SESSILE_CHECK(m < SESSILE_INDIRECT_MAX, SESSILE_ERR_INTERNAL, "more than %d indirect group counts",
                   SESSILE_INDIRECT_MAX);
-    uint32_t gx = groups[i], gy = 1;
-    if (gx > maxx) gy = (groups[i] + maxx - 1) / maxx, gx = (groups[i] + gy - 1) / gy; /* as sessile_cmd_dispatch */
+    uint32_t gx, gy;
+    SESSILE_CALL(split_groups(c, groups[i], "an indirect dispatch", &gx, &gy));
     c->ind_groups[m] = groups[i];
     w[4 + 3 * m] = gx, w[5 + 3 * m] = gy, w[6 + 3 * m] = 1;
     m++;

@@ -57,7 +57,8 @@ static int use_texel(sessile_la *la, const sessile_mat *a, vref x) {
 }
 
 int la_texel_fits(const sessile_la *la, const sessile_buffer *b, uint32_t texel_bytes) {
-  return sessile_buffer_size(b) / texel_bytes <= sessile_gpu_info_of(la->gpu)->max_texel_buffer_elements;
+  (void)la;
+  return sessile_buffer_texels_fit(b, texel_bytes);
 }
 
 int la_block_texel_ok(const sessile_la *la, const mat_chunk *ch, sessile_buffer *x) {

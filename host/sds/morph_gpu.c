@@ -155,13 +155,12 @@ void sessile_morph_gpu_set_reads(sessile_morph_gpu *m, int storage) { m->storage
 /* The texel variant when allowed and every view it reads fits the device's
  * maxTexelBufferElements (texels of one real or one uint). */
 static sessile_kernel *kernel_of(const sessile_morph_gpu *m) {
-  uint64_t maxt = sessile_gpu_info_of(m->gpu)->max_texel_buffer_elements;
   static const int reals[] = {B_POS, B_RADIUS, B_SRC, B_PHI0, B_PHI1}, words[] = {B_OFF, B_NBR};
   if (m->storage) return m->k;
   for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
-    if (sessile_buffer_size(m->b[reals[i]]) / m->real_bytes > maxt) return m->k;
+    if (!sessile_buffer_texels_fit(m->b[reals[i]], m->real_bytes)) return m->k;
   for (size_t i = 0; i < sizeof words / sizeof *words; i++)
-    if (sessile_buffer_size(m->b[words[i]]) / 4 > maxt) return m->k;
+    if (!sessile_buffer_texels_fit(m->b[words[i]], 4)) return m->k;
   return m->k_tex;
 }
 

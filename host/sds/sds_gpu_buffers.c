@@ -40,11 +40,10 @@ sessile_status sds_gpu_submit(sessile_sds_gpu *s) {
 static int texel_fits(const sessile_sds_gpu *s) {
   static const int reals[] = {B_X0, B_X1, B_V0, B_V1, B_RM, B_SM, B_ELF, B_WORLD, B_FSPH};
   static const int words[] = {B_TOPO, B_LIST, B_OBSTRI, B_HASH};
-  uint64_t maxt = sessile_gpu_info_of(s->gpu)->max_texel_buffer_elements;
   for (size_t i = 0; i < sizeof reals / sizeof *reals; i++)
-    if (sessile_buffer_size(s->b[reals[i]]) / s->real_bytes > maxt) return 0;
+    if (!sessile_buffer_texels_fit(s->b[reals[i]], s->real_bytes)) return 0;
   for (size_t i = 0; i < sizeof words / sizeof *words; i++)
-    if (sessile_buffer_size(s->b[words[i]]) / 4 > maxt) return 0;
+    if (!sessile_buffer_texels_fit(s->b[words[i]], 4)) return 0;
   return 1;
 }
 

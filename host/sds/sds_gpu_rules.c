@@ -214,13 +214,10 @@ sessile_status sds_gpu_rules_record_apply_s(sessile_sds_gpu *s) {
  * morph_bound and the sub-steps read them as texels (vector loads on
  * lavapipe); else through storage buffers, the same bits. */
 static int texels_fit(const sds_gpu_rules *r, const sessile_buffer *pos, const sessile_buffer *rm) {
-  uint64_t maxt = sessile_gpu_info_of(r->gpu)->max_texel_buffer_elements;
-  const sessile_buffer *reals[] = {pos, rm, r->b[R_SRC], r->b[R_PHI], r->b[R_PHI2]}, *words[] = {r->b[R_OFF], r->b[R_NBR]};
-  for (size_t i = 0; i < 5; i++)
-    if (sessile_buffer_size(reals[i]) / 8 > maxt) return 0;
-  for (size_t i = 0; i < 2; i++)
-    if (sessile_buffer_size(words[i]) / 4 > maxt) return 0;
-  return 1;
+  const sessile_buffer *reals[] = {pos, rm, r->b[R_SRC], r->b[R_PHI], r->b[R_PHI2]};
+  int fit = sessile_buffer_texels_fit(r->b[R_OFF], 4) && sessile_buffer_texels_fit(r->b[R_NBR], 4);
+  for (size_t i = 0; i < 5; i++) fit = fit && sessile_buffer_texels_fit(reals[i], 8);
+  return fit;
 }
 
 sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *step,

@@ -133,6 +133,9 @@ void sessile_buffer_destroy(sessile_buffer *b);
  * discrete GPU each allocation is a driver call of up to a millisecond. */
 sessile_status sessile_buffer_reserve(sessile_gpu *g, sessile_buffer **b, size_t bytes, sessile_buffer_kind kind);
 size_t sessile_buffer_size(const sessile_buffer *b); /* 0 for NULL (a buffer not made yet) */
+/* Does a whole-buffer view of texels of texel_bytes fit maxTexelBufferElements
+ * (NULL: yes)?  A kernel's _tex variant is taken only when every view does. */
+int sessile_buffer_texels_fit(const sessile_buffer *b, size_t texel_bytes);
 /* Host pointer of a MAPPED buffer (or of a DEVICE one on unified memory); NULL otherwise. */
 void *sessile_buffer_host_ptr(sessile_buffer *b);
 /* Blocking transfers (wait for the device to be idle with respect to them). */
