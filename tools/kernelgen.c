@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { NAME = 64, MAXTOK = 8, MAXF = 32, MAXB = 16, MAXP = 32, MAXK = 64, MAXC = 256 };
+enum { NAME = 64, MAXTOK = 8, MAXF = 32, MAXB = 24, /* SESSILE_MAX_BINDINGS */ MAXP = 32, MAXK = 64, MAXC = 256 };
 
 typedef struct { char type[8], name[NAME]; unsigned off; } field;
 typedef struct { char cname[NAME], gname[NAME]; field f[MAXF]; int nf; unsigned size; } push_t;

@@ -57,7 +57,7 @@ static sessile_status add_pool(sessile_cmd *c) {
                 SETS_PER_POOL * MAX_POOLS);
   VkDescriptorPoolSize size[2] = {
       {.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = SETS_PER_POOL * 16},
-      {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, .descriptorCount = SETS_PER_POOL * 4}};
+      {.type = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, .descriptorCount = SETS_PER_POOL * 8}};
   VkDescriptorPoolCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                    .maxSets = SETS_PER_POOL, .poolSizeCount = 2,
                                    .pPoolSizes = size};
@@ -212,9 +212,9 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   if (groups == 0) return SESSILE_OK;
   VkDescriptorSet set;
   SESSILE_CALL(alloc_set(c, k->set_layout, &set));
-  VkDescriptorBufferInfo bi[16];
-  VkWriteDescriptorSet w[16];
-  VkBufferView views[16];
+  VkDescriptorBufferInfo bi[SESSILE_MAX_BINDINGS];
+  VkWriteDescriptorSet w[SESSILE_MAX_BINDINGS];
+  VkBufferView views[SESSILE_MAX_BINDINGS];
   for (uint32_t i = 0; i < k->nbuffers; i++) {
     SESSILE_CHECK(buffers[i], SESSILE_ERR_INTERNAL, "kernel %s: binding %u is NULL", k->name, i);
     bi[i] = (VkDescriptorBufferInfo){.buffer = buffers[i]->buffer, .offset = 0,

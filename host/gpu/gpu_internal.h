@@ -71,7 +71,7 @@ struct sessile_kernel {
   VkPipelineLayout layout;
   VkPipeline pipeline;
   uint32_t nbuffers, push_bytes, local_size;
-  uint8_t texel[16]; /* sessile_binding_kind of each binding */
+  uint8_t texel[SESSILE_MAX_BINDINGS]; /* sessile_binding_kind of each binding */
   char name[64];
 };
 

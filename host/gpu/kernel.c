@@ -12,7 +12,7 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
   VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                  .codeSize = sp->bytes, .pCode = sp->code};
   SESSILE_VK(vkCreateShaderModule(g->device, &mi, NULL, &k->module));
-  VkDescriptorSetLayoutBinding b[16];
+  VkDescriptorSetLayoutBinding b[SESSILE_MAX_BINDINGS];
   for (uint32_t i = 0; i < k->nbuffers; i++)
     b[i] = (VkDescriptorSetLayoutBinding){.binding = i,
                                           .descriptorType = k->texel[i]
@@ -53,8 +53,8 @@ static uint8_t resolve_kind(sessile_binding_kind kind, uint32_t real_bytes) {
 static sessile_status create_from(sessile_gpu *g, const sessile_kernel_decl *d, uint32_t real_bytes,
                                   uint32_t local_size, const sessile_spirv *sp, const char *name,
                                   sessile_kernel **out) {
-  SESSILE_CHECK(d->nbindings <= 16, SESSILE_ERR_INTERNAL, "kernel %s: %u bindings > 16", name,
-                d->nbindings);
+  SESSILE_CHECK(d->nbindings <= SESSILE_MAX_BINDINGS, SESSILE_ERR_INTERNAL, "kernel %s: %u bindings > %d", name,
+                d->nbindings, SESSILE_MAX_BINDINGS);
   SESSILE_CHECK(d->push_bytes <= 128 && d->push_bytes % 4 == 0, SESSILE_ERR_INTERNAL,
                 "kernel %s: %u push-constant bytes (at most 128, multiple of 4)", name, d->push_bytes);
   if (local_size == 0) local_size = d->local_size ? d->local_size : 256;

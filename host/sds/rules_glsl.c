@@ -161,7 +161,7 @@ static void expr(gen *g, uint32_t pc) {
   if (!g->bad) out(g, "  return t%d;\n}\n", st[0]);
 }
 
-char *sds_rules_glsl(const sds_prog *p, char *why, size_t nwhy) {
+char *sds_rules_glsl(const sds_prog *p, const char *shell, char *why, size_t nwhy) {
   gen g = {.p = p};
   why[0] = 0;
   if (!p->device) {
@@ -171,7 +171,7 @@ char *sds_rules_glsl(const sds_prog *p, char *why, size_t nwhy) {
   const uint32_t *w = p->w;
   uint32_t nrules = p->nw ? w[0] : 0;
   out(&g, "// Generated from the model's rules by host/sds/rules_glsl.c.\n#define SDS_RULES_GEN 1\n"
-          "#include \"rules_vm.glsl\"\n\n");
+          "#include \"%s\"\n\n", shell);
   for (uint32_t r = 0; r < nrules && !g.bad; r++) {
     uint32_t rec = w[1 + r];
     if (rec + 1 >= p->nw || rec + 2 + 2 * w[rec + 1] > p->nw) {
@@ -213,7 +213,7 @@ sessile_status sessile_sds_model_rules_spirv(const sessile_sds_model *m, uint32_
   const char *why = sessile_sds_model_bytecode_refusal(m, 1);
   SESSILE_CHECK(!why, SESSILE_ERR_USAGE, "the rules on the device: %s", why);
   char w[320];
-  char *body = sds_rules_glsl(m->prog, w, sizeof w);
+  char *body = sds_rules_glsl(m->prog, "rules_vm.glsl", w, sizeof w);
   SESSILE_CHECK(body, SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", w);
   char log[1024];
   sessile_status st = sessile_glsl_to_spirv(sessile_sds_kernels[SDS_RULES_VM].name, 1, body, words, n, log, sizeof log);

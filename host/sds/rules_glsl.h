@@ -6,10 +6,11 @@
 #include "rules_vm.h"
 #include "sessile/sds/sds_process.h"
 
-/* The body of the kernel (sessile_kernel_create_glsl's, for the
- * declaration of rules_vm): rules_vm.glsl with evaluate_gen(c), the rules of
- * p written out.  malloc'ed; NULL with *why set for bytecode it does not
- * know (the interpreter runs any that the compiler wrote, so a NULL here is
- * a fault of ours) or out of memory. */
-char *sds_rules_glsl(const sds_prog *p, char *why, size_t nwhy);
+/* The body of a kernel (sessile_kernel_create_glsl's): the shader file
+ * `shell` ("rules_vm.glsl" for the declaration of rules_vm,
+ * "rules_morph.glsl" for rules_morph's) with evaluate_gen(c), the rules of p
+ * written out.  malloc'ed; NULL with *why set for bytecode it does not know
+ * (the interpreter runs any that the compiler wrote, so a NULL here is a
+ * fault of ours) or out of memory. */
+char *sds_rules_glsl(const sds_prog *p, const char *shell, char *why, size_t nwhy);
 #endif

@@ -1,10 +1,13 @@
 /* A batch of SDS physics steps in one submission (sessile/sds/sds_batch.h,
- * docs/sds.md "The loop on the device"): per step five dispatches, the
- * forces (tet_force also flags the inverted tets of its input), the stable
- * bound, stable_min (which first checks the step before, as
- * sessile_sds_gpu_advance does on the host) and the gather; the kernels honour the event word, so the batch stops itself after
- * the first step that raises one.  The host reads the events, the count of
- * accepted steps and their log once, at the end. */
+ * docs/sds.md "The loop on the device"): per step the forces (elem_force,
+ * which also flags the inverted tets of its input), the stable bound with
+ * stable_min (stable_all where texels fit; it first checks the step before,
+ * as sessile_sds_gpu_advance does on the host) and the gather; with the
+ * rules, each step's check right after it (step_check: with the inverted
+ * flags and the morphogens' bound) and the rules' hook.  The kernels honour
+ * the event word, so the batch stops itself after the first step that
+ * raises one.  The host reads the events, the count of accepted steps and
+ * their log once, at the end. */
 #include <math.h>
 #include <string.h>
 #include "sessile/sds/sds_batch.h"
@@ -43,7 +46,9 @@ static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
     int c = (s->cur + (int)k) & 1;
     uint32_t fold = s->hook && k > 0 ? SDS_BATCH_RULES : 0;
     SESSILE_CALL(sds_gpu_record_forces(s, c, reach, 1, 2, (k + 1) | split | fold));
-    if (split) SESSILE_CALL(record_check(s, k, 1 - c, split));
+    s->check_fused = 0;
+    if (split) SESSILE_CALL(sds_gpu_batch_rules_check(s, k, 1 - c, &s->check_fused));
+    if (split && !s->check_fused) SESSILE_CALL(record_check(s, k, 1 - c, split));
     if (s->hook) SESSILE_CALL(s->hook(s, s->hook_ctx, k, 1 - c));
   }
   if (s->hook) {
@@ -78,11 +83,11 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
    * counts): on lavapipe each launch, even of a kernel that returns at once,
    * is a round trip through its thread pool (docs/sds.md, "The loop on the
    * device"). */
-  uint32_t groups[8] = {sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), sds_gpu_groups(s, SDS_TET, s->ntets),
+  uint32_t groups[9] = {sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), sds_gpu_groups(s, SDS_TET, s->ntets),
                         sds_gpu_groups(s, SDS_STABLE, s->ncells), sds_gpu_groups(s, SDS_GATHER, s->ncells),
-                        sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0};
+                        sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0, 0};
   if (s->hook) sds_gpu_batch_rules_groups(s, &groups[6]);
-  SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 8));
+  SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 9));
   SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_STEP], 3, ctl, 5));
   SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_EVENT], 0, zero, sizeof zero));
   SESSILE_CALL(record_batch(s, b->steps));

@@ -1,9 +1,10 @@
 /* The rules' step inside a batch of physics steps (docs/sds.md, "The loop on
  * the device"; kernels.def, "The rules' step inside a batch"): the batch's
- * hook records, after each step's check, morph_bound, the rules' two modes
- * around the morphogens' sub-steps, and stable_min mode 4 (the lists'
- * staleness with the grown radii; the stop at a division or a step the host
- * must complete).  Every kernel reads the step's dt and time from the
+ * hook records, after each step's check, morph_bound (or step_check made it
+ * with the check: sds_gpu_batch_rules_check), the rules' two modes around
+ * the morphogens' sub-steps (mode 0 with the first in rules_morph where the
+ * views fit), and stable_min mode 4 (the lists' staleness with the grown
+ * radii; the stop at a division or a step the host must complete).  Every kernel reads the step's dt and time from the
  * device, so a batch of K steps needs the host only at its end. */
 #include <string.h>
 #include "sds/sds_gpu_internal.h"
@@ -11,10 +12,16 @@
 
 static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int c) {
   sds_gpu_rules *r = ctx;
-  SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
+  if (!s->check_fused) /* else step_check made the bound with the step's check */
+    SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
   /* the growth check after them (stable_min mode 4): folded into the next
    * step's stable_min by the batch (sds_gpu_batch.c, record_batch) */
   return sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max);
+}
+
+sessile_status sds_gpu_batch_rules_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {
+  *done = 0;
+  return s->rules && s->hook == rules_hook ? sds_gpu_rules_record_check(s, k, c, done) : SESSILE_OK;
 }
 
 sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
@@ -24,9 +31,9 @@ sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
   return SESSILE_OK;
 }
 
-void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[2]) {
-  out[0] = out[1] = 0;
-  if (s->rules && s->hook == rules_hook) sds_gpu_rules_groups(s->rules, out);
+void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[3]) {
+  out[0] = out[1] = out[2] = 0;
+  if (s->rules && s->hook == rules_hook) sds_gpu_rules_groups(s->rules, s->ntets, out);
 }
 
 sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s) {

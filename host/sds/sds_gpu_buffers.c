@@ -211,6 +211,11 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(sds_gpu_ensure(s, B_EVENT, 4 * 4));
   SESSILE_CALL(sds_gpu_ensure(s, B_RB, n * rb)); /* a batch with the rules: the radii at the lists' build */
   SESSILE_CALL(sds_gpu_ensure(s, B_DISP, (4 + 3 * SESSILE_INDIRECT_MAX) * 4)); /* a batch's indirect counts */
+  if (!s->b[B_CNT]) { /* stable_all's counter, zero between its dispatches (shaders/common/last_group.glsl) */
+    const uint32_t zero[4] = {0, 0, 0, 0};
+    SESSILE_CALL(sds_gpu_ensure(s, B_CNT, sizeof zero));
+    SESSILE_CALL(sessile_buffer_upload(s->b[B_CNT], 0, zero, sizeof zero));
+  }
   /* the lists' buffers are sized by their builds (lists_ensure), which keep
    * room for the cells a partial build appends: never shrunk or grown here */
   SESSILE_CALL(sds_gpu_ensure(s, B_XB, 16));

@@ -10,7 +10,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_DISP, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_DISP, B_CNT, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which
@@ -77,6 +77,7 @@ struct sessile_sds_gpu {
   int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
   sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
   void *hook_ctx;
+  int check_fused; /* a batch step's check made by the rules' step_check (sds_gpu_batch_rules_check) */
 };
 
 /* A real as the device stores it (r, m kept on the host: rm). */

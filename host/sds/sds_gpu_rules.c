@@ -2,6 +2,7 @@
  * shaders/sds/rules_vm.comp (sds_gpu_rules.h; docs/sds_rules.md,
  * "Bytecode").  The bytecode and its constants go up once, at create; the
  * cells after each topology change. */
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include "rules_glsl.h"
@@ -12,12 +13,15 @@
 #include "sds_gpu_rules.h"
 
 enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ,
-       R_EVENT, R_DCOEF, R_PHI2, R_COUNT };
+       R_EVENT, R_DCOEF, R_PHI2, R_CNT, R_MRATE, R_COUNT };
 
 struct sds_gpu_rules {
   sessile_gpu *gpu;
-  /* rules_vm; a batch's morph_bound and morph_step_batch (each also through texel buffers) */
-  sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex;
+  /* rules_vm; a batch's morph_bound and morph_step_batch (each also through
+   * texel buffers), and its rules with their first sub-step (rules_morph:
+   * NULL without morphogens); a batch step's flags, check and bound
+   * (step_check) */
+  sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex, *k_fused, *k_check;
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
@@ -34,13 +38,16 @@ static sessile_status ensure(sds_gpu_rules *r, int i, size_t bytes) {
   return sessile_buffer_reserve(r->gpu, &r->b[i], bytes < 16 ? 16 : bytes, SESSILE_BUFFER_DEVICE);
 }
 
-/* The rules kernel: the generated one (rules_glsl.c) or the interpreter. */
-static sessile_status rules_kernel(sessile_gpu *g, const sds_prog *p, int kind, sessile_kernel **k) {
-  if (kind == SESSILE_SDS_RULES_BYTECODE) return sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, k);
+/* A rules kernel of declaration id (SDS_RULES_VM, or SDS_RULES_MORPH around
+ * the shader file `shell`): the generated one (rules_glsl.c) or the
+ * interpreter. */
+static sessile_status rules_kernel(sessile_gpu *g, const sds_prog *p, int kind, int id, const char *shell,
+                                   sessile_kernel **k) {
+  if (kind == SESSILE_SDS_RULES_BYTECODE) return sessile_kernel_create_decl(g, &sessile_sds_kernels[id], 8, 0, k);
   char why[320];
-  char *body = sds_rules_glsl(p, why, sizeof why);
+  char *body = sds_rules_glsl(p, shell, why, sizeof why);
   SESSILE_CHECK(body, SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", why);
-  sessile_status st = sessile_kernel_create_glsl(g, &sessile_sds_kernels[SDS_RULES_VM], 8, 0, body, k);
+  sessile_status st = sessile_kernel_create_glsl(g, &sessile_sds_kernels[id], 8, 0, body, k);
   free(body);
   return st;
 }
@@ -66,7 +73,8 @@ sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model
   sessile_morph_coef co = sessile_sds_model_coef(m);
   for (int k = 0; k < m->nmorph; k++)
     dc[3 * k] = co.diffusion[k], dc[3 * k + 1] = co.decay[k], dc[3 * k + 2] = (!co.capped || co.capped[k]) ? 1 : 0;
-  sessile_status st = rules_kernel(g, p, kind, &r->k);
+  sessile_status st = rules_kernel(g, p, kind, SDS_RULES_VM, "rules_vm.glsl", &r->k);
+  if (st == SESSILE_OK && m->nmorph) st = rules_kernel(g, p, kind, SDS_RULES_MORPH, "rules_morph.glsl", &r->k_fused);
   if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND], 8, 0, &r->k_bound);
   if (st == SESSILE_OK)
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_BOUND_TEX], 8, 0, &r->k_bound_tex);
@@ -74,6 +82,12 @@ sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH], 8, 0, &r->k_morph);
   if (st == SESSILE_OK)
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH_TEX], 8, 0, &r->k_morph_tex);
+  if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_STEP_CHECK], 8, 0, &r->k_check);
+  if (st == SESSILE_OK) st = ensure(r, R_CNT, 16);
+  if (st == SESSILE_OK) { /* step_check's counter: zero between its dispatches (last_group.glsl) */
+    const uint32_t zero[4] = {0, 0, 0, 0};
+    st = sessile_buffer_upload(r->b[R_CNT], 0, zero, sizeof zero);
+  }
   if (st == SESSILE_OK) st = ensure(r, R_PROG, (size_t)p->nw * 4);
   if (st == SESSILE_OK) st = ensure(r, R_KONST, ((size_t)p->nk + SDS_CTL) * 8);
   if (st == SESSILE_OK) st = ensure(r, R_MCOEF, sizeof mc);
@@ -100,6 +114,8 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   sessile_kernel_destroy(r->k_bound_tex);
   sessile_kernel_destroy(r->k_morph);
   sessile_kernel_destroy(r->k_morph_tex);
+  sessile_kernel_destroy(r->k_fused);
+  sessile_kernel_destroy(r->k_check);
   free(r);
 }
 
@@ -120,9 +136,10 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
       rm && surf ? SESSILE_OK : sessile_error_set(SESSILE_ERR_NO_MEMORY, "out of host memory for %zu cells", n);
   for (size_t c = 0; st == SESSILE_OK && c < n; c++)
     rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
-  const int sized[] = {R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ, R_PHI2};
+  const int sized[] = {R_POS,   R_RM,   R_OFF,    R_NBR,  R_SURF, R_PHI,  R_STATE,
+                       R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE};
   const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
-                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8};
+                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8};
   for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
@@ -137,6 +154,11 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   return SESSILE_OK;
 }
 
+_Static_assert(offsetof(sds_check_push, batch) == offsetof(sds_push, batch) &&
+                   offsetof(sds_check_push, ncells) == offsetof(sds_push, ncells) &&
+                   offsetof(sds_check_push, lsub) == offsetof(sds_push, lsub),
+               "step_check's push begins with sds_push's fields");
+
 static const uint32_t ev_zero[SDS_EV_COUNT] = {0, 0, 0xffffffffu, 0, 0, 0}; /* BAD starts above every cell */
 
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
@@ -144,16 +166,21 @@ sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd) {
   return sessile_cmd_upload(cmd, r->b[R_EVENT], 0, ev_zero, sizeof ev_zero);
 }
 
-static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
-                               sessile_buffer *phi, double time, double dt, uint32_t mode, uint32_t batch) {
-  SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
-  r->fresh = 0;
+static sds_rules_push push_of(const sds_gpu_rules *r, double time, double dt, uint32_t mode, uint32_t batch) {
   sds_rules_push p;
   memset(&p, 0, sizeof p);
   p.time = sessile_push_real_of(time, 8), p.dt = sessile_push_real_of(dt, 8);
   p.density = sessile_push_real_of(r->density, 8);
   p.ncells = r->ncells, p.nmorph = r->nmorph, p.nstate = r->nstate, p.mode = mode;
   p.batch = batch, p.kctl = r->nk;
+  return p;
+}
+
+static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                               sessile_buffer *phi, double time, double dt, uint32_t mode, uint32_t batch) {
+  SESSILE_CHECK(r->ncells > 0, SESSILE_ERR_USAGE, "the rules on the device: set_cells first");
+  r->fresh = 0;
+  sds_rules_push p = push_of(r, time, dt, mode, batch);
   sessile_buffer *b[R_EVENT + 1]; /* the kernel's bindings: R_PROG .. R_EVENT */
   for (int i = 0; i <= R_EVENT; i++) b[i] = r->b[i];
   if (pos) b[R_POS] = pos;
@@ -235,17 +262,33 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
  * batch began; the sub-steps ping-pong with R_PHI2). */
 static sessile_buffer *phi_after(const sds_gpu_rules *r, uint32_t j) { return r->b[j & 1u ? R_PHI2 : R_PHI]; }
 
+/* Rules mode 0 and the first sub-step in one dispatch (rules_morph.glsl). */
+static sessile_status dispatch_fused(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
+                                     uint32_t j0, uint32_t batch) {
+  r->fresh = 0;
+  sds_rules_push p = push_of(r, 0, 0, 0, batch);
+  sessile_buffer *b[] = {r->b[R_PROG],  r->b[R_KONST], r->b[R_MCOEF], pos,
+                         rm,            r->b[R_OFF],   r->b[R_NBR],   r->b[R_SURF],
+                         phi_after(r, j0), r->b[R_STATE], r->b[R_SRC],  r->b[R_PEND],
+                         r->b[R_PFLAG], r->b[R_DIVREQ], r->b[R_EVENT], r->b[R_DCOEF],
+                         phi_after(r, j0 + 1)};
+  uint32_t l = sessile_kernel_local_size(r->k_fused);
+  return sessile_cmd_dispatch(cmd, r->k_fused, (r->ncells + l - 1) / l, b, &p);
+}
+
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
                                                sessile_buffer *rm, uint32_t batch, uint32_t nsub) {
   uint32_t j0 = (batch - 1) * nsub; /* sub-steps recorded before this step's */
-  SESSILE_CALL(dispatch(r, cmd, pos, rm, phi_after(r, j0), 0, 0, 0, batch));
+  int tex = texels_fit(r, pos, rm), fused = r->k_fused && tex && nsub >= 1;
+  if (fused) SESSILE_CALL(dispatch_fused(r, cmd, pos, rm, j0, batch));
+  else SESSILE_CALL(dispatch(r, cmd, pos, rm, phi_after(r, j0), 0, 0, 0, batch));
   if (r->nmorph) {
     sds_morph_push mp;
     memset(&mp, 0, sizeof mp);
     mp.ncells = r->ncells, mp.nmorph = r->nmorph, mp.ctl = r->nk;
-    sessile_kernel *k = texels_fit(r, pos, rm) ? r->k_morph_tex : r->k_morph;
+    sessile_kernel *k = tex ? r->k_morph_tex : r->k_morph;
     uint32_t l = sessile_kernel_local_size(k);
-    for (uint32_t j = 0; j < nsub; j++) {
+    for (uint32_t j = fused ? 1 : 0; j < nsub; j++) {
       mp.sub = j + 1;
       sessile_buffer *b[] = {pos,           rm,          r->b[R_OFF], r->b[R_NBR],        r->b[R_DCOEF],
                              r->b[R_SRC],   phi_after(r, j0 + j), phi_after(r, j0 + j + 1), r->b[R_KONST],
@@ -256,9 +299,15 @@ sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cm
   return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);
 }
 
-void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t out[2]) {
+/* step_check's workgroups: one invocation per tet and per cell */
+static uint32_t check_groups(const sds_gpu_rules *r, uint32_t ntets) {
+  uint32_t l = sessile_kernel_local_size(r->k_check), n = ntets > r->ncells ? ntets : r->ncells;
+  return n ? (n + l - 1) / l : 1;
+}
+
+void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t ntets, uint32_t out[3]) {
   uint32_t l = sessile_kernel_local_size(r->k), m = sessile_kernel_local_size(r->k_morph);
-  out[0] = (r->ncells + l - 1) / l, out[1] = (r->ncells + m - 1) / m;
+  out[0] = (r->ncells + l - 1) / l, out[1] = (r->ncells + m - 1) / m, out[2] = check_groups(r, ntets);
 }
 
 void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub) {
@@ -292,5 +341,31 @@ sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *st
   }
   if (r->nmorph) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_PHI], 0, phi, n * r->nmorph));
   if (r->nstate) SESSILE_CALL(sessile_buffer_download_reals(r->b[R_STATE], 0, state, n * r->nstate));
+  return SESSILE_OK;
+}
+
+/* A batch step's inverted flags, check and morphogens' bound in one dispatch
+ * (step_check.comp) for step k, whose result is pair c: when the physics
+ * reads texels (its inverted kernel's _tex variant) and the rules' views fit;
+ * *done 0 otherwise (the caller records the three). */
+sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {
+  sds_gpu_rules *r = s->rules;
+  *done = 0;
+  if (!r || !r->k_check || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
+      !texels_fit(r, s->b[B_X0 + c], NULL))
+    return SESSILE_OK;
+  sds_push q = sds_gpu_push_of(s, 0.0, 1, 3);
+  sds_check_push p;
+  memset(&p, 0, sizeof p);
+  memcpy(&p, &q, offsetof(sds_push, batch) + sizeof q.batch); /* sds_push's fields come first, in its order */
+  p.batch = (k + 2) | SDS_BATCH_SPLIT;
+  p.fudge = sessile_push_real_of(1 + 1e-9, 8); /* as sds_gpu_rules_record_bound */
+  p.nmorph = r->nmorph, p.nsub_max = s->nsub_max, p.ctl = r->nk;
+  r->fresh = 0;
+  sessile_buffer *b[] = {s->b[B_SP],   s->b[B_STAB], s->b[B_STEP],  s->b[B_EVENT], s->b[B_MOVE], s->b[B_TOPO],
+                         s->b[B_DISP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG],  r->b[R_OFF],  r->b[R_NBR],
+                         r->b[R_DCOEF], r->b[R_EVENT], r->b[R_KONST], r->b[R_CNT], r->b[R_MRATE]};
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, r->k_check, check_groups(r, s->ntets), b, &p));
+  *done = 1;
   return SESSILE_OK;
 }

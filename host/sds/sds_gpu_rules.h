@@ -93,8 +93,14 @@ sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s);
 sessile_status sds_gpu_batch_rules_end(sessile_sds_gpu *s);
 /* The workgroup counts of the rules' and the morphogens' dispatches (for
  * sessile_cmd_indirect); of a batch's hook, or 0 and 0 without one. */
-void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t out[2]);
-void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[2]);
+void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t ntets, uint32_t out[3]);
+/* A batch step's inverted flags, check and morphogens' bound in one dispatch
+ * (step_check.comp; k the step, c its result's pair) when the views fit;
+ * *done 0 otherwise.  sds_gpu_batch_rules_check: the same when the batch
+ * runs the rules (its hook), for sds_gpu_batch.c. */
+sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c, int *done);
+sessile_status sds_gpu_batch_rules_check(sessile_sds_gpu *s, uint32_t k, int c, int *done);
+void sds_gpu_batch_rules_groups(const sessile_sds_gpu *s, uint32_t out[3]);
 void sds_gpu_batch_rules_ready(sessile_sds_gpu *s);
 sessile_status sds_gpu_pull_radii(sessile_sds_gpu *s);
 sessile_status sds_gpu_download_prev_x(sessile_sds_gpu *s, double *x);

@@ -42,6 +42,13 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p) 
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
+  if (sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX]) { /* both in one dispatch: stable_all */
+    sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
+    sessile_buffer *b[] = {s->b[B_SP],   s->b[B_RM],   s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB],
+                           s->b[B_EVENT], s->b[B_STEP], s->b[B_MOVE], s->b[B_TOPO], s->b[B_RM],
+                           s->b[B_RB],   rev,          s->b[B_DISP], s->b[B_CNT]};
+    return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_ALL], sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p);
+  }
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB], s->b[B_EVENT]};
   SESSILE_CALL(sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_STABLE), sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p));
   return sds_gpu_record_stable_min(s, p);

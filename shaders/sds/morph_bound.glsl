@@ -10,6 +10,7 @@
 // sub-steps than the batch recorded: SKIP, and the host completes the step
 // (the same bits: it is the host's own path).
 #include "sds_kernels.glsl"
+#include "group.glsl"
 // Reads the positions and the neighbour lists through uniform texel buffers
 // (MB_TEXEL = 1: vector loads on lavapipe, as sds_load.glsl) or storage
 // buffers; the same bits.
@@ -24,43 +25,65 @@
 #define LD_NBR(i) nbr[i]
 #endif
 
+#ifndef SDS_PART_SHARED
+#define SDS_PART_SHARED 1 // also stable_min.glsl's
 shared REAL part[SDS_SCAN_MAX];
+#endif
 shared uint coincide;
 
-void main() {
-  uint l = gl_LocalInvocationID.x, L = gl_WorkGroupSize.x, k = pc.batch - 1u;
+// Cell c's smallest 1 / rate over the morphogens (-1: no positive rate);
+// SDS_MB_COINCIDE when it coincides with a neighbour (the host's blow-up).
+#define SDS_MB_COINCIDE REAL(-2)
+REAL mb_cell(uint c) {
+  REAL best = REAL(-1);
+  bool co = false;
+  precise REAL w = REAL(0);
+  REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
+  for (uint q = LD_OFF(c); q < LD_OFF(c + 1u); q++) {
+    uint n = LD_NBR(q);
+    precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
+    precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(d > REAL(0))) co = true;
+    w += REAL(1) / d;
+  }
+  for (uint m = 0u; m < pc.nmorph; m++) {
+    precise REAL rate = coef[3u * m] * w + coef[3u * m + 1u];
+    if (rate > REAL(0)) {
+      precise REAL inv = REAL(1) / rate;
+      if (best < REAL(0) || inv < best) best = inv;
+    }
+  }
+  return co ? SDS_MB_COINCIDE : best;
+}
+
+// Lane l of L (one workgroup, every lane; or one subgroup) for the batch's
+// step k.  With MB_RATES the cells' mb_cell values come from mrate (written
+// by the wider dispatch before: step_check.comp), else they are made here.
+void morph_bound_run(uint l, uint L, uint k) {
   bool mine = pev[1] == k + 1u && (pev[0] & SDS_EV_INVERTED) == 0u && rev[SDS_EV_STOP] == 0u;
   if (!mine) { // not accepted, or its inversions or an earlier division are the host's
     if (l == 0u) rev[SDS_EV_SKIP] = 1u;
     return;
   }
   if (l == 0u) coincide = 0u;
-  barrier();
-  // the smallest 1 / rate over this lane's cells; -1: no positive rate
+  GRP_BARRIER();
+  // the smallest 1 / rate over this lane's cells (a min: exact in any
+  // order); -1: no positive rate
   REAL best = REAL(-1);
   for (uint c = l; c < pc.ncells && pc.nmorph > 0u; c += L) {
-    precise REAL w = REAL(0);
-    REAL cx = LD_POS(3u * c), cy = LD_POS(3u * c + 1u), cz = LD_POS(3u * c + 2u);
-    for (uint q = LD_OFF(c); q < LD_OFF(c + 1u); q++) {
-      uint n = LD_NBR(q);
-      precise REAL dx = cx - LD_POS(3u * n), dy = cy - LD_POS(3u * n + 1u), dz = cz - LD_POS(3u * n + 2u);
-      precise REAL d = sqrt(dx * dx + dy * dy + dz * dz);
-      if (!(d > REAL(0))) coincide = 1u; // any lane: the same value
-      w += REAL(1) / d;
-    }
-    for (uint m = 0u; m < pc.nmorph; m++) {
-      precise REAL rate = coef[3u * m] * w + coef[3u * m + 1u];
-      if (rate > REAL(0)) {
-        precise REAL inv = REAL(1) / rate;
-        if (best < REAL(0) || inv < best) best = inv;
-      }
-    }
+#if MB_RATES
+    REAL b = mrate[c];
+#else
+    REAL b = mb_cell(c);
+#endif
+    if (b == SDS_MB_COINCIDE) coincide = 1u; // any lane: the same value
+    else if (b >= REAL(0) && (best < REAL(0) || b < best)) best = b;
   }
   part[l] = best;
-  barrier();
+  GRP_BARRIER();
   for (uint w = L / 2u; w > 0u; w /= 2u) {
     if (l < w && part[l + w] >= REAL(0) && (part[l] < REAL(0) || part[l + w] < part[l])) part[l] = part[l + w];
-    barrier();
+    GRP_BARRIER();
   }
   if (l != 0u) return;
   REAL dt = step[SDS_STEP_LOG + 2u * k], t = step[SDS_STEP_LOG + 2u * k + 1u], bound = part[0];
@@ -78,3 +101,7 @@ void main() {
   precise REAL h = n > REAL(0) ? dt / n : dt;
   ctl[pc.ctl] = n, ctl[pc.ctl + 1u] = h, ctl[pc.ctl + 2u] = t, ctl[pc.ctl + 3u] = dt;
 }
+
+#ifndef MB_NO_MAIN
+void main() { morph_bound_run(gl_LocalInvocationID.x, gl_WorkGroupSize.x, pc.batch - 1u); }
+#endif

@@ -8,12 +8,20 @@
 // lavapipe, as shaders/sds/sds_load.glsl) or storage buffers; the same bits.
 // MORPH_BATCH 1 (morph_step_batch.comp): the step and the sub-step count
 // from a batch's control (ctl), the radii from the physics' rm (r, m).
+// MORPH_FUSED (rules_morph.glsl): the first sub-step inside the rules'
+// evaluation, which defines the loads, MORPH_CTL and MORPH_SKIPPED itself.
+#ifndef MORPH_CTL
+#define MORPH_CTL(i) ctl[pc.ctl + (i)]
+#define MORPH_SKIPPED (rev[SDS_EV_SKIP] != 0u)
+#define MORPH_SUB pc.sub
+#endif
 #if MORPH_BATCH
-#define MORPH_DT ctl[pc.ctl + 1u]
+#define MORPH_DT MORPH_CTL(1u)
 #else
 #define MORPH_DT pc.dt
 #endif
-#if MORPH_TEXEL
+#if MORPH_FUSED
+#elif MORPH_TEXEL
 #include "texel_real.glsl"
 #define LD_POS(i) texel_real(pos_t, (i))
 #if MORPH_BATCH
@@ -38,10 +46,13 @@
 #define LD_SRC(i) src[i]
 #endif
 
+#ifndef SDS_VOL_OF
+#define SDS_VOL_OF 1 // also rules_vm.glsl's
 REAL vol_of(REAL r) {
   precise REAL v = REAL(4.0lf / 3.0lf * 3.14159265358979311600lf) * r * r * r;
   return v;
 }
+#endif
 
 // Morphogen k of cell c from its neighbour sum s.
 void finish(uint c, uint k, REAL pk, REAL s, REAL vc) {
@@ -54,13 +65,12 @@ void finish(uint c, uint k, REAL pk, REAL s, REAL vc) {
   phi_out[i] = v;
 }
 
-void main() {
-  uint c = sessile_gid();
-  if (c >= pc.ncells) return;
+// The sub-step at cell c (< ncells).
+void morph_cell(uint c) {
   uint nm = pc.nmorph;
 #if MORPH_BATCH
-  if (rev[SDS_EV_SKIP] != 0u) return; // the host makes this step's rules
-  if (REAL(pc.sub) > ctl[pc.ctl]) {   // past the step's sub-steps: the amounts as they are
+  if (MORPH_SKIPPED) return;                // the host makes this step's rules
+  if (REAL(MORPH_SUB) > MORPH_CTL(0u)) {   // past the step's sub-steps: the amounts as they are
     for (uint k = 0u; k < nm; k++) phi_out[c * nm + k] = LD_PHI(c * nm + k);
     return;
   }
@@ -103,3 +113,10 @@ void main() {
     finish(c, k, pk, s, vc);
   }
 }
+
+#ifndef MORPH_NO_MAIN
+void main() {
+  uint c = sessile_gid();
+  if (c < pc.ncells) morph_cell(c);
+}
+#endif

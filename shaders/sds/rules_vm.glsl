@@ -5,6 +5,23 @@
 // the gradient of host/sds/morph.c); `precise` everywhere a product meets a
 // sum, so that no compiler fuses them.  mode 0 evaluates, mode 1 applies.
 #include "sds_kernels.glsl"
+// What mode 0 reads of the cells: through storage buffers, or (RULES_TEXEL,
+// rules_morph.glsl) through the uniform texel buffers x_t, rm_t, phi_t,
+// nbr_off_t and nbr_t; the same bits.
+#if RULES_TEXEL
+#include "texel_real.glsl"
+#define RV_X(i) texel_real(x_t, (i))
+#define RV_R(c) texel_real(rm_t, 2u * (c))
+#define RV_PHI(i) texel_real(phi_t, (i))
+#define RV_OFF(i) texelFetch(nbr_off_t, int(i)).x
+#define RV_NBR(i) texelFetch(nbr_t, int(i)).x
+#else
+#define RV_X(i) x[i]
+#define RV_R(c) rm[2u * (c)]
+#define RV_PHI(i) phi[i]
+#define RV_OFF(i) nbr_off[i]
+#define RV_NBR(i) nbr[i]
+#endif
 
 // rules_vm.h's opcodes, functions and slots (keep in step: test_rules_vm
 // runs every one of them against the reference)
@@ -50,10 +67,13 @@
 #define SLOT_MORPH 4u
 #define SLOT_STATE 20u
 
+#ifndef SDS_VOL_OF
+#define SDS_VOL_OF 1 // also morph_step.glsl's
 REAL vol_of(REAL r) {
   precise REAL v = REAL(4.0lf / 3.0lf * 3.14159265358979311600lf) * r * r * r;
   return v;
 }
+#endif
 
 // The step's time and dt: the push constants', or in a batch the control
 // morph_bound left after the constants (kernels.def, SDS_CTL).
@@ -61,11 +81,11 @@ REAL step_time() { return pc.batch != 0u ? konst[pc.kctl + 2u] : pc.time; }
 REAL step_dt() { return pc.batch != 0u ? konst[pc.kctl + 3u] : pc.dt; }
 
 REAL slot_of(uint c, uint a) {
-  if (a == 0u) return rm[2u * c];
-  if (a == 1u) return vol_of(rm[2u * c]);
+  if (a == 0u) return RV_R(c);
+  if (a == 1u) return vol_of(RV_R(c));
   if (a == 2u) return step_time();
   if (a == 3u) return surf[c] != 0u ? REAL(1) : REAL(0);
-  if (a < SLOT_STATE) return phi[c * pc.nmorph + a - SLOT_MORPH];
+  if (a < SLOT_STATE) return RV_PHI(c * pc.nmorph + a - SLOT_MORPH);
   return state[c * pc.nstate + a - SLOT_STATE];
 }
 
@@ -154,11 +174,12 @@ bool gradient(uint c, uint k, out REAL g0, out REAL g1, out REAL g2) {
   uint nm = pc.nmorph;
   precise REAL a00 = REAL(0), a01 = REAL(0), a02 = REAL(0), a11 = REAL(0), a12 = REAL(0), a22 = REAL(0);
   precise REAL b0 = REAL(0), b1 = REAL(0), b2 = REAL(0), f0 = REAL(0), f1 = REAL(0), f2 = REAL(0);
-  REAL pcen = phi[c * nm + k];
-  for (uint q = nbr_off[c]; q < nbr_off[c + 1u]; q++) {
-    uint n = nbr[q];
-    precise REAL d0 = x[3u * n] - x[3u * c], d1 = x[3u * n + 1u] - x[3u * c + 1u], d2 = x[3u * n + 2u] - x[3u * c + 2u];
-    precise REAL dp = phi[n * nm + k] - pcen;
+  REAL pcen = RV_PHI(c * nm + k);
+  for (uint q = RV_OFF(c); q < RV_OFF(c + 1u); q++) {
+    uint n = RV_NBR(q);
+    precise REAL d0 = RV_X(3u * n) - RV_X(3u * c), d1 = RV_X(3u * n + 1u) - RV_X(3u * c + 1u),
+                 d2 = RV_X(3u * n + 2u) - RV_X(3u * c + 2u);
+    precise REAL dp = RV_PHI(n * nm + k) - pcen;
     precise REAL dd = REAL(0);
     dd += d0 * d0;
     dd += d1 * d1;
@@ -298,6 +319,7 @@ REAL cube(REAL r) {
   return v;
 }
 
+#if !RULES_EVAL_ONLY // rules_morph.glsl evaluates only
 void apply(uint c) {
   uint nm = pc.nmorph, ns = pc.nstate, base = c * (1u + nm + ns);
   precise REAL r = rm[2u * c] + step_dt() * pend[base];
@@ -320,10 +342,13 @@ void apply(uint c) {
   rm[2u * c + 1u] = mass;
 }
 
+#endif
+
 #ifdef SDS_RULES_GEN
 void evaluate_gen(uint c); // written after this file by host/sds/rules_glsl.c
 #endif
 
+#ifndef RULES_NO_MAIN
 void main() {
   uint c = sessile_gid();
   if (c >= pc.ncells) return;
@@ -345,3 +370,4 @@ void main() {
     if (pc.batch != 0u && c == 0u) event[SDS_EV_LAST] = pc.batch;
   }
 }
+#endif

@@ -16,9 +16,8 @@
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void main() {
-  uint c = sessile_gid();
-  if (c >= pc.ncells || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
+// Cell c's bound (c < ncells, the batch not stopped).
+void stable_cell(uint c) {
   uint ce = o_ce(), ct = o_ct(), ceo = o_ceo(), cto = o_cto();
   uint tw = 12u * pc.ntets + 3u * pc.nedges, ew = 20u * pc.ntets + 3u * pc.nedges;
   precise REAL w2 = REAL(0), gam = REAL(0);
@@ -51,3 +50,10 @@ void main() {
   stab[4u * pc.ncells + 3u + c] = alpha;
   stab[c] = h;
 }
+
+#ifndef STABLE_NO_MAIN
+void main() {
+  uint c = sessile_gid();
+  if (c < pc.ncells && !(pc.batch != 0u && ev[0] != 0u)) stable_cell(c); // else a batch that stopped
+}
+#endif

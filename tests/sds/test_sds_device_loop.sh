@@ -9,11 +9,15 @@
 #    log equal but for its wall ms;
 #  - the limb with diffusion so fast that most steps need more morphogen
 #    sub-steps than a batch records (those steps' rules then the host's);
+#  - the fast limb with diffusion 2: several sub-steps a step, on the device
+#    (the count from step_check's bound: halving its rates fails this);
 #  - the rock model (an obstacle: the contact lists and their skin) to t = 5;
 #  - a run stopped by SIGINT after frame 1 and resumed: the same bytes;
 #  - a discrete GPU's paths (SESSILE_STAGED=1): a batch's transfers ride in
 #    its own submission, so the loop on the device makes under half the
 #    host-driven loop's submissions a step (counted by `bench sds`);
+#  - the interpreted rules (device_rules = bytecode) the same bytes too;
+#  - the fused kernels taken (bench sds --kernels names them);
 #  - refusals: a rule the device cannot run (exp), a bad value.
 set -u
 S="$1"
@@ -22,6 +26,7 @@ PY=/usr/bin/python3
 M="$(dirname "$0")/../../host/sds/models"
 sed 's/^const Delta = .*/const Delta = 0.03/' "$M/limb.sds" >"$T/fast.sds"
 sed 's/^morphogen phi diffusion=0.05/morphogen phi diffusion=400/' "$M/limb.sds" >"$T/diffuse.sds"
+sed 's/^const Delta = .*/const Delta = 0.03/; s/^morphogen phi diffusion=0.05/morphogen phi diffusion=2/' "$M/limb.sds" >"$T/subs.sds"
 
 # every file under sds/ the same bytes but the step log, which must be equal but for ms
 same_run() { # dir_a dir_b
@@ -46,9 +51,10 @@ counts() { "$PY" -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); 
 
 # the manifest's device_loop member: batches, steps whose rules the host completed
 loop_stat() { "$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["sds"]["device_loop"][sys.argv[2]])' "$1/manifest.json" "$2"; }
-for m in fast diffuse; do
+for m in fast diffuse subs; do
   t=6
   [ $m = diffuse ] && t=1
+  [ $m = subs ] && t=3
   run sds run "$T/$m.sds" --t-end $t --frames 5 --out "$T/$m-h" --quiet
   check "$m: the host-driven loop completes" rc_is 0
   run sds run "$T/$m.sds" --t-end $t --frames 5 --out "$T/$m-d" --quiet --set device_loop=true
@@ -59,8 +65,25 @@ check "fast: the run divides cells and inverts tets; the host completed steps (t
   '[ "$(counts "$T/fast-h" | cut -d" " -f1)" -gt 0 ] && [ "$(counts "$T/fast-h" | cut -d" " -f2)" -gt 0 ] && [ "$(loop_stat "$T/fast-d" host_completed_steps)" -gt 0 ]'
 check "fast: batches of many steps (fewer batches than a quarter of the steps)" eval \
   '[ $(( $(loop_stat "$T/fast-d" batches) * 4 )) -lt "$(($(wc -l <"$T/fast-d/sds/steps.csv") - 1))" ]'
+check "subs: several morphogen sub-steps a step, most of them on the device (the host completed under a tenth)" eval \
+  '[ $(( $(loop_stat "$T/subs-d" host_completed_steps) * 10 )) -lt "$(($(wc -l <"$T/subs-d/sds/steps.csv") - 1))" ]'
 check "diffuse: most steps' sub-steps beyond a batch's: the host completed more than half the steps" eval \
   '[ $(( $(loop_stat "$T/diffuse-d" host_completed_steps) * 2 )) -gt "$(($(wc -l <"$T/diffuse-d/sds/steps.csv") - 1))" ]'
+
+# the interpreted rules (device_rules = bytecode: rules_morph.comp) as well
+run sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-b" --quiet --set device_loop=true --set device_rules=bytecode
+check "fast, the interpreted rules: the loop on the device completes" rc_is 0
+check "fast, the interpreted rules: the same bytes, the same steps" same_run "$T/fast-h" "$T/fast-b"
+
+# a step's dispatches fused where the views fit (docs/sds.md, "Fewer
+# dispatches a step"): stable + stable_min, the check with the inverted flags
+# and the morphogens' bound, the rules with their first sub-step
+"$S" bench sds --no-physics --rock-t 2 --kernels >"$T/kern" 2>&1
+check "bench sds --kernels runs" grep -q "kernels of the rock run" "$T/kern"
+check "the fused kernels ran (stable_all, step_check, rules_morph)" eval \
+  'grep -q "sds/stable_all" "$T/kern" && grep -q "sds/step_check" "$T/kern" && grep -q "sds/rules_morph" "$T/kern"'
+check "and not the dispatches they replace (morph_bound, morph_step_batch; stable_tex)" eval \
+  '! grep -q "sds/morph_bound" "$T/kern" && ! grep -q "sds/morph_step_batch" "$T/kern" && ! grep -q "sds/stable_tex" "$T/kern"'
 
 run sds run rock --t-end 5 --frames 2 --out "$T/rock-h" --quiet
 check "rock: the host-driven loop completes" rc_is 0

@@ -170,6 +170,9 @@ typedef struct sessile_binding_decl {
   int readonly;              /* the kernel never writes it */
 } sessile_binding_decl;
 
+/* The most bindings a kernel declares (one descriptor set). */
+#define SESSILE_MAX_BINDINGS 24
+
 /* One kernel's declaration.  Written by tools/kernelgen.c from
  * shaders/<layer>/kernels.def into sessile_<layer>_kernels[] (<layer>_kernels.h),
  * together with the GLSL push block and bindings, so host and shader agree
