@@ -208,16 +208,27 @@ char *sds_rules_glsl(const sds_prog *p, const char *shell, char *why, size_t nwh
   return g.s;
 }
 
+/* The kernel of declaration id around the shader file `shell`, compiled. */
+static sessile_status spirv_of(const sessile_sds_model *m, int id, const char *shell, uint32_t **words, size_t *n) {
+  char w[320];
+  char *body = sds_rules_glsl(m->prog, shell, w, sizeof w);
+  SESSILE_CHECK(body, SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", w);
+  char log[1024];
+  sessile_status st = sessile_glsl_to_spirv(sessile_sds_kernels[id].name, 1, body, words, n, log, sizeof log);
+  free(body);
+  if (st != SESSILE_OK) return sessile_error_set(SESSILE_ERR_INTERNAL, "the rules' generated kernel (%s): %s", shell, log);
+  return SESSILE_OK;
+}
+
 sessile_status sessile_sds_model_rules_spirv(const sessile_sds_model *m, uint32_t **words, size_t *n) {
   *words = NULL, *n = 0;
   const char *why = sessile_sds_model_bytecode_refusal(m, 1);
   SESSILE_CHECK(!why, SESSILE_ERR_USAGE, "the rules on the device: %s", why);
-  char w[320];
-  char *body = sds_rules_glsl(m->prog, "rules_vm.glsl", w, sizeof w);
-  SESSILE_CHECK(body, SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", w);
-  char log[1024];
-  sessile_status st = sessile_glsl_to_spirv(sessile_sds_kernels[SDS_RULES_VM].name, 1, body, words, n, log, sizeof log);
-  free(body);
-  if (st != SESSILE_OK) return sessile_error_set(SESSILE_ERR_INTERNAL, "the rules' generated kernel: %s", log);
-  return SESSILE_OK;
+  if (m->nmorph) { /* the batch's rules with their first sub-step (rules_morph.glsl) must compile too */
+    uint32_t *fw = NULL;
+    size_t fn = 0;
+    SESSILE_CALL(spirv_of(m, SDS_RULES_MORPH, "rules_morph.glsl", &fw, &fn));
+    free(fw);
+  }
+  return spirv_of(m, SDS_RULES_VM, "rules_vm.glsl", words, n);
 }

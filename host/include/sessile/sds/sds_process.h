@@ -196,7 +196,8 @@ sessile_status sessile_sds_rules_eval_vm(const sessile_sds_model *m, const sessi
 const char *sessile_sds_model_bytecode_refusal(const sessile_sds_model *m, int device);
 /* The rules' generated kernel (docs/sds_rules.md, "Generated kernel")
  * compiled to SPIR-V without a device, for tests and the fuzzer: *words
- * malloc'ed (*n of them).  A model the device refuses is SESSILE_ERR_USAGE
+ * malloc'ed (*n of them); with morphogens the batch's rules_morph kernel is
+ * compiled too (and must compile), its words not returned.  A model the device refuses is SESSILE_ERR_USAGE
  * with the refusal; anything else that fails is ours (SESSILE_ERR_INTERNAL). */
 sessile_status sessile_sds_model_rules_spirv(const sessile_sds_model *m, uint32_t **words, size_t *n);
 
