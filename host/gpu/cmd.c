@@ -42,6 +42,7 @@ struct sessile_cmd {
   uint32_t ncopies_up, nuploads; /* recorded copies to the device; uploads of any kind */
   int submits;                    /* of this recording */
   int down_barrier; /* the barrier before the download copies is recorded */
+  int copied;       /* a sessile_cmd_copy since the last dispatch: the next waits for it */
   struct cmd_read {
     void *dst;
     sessile_buffer *src; /* the stage, or a mapped buffer */
@@ -131,6 +132,7 @@ sessile_status sessile_cmd_begin(sessile_cmd *c) {
   c->ind_args = NULL, c->nind = 0;
   free_retired(c); /* the last submission has been waited for */
   c->stage_used = 0, c->ncopies_up = c->nuploads = 0, c->nreads = 0, c->down_barrier = 0, c->submits = 0;
+  c->copied = 0;
   c->ts_written = 0;
   c->ts_valid = 0;
   VkCommandBufferBeginInfo bi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -206,6 +208,26 @@ static sessile_status split_groups(const sessile_cmd *c, uint32_t groups, const 
   return SESSILE_OK;
 }
 
+sessile_status sessile_cmd_copy(sessile_cmd *c, sessile_buffer *src, sessile_buffer *dst, size_t bytes) {
+  SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "a buffer copy outside a recording");
+  SESSILE_CHECK(c->nreads == 0, SESSILE_ERR_INTERNAL, "a buffer copy after a download in the same recording");
+  SESSILE_CHECK(src && dst && src != dst && bytes <= src->bytes && bytes <= dst->bytes, SESSILE_ERR_INTERNAL,
+                "a buffer copy of %zu bytes between buffers of %zu and %zu", bytes, src ? src->bytes : 0,
+                dst ? dst->bytes : 0);
+  if (bytes == 0) return SESSILE_OK;
+  /* the dispatches' and uploads' writes (and the reads of dst) before it */
+  VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                        .srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                                         VK_ACCESS_TRANSFER_WRITE_BIT,
+                        .dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT};
+  vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &mb, 0, NULL, 0, NULL);
+  VkBufferCopy r = {.srcOffset = 0, .dstOffset = 0, .size = bytes};
+  vkCmdCopyBuffer(c->cb, src->buffer, dst->buffer, 1, &r);
+  c->copied = 1;
+  return SESSILE_OK;
+}
+
 sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
                                     sessile_buffer *const *buffers, const void *push) {
   SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "dispatch of %s outside a recording", k->name);
@@ -248,6 +270,13 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
   if (c->ndispatch > 0)
     barrier(c->cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | ind_stage,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | ind_access);
+  if (c->copied) { /* sessile_cmd_copy's writes, before this dispatch reads them */
+    VkMemoryBarrier mb = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER, .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
+                          .dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | ind_access};
+    vkCmdPipelineBarrier(c->cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | ind_stage, 0, 1,
+                         &mb, 0, NULL, 0, NULL);
+    c->copied = 0;
+  }
   vkCmdBindPipeline(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->pipeline);
   vkCmdBindDescriptorSets(c->cb, VK_PIPELINE_BIND_POINT_COMPUTE, k->layout, 0, 1, &set, 0, NULL);
   if (k->push_bytes)

@@ -3,7 +3,7 @@
  * hook records, after each step's check, morph_bound (or step_check made it
  * with the check: sds_gpu_batch_rules_check), the rules' two modes around
  * the morphogens' sub-steps (mode 0 with the first in rules_morph where the
- * views fit), and stable_min mode 4 (the lists' staleness with the grown
+ * views fit, and with one sub-step the apply too), and stable_min mode 4 (the lists' staleness with the grown
  * radii; the stop at a division or a step the host must complete).  Every kernel reads the step's dt and time from the
  * device, so a batch of K steps needs the host only at its end. */
 #include <string.h>
@@ -26,7 +26,7 @@ sessile_status sds_gpu_batch_rules_check(sessile_sds_gpu *s, uint32_t k, int c, 
 
 sessile_status sds_gpu_batch_rules_start(sessile_sds_gpu *s) {
   if (!s->rules || s->hook != rules_hook) return SESSILE_OK;
-  SESSILE_CALL(sds_gpu_rules_record_clear(s->rules, s->cmd));
+  SESSILE_CALL(sds_gpu_rules_record_batch_start(s->rules, s->cmd, s->b[B_RM]));
   if (s->rb && sds_gpu_contacts_on(s)) SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_RB], 0, s->rb, s->ncells));
   return SESSILE_OK;
 }

@@ -13,7 +13,7 @@
 #include "sds_gpu_rules.h"
 
 enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ,
-       R_EVENT, R_DCOEF, R_PHI2, R_CNT, R_MRATE, R_COUNT };
+       R_EVENT, R_DCOEF, R_PHI2, R_CNT, R_MRATE, R_RMN, R_COUNT };
 
 struct sds_gpu_rules {
   sessile_gpu *gpu;
@@ -137,9 +137,9 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   for (size_t c = 0; st == SESSILE_OK && c < n; c++)
     rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
   const int sized[] = {R_POS,   R_RM,   R_OFF,    R_NBR,  R_SURF, R_PHI,  R_STATE,
-                       R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE};
+                       R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE, R_RMN};
   const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
-                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8};
+                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8, 2 * n * 8};
   for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
@@ -174,6 +174,11 @@ static sds_rules_push push_of(const sds_gpu_rules *r, double time, double dt, ui
   p.ncells = r->ncells, p.nmorph = r->nmorph, p.nstate = r->nstate, p.mode = mode;
   p.batch = batch, p.kctl = r->nk;
   return p;
+}
+
+sessile_status sds_gpu_rules_record_batch_start(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *rm) {
+  SESSILE_CALL(sds_gpu_rules_record_clear(r, cmd));
+  return r->k_fused ? sessile_cmd_copy(cmd, rm, r->b[R_RMN], 2 * (size_t)r->ncells * 8) : SESSILE_OK;
 }
 
 static sessile_status dispatch(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
@@ -262,25 +267,29 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
  * batch began; the sub-steps ping-pong with R_PHI2). */
 static sessile_buffer *phi_after(const sds_gpu_rules *r, uint32_t j) { return r->b[j & 1u ? R_PHI2 : R_PHI]; }
 
-/* Rules mode 0 and the first sub-step in one dispatch (rules_morph.glsl). */
+/* Rules mode 0 and the first sub-step in one dispatch (rules_morph.glsl);
+ * with the apply too (mode 2: the step's only sub-step), its radii and
+ * masses then copied from R_RMN into rm. */
 static sessile_status dispatch_fused(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
-                                     uint32_t j0, uint32_t batch) {
+                                     uint32_t j0, uint32_t batch, int with_apply) {
   r->fresh = 0;
-  sds_rules_push p = push_of(r, 0, 0, 0, batch);
+  sds_rules_push p = push_of(r, 0, 0, with_apply ? 2 : 0, batch);
   sessile_buffer *b[] = {r->b[R_PROG],  r->b[R_KONST], r->b[R_MCOEF], pos,
                          rm,            r->b[R_OFF],   r->b[R_NBR],   r->b[R_SURF],
                          phi_after(r, j0), r->b[R_STATE], r->b[R_SRC],  r->b[R_PEND],
                          r->b[R_PFLAG], r->b[R_DIVREQ], r->b[R_EVENT], r->b[R_DCOEF],
-                         phi_after(r, j0 + 1)};
+                         phi_after(r, j0 + 1), r->b[R_RMN]};
   uint32_t l = sessile_kernel_local_size(r->k_fused);
-  return sessile_cmd_dispatch(cmd, r->k_fused, (r->ncells + l - 1) / l, b, &p);
+  SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_fused, (r->ncells + l - 1) / l, b, &p));
+  return with_apply ? sessile_cmd_copy(cmd, r->b[R_RMN], rm, 2 * (size_t)r->ncells * 8) : SESSILE_OK;
 }
 
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
                                                sessile_buffer *rm, uint32_t batch, uint32_t nsub) {
   uint32_t j0 = (batch - 1) * nsub; /* sub-steps recorded before this step's */
   int tex = texels_fit(r, pos, rm), fused = r->k_fused && tex && nsub >= 1;
-  if (fused) SESSILE_CALL(dispatch_fused(r, cmd, pos, rm, j0, batch));
+  if (fused && nsub == 1) return dispatch_fused(r, cmd, pos, rm, j0, batch, 1); /* the whole rules' step */
+  if (fused) SESSILE_CALL(dispatch_fused(r, cmd, pos, rm, j0, batch, 0));
   else SESSILE_CALL(dispatch(r, cmd, pos, rm, phi_after(r, j0), 0, 0, 0, batch));
   if (r->nmorph) {
     sds_morph_push mp;

@@ -39,6 +39,10 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
 /* Records into cmd: the event words cleared (a batch's start), mode 0 at
  * `time`, mode 1 with step dt.  pos and rm NULL: its own POS and RM. */
 sessile_status sds_gpu_rules_record_clear(sds_gpu_rules *r, sessile_cmd *cmd);
+/* A batch's start: the event words cleared, and rm_next (rules_morph's
+ * apply writes the step's radii there, then they are copied into rm) set to
+ * rm, so that a copy whose dispatch the batch's stop skipped copies rm. */
+sessile_status sds_gpu_rules_record_batch_start(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *rm);
 sessile_status sds_gpu_rules_record_eval(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,
                                          double time);
 sessile_status sds_gpu_rules_record_apply(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos, sessile_buffer *rm,

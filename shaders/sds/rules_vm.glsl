@@ -319,10 +319,17 @@ REAL cube(REAL r) {
   return v;
 }
 
-#if !RULES_EVAL_ONLY // rules_morph.glsl evaluates only
+// Mode 1: the pending actions applied.  Where its radius comes from and
+// where r, m and the set amounts go: rm and phi in place, or (rules_morph
+// mode 2) rm_next and the sub-step's output.
+#ifndef AP_RM_OUT
+#define AP_R_IN(c) rm[2u * (c)]
+#define AP_RM_OUT rm
+#define AP_PHI_OUT phi
+#endif
 void apply(uint c) {
   uint nm = pc.nmorph, ns = pc.nstate, base = c * (1u + nm + ns);
-  precise REAL r = rm[2u * c] + step_dt() * pend[base];
+  precise REAL r = AP_R_IN(c) + step_dt() * pend[base];
   REAL vol = vol_of(r);
   uint fl0 = pflag[2u * c], fl1 = pflag[2u * c + 1u];
   for (uint t = 0u; t < nm + ns; t++) {
@@ -332,17 +339,16 @@ void apply(uint c) {
     if (t < nm) {
       v = (v >= REAL(0)) ? v : REAL(0);                                // glibc's fmax(v, 0)
       if (mcoef[2u * t] != REAL(0)) v = (v <= vol) ? v : vol;          // fmin(v, vol)
-      phi[c * nm + t] = v;
+      AP_PHI_OUT[c * nm + t] = v;
     } else {
       state[c * ns + t - nm] = v;
     }
   }
   precise REAL mass = pc.density * REAL(4.0) / REAL(3.0) * REAL(3.14159265358979311600lf) * cube(r);
-  rm[2u * c] = r;
-  rm[2u * c + 1u] = mass;
+  AP_RM_OUT[2u * c] = r;
+  AP_RM_OUT[2u * c + 1u] = mass;
 }
 
-#endif
 
 #ifdef SDS_RULES_GEN
 void evaluate_gen(uint c); // written after this file by host/sds/rules_glsl.c

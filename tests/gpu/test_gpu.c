@@ -336,6 +336,64 @@ static void test_indirect(sessile_gpu *g) {
   sessile_kernel_destroy(k);
 }
 
+/* sessile_cmd_copy between dispatches: fill y1 with 1, copy y1 into y2, then
+ * la/copy reads y2 into y3: the copy sees the fill's writes and the dispatch
+ * after it sees the copy's (y3 == 1 everywhere, y2 and y3 were marked); a
+ * copy larger than its buffers, or after a download, is refused. */
+static void test_copy(sessile_gpu *g) {
+  printf("-- sessile_cmd_copy: a buffer copy between two dispatches of a recording\n");
+  const uint32_t rb = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  sessile_kernel *kf = NULL, *kc = NULL;
+  sessile_cmd *c = NULL;
+  sessile_buffer *scal = NULL, *y1 = NULL, *y2 = NULL, *y3 = NULL;
+  sessile_status s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_FILL], 0, 0, &kf);
+  if (s == SESSILE_OK) s = sessile_kernel_create_decl(g, &sessile_la_kernels[K_COPY], 0, 0, &kc);
+  uint32_t ls = kf ? sessile_kernel_local_size(kf) : 1, groups = 3;
+  size_t n = 4 * (size_t)ls * groups;
+  unsigned char zero[64] = {0}, *mark = malloc(n * rb), *raw = malloc(n * rb);
+  memset(mark, 0x5A, n * rb);
+  if (s == SESSILE_OK) s = sessile_buffer_create(g, 64 * rb, SESSILE_BUFFER_MAPPED, &scal);
+  if (s == SESSILE_OK) s = sessile_buffer_upload(scal, 0, zero, rb);
+  sessile_buffer **ys[3] = {&y1, &y2, &y3};
+  for (int i = 0; i < 3 && s == SESSILE_OK; i++) s = sessile_buffer_create(g, n * rb, SESSILE_BUFFER_DEVICE, ys[i]);
+  for (int i = 0; i < 3 && s == SESSILE_OK; i++) s = sessile_buffer_upload(*ys[i], 0, mark, n * rb);
+  if (s == SESSILE_OK) s = sessile_cmd_create(g, &c);
+  vec_push p = {.n4 = (uint32_t)n / 4, .n = (uint32_t)n, .a_slot = -1, .guard = -1};
+  sessile_buffer *bf[2] = {scal, y1}, *bc[3] = {scal, y2, y3};
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, kf, groups, bf, &p);
+  if (s == SESSILE_OK) s = sessile_cmd_copy(c, y1, y2, n * rb);
+  if (s == SESSILE_OK) s = sessile_cmd_dispatch(c, kc, groups, bc, &p);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  if (s == SESSILE_OK) s = sessile_cmd_submit_wait(c);
+  t_ok("fill, copy, copy kernel in one recording", s);
+  int ok = s == SESSILE_OK;
+  if (s == SESSILE_OK) s = sessile_buffer_download(y3, 0, raw, n * rb);
+  for (size_t e = 0; s == SESSILE_OK && e < n; e++) {
+    double v;
+    if (rb == 8) memcpy(&v, raw + 8 * e, 8);
+    else {
+      float f;
+      memcpy(&f, raw + 4 * e, 4);
+      v = f;
+    }
+    ok &= v == 1.0;
+  }
+  t_true("y3 == 1 everywhere: the copy saw the fill, the kernel after it saw the copy", s == SESSILE_OK && ok);
+  sessile_status big = SESSILE_OK, late = SESSILE_OK;
+  if (s == SESSILE_OK) s = sessile_cmd_begin(c);
+  if (s == SESSILE_OK) big = sessile_cmd_copy(c, y1, y2, n * rb + 1);
+  if (s == SESSILE_OK) s = sessile_cmd_download(c, y1, 0, raw, rb);
+  if (s == SESSILE_OK) late = sessile_cmd_copy(c, y1, y2, rb);
+  if (s == SESSILE_OK) s = sessile_cmd_end(c);
+  t_true("a copy past its buffers' end is refused", s == SESSILE_OK && big == SESSILE_ERR_INTERNAL);
+  t_true("a copy after a recorded download is refused", s == SESSILE_OK && late == SESSILE_ERR_INTERNAL);
+  free(mark), free(raw);
+  sessile_cmd_destroy(c);
+  sessile_buffer_destroy(y1), sessile_buffer_destroy(y2), sessile_buffer_destroy(y3), sessile_buffer_destroy(scal);
+  sessile_kernel_destroy(kf), sessile_kernel_destroy(kc);
+}
+
 /* The kernel profile: SESSILE_PROFILE_MAX + 6 dispatches of la/fill in one
  * recording submitted twice give 2 x SESSILE_PROFILE_MAX timed calls of it
  * and 2 x 6 untimed dispatches, with a
@@ -598,6 +656,7 @@ int main(void) {
   test_kernels(g);
   test_dispatch(g);
   test_indirect(g);
+  test_copy(g);
   test_recorded_transfers(g);
   test_profile(g);
   test_device_choice();

@@ -16,7 +16,8 @@
 #  - a discrete GPU's paths (SESSILE_STAGED=1): a batch's transfers ride in
 #    its own submission, so the loop on the device makes under half the
 #    host-driven loop's submissions a step (counted by `bench sds`);
-#  - the interpreted rules (device_rules = bytecode) the same bytes too;
+#  - the interpreted rules (device_rules = bytecode) the same bytes too, and
+#    lavapipe on one thread or three (the fused kernels' last subgroup);
 #  - the fused kernels taken (bench sds --kernels names them);
 #  - refusals: a rule the device cannot run (exp), a bad value.
 set -u
@@ -69,6 +70,13 @@ check "subs: several morphogen sub-steps a step, most of them on the device (the
   '[ $(( $(loop_stat "$T/subs-d" host_completed_steps) * 10 )) -lt "$(($(wc -l <"$T/subs-d/sds/steps.csv") - 1))" ]'
 check "diffuse: most steps' sub-steps beyond a batch's: the host completed more than half the steps" eval \
   '[ $(( $(loop_stat "$T/diffuse-d" host_completed_steps) * 2 )) -gt "$(($(wc -l <"$T/diffuse-d/sds/steps.csv") - 1))" ]'
+
+# lavapipe on one thread and on three: which subgroup finishes a fused
+# dispatch last (and takes its minimum and checks) varies; the bytes do not
+LP_NUM_THREADS=0 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-t0" --quiet --set device_loop=true
+check "fast, lavapipe on its queue thread alone: the same bytes" same_run "$T/fast-d" "$T/fast-t0"
+LP_NUM_THREADS=3 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-t3" --quiet --set device_loop=true
+check "fast, lavapipe on three threads: the same bytes" same_run "$T/fast-d" "$T/fast-t3"
 
 # the interpreted rules (device_rules = bytecode: rules_morph.comp) as well
 run sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-b" --quiet --set device_loop=true --set device_rules=bytecode

@@ -230,6 +230,11 @@ sessile_status sessile_cmd_begin(sessile_cmd *c);
  * A compute->compute barrier precedes every dispatch but the first. */
 sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uint32_t groups,
                                     sessile_buffer *const *buffers, const void *push);
+/* Records a copy of the first `bytes` of src into dst between dispatches:
+ * after everything recorded before it, before every dispatch after it (on
+ * lavapipe a copy is the queue thread's memcpy, no thread-pool round trip
+ * as a dispatch is).  Not after a recorded download. */
+sessile_status sessile_cmd_copy(sessile_cmd *c, sessile_buffer *src, sessile_buffer *dst, size_t bytes);
 /* Records a GPU timestamp into slot (0..63) after all previous work. */
 sessile_status sessile_cmd_timestamp(sessile_cmd *c, uint32_t slot);
 sessile_status sessile_cmd_end(sessile_cmd *c);
