@@ -3,8 +3,8 @@
 #include "sds_common.glsl"
 #include "sds_load.glsl"
 
-void main() {
-  uint t = sessile_gid();
+// Tet t (every t: nothing past ntets or once a batch stopped).
+void inverted_at(uint t) {
   if (t >= pc.ntets || (pc.batch != 0u && ev[0] != 0u)) return; // a batch that stopped
   uint q0 = LD_TOPO(4u * t), q1 = LD_TOPO(4u * t + 1u), q2 = LD_TOPO(4u * t + 2u), q3 = LD_TOPO(4u * t + 3u);
   REAL a[3], b[3], c[3];
@@ -17,3 +17,7 @@ void main() {
   flag[t] = inv;
   if (pc.batch != 0u && inv != 0u) atomicOr(ev[2], 1u); // stable_min stops the batch on it
 }
+
+#ifndef INVERTED_NO_MAIN
+void main() { inverted_at(sessile_gid()); }
+#endif

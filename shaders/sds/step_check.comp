@@ -24,24 +24,15 @@
 #define pos_t x_t
 #define pev ev
 #include "morph_bound.glsl"
+#define INVERTED_NO_MAIN 1
+#include "inverted.glsl"
 #include "last_group.glsl"
 DECLARE_LAST_GROUP(cnt)
 
 void main() {
   uint t = sessile_gid(), l = GRP_LANE, L = GRP_SIZE, n = pc.ncells;
   uint bk = pc.batch & ~SDS_BATCH_SPLIT; // 2 + the step's index, as stable_min's mode 3
-  if (t < pc.ntets && ev[0] == 0u) { // inverted.glsl
-    uint q0 = LD_TOPO(4u * t), q1 = LD_TOPO(4u * t + 1u), q2 = LD_TOPO(4u * t + 2u), q3 = LD_TOPO(4u * t + 3u);
-    REAL a[3], b[3], c[3];
-    for (int i = 0; i < 3; i++) {
-      a[i] = LD_X(3u * q1 + i) - LD_X(3u * q0 + i);
-      b[i] = LD_X(3u * q2 + i) - LD_X(3u * q0 + i);
-      c[i] = LD_X(3u * q3 + i) - LD_X(3u * q0 + i);
-    }
-    uint inv = tet_inverted(a, b, c);
-    flag[t] = inv;
-    if (inv != 0u) atomicOr(ev[2], 1u);
-  }
+  inverted_at(t); // pc.batch != 0: the flag raises ev[2]
   // morph_bound's per-cell part (its cells' rates), here where every lane
   // runs, not in the last subgroup
   if (t < n && pc.nmorph > 0u && ev[0] == 0u) mrate[t] = mb_cell(t);
