@@ -1,6 +1,7 @@
 /* A batch of SDS physics steps in one submission (sessile/sds/sds_batch.h,
  * docs/sds.md "The loop on the device"): per step the forces (elem_force,
- * which also flags the inverted tets of its input), the stable bound with
+ * or edge_force and tet_force for a large complex, the tets' kernel also
+ * flagging the inverted tets of its input), the stable bound with
  * stable_min (stable_all where texels fit; it first checks the step before,
  * as sessile_sds_gpu_advance does on the host) and the gather; with the
  * rules, each step's check right after it (step_check: with the inverted
@@ -61,6 +62,8 @@ static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
 
 void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split) { s->batch_split = split != 0; }
 
+void sessile_sds_gpu_fuse(sessile_sds_gpu *s, sessile_sds_fuse fuse) { s->fuse = (int)fuse; }
+
 sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   const sessile_sds_params *p = &s->p;
   SESSILE_CHECK(b->steps >= 1 && b->steps <= SDS_BATCH_MAX, SESSILE_ERR_USAGE,
@@ -83,11 +86,12 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
    * counts): on lavapipe each launch, even of a kernel that returns at once,
    * is a round trip through its thread pool (docs/sds.md, "The loop on the
    * device"). */
-  uint32_t groups[9] = {sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), sds_gpu_groups(s, SDS_TET, s->ntets),
-                        sds_gpu_groups(s, SDS_STABLE, s->ncells), sds_gpu_groups(s, SDS_GATHER, s->ncells),
-                        sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0, 0};
+  uint32_t groups[10] = {sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), sds_gpu_groups(s, SDS_TET, s->ntets),
+                         sds_gpu_groups(s, SDS_STABLE, s->ncells), sds_gpu_groups(s, SDS_GATHER, s->ncells),
+                         sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0, 0,
+                         sds_gpu_groups(s, SDS_EDGE, s->nedges)};
   if (s->hook) sds_gpu_batch_rules_groups(s, &groups[6]);
-  SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 9));
+  SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 10));
   SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_STEP], 3, ctl, 5));
   SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_EVENT], 0, zero, sizeof zero));
   SESSILE_CALL(record_batch(s, b->steps));

@@ -22,6 +22,18 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
  * by at most SDS_GROW a step. */
 #define SDS_MOVE_AIM 0.8
 #define SDS_GROW 1.25
+/* Fused kernels only for small complexes (docs/sds.md, "Fewer dispatches a
+ * step"): llvmpipe runs both sides of every branch, masked, so a fused
+ * dispatch costs each invocation the code of all its parts; above these
+ * sizes that costs more than the thread pool's round trip it saves
+ * (lavapipe, 2026-12-01).  elem_force (an edge's and a tet's code a
+ * invocation) up to SDS_FUSE_ELEM_TETS tets; stable_all and step_check (the
+ * last subgroup's minimum and check, run masked by every subgroup) up to
+ * SDS_FUSE_MIN_CELLS cells and SDS_FUSE_CHECK_TETS tets.  Either way the
+ * same bits. */
+#define SDS_FUSE_ELEM_TETS 1000u
+#define SDS_FUSE_MIN_CELLS 400u
+#define SDS_FUSE_CHECK_TETS 2000u
 
 /* A batch's per-step hook (sds_gpu_batch.c): records dispatches after step
  * k's check, once the step is accepted, and before step k + 1's forces,
@@ -75,10 +87,16 @@ struct sessile_sds_gpu {
   uint32_t nsub_max;           /* a batch with the rules: morphogen sub-steps recorded per step */
   double rules_dt;             /* the step of the last sds_gpu_rules_record */
   int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
+  int fuse;         /* sessile_sds_fuse (sessile_sds_gpu_fuse) */
   sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
   void *hook_ctx;
   int check_fused; /* a batch step's check made by the rules' step_check (sds_gpu_batch_rules_check) */
 };
+/* Does a fused kernel run for a part of `size` elements (SDS_FUSE_*)? */
+static inline int sds_gpu_fused(const sessile_sds_gpu *s, uint32_t size, uint32_t limit) {
+  return s->fuse == 1 || (s->fuse == 0 && size <= limit); /* sessile_sds_fuse: ALWAYS, AUTO */
+}
+
 
 /* A real as the device stores it (r, m kept on the host: rm). */
 static inline double dev_real(const sessile_sds_gpu *s, double v) { return s->real_bytes == 8 ? v : (double)(float)v; }

@@ -360,7 +360,7 @@ sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *st
 sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {
   sds_gpu_rules *r = s->rules;
   *done = 0;
-  if (!r || !r->k_check || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
+  if (!r || !r->k_check || !sds_gpu_fused(s, s->ntets, SDS_FUSE_CHECK_TETS) || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
       !texels_fit(r, s->b[B_X0 + c], NULL))
     return SESSILE_OK;
   sds_push q = sds_gpu_push_of(s, 0.0, 1, 3);

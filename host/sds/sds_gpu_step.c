@@ -42,7 +42,7 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p) 
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
-  if (sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX]) { /* both in one dispatch: stable_all */
+  if (sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX] && sds_gpu_fused(s, s->ncells, SDS_FUSE_MIN_CELLS)) { /* stable_all */
     sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
     sessile_buffer *b[] = {s->b[B_SP],   s->b[B_RM],   s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB],
                            s->b[B_EVENT], s->b[B_STEP], s->b[B_MOVE], s->b[B_TOPO], s->b[B_RM],
@@ -58,7 +58,7 @@ sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int d
   sds_push p = sds_gpu_push_of(s, dt, damping, mode);
   p.batch = batch;
   int nx = 1 - c;
-  if (s->nedges && s->ntets) {
+  if (s->nedges && s->ntets && sds_gpu_fused(s, s->ntets, SDS_FUSE_ELEM_TETS)) {
     SESSILE_CALL(record_elem(s, c, &p));
   } else {
     SESSILE_CALL(record_edge(s, c, &p));

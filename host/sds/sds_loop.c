@@ -15,6 +15,7 @@
 #include <string.h>
 #include "sessile/io/io.h"
 #include "sessile/rng.h"
+#include "sessile/sds/sds_batch.h"
 #include "sds/sds_checkpoint.h"
 #include "sds/sds_sim.h"
 
@@ -272,6 +273,7 @@ sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck) {
 
 sessile_status sds_gpu_create(sds_gen_state *g) {
   SESSILE_CALL(sessile_sds_gpu_create(g->su->gpu, &g->s.o, &g->s.p, &g->s.pg));
+  sessile_sds_gpu_fuse(g->s.pg, (sessile_sds_fuse)g->s.prm.device_fuse);
   SESSILE_CALL(sessile_morph_gpu_create(g->su->gpu, &g->s.mg));
   return g->s.prm.device_loop ? sds_device_loop_create(&g->s, g->su->gpu) : SESSILE_OK;
 }

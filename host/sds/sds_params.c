@@ -18,6 +18,8 @@
 
 /* device_rules: sessile_sds_rules_kernel's order. */
 static const char *const rules_kernel_names[] = {"generated", "bytecode", NULL};
+/* device_fuse: sessile_sds_fuse's order. */
+static const char *const fuse_names[] = {"auto", "always", "never", NULL};
 
 static const sessile_param_desc descs[] = {
     {"sphere_radius", SESSILE_PT_REAL, OFF(sphere_radius), 1, 0, INFINITY, OPEN_BOTH, "u", "ours",
@@ -71,6 +73,11 @@ static const sessile_param_desc descs[] = {
      "the device's rules kernel: generated (the rules written out as GLSL, compiled at model load) or bytecode (one "
      "interpreter for every model); the same bytes either way (docs/sds_rules.md, \"Generated kernel\")",
      rules_kernel_names},
+    {"device_fuse", SESSILE_PT_ENUM, OFF(device_fuse), 0, 0, 2, 0, "", "ours",
+     "where the fused kernels run (one dispatch for several): auto (small complexes, where the dispatches they "
+     "save cost more than the code every invocation then runs: llvmpipe runs both sides of a branch), always or "
+     "never; the same bytes every way (docs/sds.md, \"Fewer dispatches a step\")",
+     fuse_names},
 };
 
 const sessile_param_table sessile_sds_run_param_table = {

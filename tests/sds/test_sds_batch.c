@@ -4,6 +4,8 @@
  * the same inverted tets where a batch stops for them, a batch that stops at
  * the first step ending at or past its stop time; and the contact lists with
  * their skin against lists built fresh at every step: the same forces.
+ * Fused kernels (sessile_sds_gpu_fuse) in the batch and not in the host-driven
+ * step, and the other way round: still the same bits.
  * The scenes: a ball dropped on a rock (contacts, the lists' skin, steps
  * max_move undoes) and a soft ball crushed by gravity (inverted tets). */
 #include <math.h>
@@ -18,10 +20,12 @@ typedef struct counts { uint32_t batches, rejects, lists, inverted, steps; } cou
 static int same(const double *a, const double *b, size_t n) { return !memcmp(a, b, n * sizeof *a); }
 
 /* Runs `total` accepted steps both ways from o, batches of k (their steps
- * checked in dispatches of their own when split); every mismatch counts in
- * *bad (printed once; on fp64 the first ends the run). */
+ * checked in dispatches of their own when split; fused kernels as `fuse`
+ * says, the host-driven step the other way when it says always or never);
+ * every mismatch counts in *bad (printed once; on fp64 the first ends the
+ * run). */
 static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_params *p, uint32_t total,
-                      uint32_t k, int split, int *bad) {
+                      uint32_t k, int split, sessile_sds_fuse fuse, int *bad) {
   counts n = {0};
   sessile_sds a = {0}, b = {0};
   t_must("copy", sessile_sds_copy(o0, &a));
@@ -30,6 +34,10 @@ static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_p
   t_must("gpu a", sessile_sds_gpu_create(g, &a, p, &ga));
   t_must("gpu b", sessile_sds_gpu_create(g, &b, p, &gb));
   sessile_sds_gpu_batch_split(gb, split);
+  sessile_sds_gpu_fuse(gb, fuse);
+  sessile_sds_gpu_fuse(ga, fuse == SESSILE_SDS_FUSE_NEVER    ? SESSILE_SDS_FUSE_ALWAYS
+                           : fuse == SESSILE_SDS_FUSE_ALWAYS ? SESSILE_SDS_FUSE_NEVER
+                                                             : SESSILE_SDS_FUSE_AUTO);
   double dta = p->dt, ta = 0;
   sessile_sds_batch bt = {.t_stop = INFINITY, .time = 0, .dt = p->dt};
   double *log = t_dalloc(2 * (size_t)k);
@@ -80,8 +88,9 @@ static counts compare(sessile_gpu *g, const sessile_sds *o0, const sessile_sds_p
   free(log);
   sessile_sds_gpu_destroy(ga), sessile_sds_gpu_destroy(gb);
   sessile_sds_free(&a), sessile_sds_free(&b);
-  printf("%s: %u steps in %u batches of at most %u: %u stopped by an undone step, %u by stale lists, %u by inverted tets\n",
-         split ? "split checks" : "folded checks", n.steps, n.batches, k, n.rejects, n.lists, n.inverted);
+  printf("%s, fused kernels %s: %u steps in %u batches of at most %u: %u stopped by an undone step, %u by stale lists, "
+         "%u by inverted tets\n",
+         split ? "split checks" : "folded checks", fuse == SESSILE_SDS_FUSE_NEVER ? "never" : fuse ? "always" : "auto", n.steps, n.batches, k, n.rejects, n.lists, n.inverted);
   return n;
 }
 
@@ -159,13 +168,20 @@ int main(void) {
   p.max_move = 0.02;
   p.obstacle.nv = rock.nv, p.obstacle.nf = rock.nf, p.obstacle.pos = rock.pos, p.obstacle.tri = rock.tri;
   int bad = 0;
-  counts n = compare(g, &o, &p, 400, 64, 0, &bad);
+  counts n = compare(g, &o, &p, 400, 64, 0, SESSILE_SDS_FUSE_AUTO, &bad);
   if (fp64) t_true("ball on a rock: batches give the host-driven steps bit for bit", bad == 0);
   t_true("the scene undoes steps and lets the lists go stale", n.rejects > 0 && n.lists > 0);
   bad = 0;
-  n = compare(g, &o, &p, 200, 64, 1, &bad);
+  n = compare(g, &o, &p, 200, 64, 1, SESSILE_SDS_FUSE_AUTO, &bad);
   if (fp64) t_true("ball on a rock, split checks: the host-driven steps bit for bit", bad == 0);
   t_true("the scene undoes steps and lets the lists go stale", n.rejects > 0 && n.lists > 0);
+  bad = 0;
+  n = compare(g, &o, &p, 200, 64, 0, SESSILE_SDS_FUSE_NEVER, &bad);
+  if (fp64) t_true("ball on a rock, batches without fused kernels: the fused host-driven steps bit for bit", bad == 0);
+  t_true("the scene undoes steps and lets the lists go stale", n.rejects > 0 && n.lists > 0);
+  bad = 0;
+  n = compare(g, &o, &p, 200, 64, 1, SESSILE_SDS_FUSE_ALWAYS, &bad);
+  if (fp64) t_true("ball on a rock, split checks, fused: the unfused host-driven steps bit for bit", bad == 0);
   stop_time(g, &o, &p);
   skin(g, &o, &p);
   /* soft and heavy: the default springs under gravity 10 crush it */
@@ -173,12 +189,16 @@ int main(void) {
   sessile_sds_params_default(&q);
   q.obstacle = p.obstacle;
   bad = 0;
-  n = compare(g, &o, &q, 120, 64, 0, &bad);
+  n = compare(g, &o, &q, 120, 64, 0, SESSILE_SDS_FUSE_AUTO, &bad);
   if (fp64) t_true("a crushed ball: batches give the host-driven steps bit for bit", bad == 0);
   t_true("the scene inverts tets", n.inverted > 0);
   bad = 0;
-  n = compare(g, &o, &q, 60, 64, 1, &bad);
+  n = compare(g, &o, &q, 60, 64, 1, SESSILE_SDS_FUSE_AUTO, &bad);
   if (fp64) t_true("a crushed ball, split checks: the host-driven steps bit for bit", bad == 0);
+  t_true("the scene inverts tets", n.inverted > 0);
+  bad = 0;
+  n = compare(g, &o, &q, 120, 64, 0, SESSILE_SDS_FUSE_NEVER, &bad);
+  if (fp64) t_true("a crushed ball without fused kernels: the fused host-driven steps bit for bit", bad == 0);
   t_true("the scene inverts tets", n.inverted > 0);
   sessile_sds_free(&o);
   sessile_surface_free(&rock);

@@ -98,6 +98,11 @@ check "rock: the host-driven loop completes" rc_is 0
 run sds run rock --t-end 5 --frames 2 --out "$T/rock-d" --quiet --set device_loop=true
 check "rock: the loop on the device completes" rc_is 0
 check "rock: the same bytes, the same steps" same_run "$T/rock-h" "$T/rock-d"
+# the dispatches the fused kernels replace (device_fuse = never: what a large
+# complex takes, docs/sds.md "Fewer dispatches a step")
+run sds run rock --t-end 5 --frames 2 --out "$T/rock-n" --quiet --set device_loop=true --set device_fuse=never
+check "rock, no fused kernels: the loop on the device completes" rc_is 0
+check "rock, no fused kernels: the same bytes, the same steps" same_run "$T/rock-h" "$T/rock-n"
 
 # stopped by SIGINT after frame 1, resumed
 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --quiet --set device_loop=true --out "$T/b" >"$T/out" 2>"$T/err" &

@@ -45,4 +45,9 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b);
  * needs (a step's rules run once it is accepted, before the next step's
  * forces): seven dispatches a step instead of five, the same steps. */
 void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split);
+/* Where the fused kernels run (elem_force, stable_all, step_check; the
+ * device_fuse key, docs/sds.md "Fewer dispatches a step"): by the complex's
+ * size (the default), always, or never.  The same bits every way. */
+typedef enum sessile_sds_fuse { SESSILE_SDS_FUSE_AUTO = 0, SESSILE_SDS_FUSE_ALWAYS = 1, SESSILE_SDS_FUSE_NEVER = 2 } sessile_sds_fuse;
+void sessile_sds_gpu_fuse(sessile_sds_gpu *s, sessile_sds_fuse fuse);
 #endif

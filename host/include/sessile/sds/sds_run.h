@@ -42,6 +42,7 @@ typedef struct sessile_sds_run_params {
   double mass_scaling_dt;     /* s: the step selective mass scaling lifts a stiff cell's bound to (0: none) */
   int device_loop;            /* bool: steps in batches on the device, rules included (the same bytes) */
   int device_rules;           /* sessile_sds_rules_kernel: the device's rules kernel (the same bytes either way) */
+  int device_fuse;            /* sessile_sds_fuse: where the fused kernels run (the same bytes every way) */
 } sessile_sds_run_params;
 
 /* The rules kernel on the device (device_rules; docs/sds_rules.md,
