@@ -62,7 +62,7 @@ static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
 
 void sessile_sds_gpu_batch_split(sessile_sds_gpu *s, int split) { s->batch_split = split != 0; }
 
-void sessile_sds_gpu_fuse(sessile_sds_gpu *s, sessile_sds_fuse fuse) { s->fuse = (int)fuse; }
+void sessile_sds_gpu_fuse(sessile_sds_gpu *s, sessile_sds_fuse fuse) { s->fuse = fuse; }
 
 sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   const sessile_sds_params *p = &s->p;

@@ -7,6 +7,7 @@
 #define SESSILE_SDS_GPU_INTERNAL_H
 #include <stdint.h>
 #include "sds/sds_internal.h"
+#include "sessile/sds/sds_batch.h"
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
@@ -87,14 +88,14 @@ struct sessile_sds_gpu {
   uint32_t nsub_max;           /* a batch with the rules: morphogen sub-steps recorded per step */
   double rules_dt;             /* the step of the last sds_gpu_rules_record */
   int batch_split;  /* a batch checks each step in its own dispatch (sessile_sds_gpu_batch_split) */
-  int fuse;         /* sessile_sds_fuse (sessile_sds_gpu_fuse) */
+  sessile_sds_fuse fuse; /* where the fused kernels run (sessile_sds_gpu_fuse) */
   sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
   void *hook_ctx;
   int check_fused; /* a batch step's check made by the rules' step_check (sds_gpu_batch_rules_check) */
 };
 /* Does a fused kernel run for a part of `size` elements (SDS_FUSE_*)? */
 static inline int sds_gpu_fused(const sessile_sds_gpu *s, uint32_t size, uint32_t limit) {
-  return s->fuse == 1 || (s->fuse == 0 && size <= limit); /* sessile_sds_fuse: ALWAYS, AUTO */
+  return s->fuse == SESSILE_SDS_FUSE_ALWAYS || (s->fuse == SESSILE_SDS_FUSE_AUTO && size <= limit);
 }
 
 
