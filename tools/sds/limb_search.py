@@ -4,6 +4,7 @@
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
+                                [--ranges default|narrow]
 
 Each point draws the limb model's process constants and a few physics keys
 from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
@@ -35,11 +36,24 @@ RANGES = {
     "surface_multiplier": (1.0, 4.0, True),
     "viscosity": (0.3, 4.0, True),
 }
+# --ranges narrow (2026-12-01): a zone of about one ring round the tip (K well
+# above the default ranges' 0.08) with fast growth, and the tip itself growing
+# to tip_R x its birth radius (rule r0; 1 is the paper's tip, which never grows).
+RANGES_NARROW = {
+    "Delta": (0.003, 0.03, True),
+    "phi_decay": (0.1, 1.0, True),
+    "phi_diffusion": (0.02, 0.4, True),
+    "K": (0.08, 0.5, True),
+    "R": (1.2, 1.4, False),
+    "surface_multiplier": (1.0, 4.0, True),
+    "viscosity": (0.3, 4.0, True),
+    "tip_R": (1.0, 1.6, False),
+}
 
 
-def draw(rng):
+def draw(rng, ranges):
     p = {}
-    for k, (lo, hi, lg) in RANGES.items():
+    for k, (lo, hi, lg) in ranges.items():
         u = rng.random()
         p[k] = float(math.exp(math.log(lo) + u * (math.log(hi) - math.log(lo)))) if lg else lo + u * (hi - lo)
     p["uniform_stiffness"] = bool(rng.random() < 0.3)
@@ -60,6 +74,9 @@ def model_text(p, jitter_seed=None):
         extra.append("uniform_stiffness = 1")
     if jitter_seed is not None:
         extra.append("start_jitter = 0.1")
+    if p.get("tip_R", 1.0) > 1.0:
+        s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
+                      % p["tip_R"], 1)
     return s.replace("\n# --- process model", "\n" + "".join(e + "\n" for e in extra) + "# --- process model", 1)
 
 
@@ -109,6 +126,8 @@ def main():
     ap.add_argument("--t-end", type=float, default=200)
     ap.add_argument("--from", dest="src")
     ap.add_argument("--jitter-seeds", type=int, default=3)
+    ap.add_argument("--ranges", choices=["default", "narrow"], default="default",
+                    help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -117,7 +136,7 @@ def main():
         work = [(r["point"], s) for r in best for s in range(1, a.jitter_seeds + 1)]
     else:
         rng = np.random.default_rng(a.seed)
-        work = [(draw(rng), None) for _ in range(a.runs)]
+        work = [(draw(rng, RANGES_NARROW if a.ranges == "narrow" else RANGES), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     res = open(os.path.join(a.out, "results.jsonl"), "a")
 
