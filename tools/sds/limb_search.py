@@ -4,7 +4,8 @@
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
-                                [--ranges default|narrow]
+                                [--ranges default|narrow|apical]
+                                [--near RESULTS --index N [--spread S]]
 
 Each point draws the limb model's process constants and a few physics keys
 from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
@@ -15,6 +16,9 @@ shortfalls (0 when all three hold):
   max(0, distal/neck / 1.2 - 1) + max(0, lag / tip radius - 1) + max(0, 1 - (L/neck) / 3).
 A point with no neck (a limb under two slices) scores 2-3 by its length;
 a point that blows up, passes 1 500 cells or runs past 300 s scores 9.
+--ranges picks the ranges (and, for apical, the rules: the tip grows and
+divides inward, only the zone's surface grows); --near draws round point N
+of an earlier results.jsonl instead, each value times exp(N(0, S)).
 --from FILE reruns the points of an earlier search's results.jsonl (its best
 --runs by score) on --jitter-seeds realisations of the start each
 (`start_jitter 0.1`, seeds 1..K), to see whether a point carries past the
@@ -49,6 +53,19 @@ RANGES_NARROW = {
     "viscosity": (0.3, 4.0, True),
     "tip_R": (1.0, 1.6, False),
 }
+# --ranges apical (2026-12-01): the tip grows at Dt and divides inward
+# (`divide away grad(phi)`: the daughter goes below it, the §3.6 cell below
+# the tip, again at every division), and only the zone's surface cells grow
+# (at Delta), so the interior is the tip's chain.
+RANGES_APICAL = {
+    "Dt": (0.008, 0.05, True),
+    "Delta": (0.0005, 0.004, True),
+    "phi_decay": (0.15, 0.8, True),
+    "phi_diffusion": (0.02, 0.15, True),
+    "K": (0.015, 0.05, True),
+    "surface_multiplier": (1.0, 4.0, True),
+    "viscosity": (0.3, 4.0, True),
+}
 
 
 def draw(rng, ranges):
@@ -64,7 +81,8 @@ def model_text(p, jitter_seed=None):
     s = open(MODEL).read()
     s = re.sub(r"(?m)^const Delta = \S+", "const Delta = %.6g" % p["Delta"], s)
     s = re.sub(r"(?m)^const K = \S+", "const K = %.6g" % p["K"], s)
-    s = re.sub(r"(?m)^const R = \S+", "const R = %.6g" % p["R"], s)
+    if "R" in p:
+        s = re.sub(r"(?m)^const R = \S+", "const R = %.6g" % p["R"], s)
     s = re.sub(r"(?m)^morphogen phi .*$", "morphogen phi diffusion=%.6g decay=%.6g" %
                (p["phi_diffusion"], p["phi_decay"]), s)
     s = re.sub(r"(?m)^surface_multiplier = \S+", "surface_multiplier = %.6g" % p["surface_multiplier"], s)
@@ -74,6 +92,11 @@ def model_text(p, jitter_seed=None):
         extra.append("uniform_stiffness = 1")
     if jitter_seed is not None:
         extra.append("start_jitter = 0.1")
+    if "Dt" in p:
+        s = s.replace("\nconst R =", "\nconst Dt = %.6g\nconst R =" % p["Dt"], 1)
+        s = s.replace("\nrule r1:", "\nrule r0: tip == 1 -> grow Dt\n"
+                      "rule rt: tip == 1 && radius > R * birth_radius -> divide away grad(phi)\nrule r1:", 1)
+        s = re.sub(r"(?m)^rule r2: tip == 0 && ", "rule r2: tip == 0 && surface == 1 && ", s)
     if p.get("tip_R", 1.0) > 1.0:
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
                       % p["tip_R"], 1)
@@ -126,17 +149,27 @@ def main():
     ap.add_argument("--t-end", type=float, default=200)
     ap.add_argument("--from", dest="src")
     ap.add_argument("--jitter-seeds", type=int, default=3)
-    ap.add_argument("--ranges", choices=["default", "narrow"], default="default",
-                    help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing")
+    ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
+    ap.add_argument("--index", type=int, help="--near's point (its index)")
+    ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
+    ap.add_argument("--ranges", choices=["default", "narrow", "apical"], default="default",
+                    help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
+                    "apical: the tip grows and divides inward, only the zone's surface grows")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
         rows = [json.loads(l) for l in open(a.src)]
         best = sorted(rows, key=lambda r: r["score"])[:a.runs]
         work = [(r["point"], s) for r in best for s in range(1, a.jitter_seeds + 1)]
+    elif a.near:
+        base = [json.loads(l) for l in open(a.near) if json.loads(l)["index"] == a.index][0]["point"]
+        rng = np.random.default_rng(a.seed)
+        work = [({k: (float(v * math.exp(a.spread * rng.standard_normal())) if isinstance(v, float) else v)
+                  for k, v in base.items()}, None) for _ in range(a.runs)]
     else:
         rng = np.random.default_rng(a.seed)
-        work = [(draw(rng, RANGES_NARROW if a.ranges == "narrow" else RANGES), None) for _ in range(a.runs)]
+        ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL}[a.ranges]
+        work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     res = open(os.path.join(a.out, "results.jsonl"), "a")
 
