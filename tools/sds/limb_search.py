@@ -190,7 +190,11 @@ def main():
                   "apical_abs": RANGES_APICAL_ABS}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
-    res = open(os.path.join(a.out, "results.jsonl"), "a")
+    path = os.path.join(a.out, "results.jsonl")
+    # a search appending to an earlier one numbers its points after it, so
+    # that --near --index names one point
+    base = sum(1 for _ in open(path)) if os.path.exists(path) else 0
+    res = open(path, "a")
 
     def worker():
         while True:
@@ -199,9 +203,10 @@ def main():
                 nxt[0] += 1
             if i >= len(work):
                 return
-            r = run_point(a.sessile, a.out, i, work[i][0], a.t_end, work[i][1])
+            r = run_point(a.sessile, a.out, base + i, work[i][0], a.t_end, work[i][1])
             if a.realisations and r["score"] < 9:  # the worst of the exact start and K realisations
-                rs = [run_point(a.sessile, a.out, i, work[i][0], a.t_end, k) for k in range(1, a.realisations + 1)]
+                rs = [run_point(a.sessile, a.out, base + i, work[i][0], a.t_end, k)
+                      for k in range(1, a.realisations + 1)]
                 r["realisations"] = [{"seed": x["jitter_seed"], "status": x["status"], "metrics": x["metrics"],
                                       "score": x["score"]} for x in rs]
                 r["score_exact"] = r["score"]
@@ -211,7 +216,7 @@ def main():
                 res.flush()
                 m = r["metrics"] or {}
                 print("%4d score %.3f %s d/n %s lag %s L/n %s" % (
-                    i, r["score"], r["status"], m.get("distal_over_neck"), m.get("tip_behind_front"),
+                    r["index"], r["score"], r["status"], m.get("distal_over_neck"), m.get("tip_behind_front"),
                     m.get("length_over_neck")), flush=True)
 
     th = [threading.Thread(target=worker) for _ in range(a.jobs)]
