@@ -58,6 +58,15 @@ RANGES_NARROW = {
 # (`divide away grad(phi)`: the daughter goes below it, the §3.6 cell below
 # the tip, again at every division), and only the zone's surface cells grow
 # (at Delta), so the interior is the tip's chain.
+RANGES_APICAL = {
+    "Dt": (0.008, 0.05, True),
+    "Delta": (0.0005, 0.004, True),
+    "phi_decay": (0.15, 0.8, True),
+    "phi_diffusion": (0.02, 0.15, True),
+    "K": (0.015, 0.05, True),
+    "surface_multiplier": (1.0, 4.0, True),
+    "viscosity": (0.3, 4.0, True),
+}
 # --ranges apical_abs: the same with the tip dividing at an absolute radius Rt
 # (`radius > Rt`, as the paper's r3), so that a tip the start made small
 # first grows.
@@ -70,15 +79,6 @@ RANGES_APICAL_ABS = {
     "K": (0.012, 0.04, True),
     "surface_multiplier": (1.0, 3.0, True),
     "viscosity": (0.5, 3.0, True),
-}
-RANGES_APICAL = {
-    "Dt": (0.008, 0.05, True),
-    "Delta": (0.0005, 0.004, True),
-    "phi_decay": (0.15, 0.8, True),
-    "phi_diffusion": (0.02, 0.15, True),
-    "K": (0.015, 0.05, True),
-    "surface_multiplier": (1.0, 4.0, True),
-    "viscosity": (0.3, 4.0, True),
 }
 
 
@@ -180,10 +180,13 @@ def main():
         best = sorted(rows, key=lambda r: r["score"])[:a.runs]
         work = [(r["point"], s) for r in best for s in range(1, a.jitter_seeds + 1)]
     elif a.near:
-        base = [json.loads(l) for l in open(a.near) if json.loads(l)["index"] == a.index][0]["point"]
+        rows = [r for r in map(json.loads, open(a.near)) if r["index"] == a.index]
+        if not rows:
+            ap.error("--near: %s has no point with index %s (give --index)" % (a.near, a.index))
+        centre = rows[0]["point"]
         rng = np.random.default_rng(a.seed)
         work = [({k: (float(v * math.exp(a.spread * rng.standard_normal())) if isinstance(v, float) else v)
-                  for k, v in base.items()}, None) for _ in range(a.runs)]
+                  for k, v in centre.items()}, None) for _ in range(a.runs)]
     else:
         rng = np.random.default_rng(a.seed)
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
