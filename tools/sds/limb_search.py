@@ -4,7 +4,7 @@
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
-                                [--ranges default|narrow|apical|apical_abs]
+                                [--ranges default|narrow|apical|apical_abs|stiff|produce]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]]
 
@@ -81,6 +81,19 @@ RANGES_APICAL_ABS = {
     "viscosity": (0.5, 3.0, True),
 }
 
+# --ranges stiff (2026-12-01, twenty-first session): the default process
+# ranges with the physics that sets how a growing zone's pressure divides
+# between length and width: the tets' volume stiffness against the edges',
+# and the surface's multiplier to 30 (a taut skin).
+RANGES_STIFF = dict(RANGES, surface_multiplier=(1.0, 30.0, True), volume_stiffness=(0.5, 20.0, True),
+                    edge_stiffness=(0.3, 3.0, True))
+
+# --ranges produce (2026-12-01, twenty-first session): the paper's text says
+# the tip "constantly creates" phi; r1 read as a source of P per unit time
+# (`produce phi P`) instead of holding the tip full (`set phi = volume`):
+# a fixed flux, shared by however many neighbours the tip has.
+RANGES_PRODUCE = dict(RANGES, P=(0.01, 0.1, True), Delta=(0.001, 0.006, True))
+
 
 def draw(rng, ranges):
     p = {}
@@ -101,6 +114,9 @@ def model_text(p, jitter_seed=None):
                (p["phi_diffusion"], p["phi_decay"]), s)
     s = re.sub(r"(?m)^surface_multiplier = \S+", "surface_multiplier = %.6g" % p["surface_multiplier"], s)
     s = re.sub(r"(?m)^viscosity = \S+", "viscosity = %.6g" % p["viscosity"], s)
+    for key in ("volume_stiffness", "edge_stiffness"):
+        if key in p:
+            s = re.sub(r"(?m)^%s = \S+" % key, "%s = %.6g" % (key, p[key]), s)
     extra = []
     if p.get("uniform_stiffness"):
         extra.append("uniform_stiffness = 1")
@@ -112,6 +128,8 @@ def model_text(p, jitter_seed=None):
                       "rule rt: tip == 1 && radius > %s -> divide away grad(phi)\nrule r1:"
                       % ("%.6g" % p["Rt"] if "Rt" in p else "R * birth_radius"), 1)
         s = re.sub(r"(?m)^rule r2: tip == 0 && ", "rule r2: tip == 0 && surface == 1 && ", s)
+    if "P" in p:
+        s = re.sub(r"(?m)^rule r1: tip == 1 -> set phi = volume", "rule r1: tip == 1 -> produce phi %.6g" % p["P"], s)
     if p.get("tip_R", 1.0) > 1.0:
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
                       % p["tip_R"], 1)
@@ -169,10 +187,11 @@ def main():
     ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
-    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs"], default="default",
+    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce"], default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
-                    "the tip divides at an absolute radius")
+                    "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
+                    "surface multiplier to 30; produce: default with the tip a source of P per unit time")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -190,7 +209,7 @@ def main():
     else:
         rng = np.random.default_rng(a.seed)
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
-                  "apical_abs": RANGES_APICAL_ABS}[a.ranges]
+                  "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
