@@ -91,7 +91,8 @@ RANGES_STIFF = dict(RANGES, surface_multiplier=(1.0, 30.0, True), volume_stiffne
 # --ranges produce (2026-12-01, twenty-first session): the paper's text says
 # the tip "constantly creates" phi; r1 read as a source of P per unit time
 # (`produce phi P`) instead of holding the tip full (`set phi = volume`):
-# a fixed flux, shared by however many neighbours the tip has.
+# a fixed flux, shared by however many neighbours the tip has, while P is
+# below the tip's outflow (above it the volume cap fills the tip: r1 again).
 RANGES_PRODUCE = dict(RANGES, P=(0.01, 0.1, True), Delta=(0.001, 0.006, True))
 
 
