@@ -12,7 +12,8 @@
 #include "sessile/sds/sds.h"
 
 static const char *help =
-    "usage: sessile bench sds [--rock-t T] [--mass-scaling H] [--no-physics] [--kernels] [--device D]\n"
+    "usage: sessile bench sds [--rock-t T] [--repeat N] [--mass-scaling H] [--no-physics] [--kernels]\n"
+    "                         [--device D]\n"
     "\n"
     "Times the SDS physics step (edge and volume springs, damping, contacts\n"
     "through per-cell lists, integration) for TetGen imports of icosphere\n"
@@ -33,6 +34,9 @@ static const char *help =
     "the record (docs/performance.md), never pass/fail.\n"
     "\n"
     "  --rock-t T      simulated time of the rock run, 0 < T <= 400 (0: skip it)\n"
+    "  --repeat N      make the rock runs N times (1-9, default 1), the loops alternating, then\n"
+    "                  print each loop's median and minimum wall and the median of the ratios\n"
+    "                  (this machine's speed drifts: one run's wall is one draw of it)\n"
     "  --mass-scaling H  a third rock run: the host-driven loop with mass_scaling_dt H (0 < H <= 1 s;\n"
     "                  another trajectory: its steps, cells and ratio to the run without;\n"
     "                  docs/sds.md, \"Mass scaling\")\n"
@@ -45,6 +49,7 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   cli_gpu_opts go = *global;
   double rock_t = 1, mass_dt = 0;
   int physics = 1, kernels = 0;
+  unsigned repeat = 1;
   for (int i = 1; i < argc; i++) {
     if (cli_stray_value("bench sds", argv, i)) return EXIT_USAGE;
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -65,6 +70,13 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
         return EXIT_USAGE;
       continue;
     }
+    if (!strcmp(argv[i], "--repeat")) {
+      const char *v = cli_value("bench sds", argc, argv, &i);
+      if (!v || cli_once("bench sds", "--repeat", "--repeat") ||
+          cli_parse_uint("bench sds", "--repeat", v, 1, SESSILE_SDS_BENCH_REPEAT_MAX, &repeat))
+        return EXIT_USAGE;
+      continue;
+    }
     if (!strcmp(argv[i], "--mass-scaling")) {
       const char *v = cli_value("bench sds", argc, argv, &i);
       if (!v || cli_once("bench sds", "--mass-scaling", "--mass-scaling") ||
@@ -79,6 +91,8 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   }
   if (mass_dt > 0 && !(rock_t > 0))
     return cli_usage_error("bench sds", "--mass-scaling adds a rock run: give --rock-t T > 0 with it");
+  if (repeat > 1 && !(rock_t > 0))
+    return cli_usage_error("bench sds", "--repeat repeats the rock runs: give --rock-t T > 0 with it");
   if (kernels && !(rock_t > 0))
     return cli_usage_error("bench sds", "--kernels times the rock run: give --rock-t T > 0 with it");
   double load[3];
@@ -93,7 +107,7 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
   volatile sig_atomic_t *stop = cli_stop_flag_install();
   const char *tmp = getenv("TMPDIR"); /* the rock run's scratch folder */
   if (s == SESSILE_OK && rock_t > 0)
-    s = sessile_sds_bench_rock(g, rock_t, mass_dt, tmp && *tmp ? tmp : "/tmp", stop, stdout);
+    s = sessile_sds_bench_rock(g, rock_t, mass_dt, repeat, tmp && *tmp ? tmp : "/tmp", stop, stdout);
   if (s == SESSILE_OK && kernels && rock_t > 0) cli_print_kernels(g, "the rock run", sessile_wall_seconds() - t0);
   sessile_gpu_destroy(g);
   if (s == SESSILE_ERR_INTERRUPTED) {

@@ -74,7 +74,8 @@ for args in "" "--bogus" "frobnicate" "bench" "bench nope" "bench la --size 1" "
             "bench la --repeat 0" "bench la --mg 4" "bench la --wat" "devices --wat" "--precision 16 devices" \
             "--device" "--device 99 devices" "--device no-such-gpu bench la --size 4" \
             "coral" "coral reef" "sponge" "sponge accretive" "bench coral nope" "bench coral particles" "bench sponge nope" "sds" "sds grow" "sds run" "bench sds --x" \
-            "bench sds --kernels --rock-t 0" "bench fluid --mg-precision 48" "bench fluid --mg-precision 16" \
+            "bench sds --kernels --rock-t 0" "bench sds --repeat 0" "bench sds --repeat 10" \
+            "bench sds --rock-t 0 --repeat 2" "bench sds --repeat 2 --repeat 2" "bench fluid --mg-precision 48" "bench fluid --mg-precision 16" \
             "bench fluid --set fluid_mg_precision=40"; do
   run $args
   check "'sessile $args' gives one error line and exit 2" eval 'rc_is 2 && one_line_error'
@@ -97,6 +98,15 @@ run --validation bench sds --no-physics --rock-t 0.05 --kernels
 check "'sessile bench sds --rock-t 0.05 --kernels' prints the rock run's kernels and their sum" eval \
   'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
 check "bench sds --kernels under the validation layer is silent" no_validation
+# --repeat: the runs alternate, and the summary is over all of them (the
+# rock runs are deterministic, so a repeat that took other steps is a bug)
+run bench sds --no-physics --rock-t 0.05 --repeat 2
+check "'sessile bench sds --repeat 2' runs each loop twice, then their medians and minima" eval \
+  'rc_is 0 && [ $(grep -c "^sds rock (Figure 9)" "$T/out") -eq 4 ] && grep -q "^repeat 2 of 2" "$T/out" &&
+   grep -q "^over 2 repeats" "$T/out" && grep -q "the loop on the device, to t = .*: median .* minimum" "$T/out" &&
+   grep -q "EXTRAPOLATED to t = 400" "$T/out" && grep -q "median ratio" "$T/out"'
+check "bench sds --repeat: every repeat took the same steps to the same cells" \
+  grep -q "every repeat took the same steps to the same cells" "$T/out"
 # bench fluid's rounds: the same deterministic solves each round, the table
 # their medians with the range (loose tolerances: one Newton step a solve,
 # 5 s instead of the paper's tolerances' 12; the rounds are what is tested)

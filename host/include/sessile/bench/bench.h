@@ -39,7 +39,10 @@ sessile_status sessile_sds_bench_physics(sessile_gpu *g, FILE *out);
 /* stop (may be NULL): a signal's flag, polled by the run; when it is raised
  * the run ends early with SESSILE_ERR_INTERRUPTED and the folder is removed
  * all the same.  mass_dt > 0: a third run, the host-driven loop with
- * mass_scaling_dt mass_dt, against the first (another trajectory). */
-sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, double mass_dt, const char *scratch,
-                                      const volatile sig_atomic_t *stop, FILE *out);
+ * mass_scaling_dt mass_dt, against the first (another trajectory).
+ * repeats, 1..SESSILE_SDS_BENCH_REPEAT_MAX: the runs made that many times, the loops alternating, then
+ * each loop's median and minimum wall and the median of the ratios. */
+#define SESSILE_SDS_BENCH_REPEAT_MAX 9
+sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, double mass_dt, unsigned repeats,
+                                      const char *scratch, const volatile sig_atomic_t *stop, FILE *out);
 #endif
