@@ -4,7 +4,7 @@
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
-                                [--ranges default|narrow|apical|apical_abs|stiff|produce]
+                                [--ranges default|narrow|apical|apical_abs|stiff|produce|axial]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]]
 
@@ -97,6 +97,26 @@ RANGES_STIFF = dict(RANGES, surface_multiplier=(1.0, 30.0, True), volume_stiffne
 # below the tip's outflow (above it the volume cap fills the tip: r1 again).
 RANGES_PRODUCE = dict(RANGES, P=(0.01, 0.1, True), Delta=(0.001, 0.006, True))
 
+# --ranges axial (2026-12-01, twenty-second session): the zone's cells divide
+# along the limb instead of toward the tip: a second morphogen `base`, held
+# full in every cell outside the zone (phi < K volume), falls off into it, and
+# r3 divides away from its gradient (`divide away grad(base)`), so daughters
+# stack along the limb rather than crowd round one point; the tip grows to
+# an absolute radius tip_abs at Dtip (so that its size does not depend on
+# where the start put it).
+RANGES_AXIAL = {
+    "tip_abs": (0.17, 0.35, True),
+    "Dtip": (0.002, 0.01, True),
+    "Delta": (0.0015, 0.004, True),
+    "phi_decay": (0.2, 0.8, True),
+    "phi_diffusion": (0.03, 0.1, True),
+    "K": (0.015, 0.06, True),
+    "base_decay": (0.1, 2.0, True),
+    "base_diffusion": (0.02, 0.2, True),
+    "surface_multiplier": (1.0, 3.0, True),
+    "viscosity": (0.5, 2.0, True),
+}
+
 
 def draw(rng, ranges):
     p = {}
@@ -133,6 +153,13 @@ def model_text(p, jitter_seed=None):
         s = re.sub(r"(?m)^rule r2: tip == 0 && ", "rule r2: tip == 0 && surface == 1 && ", s)
     if "P" in p:
         s = re.sub(r"(?m)^rule r1: tip == 1 -> set phi = volume", "rule r1: tip == 1 -> produce phi %.6g" % p["P"], s)
+    if "base_decay" in p:
+        s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen base diffusion=%.6g decay=%.6g" %
+                   (p["base_diffusion"], p["base_decay"]), s)
+        s = re.sub(r"(?m)^rule r3: .*$", "rule r3: tip == 0 && radius > R * birth_radius -> divide away grad(base)\n"
+                   "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
+        s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
+                      % (p["tip_abs"], p["Dtip"]), 1)
     if p.get("tip_R", 1.0) > 1.0:
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
                       % p["tip_R"], 1)
@@ -190,11 +217,13 @@ def main():
     ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
-    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce"], default="default",
+    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial"], default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
                     "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
-                    "surface multiplier to 30; produce: default with the tip a source of P per unit time")
+                    "surface multiplier to 30; produce: default with the tip a source of P per unit time; axial: the zone "
+                    "divides along the limb, away from a morphogen held full outside it, the tip grown to an "
+                    "absolute radius")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -212,7 +241,8 @@ def main():
     else:
         rng = np.random.default_rng(a.seed)
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
-                  "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE}[a.ranges]
+                  "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE,
+                  "axial": RANGES_AXIAL}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
