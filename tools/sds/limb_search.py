@@ -4,7 +4,7 @@
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
-                                [--ranges default|narrow|apical|apical_abs|stiff|produce|axial]
+                                [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]]
 
@@ -116,6 +116,10 @@ RANGES_AXIAL = {
     "surface_multiplier": (1.0, 3.0, True),
     "viscosity": (0.5, 2.0, True),
 }
+# --ranges axial_behind: the same, and only the zone's cells nearer base's
+# sources than Kb grow (`base > Kb * volume`): the zone behind the tip, so
+# that its half ahead of the tip does not carry the front past it.
+RANGES_AXIAL_BEHIND = dict(RANGES_AXIAL, Kb=(0.02, 0.2, True))
 
 
 def draw(rng, ranges):
@@ -160,6 +164,9 @@ def model_text(p, jitter_seed=None):
                    "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
                       % (p["tip_abs"], p["Dtip"]), 1)
+        if "Kb" in p:
+            s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume", "rule r2: tip == 0 && phi > K * volume && "
+                       "base > %.6g * volume" % p["Kb"], s)
     if p.get("tip_R", 1.0) > 1.0:
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
                       % p["tip_R"], 1)
@@ -217,13 +224,15 @@ def main():
     ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
-    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial"], default="default",
+    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial",
+                                                   "axial_behind"], default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
                     "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
                     "surface multiplier to 30; produce: default with the tip a source of P per unit time; axial: the zone "
                     "divides along the limb, away from a morphogen held full outside it, the tip grown to an "
-                    "absolute radius")
+                    "absolute radius; axial_behind: axial, only the zone behind the tip "
+                    "growing (base > Kb volume)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -242,7 +251,7 @@ def main():
         rng = np.random.default_rng(a.seed)
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
                   "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE,
-                  "axial": RANGES_AXIAL}[a.ranges]
+                  "axial": RANGES_AXIAL, "axial_behind": RANGES_AXIAL_BEHIND}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
