@@ -260,7 +260,7 @@ static sessile_status rock_run(sessile_gpu *g, const embedded_text *m, double t_
 /* Each variant's median and minimum wall over the repeats, its paper's speed
  * at both, and the median of the ratios measured in the same repeat: the
  * machine is shared, so one run's wall is one draw of its noise. */
-static void rock_summary(const double wall[][ROCK_RUNS], unsigned reps, int nvar, const double *t_reached, FILE *out) {
+static void rock_summary(double wall[][ROCK_RUNS], unsigned reps, int nvar, const double *t_reached, FILE *out) {
   static const char *name[ROCK_RUNS] = {"the host-driven loop", "the loop on the device",
                                         "the host-driven loop with mass scaling"};
   double v[SESSILE_SDS_BENCH_REPEAT_MAX];
@@ -286,7 +286,7 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, double mass_
   SESSILE_CHECK(repeats >= 1 && repeats <= SESSILE_SDS_BENCH_REPEAT_MAX, SESSILE_ERR_USAGE,
                 "bench sds: repeats must be 1..%d (got %u)", SESSILE_SDS_BENCH_REPEAT_MAX, repeats);
   double wall[SESSILE_SDS_BENCH_REPEAT_MAX][ROCK_RUNS];
-  sessile_sds_run_stats rs[ROCK_RUNS], first[ROCK_RUNS];
+  sessile_sds_run_stats rs[ROCK_RUNS] = {0}, first[ROCK_RUNS]; /* rs[2] unused without mass scaling */
   int nvar = mass_dt > 0 ? 3 : 2, same = 1;
   for (unsigned rep = 0; rep < repeats; rep++) {
     if (repeats > 1) fprintf(out, "repeat %u of %u\n", rep + 1, repeats);
@@ -311,7 +311,7 @@ sessile_status sessile_sds_bench_rock(sessile_gpu *g, double t_end, double mass_
   if (repeats > 1) {
     double t_reached[ROCK_RUNS];
     for (int k = 0; k < nvar; k++) t_reached[k] = first[k].time;
-    rock_summary((const double(*)[ROCK_RUNS])wall, repeats, nvar, t_reached, out);
+    rock_summary(wall, repeats, nvar, t_reached, out);
     /* the runs are deterministic: a repeat that took other steps is a bug, not noise */
     fprintf(out, "  %s\n", same ? "every repeat took the same steps to the same cells"
                                 : "THE REPEATS' STEPS OR CELLS DIFFER");
