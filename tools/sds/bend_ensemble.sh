@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Figure 8 (the box bends the limbs) over realisations of the start (issue
-# 33, docs/sds.md "Figure 8 over realisations"): one run of the boxed model
+# 33, docs/sds_figures.md "Figure 8 over realisations"): one run of the boxed model
 # and one of the same model without its box cannot separate the box's
 # bending from the limbs' own curling (50-100 degrees in every run), so this
 # runs six_limbs_box.sds with start_jitter J for seeds 1..N, boxed and

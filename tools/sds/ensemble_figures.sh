@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Figures 9 and 12's criteria over an ensemble of rock runs (issue 33,
-# docs/sds.md "The Figure 9 ensemble re-measured"): for each run s1..sN of
+# docs/sds_figures.md "The Figure 9 ensemble re-measured"): for each run s1..sN of
 # the folder rock_ensemble.sh made, `figures.py` measures the stripes per
 # limb at the time given, the R^2 of a line through cells against time from
 # t = 100 to 400, and the six limbs' first divisions (the spread of each

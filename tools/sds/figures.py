@@ -34,7 +34,7 @@
 
 Each prints a small table, then one JSON line (the last line) with the
 metrics and the acceptance criteria of issue 33.  The definitions and the
-reasons for them are in docs/sds.md, "Figures as measured outcomes".  Reads
+reasons for them are in docs/sds_figures.md.  Reads
 sessile's frames: sds/frame_NNNN.vtu (every cell, its `surface` flag and
 fields) and, without a VTU, sds/frame_NNNN.ply (the surface alone: no
 interior counts)."""
@@ -153,7 +153,7 @@ def diameter(p):
 
 
 def limb_profile(c, axis, origin, r0, h=None):
-    """Figure 7's metrics of one frame (docs/sds.md, "Figures as measured outcomes")."""
+    """Figure 7's metrics of one frame (docs/sds_figures.md)."""
     keep = c["used"]
     x, surf, rad = c["x"][keep], c["surface"][keep], c["radius"][keep]
     tips = np.flatnonzero(c["tip"][keep] >= 0.5)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The paper's Figures 7-12 as measured outcomes (issue 33; docs/sds.md,
-# "Figures as measured outcomes"): runs the shipped models and the
+# The paper's Figures 7-12 as measured outcomes (issue 33;
+# docs/sds_figures.md): runs the shipped models and the
 # references their criteria compare against, two at a time, then measures
 # each with tools/sds/figures.py and prints one line per criterion.
 #
