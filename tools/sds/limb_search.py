@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """A random search of the limb model's constants for Figure 7's three criteria
-(issue 33; docs/sds.md, "Figures as measured outcomes").
+(issue 33; docs/sds_figures.md).
 
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
-                                [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind]
+                                [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind|
+                                          axial_inhibit]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]]
 
@@ -120,6 +121,13 @@ RANGES_AXIAL = {
 # sources than Kb grow (`base > Kb * volume`): the zone behind the tip, so
 # that its half ahead of the tip does not carry the front past it.
 RANGES_AXIAL_BEHIND = dict(RANGES_AXIAL, Kb=(0.02, 0.2, True))
+# --ranges axial_inhibit (2026-12-01, twenty-third session): axial, with a
+# negative feedback on the zone's size: every growing cell makes an inhibitor
+# `inh` (inh_P x its volume per unit time) that raises the zone's threshold
+# (`phi > (K + inh_A inh / volume) volume`), so that a zone holding more cells
+# narrows to the cells nearest the tip instead of swelling into a bulb.
+RANGES_AXIAL_INHIBIT = dict(RANGES_AXIAL, inh_P=(0.01, 0.2, True), inh_A=(0.3, 3.0, True),
+                            inh_diffusion=(0.1, 1.0, True), inh_decay=(0.1, 1.0, True))
 
 
 def draw(rng, ranges):
@@ -164,6 +172,12 @@ def model_text(p, jitter_seed=None):
                    "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
                       % (p["tip_abs"], p["Dtip"]), 1)
+        if "inh_P" in p:
+            s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen inh diffusion=%.6g decay=%.6g" %
+                       (p["inh_diffusion"], p["inh_decay"]), s)
+            s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume -> grow Delta.*$",
+                       "rule r2: tip == 0 && phi > (K + %.6g * inh / volume) * volume -> grow Delta; "
+                       "produce inh %.6g * volume" % (p["inh_A"], p["inh_P"]), s)
         if "Kb" in p:
             s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume", "rule r2: tip == 0 && phi > K * volume && "
                        "base > %.6g * volume" % p["Kb"], s)
@@ -225,14 +239,15 @@ def main():
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
     ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial",
-                                                   "axial_behind"], default="default",
+                                                   "axial_behind", "axial_inhibit"], default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
                     "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
                     "surface multiplier to 30; produce: default with the tip a source of P per unit time; axial: the zone "
                     "divides along the limb, away from a morphogen held full outside it, the tip grown to an "
                     "absolute radius; axial_behind: axial, only the zone behind the tip "
-                    "growing (base > Kb volume)")
+                    "growing (base > Kb volume); axial_inhibit: axial, the growing cells making an "
+                    "inhibitor that raises the zone's threshold")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -251,7 +266,8 @@ def main():
         rng = np.random.default_rng(a.seed)
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
                   "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE,
-                  "axial": RANGES_AXIAL, "axial_behind": RANGES_AXIAL_BEHIND}[a.ranges]
+                  "axial": RANGES_AXIAL, "axial_behind": RANGES_AXIAL_BEHIND,
+                  "axial_inhibit": RANGES_AXIAL_INHIBIT}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
