@@ -5,7 +5,7 @@
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
                                 [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind|
-                                          axial_inhibit]
+                                          axial_inhibit|axial_inhibit_behind]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]]
 
@@ -128,6 +128,9 @@ RANGES_AXIAL_BEHIND = dict(RANGES_AXIAL, Kb=(0.02, 0.2, True))
 # narrows to the cells nearest the tip instead of swelling into a bulb.
 RANGES_AXIAL_INHIBIT = dict(RANGES_AXIAL, inh_P=(0.01, 0.2, True), inh_A=(0.3, 3.0, True),
                             inh_diffusion=(0.1, 1.0, True), inh_decay=(0.1, 1.0, True))
+# --ranges axial_inhibit_behind: both, the zone behind the tip (Kb) and the
+# inhibitor.
+RANGES_AXIAL_INHIBIT_BEHIND = dict(RANGES_AXIAL_INHIBIT, Kb=(0.02, 0.2, True))
 
 
 def draw(rng, ranges):
@@ -172,15 +175,15 @@ def model_text(p, jitter_seed=None):
                    "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
                       % (p["tip_abs"], p["Dtip"]), 1)
-        if "inh_P" in p:
-            s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen inh diffusion=%.6g decay=%.6g" %
-                       (p["inh_diffusion"], p["inh_decay"]), s)
-            s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume -> grow Delta.*$",
-                       "rule r2: tip == 0 && phi > (K + %.6g * inh / volume) * volume -> grow Delta; "
-                       "produce inh %.6g * volume" % (p["inh_A"], p["inh_P"]), s)
         if "Kb" in p:
             s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume", "rule r2: tip == 0 && phi > K * volume && "
                        "base > %.6g * volume" % p["Kb"], s)
+        if "inh_P" in p:
+            s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen inh diffusion=%.6g decay=%.6g" %
+                       (p["inh_diffusion"], p["inh_decay"]), s)
+            s = re.sub(r"(?m)^rule r2: tip == 0 && phi > K \* volume(.*?) -> grow Delta.*$",
+                       r"rule r2: tip == 0 && phi > (K + %.6g * inh / volume) * volume\1 -> grow Delta; "
+                       "produce inh %.6g * volume" % (p["inh_A"], p["inh_P"]), s)
     if p.get("tip_R", 1.0) > 1.0:
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g * birth_radius -> grow Delta\nrule r1:"
                       % p["tip_R"], 1)
@@ -239,7 +242,8 @@ def main():
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
     ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial",
-                                                   "axial_behind", "axial_inhibit"], default="default",
+                                                   "axial_behind", "axial_inhibit",
+                                                   "axial_inhibit_behind"], default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
                     "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
@@ -247,7 +251,7 @@ def main():
                     "divides along the limb, away from a morphogen held full outside it, the tip grown to an "
                     "absolute radius; axial_behind: axial, only the zone behind the tip "
                     "growing (base > Kb volume); axial_inhibit: axial, the growing cells making an "
-                    "inhibitor that raises the zone's threshold")
+                    "inhibitor that raises the zone's threshold; axial_inhibit_behind: both")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -267,7 +271,7 @@ def main():
         ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
                   "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE,
                   "axial": RANGES_AXIAL, "axial_behind": RANGES_AXIAL_BEHIND,
-                  "axial_inhibit": RANGES_AXIAL_INHIBIT}[a.ranges]
+                  "axial_inhibit": RANGES_AXIAL_INHIBIT, "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND}[a.ranges]
         work = [(draw(rng, ranges), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
