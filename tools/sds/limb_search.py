@@ -131,6 +131,11 @@ RANGES_AXIAL_INHIBIT = dict(RANGES_AXIAL, inh_P=(0.01, 0.2, True), inh_A=(0.3, 3
 # --ranges axial_inhibit_behind: both, the zone behind the tip (Kb) and the
 # inhibitor.
 RANGES_AXIAL_INHIBIT_BEHIND = dict(RANGES_AXIAL_INHIBIT, Kb=(0.02, 0.2, True))
+# --ranges NAME: its table
+RANGE_SETS = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL, "apical_abs": RANGES_APICAL_ABS,
+              "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE, "axial": RANGES_AXIAL,
+              "axial_behind": RANGES_AXIAL_BEHIND, "axial_inhibit": RANGES_AXIAL_INHIBIT,
+              "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND}
 
 
 def draw(rng, ranges):
@@ -241,9 +246,7 @@ def main():
     ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
-    ap.add_argument("--ranges", choices=["default", "narrow", "apical", "apical_abs", "stiff", "produce", "axial",
-                                                   "axial_behind", "axial_inhibit",
-                                                   "axial_inhibit_behind"], default="default",
+    ap.add_argument("--ranges", choices=list(RANGE_SETS), default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
                     "the tip divides at an absolute radius; stiff: default with the volume and edge stiffness and a "
@@ -268,11 +271,7 @@ def main():
                   for k, v in centre.items()}, None) for _ in range(a.runs)]
     else:
         rng = np.random.default_rng(a.seed)
-        ranges = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL,
-                  "apical_abs": RANGES_APICAL_ABS, "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE,
-                  "axial": RANGES_AXIAL, "axial_behind": RANGES_AXIAL_BEHIND,
-                  "axial_inhibit": RANGES_AXIAL_INHIBIT, "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND}[a.ranges]
-        work = [(draw(rng, ranges), None) for _ in range(a.runs)]
+        work = [(draw(rng, RANGE_SETS[a.ranges]), None) for _ in range(a.runs)]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
     # a search appending to an earlier one numbers its points after it, so
