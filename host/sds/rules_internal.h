@@ -47,6 +47,7 @@ struct sessile_sds_model {
   char mname[SDS_MAX_MORPH][SESSILE_SDS_NAME];
   double diffusion[SDS_MAX_MORPH], decay[SDS_MAX_MORPH], mstart[SDS_MAX_MORPH];
   int capped[SDS_MAX_MORPH], timer[SDS_MAX_MORPH];
+  int axis; /* 1 + the morphogen declared axis=1 (its gradient the tissue's axis), 0 none */
   char sname[SDS_MAX_STATE][SESSILE_SDS_NAME];
   double sstart[SDS_MAX_STATE];
   char cname[SDS_MAX_CONST][SESSILE_SDS_NAME];

@@ -163,7 +163,7 @@ static sessile_status morph_line(cur *c, int timer) {
   int seen_d = 0, seen_c = 0;
   while (!at_end(c)) {
     int kc = c->p;
-    if (!ident(c, key)) return fail(c, kc, "expected key=value (diffusion, decay, start%s)", timer ? "" : ", capped");
+    if (!ident(c, key)) return fail(c, kc, "expected key=value (diffusion, decay, start%s)", timer ? "" : ", capped, axis");
     if (!lit(c, "=")) return fail(c, c->p, "expected '=' after '%s'", key);
     double v;
     int vc = (ws(c), c->p);
@@ -180,9 +180,14 @@ static sessile_status morph_line(cur *c, int timer) {
     } else if (!strcmp(key, "capped") && !timer) {
       if (v != 0 && v != 1) return fail(c, vc, "capped is 0 or 1 (got %g)", v);
       m->capped[k] = (int)v;
+    } else if (!strcmp(key, "axis") && !timer) {
+      if (v != 0 && v != 1) return fail(c, vc, "axis is 0 or 1 (got %g)", v);
+      if (v == 1 && m->axis && m->axis != k + 1)
+        return fail(c, kc, "morphogen '%s' is the axis already: one morphogen may be", m->mname[m->axis - 1]);
+      if (v == 1) m->axis = k + 1;
     } else {
       return fail(c, kc, "unknown key '%s' for a %s (%s)", key, timer ? "timer" : "morphogen",
-                  timer ? "decay, start" : "diffusion, decay, start, capped");
+                  timer ? "decay, start" : "diffusion, decay, start, capped, axis");
     }
   }
   if (!timer && !seen_d) return fail(c, col, "morphogen '%s' needs diffusion=", name);
@@ -441,6 +446,7 @@ void sessile_sds_model_destroy(sessile_sds_model *m) {
 }
 
 int sessile_sds_model_nmorph(const sessile_sds_model *m) { return m->nmorph; }
+int sessile_sds_model_axis(const sessile_sds_model *m) { return m->axis - 1; }
 int sessile_sds_model_nstate(const sessile_sds_model *m) { return m->nstate; }
 int sessile_sds_model_nrules(const sessile_sds_model *m) { return m->nrules; }
 const char *sessile_sds_model_morph_name(const sessile_sds_model *m, int k) { return m->mname[k]; }

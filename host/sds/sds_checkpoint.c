@@ -1,4 +1,5 @@
 /* The SDS loop's checkpoint (sds_checkpoint.h). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "sds/sds_checkpoint.h"
@@ -29,7 +30,7 @@ uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, co
 }
 
 /* The organism's sizes, then one section per array (name, where, bytes). */
-enum { NSEC = 20 };
+enum { NSEC = 21 };
 _Static_assert(NSEC + 4 == SDS_CKPT_NSECTIONS, "sds_checkpoint.h");
 typedef struct counts {
   uint64_t ncells, ntets, nedges, nfaces, nmorph, nstate;
@@ -45,7 +46,8 @@ static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *
       {"attract", o->attract, n * sizeof(int32_t)}, {"surface", o->surface, n},
       {"tet", o->tet, 4 * t * u},       {"tet_sm", o->tet_sm, t * d},
       {"tet_surface", o->tet_surface, t}, {"edge", o->edge, 2 * e * u},
-      {"edge_sm", o->edge_sm, e * d},   {"edge_surface", o->edge_surface, e},
+      {"edge_sm", o->edge_sm, e * d},   {"edge_k", o->edge_k, e * d},
+      {"edge_surface", o->edge_surface, e},
       {"face", o->face, 3 * f * u},     {"cell_edge_off", o->cell_edge_off, (n + 1) * u},
       {"cell_edge", o->cell_edge, 2 * e * u}, {"cell_tet_off", o->cell_tet_off, (n + 1) * u},
       {"cell_tet", o->cell_tet, 4 * t * u}, {NULL, NULL, 0}};
@@ -56,7 +58,8 @@ static void layout(const sessile_sds *o, const counts *c, sessile_ckpt_section *
                       (void **)&w->m,           (void **)&w->phi,         (void **)&w->state,
                       (void **)&w->attract,     (void **)&w->surface,     (void **)&w->tet,
                       (void **)&w->tet_sm,      (void **)&w->tet_surface, (void **)&w->edge,
-                      (void **)&w->edge_sm,     (void **)&w->edge_surface, (void **)&w->face,
+                      (void **)&w->edge_sm,     (void **)&w->edge_k,      (void **)&w->edge_surface,
+                      (void **)&w->face,
                       (void **)&w->cell_edge_off, (void **)&w->cell_edge, (void **)&w->cell_tet_off,
                       (void **)&w->cell_tet,    NULL};
     memcpy(dst, p, sizeof p);
@@ -109,12 +112,13 @@ sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t
   /* allocate the derived arrays (alloc leaves them empty) to read into */
   size_t nn = c.ncells, t = c.ntets, e = c.nedges, f = c.nfaces;
   o->surface = malloc(nn ? nn : 1), o->tet_surface = malloc(t), o->edge = malloc((2 * e + 1) * 4);
-  o->edge_sm = malloc((e + 1) * sizeof(double)), o->edge_surface = malloc(e + 1), o->face = malloc((3 * f + 1) * 4);
+  o->edge_sm = malloc((e + 1) * sizeof(double)), o->edge_k = malloc((e + 1) * sizeof(double));
+  o->edge_surface = malloc(e + 1), o->face = malloc((3 * f + 1) * 4);
   o->cell_edge_off = malloc((nn + 1) * 4), o->cell_edge = malloc((2 * e + 1) * 4);
   o->cell_tet_off = malloc((nn + 1) * 4), o->cell_tet = malloc(4 * t * 4);
   o->nedges = (uint32_t)e, o->nfaces = (uint32_t)f;
   sessile_status st = SESSILE_OK;
-  if (!o->surface || !o->tet_surface || !o->edge || !o->edge_sm || !o->edge_surface || !o->face ||
+  if (!o->surface || !o->tet_surface || !o->edge || !o->edge_sm || !o->edge_k || !o->edge_surface || !o->face ||
       !o->cell_edge_off || !o->cell_edge || !o->cell_tet_off || !o->cell_tet)
     st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for the checkpoint's %llu cells",
                            (unsigned long long)c.ncells);
@@ -131,6 +135,8 @@ sessile_status sds_ckpt_read(const sessile_ckpt *ck, uint64_t want_key, uint32_t
     if (o->edge[k] >= nn || o->cell_edge[k] >= e) st = damaged("edge");
   for (size_t k = 0; st == SESSILE_OK && k < 3 * f; k++)
     if (o->face[k] >= nn) st = damaged("face");
+  for (size_t k = 0; st == SESSILE_OK && k < e; k++)
+    if (!(o->edge_k[k] > 0 && o->edge_k[k] < INFINITY)) st = damaged("edge_k");
   for (size_t k = 0; st == SESSILE_OK && k <= nn; k++)
     if (o->cell_edge_off[k] > 2 * e || o->cell_tet_off[k] > 4 * t || (k && (o->cell_edge_off[k] < o->cell_edge_off[k - 1] ||
                                                                             o->cell_tet_off[k] < o->cell_tet_off[k - 1])))

@@ -27,7 +27,7 @@ typedef struct sds_ckpt_loop {
   uint64_t nsliver;              /* entries of the repairs' backoff table (3 words each: sds_inversions.c, repair) */
 } sds_ckpt_loop;
 
-#define SDS_CKPT_VERSION 6u /* 6: frames do not cut steps, their times kept (5: the step control keeps no counter) */
+#define SDS_CKPT_VERSION 7u /* 7: the springs' edge_k; 6: frames do not cut steps, their times kept; 5: the step control keeps no counter */
 
 /* A 64-bit FNV-1a over the model text and the options that shape the
  * outputs (seed, t_end, frames, cell limit). */
@@ -42,7 +42,7 @@ uint64_t sds_ckpt_key_params(uint64_t key, const sessile_sds_run_params *own, co
  * the organism's arrays, counts (kept in counts_store), the loop's
  * scalars, the deferred divisions, the repairs' backoff and the times of
  * the l->frame frames written ("frame_times").  Returns how many. */
-#define SDS_CKPT_NSECTIONS 24
+#define SDS_CKPT_NSECTIONS 25
 int sds_ckpt_sections(const sessile_sds *o, const sds_ckpt_loop *l, const double *retry_at, const uint64_t *sliver,
                       const double *frame_times, uint64_t counts_store[6], sessile_ckpt_section *s);
 

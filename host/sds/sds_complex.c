@@ -10,7 +10,7 @@
 #define FREE0(p) (free(p), (p) = NULL)
 
 static void free_derived(sessile_sds *o) {
-  FREE0(o->surface), FREE0(o->tet_surface), FREE0(o->edge), FREE0(o->edge_sm);
+  FREE0(o->surface), FREE0(o->tet_surface), FREE0(o->edge), FREE0(o->edge_sm), FREE0(o->edge_k);
   FREE0(o->edge_surface), FREE0(o->face), FREE0(o->cell_edge_off), FREE0(o->cell_edge);
   FREE0(o->cell_tet_off), FREE0(o->cell_tet);
   o->nedges = o->nfaces = 0;
@@ -95,6 +95,8 @@ sessile_status sessile_sds_copy(const sessile_sds *s, sessile_sds *d) {
   d->tet_surface = dup(s->tet_surface, t, &ok);
   d->edge = dup(s->edge, 2 * E * sizeof(uint32_t), &ok);
   d->edge_sm = dup(s->edge_sm, E * sizeof(double), &ok);
+  d->edge_k = dup(s->edge_k, E * sizeof(double), &ok);
+  d->edge_k_defer = s->edge_k_defer;
   d->edge_surface = dup(s->edge_surface, E, &ok);
   d->face = dup(s->face, 3 * F * sizeof(uint32_t), &ok);
   d->cell_edge_off = dup(s->cell_edge_off, (n + 1) * sizeof(uint32_t), &ok);
@@ -162,7 +164,7 @@ static sessile_status orient(sessile_sds *o) {
   return SESSILE_OK;
 }
 
-/* Unique sorted edges of the tets; keeps s_m of edges in the old list. */
+/* Unique sorted edges of the tets; keeps s_m and k of edges in the old list. */
 static sessile_status build_edges(sessile_sds *o, sessile_sds_new_sm new_sm) {
   static const int pair[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   size_t nk = 6 * (size_t)o->ntets;
@@ -186,15 +188,16 @@ static sessile_status build_edges(sessile_sds *o, sessile_sds_new_sm new_sm) {
     if (i == 0 || key[i] != key[i - 1]) key[ne++] = key[i];
   free(tmp);
   uint32_t *edge = malloc((ne ? 2 * ne : 1) * sizeof *edge);
-  double *sm = malloc((ne ? ne : 1) * sizeof *sm);
-  if (!edge || !sm) {
-    free(key), free(edge), free(sm);
+  double *sm = malloc((ne ? ne : 1) * sizeof *sm), *kk = malloc((ne ? ne : 1) * sizeof *kk);
+  if (!edge || !sm || !kk) {
+    free(key), free(edge), free(sm), free(kk);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of memory for %zu edges", ne);
   }
   for (size_t e = 0; e < ne; e++) {
     uint32_t a = (uint32_t)(key[e] >> 32), b = (uint32_t)key[e];
     edge[2 * e] = a, edge[2 * e + 1] = b;
     int64_t old = o->edge ? edge_find(o->edge, o->nedges, a, b) : -1;
+    kk[e] = old >= 0 && o->edge_k ? o->edge_k[old] : (o->edge_k_defer ? 0.0 : 1.0);
     if (old >= 0) sm[e] = o->edge_sm[old];
     else if (new_sm == SESSILE_SDS_NEW_RELAXED) {
       double d[3];
@@ -203,8 +206,8 @@ static sessile_status build_edges(sessile_sds *o, sessile_sds_new_sm new_sm) {
     } else sm[e] = 1.0;
   }
   free(key);
-  free(o->edge), free(o->edge_sm);
-  o->edge = edge, o->edge_sm = sm, o->nedges = (uint32_t)ne;
+  free(o->edge), free(o->edge_sm), free(o->edge_k);
+  o->edge = edge, o->edge_sm = sm, o->edge_k = kk, o->nedges = (uint32_t)ne;
   return SESSILE_OK;
 }
 

@@ -202,7 +202,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(sds_gpu_ensure(s, B_RM, 2 * n * rb));
   SESSILE_CALL(sds_gpu_ensure(s, B_ATTRACT, n * 4));
   SESSILE_CALL(sds_gpu_ensure(s, B_TOPO, ntopo * 4));
-  SESSILE_CALL(sds_gpu_ensure(s, B_SM, (T + E) * rb));
+  SESSILE_CALL(sds_gpu_ensure(s, B_SM, (T + 2 * E) * rb)); /* tet_sm, edge_sm, edge_k */
   SESSILE_CALL(sds_gpu_ensure(s, B_ELF, (20 * T + 4 * E) * rb)); /* forces, then the stable bound's terms */
   SESSILE_CALL(sds_gpu_ensure(s, B_F, 3 * n * rb));
   SESSILE_CALL(sds_gpu_ensure(s, B_MOVE, 2 * n * rb));
@@ -226,7 +226,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   uint32_t tsize = sds_table_size((uint32_t)F);
   SESSILE_CALL(sds_gpu_ensure(s, B_HASH, (4 * (size_t)tsize + 1 + F + 1) * 4)); /* kernels.def, "The surface hash" */
   SESSILE_CALL(sds_gpu_ensure(s, B_FSPH, 4 * F * rb));
-  size_t nh = 2 * n > T + E ? 2 * n : T + E;
+  size_t nh = 2 * n > T + 2 * E ? 2 * n : T + 2 * E;
   double *h = malloc((nh ? nh : 1) * sizeof *h);
   uint32_t *topo = malloc(ntopo * 4);
   if (!h || !topo) {
@@ -237,7 +237,11 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   sessile_status st = sessile_buffer_upload_reals(s->b[B_RM], 0, h, 2 * n);
   if (T) memcpy(h, o->tet_sm, T * sizeof *h);
   if (E) memcpy(h + T, o->edge_sm, E * sizeof *h);
-  if (st == SESSILE_OK && T + E) st = sessile_buffer_upload_reals(s->b[B_SM], 0, h, T + E);
+  for (size_t e = 0; e < E; e++) h[T + E + e] = o->edge_k ? o->edge_k[e] : 1.0;
+  for (size_t e = 0; st == SESSILE_OK && e < E; e++)
+    if (!(h[T + E + e] > 0 && h[T + E + e] < INFINITY))
+      st = sessile_error_set(SESSILE_ERR_USAGE, "sds: spring %zu has no stiffness multiplier (edge_k %g)", e, h[T + E + e]);
+  if (st == SESSILE_OK && T + E) st = sessile_buffer_upload_reals(s->b[B_SM], 0, h, T + 2 * E);
   uint32_t *q = topo;
   if (T) memcpy(q, o->tet, 4 * T * 4);
   q += 4 * T;

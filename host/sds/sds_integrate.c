@@ -82,7 +82,7 @@ static double stable_cells(const sessile_sds *o, const sessile_sds_params *p, do
   for (uint32_t e = 0; e < o->nedges; e++) {
     const uint32_t *q = o->edge + 2 * (size_t)e;
     double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);
-    double ks = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0);
+    double ks = p->k_edge * sds_edge_mult(o, p, e);
     double K = p->uniform_stiffness ? ks / (R * R) : ks * (o->m[q[0]] + o->m[q[1]]) / R; /* s_k / R'^2 */
     lam[2 * q[0]] += 2 * K, lam[2 * q[1]] += 2 * K;
   }

@@ -32,6 +32,11 @@ static inline double sds_vol4(const double *p0, const double *p1, const double *
  * per tet k (sum r / 2) (sum m / 2), times surface_mult on surface elements;
  * 1 for both with p->uniform_stiffness (the paper's uniform springs). */
 double sds_edge_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t e);
+/* The stiffness multiplier of edge e's spring by where it lies: on the
+ * surface surface_mult times its own edge_k (1 where there is none), else 1. */
+static inline double sds_edge_mult(const sessile_sds *o, const sessile_sds_params *p, uint32_t e) {
+  return o->edge_surface[e] ? p->surface_mult * (o->edge_k ? o->edge_k[e] : 1.0) : 1.0;
+}
 double sds_tet_scale(const sessile_sds *o, const sessile_sds_params *p, uint32_t t);
 
 /* The stable bound's adhesion term times a cell's radius: its slope 2 A /

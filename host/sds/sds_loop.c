@@ -77,6 +77,7 @@ static sessile_status setup(sds_gen_state *g, const sessile_sds_run_params *para
   s->birth_state = sessile_sds_model_state_index(s->model, "birth_radius");
   if (sessile_run_checkpoint_loaded(g->su->run)) return SESSILE_OK;
   SESSILE_CALL(sds_import_organism(s, where, level, radius));
+  s->o.edge_k_defer = s->prm.axial_stiffness != 1; /* the springs of the start are isotropic */
   for (uint32_t c = 0; c < s->o.ncells; c++) {
     for (int k = 0; k < nm; k++) s->o.phi[(size_t)c * nm + k] = sessile_sds_model_morph_start(s->model, k);
     for (int k = 0; k < ns; k++) s->o.state[(size_t)c * ns + k] = sessile_sds_model_state_start(s->model, k);
@@ -86,6 +87,7 @@ static sessile_status setup(sds_gen_state *g, const sessile_sds_run_params *para
   SESSILE_CALL(sds_mark_tips(s, where));
   SESSILE_CALL(sds_neighbours(s));
   if (s->prm.tips_below && s->tip_state >= 0) SESSILE_CALL(sds_cells_below_tips(s));
+  SESSILE_CALL(sds_axial_assign(s));
   sds_measure_start(s);
   s->dt = s->p.dt;
   return sds_gpu_create(g);
@@ -267,6 +269,7 @@ sessile_status sds_gen_restore(sds_gen_state *g, const sessile_ckpt *ck) {
   SESSILE_CALL(restore(s, ck));
   SESSILE_CHECK(s->frame == sessile_ckpt_iteration(ck) + 1, SESSILE_ERR_IO,
                 "the checkpoint's loop section does not fit this run (damaged?)");
+  s->o.edge_k_defer = s->prm.axial_stiffness != 1;
   SESSILE_CALL(sds_neighbours(s));
   return sds_gpu_create(g);
 }

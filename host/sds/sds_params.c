@@ -43,6 +43,9 @@ static const sessile_param_desc descs[] = {
      "true: every spring's stiffness is k_edge, k_vol itself (energies, m u^2/s^2), the paper's; false: the prototype's scaling", NULL},
     {"surface_multiplier", SESSILE_PT_REAL, OFF(surface_multiplier), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "",
      "prototype", "stiffness of surface springs over internal ones (paper 3.2)", NULL},
+    {"axial_stiffness", SESSILE_PT_REAL, OFF(axial_stiffness), 1, 0, INFINITY, OPEN_BOTH, "", "ours",
+     "a surface spring born at angle a to the gradient of the morphogen declared axis=1 takes 1 + (this - 1) cos^2 a "
+     "x its stiffness (1: isotropic; docs/sds.md, \"Axial stiffness\")", NULL},
     {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
      "the tets' damping on dV/dt (paper 3.2; the prototype's kDamp)", NULL},
     {"viscosity", SESSILE_PT_REAL, OFF(viscosity), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",

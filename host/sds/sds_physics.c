@@ -84,7 +84,7 @@ void sessile_sds_energy_of(const sessile_sds *o, const sessile_sds_params *p, se
     double d[3];
     sds_sub(o->x + 3 * (size_t)q[0], o->x + 3 * (size_t)q[1], d);
     double R = o->edge_sm[k] * (o->r[q[0]] + o->r[q[1]]), s = (sqrt(sds_dot(d, d)) - R) / R;
-    double kk = p->k_edge * (o->edge_surface[k] ? p->surface_mult : 1.0) * sds_edge_scale(o, p, k);
+    double kk = p->k_edge * sds_edge_mult(o, p, k) * sds_edge_scale(o, p, k);
     e->edge += 0.5 * kk * s * s;
   }
   for (uint32_t t = 0; t < o->ntets; t++) {
@@ -117,7 +117,7 @@ static void edge_force(const sessile_sds *o, const sessile_sds_params *p, uint32
   sds_sub(o->x + 3 * (size_t)q[0], o->x + 3 * (size_t)q[1], d);
   double L = sqrt(sds_dot(d, d));
   double R = o->edge_sm[e] * (o->r[q[0]] + o->r[q[1]]);
-  double kk = p->k_edge * (o->edge_surface[e] ? p->surface_mult : 1.0) * sds_edge_scale(o, p, e);
+  double kk = p->k_edge * sds_edge_mult(o, p, e) * sds_edge_scale(o, p, e);
   double g = kk * (L - R) / (R * R) / L; /* dE/dx_b = g d */
   double sg = which ? -g : g;
   for (int i = 0; i < 3; i++) f[i] = sg * d[i];

@@ -36,6 +36,7 @@ sessile_morph_cells sds_cells_of(const sds_sim *s) {
 sessile_status sds_refresh(sds_sim *s) {
   if (!s->topo_changed) return sessile_sds_gpu_update_radii(s->pg, &s->o);
   SESSILE_CALL(sds_neighbours(s));
+  SESSILE_CALL(sds_axial_assign(s));
   SESSILE_CALL(sessile_sds_gpu_upload(s->pg, &s->o));
   s->topo_changed = 0;
   return SESSILE_OK;

@@ -143,6 +143,9 @@ sessile_status sds_check_model(sds_sim *s, const char *where, const sessile_sds_
   } else
     SESSILE_CALL(sessile_sds_run_params_of_model(s->text, where, &s->prm));
   SESSILE_CALL(read_physics(s, where));
+  SESSILE_CHECK(s->prm.axial_stiffness == 1 || sessile_sds_model_axis(s->model) >= 0, SESSILE_ERR_USAGE,
+                "%s: axial_stiffness %g needs a morphogen declared axis=1 (its gradient is the axis)", where,
+                s->prm.axial_stiffness);
   *level = s->prm.sphere_subdivisions + 1;
   *radius = s->prm.sphere_radius;
   double t_end = sds_param1(s->model, "t_end", 100), frames = sds_param1(s->model, "frames", 20);

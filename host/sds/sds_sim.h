@@ -82,6 +82,14 @@ void sds_measure_start(sds_sim *s);
 sessile_status sds_neighbours(sds_sim *s);
 sessile_morph_cells sds_cells_of(const sds_sim *s);
 sessile_status sds_refresh(sds_sim *s);
+/* sds_axial.c: a spring's stiffness multiplier on the surface at birth,
+ * 1 + (q - 1) cos^2 of the angle between d and g (1 where either is 0); the
+ * springs of o born since the last call (edge_k 0) given theirs, g the sum
+ * of morphogen k's gradients at their two cells; and that for the loop (the
+ * model's axis morphogen and axial_stiffness, the neighbour lists current). */
+double sds_axial_k(double q, const double *d, const double *g);
+void sds_axial_springs(sessile_sds *o, const sessile_morph_cells *cells, int k, double q);
+sessile_status sds_axial_assign(sds_sim *s);
 sessile_status sds_rules(sds_sim *s, double dt);
 sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n);
 

@@ -1,8 +1,8 @@
 // One edge per invocation: the force of the scale-free edge spring
 // E = k/2 ((L - R')/R')^2, R' = s_m (r_a + r_b), k = k_edge R' (m_a + m_b)
 // (k = k_edge alone with uniform stiffness, sp[SP_UNIFORM] = 1: the paper's
-// "same stiffnesses throughout"), times the surface multiplier on surface
-// edges, on its second cell b
+// "same stiffnesses throughout"), times the surface multiplier and the
+// spring's own edge_k on surface edges, on its second cell b
 // (cell a gets the opposite); in mode 2 also the edge's term of the stable
 // bound (stable.glsl).  Mirrors edge_force in host/sds/sds_physics.c.
 #include "sds_common.glsl"
@@ -16,13 +16,14 @@ void edge_force_at(uint e) {
   REAL L = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
   REAL R = esm * (R_OF(a) + R_OF(b));
   bool uni = sp[SP_UNIFORM] != REAL(0);
-  REAL kk = sp[SP_K_EDGE] * (LD_TOPO(o_esurf() + e) != 0u ? sp[SP_SURF] : REAL(1)) * (uni ? REAL(1) : esm * (R_OF(a) + R_OF(b)) * (M_OF(a) + M_OF(b)));
+  REAL mult = LD_TOPO(o_esurf() + e) != 0u ? sp[SP_SURF] * LD_SM(pc.ntets + pc.nedges + e) : REAL(1);
+  REAL kk = sp[SP_K_EDGE] * mult * (uni ? REAL(1) : esm * (R_OF(a) + R_OF(b)) * (M_OF(a) + M_OF(b)));
   REAL g = kk * (L - R) / (R * R) / L;
   elf[12u * pc.ntets + 3u * e] = -g * d0;
   elf[12u * pc.ntets + 3u * e + 1u] = -g * d1;
   elf[12u * pc.ntets + 3u * e + 2u] = -g * d2;
   if (pc.mode == 2u) { // the stable bound's term of both cells, 2 K_e, K_e = s_k / R'^2 (sessile_sds_stable_dt's order)
-    precise REAL ks = sp[SP_K_EDGE] * (LD_TOPO(o_esurf() + e) != 0u ? sp[SP_SURF] : REAL(1));
+    precise REAL ks = sp[SP_K_EDGE] * mult;
     precise REAL K = uni ? ks / (R * R) : ks * (M_OF(a) + M_OF(b)) / R;
     elf[20u * pc.ntets + 3u * pc.nedges + e] = REAL(2) * K;
   }

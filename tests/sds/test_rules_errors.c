@@ -49,6 +49,10 @@ int main(void) {
   bad("morphogen psi decay=0\n", "3:11", "needs diffusion=");
   bad("morphogen psi diffusion=0.1 decay=0 speed=3\n", "3:37", "unknown key 'speed'");
   bad("timer clock diffusion=1 decay=0.1\n", "3:13", "unknown key 'diffusion'");
+  bad("timer clock decay=0.1 axis=1\n", "3:23", "unknown key 'axis'");
+  bad("morphogen psi diffusion=0.1 decay=0 axis=2\n", "3:42", "axis is 0 or 1");
+  bad("morphogen psi diffusion=0.1 decay=0 axis=1\nmorphogen chi diffusion=0.1 decay=0 axis=1\n", "4:37",
+      "morphogen 'psi' is the axis already");
   bad("state radius\n", "3:7", "reserved word");
   bad("const K\n", "3:8", "expected '='");
   bad("tip 1 0\n", "3:8", "expected a direction");
@@ -73,6 +77,18 @@ int main(void) {
                                  "good.sds", &m) == SESSILE_OK &&
              !strcmp(sessile_sds_model_param_find(m, "rock")->text, "boulder.ply") &&
              sessile_sds_model_morph_start(m, 1) == 2 && sessile_sds_model_state_start(m, 0) == 1);
+  sessile_sds_model_destroy(m);
+  m = NULL;
+  t_true("good: the axis morphogen (axis=1) is found, none is -1",
+         sessile_sds_model_parse("morphogen phi diffusion=0.1 decay=0\nmorphogen base diffusion=0.1 decay=1 axis=1\n"
+                                 "rule a: 1 -> grow 1\n", "good.sds", &m) == SESSILE_OK &&
+             sessile_sds_model_axis(m) == 1);
+  sessile_sds_model_destroy(m);
+  m = NULL;
+  t_true("good: no axis",
+         sessile_sds_model_parse("morphogen phi diffusion=0.1 decay=0 axis=0\nrule a: 1 -> grow 1\n", "good.sds", &m) ==
+                 SESSILE_OK &&
+             sessile_sds_model_axis(m) == -1);
   sessile_sds_model_destroy(m);
   t_true("missing file: SESSILE_ERR_USAGE",
          sessile_sds_model_load("no-such-model.sds", &m) == SESSILE_ERR_USAGE && !m);

@@ -19,7 +19,11 @@
 #  - the interpreted rules (device_rules = bytecode) the same bytes too, and
 #    lavapipe on one thread or three (the fused kernels' last subgroup);
 #  - the fused kernels taken (bench sds --kernels names them);
-#  - refusals: a rule the device cannot run (exp), a bad value.
+#  - the axial stiffness (springs born along phi's gradient 0.3 x as stiff
+#    on the surface): the same bytes both loops, another run than without
+#    it, and a resume after SIGINT (the springs' edge_k in the checkpoint);
+#  - refusals: a rule the device cannot run (exp), a bad value, an axial
+#    stiffness without an axis morphogen.
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
@@ -104,17 +108,20 @@ run sds run rock --t-end 5 --frames 2 --out "$T/rock-n" --quiet --set device_loo
 check "rock, no fused kernels: the loop on the device completes" rc_is 0
 check "rock, no fused kernels: the same bytes, the same steps" same_run "$T/rock-h" "$T/rock-n"
 
-# stopped by SIGINT after frame 1, resumed
-"$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --quiet --set device_loop=true --out "$T/b" >"$T/out" 2>"$T/err" &
-pid=$!
-for _ in $(seq 1 3000); do [ -e "$T/b/sds/frame_0001.ply" ] && break; sleep 0.02; done
-kill -INT $pid 2>/dev/null
-{ wait $pid; } 2>/dev/null
-echo $? >"$T/rc"
-check "device loop, SIGINT after frame 1: exit 130 (or it finished first: 0)" eval 'rc_is 130 || rc_is 0'
-run sds run --resume "$T/b" --quiet
-check "... resumed: completes" rc_is 0
-check "... the bytes of the uninterrupted runs" same_run "$T/fast-h" "$T/b"
+# stopped by SIGINT after frame N, resumed: the bytes of the uninterrupted run
+interrupt_resume() { # label model dir frame reference
+  "$S" sds run "$2" --t-end 6 --frames 5 --quiet --set device_loop=true --out "$3" >"$T/out" 2>"$T/err" &
+  local pid=$!
+  for _ in $(seq 1 3000); do [ -e "$3/sds/frame_000$4.ply" ] && break; sleep 0.02; done
+  kill -INT $pid 2>/dev/null
+  { wait $pid; } 2>/dev/null
+  echo $? >"$T/rc"
+  check "$1, SIGINT after frame $4: exit 130 (or it finished first: 0)" eval 'rc_is 130 || rc_is 0'
+  run sds run --resume "$3" --quiet
+  check "... resumed: completes" rc_is 0
+  check "... the bytes of the uninterrupted runs" same_run "$5" "$3"
+}
+interrupt_resume "device loop" "$T/fast.sds" "$T/b" 1 "$T/fast-h"
 
 # a discrete GPU's paths: every blocking transfer is a submission of its own
 # unless it rides in a recording (the batch's inputs, results and state)
@@ -123,7 +130,24 @@ check "staged: bench sds runs both loops" eval '[ $(grep -c "submissions (" "$T/
 check "staged: the loop on the device, under half the host-driven loop's submissions a step" \
   "$PY" -c 'import re,sys; a=[float(x) for x in re.findall(r"submissions \(([0-9.]+) a step\)", open(sys.argv[1]).read())]; print("submissions a step:", a); sys.exit(0 if len(a) == 2 and a[1] < 0.5 * a[0] else 1)' "$T/bench"
 
+# the axial stiffness (docs/sds.md, "Axial stiffness")
+sed 's/^morphogen phi diffusion=0.05 decay=0.3/morphogen phi diffusion=0.05 decay=0.3 axis=1/; $a axial_stiffness = 0.3' \
+  "$T/fast.sds" >"$T/axial.sds"
+check "the axial model was made" eval 'grep -q "axis=1" "$T/axial.sds" && grep -q "^axial_stiffness = 0.3" "$T/axial.sds"'
+run sds run "$T/axial.sds" --t-end 6 --frames 5 --out "$T/axial-h" --quiet
+check "axial: the host-driven loop completes" rc_is 0
+run sds run "$T/axial.sds" --t-end 6 --frames 5 --out "$T/axial-d" --quiet --set device_loop=true
+check "axial: the loop on the device completes" rc_is 0
+check "axial: the same bytes, the same steps" same_run "$T/axial-h" "$T/axial-d"
+check "axial: another run than without it (the last frame differs)" eval \
+  '! cmp -s "$T/axial-h/sds/frame_0005.ply" "$T/fast-h/sds/frame_0005.ply"'
+interrupt_resume axial "$T/axial.sds" "$T/ab" 2 "$T/axial-h"
+
 # refusals
+sed 's/ axis=1//' "$T/axial.sds" >"$T/noaxis.sds"
+run sds run "$T/noaxis.sds" --t-end 1 --frames 1 --out "$T/na" --quiet
+check "axial_stiffness without a morphogen declared axis=1: refused (exit 2), one line naming both, no run folder" eval \
+  'rc_is 2 && [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "axial_stiffness" "$T/err" && grep -q "axis=1" "$T/err" && test ! -e "$T/na"'
 sed 's/^rule r2: tip == 0 \&\& phi > K \* volume -> grow Delta/rule r2: tip == 0 \&\& phi > K * volume -> grow Delta * exp(phi)/' \
   "$T/fast.sds" >"$T/exp.sds"
 check "the exp model was made" grep -q 'exp(phi)' "$T/exp.sds"

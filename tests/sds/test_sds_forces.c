@@ -37,6 +37,41 @@ static double maxabs(const double *a, size_t n) {
   return m;
 }
 
+/* A variant of the stiffness (the device holding o and p): the host's
+ * forces = -grad E by central differences and other than the prototype's
+ * f; the device's forces (damping on; texel and storage reads) and stable
+ * bound = the host's; the bound other than the prototype's `bound0` unless
+ * that is the same bound. */
+static void variant(const char *what, sessile_sds *o, const sessile_sds_params *p, sessile_sds_gpu *sg,
+                    const double *f, double bound0, int fp64) {
+  size_t n3 = 3 * (size_t)o->ncells;
+  double *fv = t_dalloc(n3), *fd = t_dalloc(n3), *fg = t_dalloc(n3), bg = 0;
+  char m[160];
+  sessile_sds_forces_ref(o, p, 0, fv);
+  minus_grad_fd(o, p, 1e-6, n3, fd);
+  snprintf(m, sizeof m, "%s: host forces = -grad E (central differences, rel to max)", what);
+  t_check(m, t_relerr(fv, fd, n3), 1e-6);
+  snprintf(m, sizeof m, "%s: other forces than the prototype's", what);
+  t_true(m, t_relerr(fv, f, n3) > 1e-3);
+  sessile_sds_forces_ref(o, p, 1, fv);
+  for (int storage = 0; storage < 2; storage++) {
+    sessile_sds_gpu_set_reads(sg, storage);
+    t_must("gpu forces", sessile_sds_gpu_forces(sg, 1, fg));
+    snprintf(m, sizeof m, "%s: GPU forces = host forces, damping on, %s reads (rel to max)", what,
+             storage ? "storage" : "texel");
+    t_check(m, t_relerr(fg, fv, n3), fp64 ? 1e-12 : 1e-5);
+  }
+  sessile_sds_gpu_set_reads(sg, 0);
+  double bh = sessile_sds_stable_dt(o, p);
+  t_must("gpu stable bound", sessile_sds_gpu_stable_dt(sg, &bg));
+  printf("%s: stable bound host %.17g, device %.17g (prototype's %.17g)\n", what, bh, bg, bound0);
+  snprintf(m, sizeof m, "%s: GPU stable bound = host's (rel)", what);
+  t_check(m, fabs(bg - bh) / bh, fp64 ? 1e-12 : 1e-5);
+  snprintf(m, sizeof m, "%s: another stable bound than the prototype's", what);
+  t_true(m, fabs(bh - bound0) > 1e-6 * bh);
+  free(fv), free(fd), free(fg);
+}
+
 int main(void) {
   sessile_gpu *g = t_gpu(0);
   int fp64 = sessile_gpu_info_of(g)->precision == 64;
@@ -161,34 +196,33 @@ int main(void) {
   }
 
   /* the paper's uniform stiffness (uniform_stiffness: s_k = k_edge, k_vol
-   * for every spring): forces = -grad E, the device's forces and stable
-   * bound = the host's, as for the prototype's scaling above */
+   * for every spring) */
   {
     sessile_sds_params u = p;
     u.uniform_stiffness = 1, u.k_edge = 0.02, u.k_vol = 0.03; /* energies: about the prototype's at this size */
-    double *fu = t_dalloc(n3), *fd = t_dalloc(n3);
-    sessile_sds_forces_ref(&o, &u, 0, fu);
-    minus_grad_fd(&o, &u, h, n3, fd);
-    t_check("uniform stiffness: host forces = -grad E (central differences, rel to max)", t_relerr(fu, fd, n3), 1e-6);
-    t_true("uniform stiffness: other forces than the prototype's scaling", t_relerr(fu, f, n3) > 1e-3);
     t_must("gpu set params", sessile_sds_gpu_set_params(sg, &u));
-    sessile_sds_forces_ref(&o, &u, 1, fu);
-    t_must("gpu forces", sessile_sds_gpu_forces(sg, 1, fg));
-    t_check("uniform stiffness: GPU forces = host forces, damping on (rel to max)", t_relerr(fg, fu, n3),
-            fp64 ? 1e-12 : 1e-5);
-    sessile_sds_gpu_set_reads(sg, 1);
-    t_must("gpu forces, storage reads", sessile_sds_gpu_forces(sg, 1, fg));
-    sessile_sds_gpu_set_reads(sg, 0);
-    t_check("uniform stiffness: GPU forces through storage reads = host forces (rel to max)", t_relerr(fg, fu, n3),
-            fp64 ? 1e-12 : 1e-5);
-    double bh = sessile_sds_stable_dt(&o, &u), bg = 0;
-    t_must("gpu stable bound", sessile_sds_gpu_stable_dt(sg, &bg));
-    printf("uniform stiffness: stable bound host %.17g, device %.17g (prototype's %.17g)\n", bh, bg,
-           sessile_sds_stable_dt(&o, &p));
-    t_check("uniform stiffness: GPU stable bound = host's (rel)", fabs(bg - bh) / bh, fp64 ? 1e-12 : 1e-5);
-    t_true("uniform stiffness: another bound than the prototype's", fabs(bh - sessile_sds_stable_dt(&o, &p)) > 1e-6 * bh);
+    variant("uniform stiffness", &o, &u, sg, f, sessile_sds_stable_dt(&o, &p), fp64);
     t_must("gpu set params", sessile_sds_gpu_set_params(sg, &p));
-    free(fu), free(fd);
+  }
+
+  /* per-spring stiffness on the surface (edge_k, the axial stiffness's; up to
+   * 3000 x, so that the surface cells set the stable bound);
+   * an interior spring's edge_k does nothing */
+  {
+    double *k0 = o.edge_k, *fk = t_dalloc(n3), *fi = t_dalloc(n3), bound0 = sessile_sds_stable_dt(&o, &p);
+    o.edge_k = t_dalloc(o.nedges);
+    uint64_t rk = sessile_rng_stream(17, 1);
+    for (uint32_t e = 0; e < o.nedges; e++) o.edge_k[e] = o.edge_surface[e] ? sessile_rng_range(&rk, 0.2, 3000) : 1;
+    t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+    variant("per-spring stiffness", &o, &p, sg, f, bound0, fp64);
+    sessile_sds_forces_ref(&o, &p, 1, fk);
+    for (uint32_t e = 0; e < o.nedges; e++)
+      if (!o.edge_surface[e]) o.edge_k[e] = 5;
+    sessile_sds_forces_ref(&o, &p, 1, fi);
+    t_true("per-spring stiffness: an interior spring's edge_k is not used", !memcmp(fi, fk, n3 * sizeof *fi));
+    free(o.edge_k), o.edge_k = k0;
+    t_must("gpu upload", sessile_sds_gpu_upload(sg, &o));
+    free(fk), free(fi);
   }
 
   /* inversion: reflect a vertex of tet 0 through its opposite face */

@@ -7,7 +7,7 @@ usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind|
                                           axial_inhibit|axial_inhibit_behind]
                                 [--realisations K]
-                                [--near RESULTS --index N [--spread S]]
+                                [--near RESULTS --index N [--spread S]] [--axial Q]
 
 Each point draws the limb model's process constants and a few physics keys
 from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
@@ -26,7 +26,11 @@ pass 1 500 cells and score 9).
 --from FILE reruns the points of an earlier search's results.jsonl (its best
 --runs by score) on --jitter-seeds realisations of the start each
 (`start_jitter 0.1`, seeds 1..K), to see whether a point carries past the
-exact sphere.  Every run's folder is removed once measured; OUT/results.jsonl
+exact sphere.  --axial Q gives every point the axial stiffness Q (a surface
+spring born along base's gradient Q x as stiff; the axial ranges), after the
+draw, so that the points are those of the same search without it: a paired
+comparison (docs/sds_figures.md, "A sheath softer along the limb").
+Every run's folder is removed once measured; OUT/results.jsonl
 holds one JSON line a run (the point, its metrics, its score).
 """
 import argparse, json, math, os, re, shutil, subprocess, sys, threading
@@ -163,6 +167,8 @@ def model_text(p, jitter_seed=None):
     extra = []
     if p.get("uniform_stiffness"):
         extra.append("uniform_stiffness = 1")
+    if "axial_stiffness" in p:
+        extra.append("axial_stiffness = %.6g" % p["axial_stiffness"])
     if jitter_seed is not None:
         extra.append("start_jitter = 0.1")
     if "Dt" in p:
@@ -174,8 +180,8 @@ def model_text(p, jitter_seed=None):
     if "P" in p:
         s = re.sub(r"(?m)^rule r1: tip == 1 -> set phi = volume", "rule r1: tip == 1 -> produce phi %.6g" % p["P"], s)
     if "base_decay" in p:
-        s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen base diffusion=%.6g decay=%.6g" %
-                   (p["base_diffusion"], p["base_decay"]), s)
+        s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen base diffusion=%.6g decay=%.6g%s" %
+                   (p["base_diffusion"], p["base_decay"], " axis=1" if "axial_stiffness" in p else ""), s)
         s = re.sub(r"(?m)^rule r3: .*$", "rule r3: tip == 0 && radius > R * birth_radius -> divide away grad(base)\n"
                    "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
@@ -246,6 +252,9 @@ def main():
     ap.add_argument("--near", help="draw round a point of an earlier results.jsonl (with --index)")
     ap.add_argument("--index", type=int, help="--near's point (its index)")
     ap.add_argument("--spread", type=float, default=0.2, help="--near: each value times exp(N(0, spread))")
+    ap.add_argument("--axial", type=float, metavar="Q",
+                    help="every point with axial_stiffness Q, base's gradient the axis (the axial ranges; the "
+                         "points drawn are those without it, for a paired comparison)")
     ap.add_argument("--ranges", choices=list(RANGE_SETS), default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
@@ -272,6 +281,10 @@ def main():
     else:
         rng = np.random.default_rng(a.seed)
         work = [(draw(rng, RANGE_SETS[a.ranges]), None) for _ in range(a.runs)]
+    if a.axial is not None:
+        if not all("base_decay" in w[0] for w in work):
+            ap.error("--axial needs points with the morphogen base (--ranges axial...)")
+        work = [(dict(w[0], axial_stiffness=a.axial), w[1]) for w in work]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
     # a search appending to an earlier one numbers its points after it, so

@@ -51,6 +51,11 @@ typedef struct sessile_sds {
   uint32_t nedges;
   uint32_t *edge;  /* 2 nedges */
   double *edge_sm; /* nedges: spring multiplier s_m */
+  /* nedges: the spring's stiffness on the surface over surface_mult (1;
+   * the axial stiffness gives a spring its value at birth, docs/sds.md
+   * "Axial stiffness"); an interior spring does not use it */
+  double *edge_k;
+  int edge_k_defer; /* 1: rebuild leaves a new edge's edge_k 0, for the caller to set (else 1) */
   uint8_t *edge_surface; /* nedges: 1 if the edge is a side of a boundary face */
 
   /* derived: boundary faces (faces in exactly one tet), counter-clockwise
@@ -88,8 +93,9 @@ typedef enum sessile_sds_new_sm {
  * tet is an error), the unique sorted edges, boundary faces (closed check:
  * every interior face in exactly two tets), surface flags, CSR incidence.
  * Edges present in the previous edge list (matched by their cell indices:
- * keep cell indices stable across a topology change) keep their s_m; new
- * edges and tets with tet_sm <= 0 get s_m by `new_sm`.  Radii and masses are
+ * keep cell indices stable across a topology change) keep their s_m and
+ * edge_k; new edges and tets with tet_sm <= 0 get s_m by `new_sm`, new
+ * edges edge_k 1 (0 with edge_k_defer).  Radii and masses are
  * not touched. */
 sessile_status sessile_sds_rebuild(sessile_sds *o, sessile_sds_new_sm new_sm);
 /* As sessile_sds_rebuild, but the tets' orientation is taken as given: for a

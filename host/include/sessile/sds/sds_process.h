@@ -137,6 +137,9 @@ void sessile_sds_model_destroy(sessile_sds_model *m);
 int sessile_sds_model_nmorph(const sessile_sds_model *m);
 int sessile_sds_model_nstate(const sessile_sds_model *m);
 int sessile_sds_model_nrules(const sessile_sds_model *m);
+/* The morphogen declared `axis=1` (its gradient is the tissue's axis for the
+ * axial stiffness, docs/sds.md), -1 if none. */
+int sessile_sds_model_axis(const sessile_sds_model *m);
 const char *sessile_sds_model_morph_name(const sessile_sds_model *m, int k);
 const char *sessile_sds_model_state_name(const sessile_sds_model *m, int k);
 /* Index of a morphogen / state variable by name, -1 if none. */

@@ -1,0 +1,106 @@
+/* The axial stiffness (host/sds/sds_axial.c; docs/sds.md, "Axial
+ * stiffness"): a spring's multiplier 1 + (q - 1) cos^2 of its angle to the
+ * axis, against hand values; on an icosphere with the linear field
+ * phi = 2 x + 0.5 (whose least-squares gradient is exactly (2, 0, 0) at
+ * every cell), the springs marked born (edge_k 0) take 1 + (q - 1) d_x^2 /
+ * |d|^2, those born before keep theirs, and a flat field leaves them
+ * isotropic (1); a division's rebuild leaves the new springs 0 with
+ * edge_k_defer and 1 without, the old ones their values. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include "sds/sds_internal.h"
+#include "sds/sds_sim.h"
+#include "testutil.h"
+
+int main(void) {
+  const double x[3] = {1, 0, 0}, y[3] = {0, 3, 0}, xy[3] = {1, 1, 0}, zero[3] = {0, 0, 0};
+  t_check("along the axis: q", fabs(sds_axial_k(0.25, x, x) - 0.25), 1e-15);
+  t_check("along, the axis reversed: q", fabs(sds_axial_k(0.25, x, (double[3]){-2, 0, 0}) - 0.25), 1e-15);
+  t_check("across the axis: 1", fabs(sds_axial_k(0.25, y, x) - 1), 0);
+  t_check("at 45 degrees: (1 + q) / 2", fabs(sds_axial_k(0.25, xy, x) - 0.625), 1e-15);
+  t_check("no axis (a flat field): 1", fabs(sds_axial_k(0.25, xy, zero) - 1), 0);
+
+  const double ctr[3] = {0, 0, 0};
+  sessile_sds o = {0};
+  t_must("icosphere level 2 through TetGen", sessile_sds_from_icosphere(2, 1.0, ctr, 0, 1, 0, 1.0, &o));
+  uint32_t *nbr = malloc(2 * (size_t)o.nedges * sizeof *nbr);
+  for (uint32_t c = 0; c < o.ncells; c++)
+    for (uint32_t k = o.cell_edge_off[c]; k < o.cell_edge_off[c + 1]; k++) {
+      uint32_t e = o.cell_edge[k];
+      nbr[k] = o.edge[2 * e] == c ? o.edge[2 * e + 1] : o.edge[2 * e];
+    }
+  sessile_morph_cells cells = {(int)o.ncells, o.x, o.r, o.cell_edge_off, nbr, o.surface};
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 2 * o.x[3 * c] + 0.5;
+  const double q = 0.3;
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_k[e] = e % 7 == 3 ? 1.75 : 0; /* every 7th born before */
+  sds_axial_springs(&o, &cells, 0, q);
+  double worst = 0;
+  int kept = 1, spread = 0;
+  for (uint32_t e = 0; e < o.nedges; e++) {
+    if (e % 7 == 3) {
+      kept = kept && o.edge_k[e] == 1.75;
+      continue;
+    }
+    double d[3];
+    sds_sub(o.x + 3 * (size_t)o.edge[2 * e], o.x + 3 * (size_t)o.edge[2 * e + 1], d);
+    double want = 1 + (q - 1) * d[0] * d[0] / sds_dot(d, d);
+    worst = fmax(worst, fabs(o.edge_k[e] - want));
+    spread += o.edge_k[e] < 0.5 || o.edge_k[e] > 0.9;
+  }
+  printf("%u springs, largest error %.3g, %d of them below 0.5 or above 0.9\n", o.nedges, worst, spread);
+  t_check("a linear field: each born spring 1 + (q - 1) cos^2 to x (abs)", worst, 1e-12);
+  t_true("the springs born before keep their stiffness", kept);
+  t_true("and the field sets a range of them (not one value)", spread > (int)o.nedges / 4);
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 0.5;
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_k[e] = 0;
+  sds_axial_springs(&o, &cells, 0, q);
+  int ones = 1;
+  for (uint32_t e = 0; e < o.nedges; e++) ones = ones && o.edge_k[e] == 1;
+  t_true("a flat field: every spring isotropic (1)", ones);
+  free(nbr);
+
+  /* the rebuild after a change of topology: split tet 0 at its centroid */
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_k[e] = 1 + 0.001 * e;
+  for (int defer = 1; defer >= 0; defer--) {
+    sessile_sds w = {0};
+    t_must("copy", sessile_sds_copy(&o, &w));
+    w.edge_k_defer = defer;
+    uint32_t n = w.ncells, T = w.ntets, q4[4];
+    t_must("reserve", sessile_sds_reserve(&w, n + 1, T + 3));
+    for (int i = 0; i < 4; i++) q4[i] = w.tet[i];
+    for (int i = 0; i < 3; i++) {
+      double s = 0;
+      for (int j = 0; j < 4; j++) s += w.x[3 * (size_t)q4[j] + i];
+      w.x[3 * (size_t)n + i] = s / 4;
+    }
+    w.r[n] = w.r[q4[0]], w.m[n] = w.m[q4[0]], w.ncells = n + 1;
+    /* (a b c d) -> (n b c d) (a n c d) (a b n d) (a b c n): each keeps the sign */
+    for (int j = 0; j < 4; j++) {
+      uint32_t *t = w.tet + 4 * (size_t)(j == 0 ? 0 : T + j - 1);
+      for (int i = 0; i < 4; i++) t[i] = i == j ? n : q4[i];
+      w.tet_sm[j == 0 ? 0 : T + j - 1] = 0;
+    }
+    w.ntets = T + 3;
+    t_must("rebuild", sessile_sds_rebuild(&w, SESSILE_SDS_NEW_UNIT));
+    int newk = 1, oldk = 1, nnew = 0;
+    for (uint32_t e = 0; e < w.nedges; e++) {
+      uint32_t a = w.edge[2 * e], b = w.edge[2 * e + 1];
+      if (b == n) {
+        nnew++, newk = newk && w.edge_k[e] == (defer ? 0.0 : 1.0);
+        continue;
+      }
+      /* an old edge: the same pair in o */
+      for (uint32_t f = 0; f < o.nedges; f++)
+        if (o.edge[2 * f] == a && o.edge[2 * f + 1] == b) oldk = oldk && w.edge_k[e] == o.edge_k[f];
+    }
+    printf("edge_k_defer %d: %u edges, %d new\n", defer, w.nedges, nnew);
+    t_true(defer ? "rebuild with edge_k_defer: the 4 new springs 0, for the caller"
+                 : "rebuild without: the 4 new springs 1",
+           nnew == 4 && newk);
+    t_true("rebuild: the old springs keep their edge_k", oldk);
+    sessile_sds_free(&w);
+  }
+  sessile_sds_free(&o);
+  return t_finish(NULL);
+}
