@@ -5,7 +5,7 @@
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
                                 [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind|
-                                          axial_inhibit|axial_inhibit_behind]
+                                          axial_inhibit|axial_inhibit_behind|axial_inhibit_stiff]
                                 [--realisations K]
                                 [--near RESULTS --index N [--spread S]] [--axial Q]
 
@@ -135,11 +135,16 @@ RANGES_AXIAL_INHIBIT = dict(RANGES_AXIAL, inh_P=(0.01, 0.2, True), inh_A=(0.3, 3
 # --ranges axial_inhibit_behind: both, the zone behind the tip (Kb) and the
 # inhibitor.
 RANGES_AXIAL_INHIBIT_BEHIND = dict(RANGES_AXIAL_INHIBIT, Kb=(0.02, 0.2, True))
+# --ranges axial_inhibit_stiff (2026-12-01, twenty-fourth session): the
+# inhibitor design with the sheath stiffer along the limb (axial_stiffness
+# 1-10, base's gradient the axis: docs/sds.md, "Axial stiffness"), which
+# kept the tip nearer the front at q = 3 (docs/sds_figures.md).
+RANGES_AXIAL_INHIBIT_STIFF = dict(RANGES_AXIAL_INHIBIT, axial_stiffness=(1.0, 10.0, True))
 # --ranges NAME: its table
 RANGE_SETS = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL, "apical_abs": RANGES_APICAL_ABS,
               "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE, "axial": RANGES_AXIAL,
               "axial_behind": RANGES_AXIAL_BEHIND, "axial_inhibit": RANGES_AXIAL_INHIBIT,
-              "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND}
+              "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND, "axial_inhibit_stiff": RANGES_AXIAL_INHIBIT_STIFF}
 
 
 def draw(rng, ranges):
@@ -263,7 +268,8 @@ def main():
                     "divides along the limb, away from a morphogen held full outside it, the tip grown to an "
                     "absolute radius; axial_behind: axial, only the zone behind the tip "
                     "growing (base > Kb volume); axial_inhibit: axial, the growing cells making an "
-                    "inhibitor that raises the zone's threshold; axial_inhibit_behind: both")
+                    "inhibitor that raises the zone's threshold; axial_inhibit_behind: both; "
+                    "axial_inhibit_stiff: axial_inhibit with the sheath 1-10 x stiffer along base's gradient")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -281,10 +287,11 @@ def main():
     else:
         rng = np.random.default_rng(a.seed)
         work = [(draw(rng, RANGE_SETS[a.ranges]), None) for _ in range(a.runs)]
-    if a.axial is not None:
+    if a.axial is not None or any("axial_stiffness" in w[0] for w in work):
         if not all("base_decay" in w[0] for w in work):
             ap.error("--axial needs points with the morphogen base (--ranges axial...)")
-        work = [(dict(w[0], axial_stiffness=a.axial), w[1]) for w in work]
+        if a.axial is not None:
+            work = [(dict(w[0], axial_stiffness=a.axial), w[1]) for w in work]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
     # a search appending to an earlier one numbers its points after it, so
