@@ -1,17 +1,26 @@
-/* The axial stiffness (docs/sds.md, "Axial stiffness"): a spring takes its
- * stiffness on the surface at birth, from its direction against the tissue's
- * axis there, the gradient of the morphogen declared `axis=1`.  A property of
- * the spring from then on (the paper: stiffness "could easily be specified
- * per spring", §3.2), so the forces stay the gradient of an energy. */
+/* The tissue's axis, the gradient of the morphogen declared `axis=1`, and
+ * what the springs take from it (docs/sds.md, "Axial stiffness", "Oriented
+ * growth"): a spring takes its stiffness on the surface at birth, from its
+ * direction against the axis there, a property of the spring from then on
+ * (the paper: stiffness "could easily be specified per spring", §3.2), so
+ * the forces stay the gradient of an energy; and a growing cell's edges
+ * share its growth out by their direction. */
 #include <math.h>
+#include <stdlib.h>
 #include "sds/sds_internal.h"
 #include "sds/sds_sim.h"
 
-double sds_axial_k(double q, const double *d, const double *g) {
+/* cos^2 of the angle between d and g; -1 where either vanishes (no axis) */
+static double axial_cos2(const double *d, const double *g) {
   double dd = sds_dot(d, d), gg = sds_dot(g, g);
-  if (!(dd > 0 && gg > 0)) return 1.0; /* no axis here: isotropic */
+  if (!(dd > 0 && gg > 0)) return -1.0;
   double c = sds_dot(d, g);
-  return 1.0 + (q - 1.0) * (c * c / (dd * gg));
+  return c * c / (dd * gg);
+}
+
+double sds_axial_k(double q, const double *d, const double *g) {
+  double c2 = axial_cos2(d, g);
+  return c2 < 0 ? 1.0 : 1.0 + (q - 1.0) * c2; /* no axis here: isotropic */
 }
 
 void sds_axial_springs(sessile_sds *o, const sessile_morph_cells *cells, int k, double q) {
@@ -34,4 +43,49 @@ sessile_status sds_axial_assign(sds_sim *s) {
   sessile_morph_cells cells = sds_cells_of(s);
   sds_axial_springs(&s->o, &cells, k, s->prm.axial_stiffness);
   return SESSILE_OK;
+}
+
+/* The oriented growth (docs/sds.md, "Oriented growth"): the rest length
+ * R' = s_m (r_a + r_b) grows by w (dr_a + dr_b) s_m instead of
+ * (dr_a + dr_b) s_m, w = 1 + A (3 cos^2 - 1), whose mean over directions is
+ * 1: the same growth, shared out along the axis.  A state change between
+ * steps, as the radii are, so the forces stay -grad E. */
+sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
+                                    const double *r0, int *changed) {
+  /* each cell's gradient once, for the cells of the edges that grew */
+  double *g = malloc((3 * (size_t)o->ncells + 1) * sizeof *g);
+  unsigned char *have = calloc((size_t)o->ncells + 1, 1);
+  if (!g || !have) {
+    free(g), free(have);
+    return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u cells", o->ncells);
+  }
+  for (uint32_t e = 0; e < o->nedges; e++) {
+    uint32_t c[2] = {o->edge[2 * (size_t)e], o->edge[2 * (size_t)e + 1]};
+    double dr = (o->r[c[0]] - r0[c[0]]) + (o->r[c[1]] - r0[c[1]]);
+    if (dr == 0) continue;
+    for (int i = 0; i < 2; i++)
+      if (!have[c[i]]) {
+        double *gc = g + 3 * (size_t)c[i];
+        gc[0] = gc[1] = gc[2] = 0;
+        sessile_morph_gradient(cells, (int)o->nmorph, o->phi, (int)c[i], k, gc);
+        have[c[i]] = 1;
+      }
+    double ge[3], d[3];
+    for (int i = 0; i < 3; i++) ge[i] = g[3 * (size_t)c[0] + i] + g[3 * (size_t)c[1] + i];
+    sds_sub(o->x + 3 * (size_t)c[0], o->x + 3 * (size_t)c[1], d);
+    double c2 = axial_cos2(d, ge);
+    if (c2 < 0) continue; /* no axis here: isotropic, s_m as it was */
+    double R0 = r0[c[0]] + r0[c[1]], w = 1.0 + A * (3.0 * c2 - 1.0);
+    o->edge_sm[e] *= (R0 + w * dr) / (R0 + dr);
+    *changed = 1;
+  }
+  free(g), free(have);
+  return SESSILE_OK;
+}
+
+sessile_status sds_axial_grow(sds_sim *s, const double *r0) {
+  int k = sessile_sds_model_axis(s->model);
+  SESSILE_CHECK(k >= 0, SESSILE_ERR_USAGE, "sds: axial_growth needs a morphogen declared axis=1");
+  sessile_morph_cells cells = sds_cells_of(s);
+  return sds_axial_grow_edges(&s->o, &cells, k, s->prm.axial_growth, r0, &s->sm_changed);
 }

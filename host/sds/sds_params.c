@@ -46,6 +46,10 @@ static const sessile_param_desc descs[] = {
     {"axial_stiffness", SESSILE_PT_REAL, OFF(axial_stiffness), 1, 0, INFINITY, OPEN_BOTH, "", "ours",
      "a surface spring born at angle a to the gradient of the morphogen declared axis=1 takes 1 + (this - 1) cos^2 a "
      "x its stiffness (1: isotropic; docs/sds.md, \"Axial stiffness\")", NULL},
+    {"axial_growth", SESSILE_PT_REAL, OFF(axial_growth), 0, -0.5, 1, 0, "", "ours",
+     "a growing cell's edge at angle a to the gradient of the morphogen declared axis=1 lengthens its rest length "
+     "by 1 + this (3 cos^2 a - 1) x the growth (0: isotropic; 1: along the axis only; host-driven loop only; "
+     "docs/sds.md, \"Oriented growth\")", NULL},
     {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
      "the tets' damping on dV/dt (paper 3.2; the prototype's kDamp)", NULL},
     {"viscosity", SESSILE_PT_REAL, OFF(viscosity), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",

@@ -34,11 +34,15 @@ sessile_morph_cells sds_cells_of(const sds_sim *s) {
  * have changed (the device's x and v are the host's: every step downloads
  * them), and only they go up. */
 sessile_status sds_refresh(sds_sim *s) {
+  if (!s->topo_changed && s->sm_changed) {
+    s->sm_changed = 0;
+    SESSILE_CALL(sessile_sds_gpu_update_edge_sm(s->pg, &s->o));
+  }
   if (!s->topo_changed) return sessile_sds_gpu_update_radii(s->pg, &s->o);
   SESSILE_CALL(sds_neighbours(s));
   SESSILE_CALL(sds_axial_assign(s));
   SESSILE_CALL(sessile_sds_gpu_upload(s->pg, &s->o));
-  s->topo_changed = 0;
+  s->topo_changed = 0, s->sm_changed = 0;
   return SESSILE_OK;
 }
 
@@ -103,10 +107,16 @@ sessile_status sds_rules(sds_sim *s, double dt) {
   memset(&a, 0, sizeof a);
   sessile_status st = sessile_sds_rules_eval(s->model, &cells, o->phi, o->state, s->time, &a);
   if (st == SESSILE_OK) st = morphogens(s, a.produce, dt);
+  double *r0 = NULL;
+  if (st == SESSILE_OK && s->prm.axial_growth != 0 && !(r0 = malloc((o->ncells + 1) * sizeof *r0)))
+    st = sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory for %u cells", o->ncells);
   if (st == SESSILE_OK) {
+    if (r0) memcpy(r0, o->r, o->ncells * sizeof *r0);
     sessile_sds_actions_apply(s->model, &a, dt, o->r, o->phi, o->state);
     for (uint32_t c = 0; c < o->ncells; c++) set_mass(s, c);
+    if (r0) st = sds_axial_grow(s, r0); /* before the divisions: the edges are those that grew */
   }
+  free(r0);
   if (st == SESSILE_OK) st = sds_divisions(s, a.divides, a.ndivides);
   sessile_sds_actions_free(&a);
   SESSILE_CALL(st);

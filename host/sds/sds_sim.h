@@ -36,6 +36,7 @@ typedef struct sds_sim {
                                  failures in a row, the step before which it is not tried again */
   uint32_t nsliver, sliver_cap;
   int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
+  int sm_changed;             /* the edges' rest multipliers changed since (axial_growth) */
   int morph_lists_set;        /* the morphogen kernel has the current neighbour lists (neighbours() clears) */
   uint64_t rng;
   int tip_state;              /* state index of `tip`, -1 none */
@@ -90,6 +91,15 @@ sessile_status sds_refresh(sds_sim *s);
 double sds_axial_k(double q, const double *d, const double *g);
 void sds_axial_springs(sessile_sds *o, const sessile_morph_cells *cells, int k, double q);
 sessile_status sds_axial_assign(sds_sim *s);
+/* The oriented growth (axial_growth A): the cells' radii have gone from r0
+ * to o->r; each edge whose cells grew takes w = 1 + A (3 cos^2 - 1) times
+ * that growth of its rest length, the angle now between it and the sum of
+ * morphogen k's gradients at its cells (w = 1 where there is none), through
+ * its s_m; *changed = 1 when any s_m moved.  And that for the loop (the
+ * model's axis morphogen, axial_growth, sm_changed). */
+sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
+                                    const double *r0, int *changed);
+sessile_status sds_axial_grow(sds_sim *s, const double *r0);
 sessile_status sds_rules(sds_sim *s, double dt);
 sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n);
 

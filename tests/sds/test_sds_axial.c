@@ -1,11 +1,15 @@
-/* The axial stiffness (host/sds/sds_axial.c; docs/sds.md, "Axial
- * stiffness"): a spring's multiplier 1 + (q - 1) cos^2 of its angle to the
- * axis, against hand values; on an icosphere with the linear field
- * phi = 2 x + 0.5 (whose least-squares gradient is exactly (2, 0, 0) at
- * every cell), the springs marked born (edge_k 0) take 1 + (q - 1) d_x^2 /
- * |d|^2, those born before keep theirs, and a flat field leaves them
- * isotropic (1); a division's rebuild leaves the new springs 0 with
- * edge_k_defer and 1 without, the old ones their values. */
+/* The axial stiffness and the oriented growth (host/sds/sds_axial.c;
+ * docs/sds.md, "Axial stiffness", "Oriented growth"): a spring's stiffness
+ * multiplier 1 + (q - 1) cos^2 of its angle to the axis, against hand
+ * values; on an icosphere with the linear field phi = 2 x + 0.5 (whose
+ * least-squares gradient is exactly (2, 0, 0) at every cell), the springs
+ * marked born (edge_k 0) take 1 + (q - 1) d_x^2 / |d|^2, those born before
+ * keep theirs, and a flat field leaves them isotropic (1); a division's
+ * rebuild leaves the new springs 0 with edge_k_defer and 1 without, the
+ * old ones their values.  The oriented growth: with the cells' radii grown
+ * by dr, each edge's rest length s_m (r_a + r_b) grows by
+ * (1 + A (3 cos^2 - 1)) s_m (dr_a + dr_b); A = 0, a flat field or cells
+ * that did not grow leave s_m as it was, to the bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,6 +62,47 @@ int main(void) {
   int ones = 1;
   for (uint32_t e = 0; e < o.nedges; e++) ones = ones && o.edge_k[e] == 1;
   t_true("a flat field: every spring isotropic (1)", ones);
+
+  /* the oriented growth: cells grown by 0-0.005, every third not at all */
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 2 * o.x[3 * c] + 0.5;
+  double *r0 = malloc(o.ncells * sizeof *r0), *smg = malloc(o.nedges * sizeof *smg);
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_sm[e] = smg[e] = 0.9 + 0.01 * (e % 13);
+  for (uint32_t c = 0; c < o.ncells; c++) r0[c] = o.r[c], o.r[c] += c % 3 == 0 ? 0 : 0.001 * (1 + c % 5);
+  const double A = 0.7;
+  int changed = 0;
+  t_must("oriented growth", sds_axial_grow_edges(&o, &cells, 0, A, r0, &changed));
+  double wg = 0;
+  int still = 1, ngrew = 0;
+  for (uint32_t e = 0; e < o.nedges; e++) {
+    uint32_t a = o.edge[2 * e], b = o.edge[2 * e + 1];
+    double dr = (o.r[a] - r0[a]) + (o.r[b] - r0[b]);
+    if (dr == 0) {
+      still = still && o.edge_sm[e] == smg[e];
+      continue;
+    }
+    double d[3];
+    sds_sub(o.x + 3 * (size_t)a, o.x + 3 * (size_t)b, d);
+    double c2 = d[0] * d[0] / sds_dot(d, d);
+    double want = smg[e] * (r0[a] + r0[b]) + (1 + A * (3 * c2 - 1)) * smg[e] * dr; /* the rest length now */
+    wg = fmax(wg, fabs(o.edge_sm[e] * (o.r[a] + o.r[b]) / want - 1));
+    ngrew++;
+  }
+  printf("oriented growth A = %g: %d edges grew, largest relative error %.3g\n", A, ngrew, wg);
+  t_check("oriented growth: each rest length R0 + (1 + A (3 cos^2 - 1)) s_m dr (rel)", wg, 1e-13);
+  t_true("oriented growth: edges whose cells did not grow keep s_m to the bit", still && ngrew > 0 && changed);
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_sm[e] = smg[e];
+  changed = 0;
+  t_must("oriented growth A = 0", sds_axial_grow_edges(&o, &cells, 0, 0.0, r0, &changed));
+  int same = 1;
+  for (uint32_t e = 0; e < o.nedges; e++) same = same && o.edge_sm[e] == smg[e];
+  t_true("A = 0: every s_m as it was, to the bit (the growth isotropic)", same);
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 0.5;
+  changed = 0;
+  t_must("oriented growth, a flat field", sds_axial_grow_edges(&o, &cells, 0, A, r0, &changed));
+  for (uint32_t e = 0; e < o.nedges; e++) same = same && o.edge_sm[e] == smg[e];
+  t_true("a flat field: every s_m as it was (no axis), nothing marked changed", same && !changed);
+  for (uint32_t c = 0; c < o.ncells; c++) o.r[c] = r0[c];
+  free(r0), free(smg);
   free(nbr);
 
   /* the rebuild after a change of topology: split tet 0 at its centroid */

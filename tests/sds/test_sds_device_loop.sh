@@ -27,31 +27,13 @@
 set -u
 S="$1"
 . "$(dirname "$0")/../common/harness.sh"
+. "$(dirname "$0")/sds_runs.sh"
 PY=/usr/bin/python3
 M="$(dirname "$0")/../../host/sds/models"
 sed 's/^const Delta = .*/const Delta = 0.03/' "$M/limb.sds" >"$T/fast.sds"
 sed 's/^morphogen phi diffusion=0.05/morphogen phi diffusion=400/' "$M/limb.sds" >"$T/diffuse.sds"
 sed 's/^const Delta = .*/const Delta = 0.03/; s/^morphogen phi diffusion=0.05/morphogen phi diffusion=2/' "$M/limb.sds" >"$T/subs.sds"
 
-# every file under sds/ the same bytes but the step log, which must be equal but for ms
-same_run() { # dir_a dir_b
-  for f in $(cd "$1/sds" && ls); do
-    [ "$f" = steps.csv ] && continue
-    cmp -s "$1/sds/$f" "$2/sds/$f" || { echo "differs: $f"; return 1; }
-  done
-  [ "$(cd "$1/sds" && ls | wc -l)" -eq "$(cd "$2/sds" && ls | wc -l)" ] || return 1
-  "$PY" - "$1/sds/steps.csv" "$2/sds/steps.csv" <<'PYEOF'
-import csv, sys
-def rows(p):
-    with open(p, newline="") as f:
-        return [{k: v for k, v in r.items() if k != "ms"} for r in csv.DictReader(f)]
-a, b = rows(sys.argv[1]), rows(sys.argv[2])
-div = sum(int(r["divisions"]) for r in a)
-inv = sum(int(r["inversions"]) for r in a)
-print("steps", len(a), len(b), "divisions", div, "inversions", inv)
-sys.exit(0 if a == b and len(a) > 0 else 1)
-PYEOF
-}
 counts() { "$PY" -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); print(sum(int(x["divisions"]) for x in r), sum(int(x["inversions"]) for x in r))' "$1/sds/steps.csv"; }
 
 # the manifest's device_loop member: batches, steps whose rules the host completed
@@ -108,20 +90,8 @@ run sds run rock --t-end 5 --frames 2 --out "$T/rock-n" --quiet --set device_loo
 check "rock, no fused kernels: the loop on the device completes" rc_is 0
 check "rock, no fused kernels: the same bytes, the same steps" same_run "$T/rock-h" "$T/rock-n"
 
-# stopped by SIGINT after frame N, resumed: the bytes of the uninterrupted run
-interrupt_resume() { # label model dir frame reference
-  "$S" sds run "$2" --t-end 6 --frames 5 --quiet --set device_loop=true --out "$3" >"$T/out" 2>"$T/err" &
-  local pid=$!
-  for _ in $(seq 1 3000); do [ -e "$3/sds/frame_000$4.ply" ] && break; sleep 0.02; done
-  kill -INT $pid 2>/dev/null
-  { wait $pid; } 2>/dev/null
-  echo $? >"$T/rc"
-  check "$1, SIGINT after frame $4: exit 130 (or it finished first: 0)" eval 'rc_is 130 || rc_is 0'
-  run sds run --resume "$3" --quiet
-  check "... resumed: completes" rc_is 0
-  check "... the bytes of the uninterrupted runs" same_run "$5" "$3"
-}
-interrupt_resume "device loop" "$T/fast.sds" "$T/b" 1 "$T/fast-h"
+# stopped by SIGINT after frame 1 and resumed (sds_runs.sh)
+interrupt_resume "device loop" "$T/fast.sds" "$T/b" 1 "$T/fast-h" --set device_loop=true
 
 # a discrete GPU's paths: every blocking transfer is a submission of its own
 # unless it rides in a recording (the batch's inputs, results and state)
@@ -141,7 +111,7 @@ check "axial: the loop on the device completes" rc_is 0
 check "axial: the same bytes, the same steps" same_run "$T/axial-h" "$T/axial-d"
 check "axial: another run than without it (the last frame differs)" eval \
   '! cmp -s "$T/axial-h/sds/frame_0005.ply" "$T/fast-h/sds/frame_0005.ply"'
-interrupt_resume axial "$T/axial.sds" "$T/ab" 2 "$T/axial-h"
+interrupt_resume axial "$T/axial.sds" "$T/ab" 2 "$T/axial-h" --set device_loop=true
 
 # refusals
 sed 's/ axis=1//' "$T/axial.sds" >"$T/noaxis.sds"

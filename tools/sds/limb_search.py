@@ -5,9 +5,10 @@
 usage: tools/sds/limb_search.py SESSILE OUT [--runs N] [--jobs J] [--seed S]
                                 [--t-end T] [--jitter-seeds K] [--from FILE]
                                 [--ranges default|narrow|apical|apical_abs|stiff|produce|axial|axial_behind|
-                                          axial_inhibit|axial_inhibit_behind|axial_inhibit_stiff]
+                                          axial_inhibit|axial_inhibit_behind|axial_inhibit_stiff|
+                                          axial_inhibit_growth]
                                 [--realisations K]
-                                [--near RESULTS --index N [--spread S]] [--axial Q]
+                                [--near RESULTS --index N [--spread S]] [--axial Q] [--growth A]
 
 Each point draws the limb model's process constants and a few physics keys
 from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
@@ -29,7 +30,8 @@ pass 1 500 cells and score 9).
 exact sphere.  --axial Q gives every point the axial stiffness Q (a surface
 spring born along base's gradient Q x as stiff; the axial ranges), after the
 draw, so that the points are those of the same search without it: a paired
-comparison (docs/sds_figures.md, "A sheath softer along the limb").
+comparison (docs/sds_figures.md, "A sheath softer along the limb"); --growth
+A the oriented growth A alike ("Growth along the limb").
 Every run's folder is removed once measured; OUT/results.jsonl
 holds one JSON line a run (the point, its metrics, its score).
 """
@@ -140,11 +142,17 @@ RANGES_AXIAL_INHIBIT_BEHIND = dict(RANGES_AXIAL_INHIBIT, Kb=(0.02, 0.2, True))
 # 1-10, base's gradient the axis: docs/sds.md, "Axial stiffness"), which
 # kept the tip nearer the front at q = 3 (docs/sds_figures.md).
 RANGES_AXIAL_INHIBIT_STIFF = dict(RANGES_AXIAL_INHIBIT, axial_stiffness=(1.0, 10.0, True))
+# --ranges axial_inhibit_growth (2026-12-01, twenty-fifth session): the
+# inhibitor design with the zone's growth oriented along the limb
+# (axial_growth 0-1, base's gradient the axis: docs/sds.md, "Oriented
+# growth"), drawn uniformly.
+RANGES_AXIAL_INHIBIT_GROWTH = dict(RANGES_AXIAL_INHIBIT, axial_growth=(0.0, 1.0, False))
 # --ranges NAME: its table
 RANGE_SETS = {"default": RANGES, "narrow": RANGES_NARROW, "apical": RANGES_APICAL, "apical_abs": RANGES_APICAL_ABS,
               "stiff": RANGES_STIFF, "produce": RANGES_PRODUCE, "axial": RANGES_AXIAL,
               "axial_behind": RANGES_AXIAL_BEHIND, "axial_inhibit": RANGES_AXIAL_INHIBIT,
-              "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND, "axial_inhibit_stiff": RANGES_AXIAL_INHIBIT_STIFF}
+              "axial_inhibit_behind": RANGES_AXIAL_INHIBIT_BEHIND, "axial_inhibit_stiff": RANGES_AXIAL_INHIBIT_STIFF,
+              "axial_inhibit_growth": RANGES_AXIAL_INHIBIT_GROWTH}
 
 
 def draw(rng, ranges):
@@ -174,6 +182,8 @@ def model_text(p, jitter_seed=None):
         extra.append("uniform_stiffness = 1")
     if "axial_stiffness" in p:
         extra.append("axial_stiffness = %.6g" % p["axial_stiffness"])
+    if "axial_growth" in p:
+        extra.append("axial_growth = %.6g" % p["axial_growth"])
     if jitter_seed is not None:
         extra.append("start_jitter = 0.1")
     if "Dt" in p:
@@ -186,7 +196,8 @@ def model_text(p, jitter_seed=None):
         s = re.sub(r"(?m)^rule r1: tip == 1 -> set phi = volume", "rule r1: tip == 1 -> produce phi %.6g" % p["P"], s)
     if "base_decay" in p:
         s = re.sub(r"(?m)^(morphogen phi .*)$", r"\1\nmorphogen base diffusion=%.6g decay=%.6g%s" %
-                   (p["base_diffusion"], p["base_decay"], " axis=1" if "axial_stiffness" in p else ""), s)
+                   (p["base_diffusion"], p["base_decay"],
+                    " axis=1" if "axial_stiffness" in p or "axial_growth" in p else ""), s)
         s = re.sub(r"(?m)^rule r3: .*$", "rule r3: tip == 0 && radius > R * birth_radius -> divide away grad(base)\n"
                    "rule b1: tip == 0 && phi < K * volume -> set base = volume", s)
         s = s.replace("\nrule r1:", "\nrule r0: tip == 1 && radius < %.6g -> grow %.6g\nrule r1:"
@@ -260,6 +271,9 @@ def main():
     ap.add_argument("--axial", type=float, metavar="Q",
                     help="every point with axial_stiffness Q, base's gradient the axis (the axial ranges; the "
                          "points drawn are those without it, for a paired comparison)")
+    ap.add_argument("--growth", type=float, metavar="A",
+                    help="every point with axial_growth A, base's gradient the axis (the axial ranges; paired as "
+                         "--axial)")
     ap.add_argument("--ranges", choices=list(RANGE_SETS), default="default",
                     help="default: round the shipped model; narrow: K 0.08-0.5, Delta to 0.03, the tip growing; "
                     "apical: the tip grows and divides inward, only the zone's surface grows; apical_abs: "
@@ -269,7 +283,8 @@ def main():
                     "absolute radius; axial_behind: axial, only the zone behind the tip "
                     "growing (base > Kb volume); axial_inhibit: axial, the growing cells making an "
                     "inhibitor that raises the zone's threshold; axial_inhibit_behind: both; "
-                    "axial_inhibit_stiff: axial_inhibit with the sheath 1-10 x stiffer along base's gradient")
+                    "axial_inhibit_stiff: axial_inhibit with the sheath 1-10 x stiffer along base's gradient; "
+                    "axial_inhibit_growth: axial_inhibit with the zone's growth 0-1 along base's gradient")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     if a.src:
@@ -287,11 +302,14 @@ def main():
     else:
         rng = np.random.default_rng(a.seed)
         work = [(draw(rng, RANGE_SETS[a.ranges]), None) for _ in range(a.runs)]
-    if a.axial is not None or any("axial_stiffness" in w[0] for w in work):
+    if a.axial is not None or a.growth is not None or any(
+            "axial_stiffness" in w[0] or "axial_growth" in w[0] for w in work):
         if not all("base_decay" in w[0] for w in work):
-            ap.error("--axial needs points with the morphogen base (--ranges axial...)")
+            ap.error("--axial and --growth need points with the morphogen base (--ranges axial...)")
         if a.axial is not None:
             work = [(dict(w[0], axial_stiffness=a.axial), w[1]) for w in work]
+        if a.growth is not None:
+            work = [(dict(w[0], axial_growth=a.growth), w[1]) for w in work]
     lock, nxt = threading.Lock(), [0]
     path = os.path.join(a.out, "results.jsonl")
     # a search appending to an earlier one numbers its points after it, so
