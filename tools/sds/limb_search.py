@@ -21,9 +21,9 @@ A point with no neck (a limb under two slices) scores 2-3 by its length;
 a point that blows up, passes 1 500 cells or runs past 300 s scores 9.
 --ranges picks the ranges (and, for apical, the rules: the tip grows and
 divides inward, only the zone's surface grows); --near draws round point N
-of an earlier results.jsonl instead, each value times exp(N(0, S)); nothing
-clips it, so R can fall below 1 (a cell that divides at birth: such points
-pass 1 500 cells and score 9).
+of an earlier results.jsonl instead, each value times exp(N(0, S)); only
+axial_growth is clipped (at 1, its range's end), so R can fall below 1 (a
+cell that divides at birth: such points pass 1 500 cells and score 9).
 --from FILE reruns the points of an earlier search's results.jsonl (its best
 --runs by score) on --jitter-seeds realisations of the start each
 (`start_jitter 0.1`, seeds 1..K), to see whether a point carries past the
@@ -299,6 +299,9 @@ def main():
         rng = np.random.default_rng(a.seed)
         work = [({k: (float(v * math.exp(a.spread * rng.standard_normal())) if isinstance(v, float) else v)
                   for k, v in centre.items()}, None) for _ in range(a.runs)]
+        for w in work:  # the oriented growth's range ends at 1 (all of it along the axis)
+            if "axial_growth" in w[0]:
+                w[0]["axial_growth"] = min(w[0]["axial_growth"], 1.0)
     else:
         rng = np.random.default_rng(a.seed)
         work = [(draw(rng, RANGE_SETS[a.ranges]), None) for _ in range(a.runs)]
