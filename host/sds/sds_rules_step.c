@@ -32,13 +32,15 @@ sessile_morph_cells sds_cells_of(const sds_sim *s) {
 /* After any topology change or growth: derived data, neighbours, the GPU.
  * Without a topology change since the last upload only the radii and masses
  * have changed (the device's x and v are the host's: every step downloads
- * them), and only they go up. */
+ * them), and only they go up, with the edges' s_m where they moved. */
 sessile_status sds_refresh(sds_sim *s) {
-  if (!s->topo_changed && s->sm_changed) {
-    s->sm_changed = 0;
-    SESSILE_CALL(sessile_sds_gpu_update_edge_sm(s->pg, &s->o));
+  if (!s->topo_changed) {
+    if (s->sm_changed) { /* the oriented growth moved the edges' s_m */
+      s->sm_changed = 0;
+      SESSILE_CALL(sessile_sds_gpu_update_edge_sm(s->pg, &s->o));
+    }
+    return sessile_sds_gpu_update_radii(s->pg, &s->o);
   }
-  if (!s->topo_changed) return sessile_sds_gpu_update_radii(s->pg, &s->o);
   SESSILE_CALL(sds_neighbours(s));
   SESSILE_CALL(sds_axial_assign(s));
   SESSILE_CALL(sessile_sds_gpu_upload(s->pg, &s->o));
