@@ -16,7 +16,9 @@ static sessile_status rules_hook(sessile_sds_gpu *s, void *ctx, uint32_t k, int 
     SESSILE_CALL(sds_gpu_rules_record_bound(r, s->cmd, s->b[B_X0 + c], s->b[B_STEP], s->b[B_EVENT], k + 1, s->nsub_max));
   /* the growth check after them (stable_min mode 4): folded into the next
    * step's stable_min by the batch (sds_gpu_batch.c, record_batch) */
-  return sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max);
+  SESSILE_CALL(sds_gpu_rules_record_batch_step(r, s->cmd, s->b[B_X0 + c], s->b[B_RM], k + 1, s->nsub_max));
+  return sds_gpu_rules_record_axial(r, s->cmd, s->b[B_TOPO], s->b[B_SM], s->b[B_X0 + c], s->b[B_RM], s->ntets,
+                                    s->nedges, k + 1, s->nsub_max);
 }
 
 sessile_status sds_gpu_batch_rules_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {

@@ -194,6 +194,13 @@ sessile_status sessile_sds_gpu_update_edge_sm(sessile_sds_gpu *s, const sessile_
   return o->nedges ? sessile_buffer_upload_reals(s->b[B_SM], o->ntets, o->edge_sm, o->nedges) : SESSILE_OK;
 }
 
+sessile_status sessile_sds_gpu_download_edge_sm(sessile_sds_gpu *s, sessile_sds *o) {
+  SESSILE_CHECK(o->ncells == s->ncells && o->ntets == s->ntets && o->nedges == s->nedges && s->topo_up,
+                SESSILE_ERR_USAGE, "sds: rest multipliers of %u edges from a device organism of %u", o->nedges,
+                s->nedges);
+  return o->nedges ? sessile_buffer_download_reals(s->b[B_SM], o->ntets, o->edge_sm, o->nedges) : SESSILE_OK;
+}
+
 sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) {
   SESSILE_CHECK(o->edge && o->cell_tet_off, SESSILE_ERR_USAGE, "sds: the organism has no derived data (call sessile_sds_rebuild)");
   size_t n = o->ncells, E = o->nedges, T = o->ntets, rb = s->real_bytes;

@@ -13,7 +13,7 @@
 #include "sds_gpu_rules.h"
 
 enum { R_PROG, R_KONST, R_MCOEF, R_POS, R_RM, R_OFF, R_NBR, R_SURF, R_PHI, R_STATE, R_SRC, R_PEND, R_PFLAG, R_DIVREQ,
-       R_EVENT, R_DCOEF, R_PHI2, R_CNT, R_MRATE, R_RMN, R_COUNT };
+       R_EVENT, R_DCOEF, R_PHI2, R_CNT, R_MRATE, R_RMN, R_RMO, R_GRAD, R_COUNT };
 
 struct sds_gpu_rules {
   sessile_gpu *gpu;
@@ -22,6 +22,12 @@ struct sds_gpu_rules {
    * NULL without morphogens); a batch step's flags, check and bound
    * (step_check) */
   sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex, *k_fused, *k_check;
+  /* the oriented growth after each batch step's rules (axial_grad, then
+   * axial_grow; NULL without it): axial_growth A along the gradient of
+   * morphogen `axis` */
+  sessile_kernel *k_axial_grad, *k_axial;
+  double axial_A;
+  uint32_t axis;
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
@@ -116,6 +122,8 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   sessile_kernel_destroy(r->k_morph_tex);
   sessile_kernel_destroy(r->k_fused);
   sessile_kernel_destroy(r->k_check);
+  sessile_kernel_destroy(r->k_axial_grad);
+  sessile_kernel_destroy(r->k_axial);
   free(r);
 }
 
@@ -137,9 +145,10 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
   for (size_t c = 0; st == SESSILE_OK && c < n; c++)
     rm[2 * c] = cl->radius[c], rm[2 * c + 1] = 0, surf[c] = cl->surface && cl->surface[c] ? 1u : 0u;
   const int sized[] = {R_POS,   R_RM,   R_OFF,    R_NBR,  R_SURF, R_PHI,  R_STATE,
-                       R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE, R_RMN};
+                       R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE, R_RMN, R_RMO, R_GRAD};
   const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
-                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8, 2 * n * 8};
+                          n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8, 2 * n * 8,
+                          (r->k_axial ? 2 * n : 1) * 8, (r->k_axial ? 3 * n : 1) * 8};
   for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
@@ -287,6 +296,8 @@ static sessile_status dispatch_fused(sds_gpu_rules *r, sessile_cmd *cmd, sessile
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
                                                sessile_buffer *rm, uint32_t batch, uint32_t nsub) {
   uint32_t j0 = (batch - 1) * nsub; /* sub-steps recorded before this step's */
+  /* the radii at the step's start, for the oriented growth after it */
+  if (r->k_axial) SESSILE_CALL(sessile_cmd_copy(cmd, rm, r->b[R_RMO], 2 * (size_t)r->ncells * 8));
   int tex = texels_fit(r, pos, rm), fused = r->k_fused && tex && nsub >= 1;
   if (fused && nsub == 1) return dispatch_fused(r, cmd, pos, rm, j0, batch, 1); /* the whole rules' step */
   if (fused) SESSILE_CALL(dispatch_fused(r, cmd, pos, rm, j0, batch, 0));
@@ -306,6 +317,36 @@ sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cm
     }
   }
   return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);
+}
+
+sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A) {
+  sessile_kernel_destroy(r->k_axial_grad);
+  sessile_kernel_destroy(r->k_axial);
+  r->k_axial_grad = r->k_axial = NULL, r->axial_A = A, r->axis = axis < 0 ? 0u : (uint32_t)axis;
+  if (A == 0) return SESSILE_OK;
+  SESSILE_CHECK(axis >= 0 && (uint32_t)axis < r->nmorph, SESSILE_ERR_USAGE,
+                "the oriented growth on the device needs a morphogen declared axis=1");
+  SESSILE_CHECK(r->ncells == 0, SESSILE_ERR_INTERNAL, "the oriented growth set after the cells (its buffers' sizes)");
+  SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GRAD], 8, 0, &r->k_axial_grad));
+  return sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GROW], 8, 0, &r->k_axial);
+}
+
+sessile_status sds_gpu_rules_record_axial(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *topo, sessile_buffer *sm,
+                                          sessile_buffer *pos, sessile_buffer *rm, uint32_t ntets, uint32_t nedges,
+                                          uint32_t batch, uint32_t nsub) {
+  if (!r->k_axial || !nedges) return SESSILE_OK;
+  sds_axial_push p;
+  memset(&p, 0, sizeof p);
+  p.growth = sessile_push_real_of(r->axial_A, 8);
+  p.ncells = r->ncells, p.nedges = nedges, p.ntets = ntets, p.nmorph = r->nmorph, p.axis = r->axis;
+  r->fresh = 0;
+  /* the amounts after the step's rules: its sub-steps' last buffer */
+  sessile_buffer *bg[] = {pos, r->b[R_OFF], r->b[R_NBR], phi_after(r, batch * nsub), r->b[R_GRAD]};
+  uint32_t l = sessile_kernel_local_size(r->k_axial_grad);
+  SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_axial_grad, (r->ncells + l - 1) / l, bg, &p));
+  sessile_buffer *b[] = {topo, pos, rm, r->b[R_RMO], r->b[R_GRAD], sm};
+  l = sessile_kernel_local_size(r->k_axial);
+  return sessile_cmd_dispatch(cmd, r->k_axial, (nedges + l - 1) / l, b, &p);
 }
 
 /* step_check's workgroups: one invocation per tet and per cell */

@@ -48,7 +48,7 @@ static const sessile_param_desc descs[] = {
      "x its stiffness (1: isotropic; docs/sds.md, \"Axial stiffness\")", NULL},
     {"axial_growth", SESSILE_PT_REAL, OFF(axial_growth), 0, -0.5, 1, 0, "", "ours",
      "a growing cell's edge at angle a to the gradient of the morphogen declared axis=1 lengthens its rest length "
-     "by 1 + this (3 cos^2 a - 1) x the growth (0: isotropic; 1: along the axis only; host-driven loop only; "
+     "by 1 + this (3 cos^2 a - 1) x the growth (0: isotropic; 1: along the axis only; "
      "docs/sds.md, \"Oriented growth\")", NULL},
     {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
      "the tets' damping on dV/dt (paper 3.2; the prototype's kDamp)", NULL},

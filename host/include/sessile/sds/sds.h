@@ -315,6 +315,8 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o);
 sessile_status sessile_sds_gpu_update_radii(sessile_sds_gpu *s, const sessile_sds *o);
 /* After the edges' s_m changed (and nothing else of the topology). */
 sessile_status sessile_sds_gpu_update_edge_sm(sessile_sds_gpu *s, const sessile_sds *o);
+/* The edges' s_m into o (the device's oriented growth moved them). */
+sessile_status sessile_sds_gpu_download_edge_sm(sessile_sds_gpu *s, sessile_sds *o);
 /* Downloads x, v, r, m into o (same sizes as uploaded; phi and state stay
  * on the host until the morphogen kernels exist). */
 sessile_status sessile_sds_gpu_download(sessile_sds_gpu *s, sessile_sds *o);
