@@ -232,6 +232,8 @@ sessile_status sessile_cmd_dispatch(sessile_cmd *c, const sessile_kernel *k, uin
                                     sessile_buffer *const *buffers, const void *push) {
   SESSILE_CHECK(c->recording, SESSILE_ERR_INTERNAL, "dispatch of %s outside a recording", k->name);
   if (groups == 0) return SESSILE_OK;
+  /* the kernel object is the caller's const handle; its pipeline is a cache */
+  SESSILE_CALL(sessile_kernel_pipeline((sessile_kernel *)k));
   VkDescriptorSet set;
   SESSILE_CALL(alloc_set(c, k->set_layout, &set));
   VkDescriptorBufferInfo bi[SESSILE_MAX_BINDINGS];

@@ -75,6 +75,10 @@ struct sessile_kernel {
   char name[64];
 };
 
+/* Makes kernel k's pipeline if it has none yet (kernel.c: at its first
+ * dispatch, not at its creation). */
+sessile_status sessile_kernel_pipeline(sessile_kernel *k);
+
 /* Name of a VkResult ("VK_ERROR_DEVICE_LOST"). */
 const char *sessile_vk_result_name(VkResult r);
 

@@ -7,6 +7,12 @@
 #include <string.h>
 #include "gpu_internal.h"
 
+/* The shader module and the layouts now (cheap; the validation layer checks
+ * the SPIR-V here), the pipeline at the kernel's first dispatch: a driver
+ * compiles a pipeline when it is made (lavapipe: LLVM, about 25 ms a kernel
+ * here even from the pipeline cache), and a run dispatches only some of the
+ * kernels its layer makes (docs/performance.md, "Pipelines made on first
+ * use"). */
 static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
   sessile_gpu *g = k->gpu;
   VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
@@ -30,6 +36,11 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
                                     .pushConstantRangeCount = k->push_bytes ? 1 : 0,
                                     .pPushConstantRanges = k->push_bytes ? &pr : NULL};
   SESSILE_VK(vkCreatePipelineLayout(g->device, &pli, NULL, &k->layout));
+  return SESSILE_OK;
+}
+
+sessile_status sessile_kernel_pipeline(sessile_kernel *k) {
+  if (k->pipeline) return SESSILE_OK;
   VkSpecializationMapEntry me = {.constantID = 0, .offset = 0, .size = sizeof(uint32_t)};
   VkSpecializationInfo si = {.mapEntryCount = 1, .pMapEntries = &me,
                              .dataSize = sizeof(uint32_t), .pData = &k->local_size};
@@ -39,7 +50,7 @@ static sessile_status build(sessile_kernel *k, const sessile_spirv *sp) {
                 .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = k->module, .pName = "main",
                 .pSpecializationInfo = &si},
       .layout = k->layout};
-  SESSILE_VK(vkCreateComputePipelines(g->device, g->pipeline_cache, 1, &ci, NULL, &k->pipeline));
+  SESSILE_VK(vkCreateComputePipelines(k->gpu->device, k->gpu->pipeline_cache, 1, &ci, NULL, &k->pipeline));
   return SESSILE_OK;
 }
 
