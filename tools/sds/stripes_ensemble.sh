@@ -44,11 +44,13 @@ awk '/^timer clock decay=/ { d = $3; sub(/^decay=/, "", d); sub(/decay=[0-9.eE+-
   "$OUT/model.sds" >"$OUT/model_half.sds"
 cmp -s "$OUT/model.sds" "$OUT/model_half.sds" && { echo "stripes_ensemble: the timer's decay is unchanged" >&2; exit 1; }
 FRAMES=$(/usr/bin/python3 -c "import math,sys; print(max(1, math.ceil(float(sys.argv[1]) / 25)))" "$TIME")
-# start 0 is the exact start (no jitter); start s > 0 the realisation of seed s
+# start 0 is the exact start (no jitter); start s > 0 the realisation of seed s;
+# a line on stderr as each run ends (the study takes minutes a pair)
 for s in $(seq 0 "$SEEDS"); do printf '%s %s\n' model "$s" model_half "$s"; done |
   xargs -P 2 -L 1 sh -c 'j=""; [ "$6" != 0 ] && j="--set start_jitter=$4";
     "$0" sds run "$1/$5.sds" --seed "$(( $6 > 0 ? $6 : 1 ))" $j --t-end "$2" --frames "$3" --out "$1/$5_s$6" \
-      --quiet --progress none --no-preview' "$SESSILE" "$OUT" "$TIME" "$FRAMES" "$JITTER"
+      --quiet --progress none --no-preview && echo "stripes_ensemble: $5, start $6 done" >&2' \
+    "$SESSILE" "$OUT" "$TIME" "$FRAMES" "$JITTER"
 FIG="/usr/bin/python3 -B $here/figures.py"
 for s in $(seq 0 "$SEEDS"); do
   $FIG stripes "$OUT/model_s$s" --time "$TIME" | tail -n 1 >"$OUT/stripes_s$s.json"
