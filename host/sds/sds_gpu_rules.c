@@ -22,12 +22,13 @@ struct sds_gpu_rules {
    * NULL without morphogens); a batch step's flags, check and bound
    * (step_check) */
   sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex, *k_fused, *k_check;
-  /* the oriented growth after each batch step's rules (axial_grad, then
-   * axial_grow; NULL without it): axial_growth A along the gradient of
-   * morphogen `axis` */
-  sessile_kernel *k_axial_grad, *k_axial;
-  double axial_A;
-  uint32_t axis;
+  /* the oriented growth and convergent extension after each batch step's
+   * rules (axial_grad, then axial_grow and axial_extend; each NULL without
+   * it): axial_growth A and convergent_extension C along the gradient of
+   * morphogen `axis`, C between cells whose state sext is set */
+  sessile_kernel *k_axial_grad, *k_axial, *k_extend;
+  double axial_A, extend_C;
+  uint32_t axis, sext;
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
@@ -124,6 +125,7 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   sessile_kernel_destroy(r->k_check);
   sessile_kernel_destroy(r->k_axial_grad);
   sessile_kernel_destroy(r->k_axial);
+  sessile_kernel_destroy(r->k_extend);
   free(r);
 }
 
@@ -148,7 +150,7 @@ sessile_status sds_gpu_rules_set_cells(sds_gpu_rules *r, const sessile_morph_cel
                        R_SRC,   R_PEND, R_PFLAG,  R_DIVREQ, R_PHI2, R_MRATE, R_RMN, R_RMO, R_GRAD};
   const size_t bytes[] = {3 * n * 8, 2 * n * 8, (n + 1) * 4, ne * 4, n * 4, n * nm * 8, n * ns * 8, n * nm * 8,
                           n * (1 + nm + ns) * 8, 2 * n * 4, SDS_REQ * n * 8, n * nm * 8, n * 8, 2 * n * 8,
-                          (r->k_axial ? 2 * n : 1) * 8, (r->k_axial ? 3 * n : 1) * 8};
+                          (r->k_axial ? 2 * n : 1) * 8, (r->k_axial_grad ? 3 * n : 1) * 8};
   for (size_t i = 0; st == SESSILE_OK && i < sizeof sized / sizeof *sized; i++) st = ensure(r, sized[i], bytes[i]);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_POS], 0, cl->pos, 3 * n);
   if (st == SESSILE_OK) st = sessile_buffer_upload_reals(r->b[R_RM], 0, rm, 2 * n);
@@ -319,34 +321,48 @@ sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cm
   return dispatch(r, cmd, pos, rm, phi_after(r, j0 + nsub), 0, 0, 1, batch);
 }
 
-sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A) {
+sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A, double C, int sext) {
   sessile_kernel_destroy(r->k_axial_grad);
   sessile_kernel_destroy(r->k_axial);
-  r->k_axial_grad = r->k_axial = NULL, r->axial_A = A, r->axis = axis < 0 ? 0u : (uint32_t)axis;
-  if (A == 0) return SESSILE_OK;
+  sessile_kernel_destroy(r->k_extend);
+  r->k_axial_grad = r->k_axial = r->k_extend = NULL, r->axial_A = A, r->extend_C = C;
+  r->axis = axis < 0 ? 0u : (uint32_t)axis, r->sext = sext < 0 ? 0u : (uint32_t)sext;
+  if (A == 0 && C == 0) return SESSILE_OK;
   SESSILE_CHECK(axis >= 0 && (uint32_t)axis < r->nmorph, SESSILE_ERR_USAGE,
-                "the oriented growth on the device needs a morphogen declared axis=1");
+                "the oriented growth and convergent extension on the device need a morphogen declared axis=1");
+  SESSILE_CHECK(C == 0 || (sext >= 0 && (uint32_t)sext < r->nstate), SESSILE_ERR_USAGE,
+                "convergent extension on the device needs a state `extending`");
   SESSILE_CHECK(r->ncells == 0, SESSILE_ERR_INTERNAL, "the oriented growth set after the cells (its buffers' sizes)");
   SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GRAD], 8, 0, &r->k_axial_grad));
-  return sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GROW], 8, 0, &r->k_axial);
+  if (C != 0) SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_EXTEND], 8, 0, &r->k_extend));
+  return A != 0 ? sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GROW], 8, 0, &r->k_axial)
+                : SESSILE_OK;
 }
 
 sessile_status sds_gpu_rules_record_axial(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *topo, sessile_buffer *sm,
                                           sessile_buffer *pos, sessile_buffer *rm, uint32_t ntets, uint32_t nedges,
                                           uint32_t batch, uint32_t nsub) {
-  if (!r->k_axial || !nedges) return SESSILE_OK;
+  if (!r->k_axial_grad || !nedges) return SESSILE_OK;
   sds_axial_push p;
   memset(&p, 0, sizeof p);
-  p.growth = sessile_push_real_of(r->axial_A, 8);
+  p.growth = sessile_push_real_of(r->axial_A, 8), p.extend = sessile_push_real_of(r->extend_C, 8);
   p.ncells = r->ncells, p.nedges = nedges, p.ntets = ntets, p.nmorph = r->nmorph, p.axis = r->axis;
+  p.nstate = r->nstate, p.sext = r->sext, p.kctl = r->nk;
   r->fresh = 0;
   /* the amounts after the step's rules: its sub-steps' last buffer */
   sessile_buffer *bg[] = {pos, r->b[R_OFF], r->b[R_NBR], phi_after(r, batch * nsub), r->b[R_GRAD]};
   uint32_t l = sessile_kernel_local_size(r->k_axial_grad);
   SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_axial_grad, (r->ncells + l - 1) / l, bg, &p));
-  sessile_buffer *b[] = {topo, pos, rm, r->b[R_RMO], r->b[R_GRAD], sm};
-  l = sessile_kernel_local_size(r->k_axial);
-  return sessile_cmd_dispatch(cmd, r->k_axial, (nedges + l - 1) / l, b, &p);
+  if (r->k_axial) {
+    sessile_buffer *b[] = {topo, pos, rm, r->b[R_RMO], r->b[R_GRAD], sm};
+    l = sessile_kernel_local_size(r->k_axial);
+    SESSILE_CALL(sessile_cmd_dispatch(cmd, r->k_axial, (nedges + l - 1) / l, b, &p));
+  }
+  if (!r->k_extend) return SESSILE_OK;
+  /* after the growth, as the host's sds_rules: both scale s_m */
+  sessile_buffer *b[] = {topo, pos, r->b[R_STATE], r->b[R_GRAD], r->b[R_KONST], r->b[R_EVENT], sm};
+  l = sessile_kernel_local_size(r->k_extend);
+  return sessile_cmd_dispatch(cmd, r->k_extend, (nedges + l - 1) / l, b, &p);
 }
 
 /* step_check's workgroups: one invocation per tet and per cell */

@@ -80,14 +80,16 @@ sessile_status sds_gpu_rules_record_bound(sds_gpu_rules *r, sessile_cmd *cmd, se
 sessile_status sds_gpu_rules_record_batch_step(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *pos,
                                                sessile_buffer *rm, uint32_t batch, uint32_t nsub);
 void sds_gpu_rules_batch_done(sds_gpu_rules *r, uint32_t steps, uint32_t nsub);
-/* The oriented growth in the batch (docs/sds.md, "Oriented growth"): with
- * A != 0 each batch step's rules are followed by axial_grad over the cells
- * and axial_grow over the edges
- * (record_axial, after record_batch_step), A along the gradient of morphogen
- * `axis`, set before the first set_cells.  record_axial reads the radii at the
- * step's start that record_batch_step keeps, and multiplies the edges' s_m
- * (sm at ntets, the physics' topology topo) as sds_axial_grow_edges does. */
-sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A);
+/* The oriented growth and convergent extension in the batch (docs/sds.md,
+ * "Oriented growth", "Convergent extension"): with A != 0 or C != 0 each
+ * batch step's rules are followed by axial_grad over the cells, then
+ * axial_grow (A) and axial_extend (C, between cells whose state sext is set)
+ * over the edges (record_axial, after record_batch_step), along the gradient
+ * of morphogen `axis`; set before the first set_cells.  record_axial reads
+ * the radii at the step's start that record_batch_step keeps, and multiplies
+ * the edges' s_m (sm at ntets, the physics' topology topo) as
+ * sds_axial_grow_edges and sds_axial_extend_edges do. */
+sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A, double C, int sext);
 sessile_status sds_gpu_rules_record_axial(sds_gpu_rules *r, sessile_cmd *cmd, sessile_buffer *topo, sessile_buffer *sm,
                                           sessile_buffer *pos, sessile_buffer *rm, uint32_t ntets, uint32_t nedges,
                                           uint32_t batch, uint32_t nsub);

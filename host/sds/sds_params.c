@@ -50,6 +50,10 @@ static const sessile_param_desc descs[] = {
      "a growing cell's edge at angle a to the gradient of the morphogen declared axis=1 lengthens its rest length "
      "by 1 + this (3 cos^2 a - 1) x the growth (0: isotropic; 1: along the axis only; "
      "docs/sds.md, \"Oriented growth\")", NULL},
+    {"convergent_extension", SESSILE_PT_REAL, OFF(convergent_extension), 0, 0, 1, 0, "1/s", "ours",
+     "each step an edge between two cells whose state `extending` is set, at angle a to the gradient of the "
+     "morphogen declared axis=1, multiplies its rest length by 1 + this dt (3 cos^2 a - 1): the tissue narrows "
+     "across the axis and lengthens along it (0: none; docs/sds.md, \"Convergent extension\")", NULL},
     {"damping", SESSILE_PT_REAL, OFF(damping), 0.001, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",
      "the tets' damping on dV/dt (paper 3.2; the prototype's kDamp)", NULL},
     {"viscosity", SESSILE_PT_REAL, OFF(viscosity), 1, 0, INFINITY, SESSILE_PARAM_HI_OPEN, "1/s", "prototype",

@@ -100,6 +100,14 @@ sessile_status sds_axial_assign(sds_sim *s);
 sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
                                     const double *r0, int *changed);
 sessile_status sds_axial_grow(sds_sim *s, const double *r0);
+/* Convergent extension (convergent_extension C): each edge between two cells
+ * whose state j is set multiplies its s_m by 1 + C dt (3 cos^2 - 1), the
+ * angle between it and the sum of morphogen k's gradients at its cells (no
+ * change where there is none); *changed = 1 when any moved.  And that for
+ * the loop (the axis morphogen, the state `extending`, sm_changed). */
+sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt,
+                                      int j, int *changed);
+sessile_status sds_axial_extend(sds_sim *s, double dt);
 sessile_status sds_rules(sds_sim *s, double dt);
 sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n);
 

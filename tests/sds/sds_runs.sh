@@ -36,3 +36,25 @@ interrupt_resume() { # label model dir frame reference [options of the run...]
   check "... resumed: completes" rc_is 0
   check "... the bytes of the uninterrupted runs" same_run "$ref" "$dir"
 }
+
+# the extents along x, y and z of the vertices of a PLY frame (sessile's:
+# float, double, uchar or int vertex properties), one line "X Y Z"
+ply_extents() { # file
+  "$PY" - "$1" <<'PYEOF'
+import sys
+import numpy as np
+d = open(sys.argv[1], "rb").read()
+i = d.index(b"end_header\n") + 11
+head = d[:i].decode().splitlines()
+n = int(next(l for l in head if l.startswith("element vertex")).split()[2])
+props = []
+for l in head:
+    if l.startswith("element face"):
+        break
+    if l.startswith("property"):
+        props.append(l.split())
+types = {"float": "<f4", "double": "<f8", "uchar": "u1", "int": "<i4"}
+v = np.frombuffer(d[i:], dtype=np.dtype([(p[2], types[p[1]]) for p in props]), count=n)
+print("%.6f %.6f %.6f" % (np.ptp(v["x"]), np.ptp(v["y"]), np.ptp(v["z"])))
+PYEOF
+}

@@ -35,9 +35,10 @@ int main(void) {
   snprintf(root, sizeof root, "%s", __FILE__);
   char *cut = strstr(root, "/tests/sds/");
   if (cut) *cut = 0;
-  const char *names[] = {"limb.sds", "six_limbs_box.sds", "rock.sds", "attractor.sds", "budded.sds"};
-  const int tips[] = {1, 6, 6, 6, 6};
-  for (int i = 0; i < 5; i++) {
+  const char *names[] = {"limb.sds",   "six_limbs_box.sds", "rock.sds",
+                         "attractor.sds", "budded.sds", "limb_extension.sds"};
+  const int tips[] = {1, 6, 6, 6, 6, 1};
+  for (int i = 0; i < 6; i++) {
     sessile_sds_model *m = load(names[i]);
     if (!m) continue;
     char what[200];
@@ -74,6 +75,10 @@ int main(void) {
     }
     if (i == 3) t_true("attractor: point and strength", sessile_sds_model_param_find(m, "attractor")->nvalues == 4);
     if (i == 4) t_true("budded: a bud morphogen", sessile_sds_model_morph_index(m, "bud") >= 0);
+    if (i == 5)
+      t_true("limb_extension: phi the axis, a state extending",
+             sessile_sds_model_axis(m) == sessile_sds_model_morph_index(m, "phi") &&
+                 sessile_sds_model_state_index(m, "extending") >= 0);
     sessile_sds_model_destroy(m);
   }
   return t_finish(NULL);

@@ -9,7 +9,9 @@
  * old ones their values.  The oriented growth: with the cells' radii grown
  * by dr, each edge's rest length s_m (r_a + r_b) grows by
  * (1 + A (3 cos^2 - 1)) s_m (dr_a + dr_b); A = 0, a flat field or cells
- * that did not grow leave s_m as it was, to the bit. */
+ * that did not grow leave s_m as it was, to the bit.  Convergent extension:
+ * each edge between two cells whose state is set takes 1 + C dt (3 cos^2 - 1)
+ * into its s_m, the others and a flat field leave it to the bit. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -102,6 +104,49 @@ int main(void) {
   for (uint32_t e = 0; e < o.nedges; e++) same = same && o.edge_sm[e] == smg[e];
   t_true("a flat field: every s_m as it was (no axis), nothing marked changed", same && !changed);
   for (uint32_t c = 0; c < o.ncells; c++) o.r[c] = r0[c];
+
+  /* convergent extension: state 0 of two (the other a decoy of 1s) set in
+   * the cells with x > -0.3; each edge between two such cells takes
+   * 1 + C dt (3 cos^2 - 1) into its s_m, every other edge keeps it */
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 2 * o.x[3 * c] + 0.5;
+  double *state = malloc(2 * (size_t)o.ncells * sizeof *state), *state0 = o.state;
+  uint32_t nstate0 = o.nstate;
+  for (uint32_t c = 0; c < o.ncells; c++) state[2 * c] = o.x[3 * c] > -0.3 ? 1 : 0, state[2 * c + 1] = 1;
+  o.state = state, o.nstate = 2;
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_sm[e] = smg[e];
+  const double C = 0.02, dte = 0.7; /* C dt 0.014: a visible step */
+  changed = 0;
+  t_must("convergent extension", sds_axial_extend_edges(&o, &cells, 0, C, dte, 0, &changed));
+  double we = 0, lo = 2, hi = 0;
+  int kept_out = 1, nin = 0, nout = 0;
+  for (uint32_t e = 0; e < o.nedges; e++) {
+    uint32_t a = o.edge[2 * e], b = o.edge[2 * e + 1];
+    if (state[2 * a] == 0 || state[2 * b] == 0) {
+      kept_out = kept_out && o.edge_sm[e] == smg[e], nout++;
+      continue;
+    }
+    double d[3];
+    sds_sub(o.x + 3 * (size_t)a, o.x + 3 * (size_t)b, d);
+    double f = 1 + C * dte * (3 * d[0] * d[0] / sds_dot(d, d) - 1);
+    we = fmax(we, fabs(o.edge_sm[e] / (smg[e] * f) - 1));
+    lo = fmin(lo, o.edge_sm[e] / smg[e]), hi = fmax(hi, o.edge_sm[e] / smg[e]);
+    nin++;
+  }
+  printf("convergent extension C dt = %g: %d edges between extending cells (factors %.5f-%.5f), %d others, "
+         "largest relative error %.3g\n", C * dte, nin, lo, hi, nout, we);
+  t_check("convergent extension: each s_m x (1 + C dt (3 cos^2 - 1)) (rel)", we, 1e-15);
+  t_true("... edges with a cell not extending keep s_m to the bit", kept_out && nin > 0 && nout > 0 && changed);
+  t_true("... those along the axis lengthen, those across shorten (factors both sides of 1)",
+         lo < 1 - 0.5 * C * dte && hi > 1 + 1.5 * C * dte);
+  for (uint32_t e = 0; e < o.nedges; e++) o.edge_sm[e] = smg[e];
+  for (uint32_t c = 0; c < o.ncells; c++) o.phi[c] = 0.5;
+  changed = 0;
+  t_must("convergent extension, a flat field", sds_axial_extend_edges(&o, &cells, 0, C, dte, 0, &changed));
+  same = 1;
+  for (uint32_t e = 0; e < o.nedges; e++) same = same && o.edge_sm[e] == smg[e];
+  t_true("a flat field: every s_m as it was (no axis), nothing marked changed", same && !changed);
+  o.state = state0, o.nstate = nstate0;
+  free(state);
   free(r0), free(smg);
   free(nbr);
 

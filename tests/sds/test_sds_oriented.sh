@@ -41,26 +41,9 @@ tip 1 0 0
 rule r1: tip == 1 -> set phi = volume
 rule r2: tip == 0 -> grow 0.004
 SDS
-# extent along x over the mean extent along y and z, the surface cells of a PLY
+# extent along x over the mean extent along y and z, and |y - z| / y, of a PLY
 aspect() {
-  "$PY" - "$1" <<'PYEOF'
-import sys
-import numpy as np
-d = open(sys.argv[1], "rb").read()
-i = d.index(b"end_header\n") + 11
-head = d[:i].decode().splitlines()
-n = int(next(l for l in head if l.startswith("element vertex")).split()[2])
-props = []
-for l in head:
-    if l.startswith("element face"):
-        break
-    if l.startswith("property"):
-        props.append(l.split())
-types = {"float": "<f4", "double": "<f8", "uchar": "u1", "int": "<i4"}
-v = np.frombuffer(d[i:], dtype=np.dtype([(p[2], types[p[1]]) for p in props]), count=n)
-e = np.array([np.ptp(v["x"]), np.ptp(v["y"]), np.ptp(v["z"])], dtype=float)
-print("%.6f %.6f" % (e[0] / (0.5 * (e[1] + e[2])), abs(e[1] - e[2]) / e[1]))
-PYEOF
+  ply_extents "$1" | "$PY" -c 'import sys; x, y, z = map(float, sys.stdin.read().split()); print("%.6f %.6f" % (x / (0.5 * (y + z)), abs(y - z) / y))'
 }
 for A in 0 1 -0.5; do
   run sds run "$T/ball.sds" --set axial_growth=$A --out "$T/ball$A" --quiet --no-preview

@@ -33,6 +33,7 @@ typedef struct sessile_sds_run_params {
   int uniform_stiffness;      /* bool: the paper's same stiffness for every spring */
   double axial_stiffness;     /* a surface spring born along the axis morphogen's gradient: this x its stiffness */
   double axial_growth;        /* the share of a cell's growth its edges take along that axis (0: isotropic) */
+  double convergent_extension; /* 1/s: edges between `extending` cells lengthen along the axis, shorten across */
   double damping;             /* the tets' damping on dV/dt */
   double viscosity;           /* 1/s */
   double gravity;             /* u/s^2 along -z */
