@@ -15,9 +15,11 @@
 #     TIME   the times measured (default 200); the runs go to the largest
 #   SESSILE  the binary (default build/sessile beside this tool)
 #   JOBS     runs at a time (default 2)
+#   SETS     parameters over the model's for every run, "KEY=VALUE ..."
+#            (e.g. SETS="max_move=0.025": the same starts at a finer step)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [ $# -ge 2 ] || usage
 MODEL="$1" OUT="$2" N="${3:-20}"
 shift $(($# < 3 ? $# : 3))
@@ -30,20 +32,25 @@ JOBS="${JOBS:-2}"
 for t in "${TIMES[@]}"; do
   [[ "$t" =~ ^[0-9]+([.][0-9]+)?$ ]] || { echo "limb_starts: a time must be a number (got $t)" >&2; exit 2; }
 done
+SETS="${SETS:-}"
+for kv in $SETS; do
+  [[ "$kv" =~ ^[a-z_0-9]+=[^[:space:]]+$ ]] || { echo "limb_starts: SETS takes KEY=VALUE words (got $kv)" >&2; exit 2; }
+done
 [ ! -e "$OUT" ] || { echo "limb_starts: $OUT exists; give a new folder" >&2; exit 2; }
 mkdir -p "$OUT"
 TEND=$(printf '%s\n' "${TIMES[@]}" | sort -g | tail -n 1)
 # a frame every 5 time units, so that each time asked has its frame
 FRAMES=$(/usr/bin/python3 -c 'import math,sys; print(max(1, math.ceil(float(sys.argv[1]) / 5)))' "$TEND")
 run_one() { # seed
-  local s="$1" jit=()
+  local s="$1" jit=() kv
   [ "$s" -eq 1 ] || jit=(--set start_jitter=0.1)
+  for kv in $SETS; do jit+=(--set "$kv"); done
   "$BIN" sds run "$MODEL" --t-end "$TEND" --frames "$FRAMES" --seed "$s" "${jit[@]}" \
     --out "$OUT/s$s" --quiet --no-preview >"$OUT/s$s.log" 2>&1 || echo "limb_starts: seed $s failed ($OUT/s$s.log)" >&2
 }
 export -f run_one
-export BIN MODEL TEND FRAMES OUT
-echo "limb_starts: $N starts of $MODEL to t = $TEND, $JOBS at a time" >&2
+export BIN MODEL TEND FRAMES OUT SETS
+echo "limb_starts: $N starts of $MODEL to t = $TEND${SETS:+ ($SETS)}, $JOBS at a time" >&2
 seq 1 "$N" | xargs -P "$JOBS" -I{} bash -c 'run_one {}'
 /usr/bin/python3 - "$here" "$OUT" "$N" "${TIMES[@]}" <<'PYEOF'
 import json, os, subprocess, sys
