@@ -134,7 +134,7 @@ sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells 
 }
 
 sessile_status sds_axial_extend(sds_sim *s, double dt) {
-  int k = sessile_sds_model_axis(s->model), j = sessile_sds_model_state_index(s->model, "extending");
+  int k = sessile_sds_model_axis(s->model), j = sessile_sds_model_state_index(s->model, SDS_STATE_EXTENDING);
   SESSILE_CHECK(k >= 0 && j >= 0, SESSILE_ERR_USAGE,
                 "sds: convergent_extension needs a morphogen declared axis=1 and a state `extending`");
   sessile_morph_cells cells = sds_cells_of(s);

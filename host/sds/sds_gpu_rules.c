@@ -334,7 +334,8 @@ sessile_status sds_gpu_rules_set_axial(sds_gpu_rules *r, int axis, double A, dou
                 "convergent extension on the device needs a state `extending`");
   SESSILE_CHECK(r->ncells == 0, SESSILE_ERR_INTERNAL, "the oriented growth set after the cells (its buffers' sizes)");
   SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GRAD], 8, 0, &r->k_axial_grad));
-  if (C != 0) SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_EXTEND], 8, 0, &r->k_extend));
+  if (C != 0)
+    SESSILE_CALL(sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_EXTEND], 8, 0, &r->k_extend));
   return A != 0 ? sessile_kernel_create_decl(r->gpu, &sessile_sds_kernels[SDS_AXIAL_GROW], 8, 0, &r->k_axial)
                 : SESSILE_OK;
 }

@@ -22,7 +22,8 @@ sessile_status sds_device_loop_create(sds_sim *s, sessile_gpu *gpu) {
   sessile_status st = sds_gpu_rules_create_kind(gpu, s->model, s->prm.device_rules, &s->rules_dev);
   if (st == SESSILE_OK)
     st = sds_gpu_rules_set_axial(s->rules_dev, sessile_sds_model_axis(s->model), s->prm.axial_growth,
-                                 s->prm.convergent_extension, sessile_sds_model_state_index(s->model, "extending"));
+                                 s->prm.convergent_extension,
+                                 sessile_sds_model_state_index(s->model, SDS_STATE_EXTENDING));
   if (st != SESSILE_OK) return sessile_error_set(st, "device_loop: %s", sessile_error_message());
   s->blog = malloc(2 * (size_t)SESSILE_SDS_BATCH_MAX * sizeof *s->blog);
   SESSILE_CHECK(s->blog, SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
@@ -125,9 +126,11 @@ sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop) {
   if (!done) return SESSILE_OK; /* undone: the next batch retries at half the step */
   SESSILE_CALL(sds_gpu_pull_radii(s->pg));
   SESSILE_CALL(sessile_sds_gpu_download(s->pg, &s->o));
-  /* the oriented growth or the extension moved the edges' s_m on the device: the host's copy
-   * (divisions, checkpoints and a step the host completes start from it) */
-  if (dev && (s->prm.axial_growth != 0 || s->prm.convergent_extension != 0)) SESSILE_CALL(sessile_sds_gpu_download_edge_sm(s->pg, &s->o));
+  /* the oriented growth or the extension moved the edges' s_m on the
+   * device: the host's copy (divisions, checkpoints and a step the host
+   * completes start from it) */
+  if (dev && (s->prm.axial_growth != 0 || s->prm.convergent_extension != 0))
+    SESSILE_CALL(sessile_sds_gpu_download_edge_sm(s->pg, &s->o));
   if (dev) SESSILE_CALL(sds_gpu_rules_get_cells(s->rules_dev, s->o.phi, s->o.state));
   uint64_t d0 = t->divisions, i0 = t->inversions;
   if (dev < done) { /* the last step's rules are the host's: it completes the step as its own loop does */

@@ -150,7 +150,7 @@ sessile_status sds_check_model(sds_sim *s, const char *where, const sessile_sds_
                 "%s: axial_growth %g needs a morphogen declared axis=1 (its gradient is the axis)", where,
                 s->prm.axial_growth);
   SESSILE_CHECK(s->prm.convergent_extension == 0 || (sessile_sds_model_axis(s->model) >= 0 &&
-                                                     sessile_sds_model_state_index(s->model, "extending") >= 0),
+                                                     sessile_sds_model_state_index(s->model, SDS_STATE_EXTENDING) >= 0),
                 SESSILE_ERR_USAGE,
                 "%s: convergent_extension %g needs a morphogen declared axis=1 (its gradient is the axis) and a "
                 "state `extending` (the rules set it where the tissue extends)", where, s->prm.convergent_extension);

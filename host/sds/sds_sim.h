@@ -6,6 +6,9 @@
  * (sds/steps.csv, sds/divisions.csv) and sds_loop.c (one step, the loop, checkpoints). */
 #ifndef SESSILE_SDS_SIM_H
 #define SESSILE_SDS_SIM_H
+
+/* the state the loop reads for convergent extension (the rules set it) */
+#define SDS_STATE_EXTENDING "extending"
 #include <stdint.h>
 #include "sessile/run/generator.h"
 #include "sessile/run/run.h"
