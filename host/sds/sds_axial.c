@@ -85,29 +85,27 @@ static double edge_cos2(const sessile_sds *o, const sessile_morph_cells *cells, 
  * (dr_a + dr_b) s_m, w = 1 + A (3 cos^2 - 1), whose mean over directions is
  * 1: the same growth, shared out along the axis.  A state change between
  * steps, as the radii are, so the forces stay -grad E. */
-sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
-                                    const double *r0, int *changed) {
-  grad_cache gc;
-  SESSILE_CALL(cache_make(&gc, o->ncells));
+static void grow_pass(sessile_sds *o, const sessile_morph_cells *cells, int k, double A, const double *r0,
+                      int *changed, grad_cache *gc) {
   for (uint32_t e = 0; e < o->nedges; e++) {
     uint32_t a = o->edge[2 * (size_t)e], b = o->edge[2 * (size_t)e + 1];
     double dr = (o->r[a] - r0[a]) + (o->r[b] - r0[b]);
     if (dr == 0) continue;
-    double c2 = edge_cos2(o, cells, k, e, &gc);
+    double c2 = edge_cos2(o, cells, k, e, gc);
     if (c2 < 0) continue; /* no axis here: isotropic, s_m as it was */
     double R0 = r0[a] + r0[b], w = 1.0 + A * (3.0 * c2 - 1.0);
     o->edge_sm[e] *= (R0 + w * dr) / (R0 + dr);
     *changed = 1;
   }
-  cache_free(&gc);
-  return SESSILE_OK;
 }
 
-sessile_status sds_axial_grow(sds_sim *s, const double *r0) {
-  int k = sessile_sds_model_axis(s->model);
-  SESSILE_CHECK(k >= 0, SESSILE_ERR_USAGE, "sds: axial_growth needs a morphogen declared axis=1");
-  sessile_morph_cells cells = sds_cells_of(s);
-  return sds_axial_grow_edges(&s->o, &cells, k, s->prm.axial_growth, r0, &s->sm_changed);
+sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
+                                    const double *r0, int *changed) {
+  grad_cache gc;
+  SESSILE_CALL(cache_make(&gc, o->ncells));
+  grow_pass(o, cells, k, A, r0, changed, &gc);
+  cache_free(&gc);
+  return SESSILE_OK;
 }
 
 /* Convergent extension (docs/sds.md, "Convergent extension"): each step an
@@ -116,27 +114,42 @@ sessile_status sds_axial_grow(sds_sim *s, const double *r0) {
  * shorter across it, 1 on average over directions.  The tissue changes its
  * shape without growing, as cells that intercalate do.  A state change
  * between steps, as the oriented growth's. */
-sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt,
-                                      int j, int *changed) {
-  grad_cache gc;
-  SESSILE_CALL(cache_make(&gc, o->ncells));
+static void extend_pass(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt, int j,
+                        int *changed, grad_cache *gc) {
   size_t ns = o->nstate;
   for (uint32_t e = 0; e < o->nedges; e++) {
     uint32_t a = o->edge[2 * (size_t)e], b = o->edge[2 * (size_t)e + 1];
     if (o->state[a * ns + (size_t)j] == 0 || o->state[b * ns + (size_t)j] == 0) continue;
-    double c2 = edge_cos2(o, cells, k, e, &gc);
+    double c2 = edge_cos2(o, cells, k, e, gc);
     if (c2 < 0) continue; /* no axis here */
     o->edge_sm[e] *= 1.0 + C * dt * (3.0 * c2 - 1.0);
     *changed = 1;
   }
+}
+
+sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt,
+                                      int j, int *changed) {
+  grad_cache gc;
+  SESSILE_CALL(cache_make(&gc, o->ncells));
+  extend_pass(o, cells, k, C, dt, j, changed, &gc);
   cache_free(&gc);
   return SESSILE_OK;
 }
 
-sessile_status sds_axial_extend(sds_sim *s, double dt) {
+/* A step's oriented growth (r0 the radii before the rules' growth; NULL:
+ * none) and convergent extension, in that order, on one gradient cache:
+ * the passes change only s_m, so the gradients are the same for both. */
+sessile_status sds_axial_edges_step(sds_sim *s, const double *r0, double dt) {
   int k = sessile_sds_model_axis(s->model), j = sessile_sds_model_state_index(s->model, SDS_STATE_EXTENDING);
-  SESSILE_CHECK(k >= 0 && j >= 0, SESSILE_ERR_USAGE,
-                "sds: convergent_extension needs a morphogen declared axis=1 and a state `extending`");
+  double C = s->prm.convergent_extension;
+  SESSILE_CHECK(k >= 0, SESSILE_ERR_USAGE, "sds: axial_growth and convergent_extension need a morphogen declared axis=1");
+  SESSILE_CHECK(C == 0 || j >= 0, SESSILE_ERR_USAGE, "sds: convergent_extension needs a state `" SDS_STATE_EXTENDING "`");
+  if (!r0 && C == 0) return SESSILE_OK;
   sessile_morph_cells cells = sds_cells_of(s);
-  return sds_axial_extend_edges(&s->o, &cells, k, s->prm.convergent_extension, dt, j, &s->sm_changed);
+  grad_cache gc;
+  SESSILE_CALL(cache_make(&gc, s->o.ncells));
+  if (r0) grow_pass(&s->o, &cells, k, s->prm.axial_growth, r0, &s->sm_changed, &gc);
+  if (C != 0) extend_pass(&s->o, &cells, k, C, dt, j, &s->sm_changed, &gc);
+  cache_free(&gc);
+  return SESSILE_OK;
 }

@@ -116,8 +116,8 @@ sessile_status sds_rules(sds_sim *s, double dt) {
     if (r0) memcpy(r0, o->r, o->ncells * sizeof *r0);
     sessile_sds_actions_apply(s->model, &a, dt, o->r, o->phi, o->state);
     for (uint32_t c = 0; c < o->ncells; c++) set_mass(s, c);
-    if (r0) st = sds_axial_grow(s, r0); /* before the divisions: the edges are those that grew */
-    if (st == SESSILE_OK && s->prm.convergent_extension != 0) st = sds_axial_extend(s, dt);
+    /* before the divisions: the edges are those that grew */
+    if (r0 || s->prm.convergent_extension != 0) st = sds_axial_edges_step(s, r0, dt);
   }
   free(r0);
   if (st == SESSILE_OK) st = sds_divisions(s, a.divides, a.ndivides);

@@ -102,7 +102,6 @@ sessile_status sds_axial_assign(sds_sim *s);
  * model's axis morphogen, axial_growth, sm_changed). */
 sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
                                     const double *r0, int *changed);
-sessile_status sds_axial_grow(sds_sim *s, const double *r0);
 /* Convergent extension (convergent_extension C): each edge between two cells
  * whose state j is set multiplies its s_m by 1 + C dt (3 cos^2 - 1), the
  * angle between it and the sum of morphogen k's gradients at its cells (no
@@ -110,7 +109,11 @@ sessile_status sds_axial_grow(sds_sim *s, const double *r0);
  * the loop (the axis morphogen, the state `extending`, sm_changed). */
 sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt,
                                       int j, int *changed);
-sessile_status sds_axial_extend(sds_sim *s, double dt);
+/* The loop's step of both (the model's axis morphogen, axial_growth with r0
+ * the radii before the rules' growth or NULL for none, convergent_extension
+ * over dt, sm_changed): the growth's pass, then the extension's, on one
+ * gradient per cell. */
+sessile_status sds_axial_edges_step(sds_sim *s, const double *r0, double dt);
 sessile_status sds_rules(sds_sim *s, double dt);
 sessile_status sds_divisions(sds_sim *s, const sessile_sds_divide *req, size_t n);
 
