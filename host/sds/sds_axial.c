@@ -142,8 +142,10 @@ sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells 
 sessile_status sds_axial_edges_step(sds_sim *s, const double *r0, double dt) {
   int k = sessile_sds_model_axis(s->model), j = sessile_sds_model_state_index(s->model, SDS_STATE_EXTENDING);
   double C = s->prm.convergent_extension;
-  SESSILE_CHECK(k >= 0, SESSILE_ERR_USAGE, "sds: axial_growth and convergent_extension need a morphogen declared axis=1");
-  SESSILE_CHECK(C == 0 || j >= 0, SESSILE_ERR_USAGE, "sds: convergent_extension needs a state `" SDS_STATE_EXTENDING "`");
+  SESSILE_CHECK(k >= 0, SESSILE_ERR_USAGE,
+                "sds: axial_growth and convergent_extension need a morphogen declared axis=1");
+  SESSILE_CHECK(C == 0 || j >= 0, SESSILE_ERR_USAGE,
+                "sds: convergent_extension needs a state `" SDS_STATE_EXTENDING "`");
   if (!r0 && C == 0) return SESSILE_OK;
   sessile_morph_cells cells = sds_cells_of(s);
   grad_cache gc;

@@ -6,9 +6,6 @@
  * (sds/steps.csv, sds/divisions.csv) and sds_loop.c (one step, the loop, checkpoints). */
 #ifndef SESSILE_SDS_SIM_H
 #define SESSILE_SDS_SIM_H
-
-/* the state the loop reads for convergent extension (the rules set it) */
-#define SDS_STATE_EXTENDING "extending"
 #include <stdint.h>
 #include "sessile/run/generator.h"
 #include "sessile/run/run.h"
@@ -17,6 +14,9 @@
 #include "sessile/sds/sds_process.h"
 #include "sessile/sds/sds_run.h"
 #include "sessile/sds/sds_topo.h"
+
+/* the state the loop reads for convergent extension (the rules set it) */
+#define SDS_STATE_EXTENDING "extending"
 
 typedef struct sds_sim {
   const char *text;           /* the model */
@@ -98,15 +98,13 @@ sessile_status sds_axial_assign(sds_sim *s);
  * to o->r; each edge whose cells grew takes w = 1 + A (3 cos^2 - 1) times
  * that growth of its rest length, the angle now between it and the sum of
  * morphogen k's gradients at its cells (w = 1 where there is none), through
- * its s_m; *changed = 1 when any s_m moved.  And that for the loop (the
- * model's axis morphogen, axial_growth, sm_changed). */
+ * its s_m; *changed = 1 when any s_m moved. */
 sessile_status sds_axial_grow_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double A,
                                     const double *r0, int *changed);
 /* Convergent extension (convergent_extension C): each edge between two cells
  * whose state j is set multiplies its s_m by 1 + C dt (3 cos^2 - 1), the
  * angle between it and the sum of morphogen k's gradients at its cells (no
- * change where there is none); *changed = 1 when any moved.  And that for
- * the loop (the axis morphogen, the state `extending`, sm_changed). */
+ * change where there is none); *changed = 1 when any moved. */
 sessile_status sds_axial_extend_edges(sessile_sds *o, const sessile_morph_cells *cells, int k, double C, double dt,
                                       int j, int *changed);
 /* The loop's step of both (the model's axis morphogen, axial_growth with r0
