@@ -4,7 +4,8 @@
 # model in the timer's decay alone, and by half; each start's two runs share
 # their start (frame 0 the same bytes) and the starts differ (the exact
 # start unjittered, the realisation jittered); the runs reach the time
-# asked; the summary's counts are those of the per-run measures; and a
+# asked; the summary's counts are those of the per-run measures, its R2 a
+# line through each run's cells; and a
 # folder that is not the study's own, or a model without the stripes'
 # timer, is refused.
 set -u
@@ -72,6 +73,27 @@ ok &= limbs == 12 and summary["limbs"] == limbs and summary["limbs_with_three"] 
 ok &= summary["starts_three_every_limb"] == every and summary["starts_ratio_holds"] == doubles
 ok &= summary["mean_ratio"] == (sum(ratios) / len(ratios) if ratios else None)
 print("limbs %d, with three %d, every limb %d, doubling %d, ratios %s" % (limbs, three, every, doubles, ratios))
+sys.exit(0 if ok else 1)
+PYEOF
+check "each start's R2 is a line fitted to its own cells from t = 6 to 24 (recomputed here), and counted" \
+  /usr/bin/python3 -B - "$T/e" "$T/study.out" <<'PYEOF'
+import json, sys
+import numpy as np
+out, txt = sys.argv[1], sys.argv[2]
+summary = json.loads(open(txt).read().strip().splitlines()[-1])
+ok, linear = True, 0
+for s in (0, 1):
+    rec = [json.loads(l) for l in open("%s/model_s%d/records.jsonl" % (out, s))]
+    tc = np.array([(r["time"], r["cells"]) for r in rec if "time" in r and "cells" in r and 6 - 1e-9 <= r["time"] <= 25])
+    fit = np.polyval(np.polyfit(tc[:, 0], tc[:, 1], 1), tc[:, 0])
+    ss = ((tc[:, 1] - tc[:, 1].mean()) ** 2).sum()
+    r2 = 1 - ((tc[:, 1] - fit) ** 2).sum() / ss if ss > 0 else None
+    row = summary["rows"][s]
+    ok &= len(tc) >= 3 and (r2 is None and row["r2"] is None or abs(row["r2"] - r2) < 1e-9)
+    ok &= row["linear"] == (r2 is not None and r2 >= 0.98)
+    linear += row["linear"]
+    print("start %d: %d points, R2 %s (the study's %s)" % (s, len(tc), r2, row["r2"]))
+ok &= summary["starts_linear"] == linear
 sys.exit(0 if ok else 1)
 PYEOF
 check "the exact start is not jittered, the realisation is (start_jitter in the manifests)" \
