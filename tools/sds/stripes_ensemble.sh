@@ -13,8 +13,9 @@
 # many limbs and starts meet them.  The same runs give Figure 12's line: per
 # start the R² of cells against time over the last three quarters of the run
 # (t = 100-400 at the default TIME; `figures.py cells`), since a change to
-# the rock model that helps the stripes must not cost Figure 12.  Two runs at a time; about 2-4 minutes a
-# pair to t = 400 on 2 cores (lavapipe), by the machine.
+# the rock model that helps the stripes must not cost Figure 12.  Two runs
+# at a time; about 2-4 minutes a pair to t = 400 on 2 cores (lavapipe), by
+# the machine.
 #
 #   tools/sds/stripes_ensemble.sh [SESSILE [OUT_DIR [SEEDS [JITTER [MODEL [TIME]]]]]]
 #     SESSILE  the binary (default build/sessile)
@@ -56,11 +57,11 @@ for s in $(seq 0 "$SEEDS"); do printf '%s %s\n' model "$s" model_half "$s"; done
       --quiet --progress none --no-preview && echo "stripes_ensemble: $5, start $6 done" >&2' \
     "$SESSILE" "$OUT" "$TIME" "$FRAMES" "$JITTER"
 FIG="/usr/bin/python3 -B $here/figures.py"
+LINE_FROM=$(/usr/bin/python3 -c 'import sys; print(float(sys.argv[1]) / 4)' "$TIME")  # Figure 12's line: the last 3/4
 for s in $(seq 0 "$SEEDS"); do
   $FIG stripes "$OUT/model_s$s" --time "$TIME" | tail -n 1 >"$OUT/stripes_s$s.json"
   $FIG stripes "$OUT/model_half_s$s" --ref "$OUT/model_s$s" --time "$TIME" | tail -n 1 >"$OUT/stripes_half_s$s.json"
-  $FIG cells "$OUT/model_s$s" --from "$(/usr/bin/python3 -c 'import sys; print(float(sys.argv[1]) / 4)' "$TIME")" \
-    --to "$TIME" | tail -n 1 >"$OUT/cells_s$s.json"
+  $FIG cells "$OUT/model_s$s" --from "$LINE_FROM" --to "$TIME" | tail -n 1 >"$OUT/cells_s$s.json"
 done
 /usr/bin/python3 - "$OUT" "$SEEDS" "$JITTER" "$TIME" <<'PYEOF' | tee "$OUT/stripes_ensemble.txt"
 import json, os, sys
