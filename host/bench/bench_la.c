@@ -317,6 +317,8 @@ static sessile_status run(bench *b, const sessile_bench_la_options *o) {
   fprintf(b->out, "sessile bench la: device %s (%s), driver %s, fp%d; C reference on %d threads\n",
           gi->name, gi->type, gi->driver, gi->precision, omp_get_max_threads());
   fprintf(b->out, "grid %u^3, %u repetitions per kernel\n", N, o->repeat);
+  char cpu[256];
+  fprintf(b->out, "machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
   print_load(b->out, "at start");
   fprintf(b->out, "\n");
   fprintf(b->out, "%-30s %10s %10s %8s %8s %8s\n", "kernel", "gpu ms", "C ms", "GFLOP/s",

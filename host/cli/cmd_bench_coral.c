@@ -51,6 +51,8 @@ static int bench_sections(const char *cmd, const char *help, int n, const char *
     want[k] = any = 1;
   }
   for (int k = 0; k < n && !any; k++) want[k] = 1;
+  char cpu[256];
+  printf("machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
   double load[3];
   sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);

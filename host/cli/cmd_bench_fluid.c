@@ -181,8 +181,10 @@ static double median_of(const double *v, int n) {
  * round, median seconds (and their range), and the ratios of the medians. */
 static void print_compare(const sessile_fluid_result (*r)[2][2], const double (*cpu)[2][2], int rounds,
                           const char *name[2], int k0) {
+  char cpuname[256];
   double load[3];
   sessile_load_average(load);
+  printf("machine: %s\n", sessile_cpu_describe(cpuname, sizeof cpuname));
   printf("%s (load %.1f %.1f %.1f)%s:\n", k0 ? "summary" : "comparison in this run", load[0], load[1], load[2],
          rounds > 1 ? ", seconds the median over the rounds" : "");
   printf("  %-12s %-5s %5s %8s %9s %8s %9s %8s %8s %10s%s\n", "pc", "solve", "steps", "lin its", "its/step",

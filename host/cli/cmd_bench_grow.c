@@ -18,7 +18,7 @@ static const char *help =
     "the default) and by Jacobi-PCG (the baseline), and prints per stage (upload,\n"
     "classify, nutrient, growth, remesh) the total and per-iteration time and its\n"
     "share of the run, the box node count, the nutrient solver iterations, and the\n"
-    "ratios multigrid / Jacobi-PCG.  The machine's load average is printed first.\n"
+    "ratios multigrid / Jacobi-PCG.  The processor and load average are printed first.\n"
     "Figures are for the record (docs/performance.md), never pass/fail.\n";
 
 int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
@@ -74,6 +74,8 @@ int cmd_bench_grow(int argc, char **argv, const cli_gpu_opts *global) {
   static const char *const solver_name[2] = {"multigrid", "jacobi-pcg"};
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
+    char cpu[256];
+    printf("machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
     double load[3];
     sessile_load_average(load);
     printf("sessile bench grow: device %s (%s), driver %s, fp%d; load average %.2f %.2f %.2f\n",

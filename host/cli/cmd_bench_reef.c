@@ -28,7 +28,7 @@ static const char *help =
     "meshes (the seabed and each organism) written each alone as a .glb.  The\n"
     "placements are cut to N after growth; grown ones share their entry's mesh\n"
     "here (in `sessile reef` each is a new organism), so the reef has D organism\n"
-    "meshes.  The load average is printed first.\n"
+    "meshes.  The processor and load average are printed first.\n"
     "  --placements N  placements (default 10000)\n"
     "  --organisms D   distinct organisms, pool entries (default 100)\n"
     "  --quick         500 placements of 8 organisms: a smoke run for the tests\n"
@@ -205,6 +205,8 @@ int cmd_bench_reef(int argc, char **argv, const cli_gpu_opts *global) {
   sessile_status s = cli_gpu_create(&go, &g);
   if (s == SESSILE_OK) {
     const sessile_gpu_info *gi = sessile_gpu_info_of(g);
+    char cpu[256];
+    printf("machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
     double load[3];
     sessile_load_average(load);
     printf("sessile bench reef: device %s (%s), driver %s, fp%d; load average %.2f %.2f %.2f\n", gi->name, gi->type,

@@ -25,7 +25,7 @@ static const char *help =
     "per pixel, oblique view with the grid, and writes the PNG, as 'sessile render'\n"
     "does.  Per run: read (PLY and normals), setup (target and pipelines), upload,\n"
     "draw, readback, png (encode and write); the median total of the runs against\n"
-    "the target of 2 s, after the machine's load average.\n"
+    "the target of 2 s, after the processor and load average.\n"
     "  --runs N   runs (default 3, 1..20)\n"
     "  --quick    a 20,000-triangle knot at 320x240: a smoke run for the tests\n"
     "Figures are for the record (docs/render.md), never pass/fail.\n";
@@ -179,6 +179,8 @@ int cmd_bench_render(int argc, char **argv, const cli_gpu_opts *global) {
   char ply[600], png[600];
   snprintf(ply, sizeof ply, "%s/knot.ply", dir);
   snprintf(png, sizeof png, "%s/knot.png", dir);
+  char cpu[256];
+  printf("machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
   double load[3];
   sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);

@@ -25,13 +25,13 @@ static const char *help =
     "runs the Figure 9 model (rock, Porter & McCormack: 5.7 minutes on a\n"
     "dual-core 2 GHz PC) twice, frames on, each into a temporary run\n"
     "directory, to simulated time T (default 1; 400 is the model's whole run,\n"
-    "1-1.5 minutes a loop on lavapipe with 2 cores in 2026-12): through the\n"
+    "1-2.3 minutes a loop on lavapipe with 2 cores in 2026-12): through the\n"
     "host-driven loop, then through the loop on the device (device_loop: steps in\n"
     "batches, the rules too, with the generated rules kernel; the same steps), each\n"
     "with its wall time, ms per step, us per cell-step and submissions, then their\n"
     "ratio; short of 400 the time of the whole run is extrapolated, and labelled\n"
-    "so.  The load average is printed before and after each.  Figures are for\n"
-    "the record (docs/performance.md), never pass/fail.\n"
+    "so.  The processor is printed first, the load before and after each.\n"
+    "Figures are for the record (docs/performance.md), never pass/fail.\n"
     "\n"
     "  --rock-t T      simulated time of the rock run, 0 < T <= 400 (0: skip it)\n"
     "  --repeat N      make the rock runs N times (1-9, default 1), the loops alternating, then\n"
@@ -95,6 +95,8 @@ int cmd_bench_sds(int argc, char **argv, const cli_gpu_opts *global) {
     return cli_usage_error("bench sds", "--repeat repeats the rock runs: give --rock-t T > 0 with it");
   if (kernels && !(rock_t > 0))
     return cli_usage_error("bench sds", "--kernels times the rock run: give --rock-t T > 0 with it");
+  char cpu[256];
+  printf("machine: %s\n", sessile_cpu_describe(cpu, sizeof cpu));
   double load[3];
   sessile_load_average(load);
   printf("load average: %.2f %.2f %.2f\n", load[0], load[1], load[2]);

@@ -98,6 +98,16 @@ run --validation bench sds --no-physics --rock-t 0.05 --kernels
 check "'sessile bench sds --rock-t 0.05 --kernels' prints the rock run's kernels and their sum" eval \
   'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
 check "bench sds --kernels under the validation layer is silent" no_validation
+# the processor beside the figures: /proc/cpuinfo's first model name and
+# family, read here by another route (awk), and the CPUs online (getconf)
+cpu_named() {
+  local name fam
+  name=$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)
+  fam=$(awk -F': ' '/^cpu family/ {print $2; exit}' /proc/cpuinfo)
+  [ -n "$name" ] && [ -n "$fam" ] &&
+    grep -qxF "machine: $name (cpu family $fam, model $(awk -F': ' '/^model\t/ {print $2; exit}' /proc/cpuinfo)), $(getconf _NPROCESSORS_ONLN) CPUs online" "$T/out"
+}
+check "'sessile bench sds' names the processor it ran on" cpu_named
 # --repeat: the runs alternate, and the summary is over all of them (the
 # rock runs are deterministic, so a repeat that took other steps is a bug)
 run bench sds --no-physics --rock-t 0.05 --repeat 2
