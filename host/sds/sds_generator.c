@@ -21,7 +21,7 @@ static const char help[] =
     "vertices are cells, with mass-spring physics and morphogen diffusion on the\n"
     "device, rules per cell (grow, divide toward a morphogen's gradient), cell\n"
     "division and inversions re-tetrahedralised with TetGen.  MODEL is a shipped\n"
-    "model (limb, limb_extension, six_limbs_box, rock, attractor, budded) or a\n"
+    "model (limb, limb_extension, six_limbs_box, rock, rock_stripes, attractor, budded) or a\n"
     "model file (a name ending in .sds; the language: docs/sds_rules.md).\n"
     "Writes sds/frame_NNNN.ply (the surface with per-cell radius, morphogens and\n"
     "state), sds/frame_NNNN.vtu and sds/series.pvd (the complex, for ParaView),\n"

@@ -36,9 +36,9 @@ int main(void) {
   char *cut = strstr(root, "/tests/sds/");
   if (cut) *cut = 0;
   const char *names[] = {"limb.sds",   "six_limbs_box.sds", "rock.sds",
-                         "attractor.sds", "budded.sds", "limb_extension.sds"};
-  const int tips[] = {1, 6, 6, 6, 6, 1};
-  for (int i = 0; i < 6; i++) {
+                         "attractor.sds", "budded.sds", "limb_extension.sds", "rock_stripes.sds"};
+  const int tips[] = {1, 6, 6, 6, 6, 1, 6};
+  for (int i = 0; i < 7; i++) {
     sessile_sds_model *m = load(names[i]);
     if (!m) continue;
     char what[200];
@@ -79,6 +79,14 @@ int main(void) {
       t_true("limb_extension: phi the axis, a state extending",
              sessile_sds_model_axis(m) == sessile_sds_model_morph_index(m, "phi") &&
                  sessile_sds_model_state_index(m, "extending") >= 0);
+    if (i == 6) {
+      /* rock.sds's rules with the timer's period doubled (docs/sds_rules.md) */
+      int k = sessile_sds_model_morph_index(m, "clock");
+      t_true("rock_stripes: a rock, rock.sds's eight rules", sessile_sds_model_param_find(m, "rock")->nvalues == 4 &&
+                                                                  sessile_sds_model_nrules(m) == 8);
+      t_true("rock_stripes: the clock decays at 0.015 (half rock.sds's 0.03), uncapped, from 1",
+             k >= 0 && co.decay[k] == 0.015 && co.capped[k] == 0 && sessile_sds_model_morph_start(m, k) == 1);
+    }
     sessile_sds_model_destroy(m);
   }
   return t_finish(NULL);

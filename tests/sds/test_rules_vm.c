@@ -219,8 +219,8 @@ int main(void) {
   char *cut = strstr(root, "/tests/sds/");
   if (cut) *cut = 0;
   const char *names[] = {"limb.sds",   "six_limbs_box.sds", "rock.sds",
-                         "attractor.sds", "budded.sds", "limb_extension.sds"};
-  for (int i = 0; i < 6; i++) {
+                         "attractor.sds", "budded.sds", "limb_extension.sds", "rock_stripes.sds"};
+  for (int i = 0; i < 7; i++) {
     char path[700];
     snprintf(path, sizeof path, "%s/host/sds/models/%s", root, names[i]);
     sessile_sds_model *m = NULL;

@@ -21,8 +21,8 @@ one_line() { [ "$(wc -l <"$T/err")" -eq 1 ] && grep -q "error" "$T/err" && [ ! -
 run sds --help
 check "sds --help explains run and models" eval 'rc_is 0 && grep -q "usage: sessile sds run MODEL" "$T/out"'
 run sds models
-check "sds models lists the six shipped models" eval \
-  'rc_is 0 && [ "$(wc -l <"$T/out")" -eq 6 ] && grep -q "^limb " "$T/out" && grep -q "^limb_extension " "$T/out" && grep -q "^rock " "$T/out"'
+check "sds models lists the seven shipped models" eval \
+  'rc_is 0 && [ "$(wc -l <"$T/out")" -eq 7 ] && grep -q "^limb " "$T/out" && grep -q "^limb_extension " "$T/out" && grep -q "^rock " "$T/out" && grep -q "^rock_stripes " "$T/out"'
 
 run sds run limb --t-end 30 --frames 3 --out "$T/a" --quiet
 check "a limb-bud run to t = 30 completes" rc_is 0

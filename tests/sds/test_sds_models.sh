@@ -15,7 +15,7 @@ S="$1"
 PY=/usr/bin/python3
 M="$(dirname "$0")/../../host/sds/models"
 
-for m in six_limbs_box rock attractor budded; do
+for m in six_limbs_box rock rock_stripes attractor budded; do
   run sds run "$m" --t-end 30 --frames 2 --out "$T/$m" --quiet --no-preview
   check "$m to t = 30 completes" rc_is 0
   check "$m: cells divide and grow in number; the last complex is valid; its environment holds" \
