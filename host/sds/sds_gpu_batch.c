@@ -19,7 +19,7 @@ _Static_assert((int)SESSILE_SDS_EV_DIVIDE == (int)SDS_EV_DIVIDE && (int)SESSILE_
                    (int)SESSILE_SDS_EV_NONFINITE == (int)SDS_EV_NONFINITE && (int)SESSILE_SDS_EV_INVERTED == (int)SDS_EV_INVERTED &&
                    (int)SESSILE_SDS_EV_LISTS == (int)SDS_EV_LISTS && (int)SESSILE_SDS_EV_TIME == (int)SDS_EV_TIME &&
                    (int)SESSILE_SDS_EV_DTMIN == (int)SDS_EV_DTMIN && (int)SESSILE_SDS_EV_HOST == (int)SDS_EV_HOST &&
-                   (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX,
+                   (int)SESSILE_SDS_BATCH_MAX == (int)SDS_BATCH_MAX && (int)SESSILE_SDS_SLIVERS_MAX == (int)SDS_SL_MAX,
                "sds_batch.h's events are kernels.def's");
 
 /* Records the check of step k (stable_min in mode 3) after its result's
@@ -28,7 +28,7 @@ static sessile_status record_check(sessile_sds_gpu *s, uint32_t k, int c, uint32
   if (s->ntets) SESSILE_CALL(sds_gpu_record_inverted(s, c, (k + 1) | split));
   sds_push p = sds_gpu_push_of(s, 0.0, 1, 3);
   p.batch = (k + 2) | split;
-  return sds_gpu_record_stable_min(s, &p);
+  return sds_gpu_record_stable_min(s, &p, c);
 }
 
 /* Records the batch: step k reads pair (cur + k) & 1.  Folded (five
@@ -55,7 +55,7 @@ static sessile_status record_batch(sessile_sds_gpu *s, uint32_t steps) {
   if (s->hook) {
     sds_push p = sds_gpu_push_of(s, reach, 1, 4);
     p.batch = (steps + 1) | SDS_BATCH_SPLIT;
-    SESSILE_CALL(sds_gpu_record_stable_min(s, &p));
+    SESSILE_CALL(sds_gpu_record_stable_min(s, &p, s->cur));
   }
   return split ? SESSILE_OK : record_check(s, steps - 1, (s->cur + (int)steps) & 1, 0);
 }
@@ -68,7 +68,9 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   const sessile_sds_params *p = &s->p;
   SESSILE_CHECK(b->steps >= 1 && b->steps <= SDS_BATCH_MAX, SESSILE_ERR_USAGE,
                 "sds: steps per batch must be 1..%d (got %u)", SDS_BATCH_MAX, b->steps);
-  b->done = 0, b->events = 0;
+  SESSILE_CHECK(!b->slivers || b->nslivers <= SDS_SL_MAX, SESSILE_ERR_USAGE,
+                "sds: a batch takes at most %d lasting slivers (got %u)", SDS_SL_MAX, b->nslivers);
+  b->done = 0, b->events = 0, b->quiet = 0, b->quiet_last = 0;
   SESSILE_CALL(sds_gpu_lists_ensure(s));
   /* The batch's inputs and results ride in its own submission
    * (sessile_cmd_upload/download): on a discrete GPU each blocking transfer
@@ -78,8 +80,14 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
    * sds_gpu_lists_stale. */
   double ctl[5] = {b->dt, b->time, b->t_stop, sds_gpu_reach_scale(s) * s->grown, 0};
   const uint32_t zero[4] = {0, 0, 0, 0};
-  uint32_t ev[4];
+  uint32_t ev[4], quiet[2];
   double st[SDS_STEP_LOG];
+  /* the slivers' table (kernels.def, SL_*): only a batch with the rules
+   * checks its steps with the inverted tets listed (split) */
+  uint32_t tab[SL_TAB + 2 * SDS_SL_MAX] = {0};
+  uint32_t ntab = b->slivers && s->hook ? b->nslivers : 0;
+  tab[SL_COUNT] = ntab;
+  if (ntab) memcpy(tab + SL_TAB, b->slivers, 2 * (size_t)ntab * sizeof *tab);
   SESSILE_CALL(sds_gpu_begin(s));
   SESSILE_CALL(sds_gpu_batch_rules_start(s));
   /* The dispatches after a stop launch nothing (stable_min zeroes their
@@ -94,8 +102,10 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   SESSILE_CALL(sessile_cmd_indirect(s->cmd, s->b[B_DISP], groups, 10));
   SESSILE_CALL(sessile_cmd_upload_reals(s->cmd, s->b[B_STEP], 3, ctl, 5));
   SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_EVENT], 0, zero, sizeof zero));
+  SESSILE_CALL(sessile_cmd_upload(s->cmd, s->b[B_SLIVER], 0, tab, (SL_TAB + 2 * (size_t)ntab) * sizeof *tab));
   SESSILE_CALL(record_batch(s, b->steps));
   SESSILE_CALL(sessile_cmd_download(s->cmd, s->b[B_EVENT], 0, ev, sizeof ev));
+  SESSILE_CALL(sessile_cmd_download(s->cmd, s->b[B_SLIVER], SL_QUIET * sizeof *tab, quiet, sizeof quiet));
   SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_STEP], 0, st, SDS_STEP_LOG));
   /* every step's row; the accepted ones (done, below) are read */
   if (b->log) SESSILE_CALL(sessile_cmd_download_reals(s->cmd, s->b[B_STEP], SDS_STEP_LOG, b->log, 2 * (size_t)b->steps));
@@ -126,7 +136,7 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
     sds_gpu_batch_rules_ready(s);
   }
   s->cur = (s->cur + (int)done) & 1; /* a rejected step wrote the other pair */
-  b->done = done, b->events = e;
+  b->done = done, b->events = e, b->quiet = quiet[0], b->quiet_last = quiet[1];
   if (done) b->time = st[4], b->dt = st[3];
   if (e & SDS_EV_LISTS) lists_invalidate(s);
   if (!(e & SDS_EV_REJECT) && !(e & SDS_EV_NONFINITE) && done) s->flags_cur = s->cur;

@@ -223,6 +223,7 @@ sessile_status sessile_sds_gpu_upload(sessile_sds_gpu *s, const sessile_sds *o) 
   SESSILE_CALL(sds_gpu_ensure(s, B_STAB, (5 * n + 3) * rb)); /* bounds, 3 scalars, element sums, inertia */
   SESSILE_CALL(sds_gpu_ensure(s, B_STEP, (SDS_STEP_LOG + 2 * (size_t)SDS_BATCH_MAX) * rb)); /* a batch's log too */
   SESSILE_CALL(sds_gpu_ensure(s, B_EVENT, 4 * 4));
+  SESSILE_CALL(sds_gpu_ensure(s, B_SLIVER, SL_WORDS * 4)); /* a batch's lasting slivers (kernels.def, SL_*) */
   SESSILE_CALL(sds_gpu_ensure(s, B_RB, n * rb)); /* a batch with the rules: the radii at the lists' build */
   SESSILE_CALL(sds_gpu_ensure(s, B_DISP, (4 + 3 * SESSILE_INDIRECT_MAX) * 4)); /* a batch's indirect counts */
   if (!s->b[B_CNT]) { /* stable_all's counter, zero between its dispatches (shaders/common/last_group.glsl) */

@@ -11,7 +11,7 @@
 #include "sds_kernels.h"
 
 enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WORLD, B_OBSTRI, B_F, B_MOVE,
-       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_DISP, B_CNT, B_COUNT };
+       B_FLAG, B_HASH, B_FSPH, B_LIST, B_XB, B_LMAX, B_STAB, B_STEP, B_EVENT, B_RB, B_DISP, B_CNT, B_SLIVER, B_COUNT };
 
 /* The contact lists' skin, a fraction of contact_scale x the mean cell
  * radius: a larger skin rebuilds less often but lists more triangles, which
@@ -118,10 +118,11 @@ sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int m
 /* sds_gpu_step.c: edge, tet and gather dispatches (mode 0, 1 or 2; mode 2
  * with the stable bound between them) reading pair c and writing pair
  * 1 - c; the inverted-tet flags of pair c's x; stable_min alone (a batch's
- * last check).  batch: 0, or 1 + the step's index in a batch (kernels.def). */
+ * last check; c: the pair of the state it checks).  batch: 0, or 1 + the
+ * step's index in a batch (kernels.def). */
 sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode, uint32_t batch);
 sessile_status sds_gpu_record_inverted(sessile_sds_gpu *s, int c, uint32_t batch);
-sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p);
+sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p, int c);
 
 /* sds_gpu_contacts.c: the lists' staleness after moves, checks at an upload
  * of radii or of a new complex, a build recorded, and the lists made

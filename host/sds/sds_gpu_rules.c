@@ -431,7 +431,8 @@ sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c,
   r->fresh = 0;
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_STAB], s->b[B_STEP],  s->b[B_EVENT], s->b[B_MOVE], s->b[B_TOPO],
                          s->b[B_DISP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG],  r->b[R_OFF],  r->b[R_NBR],
-                         r->b[R_DCOEF], r->b[R_EVENT], r->b[R_KONST], r->b[R_CNT], r->b[R_MRATE]};
+                         r->b[R_DCOEF], r->b[R_EVENT], r->b[R_KONST], r->b[R_CNT], r->b[R_MRATE],
+                         s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
   SESSILE_CALL(sessile_cmd_dispatch(s->cmd, r->k_check, check_groups(r, s->ntets), b, &p));
   *done = 1;
   return SESSILE_OK;

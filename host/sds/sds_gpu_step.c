@@ -31,27 +31,29 @@ static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
 
 /* Records stable_min: the min of the bound (and in a batch the check of
  * the step before, kernels.def). */
-sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p) {
+sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p, int c) {
   sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
-  sessile_buffer *bm[] = {s->b[B_SP],   s->b[B_STAB], s->b[B_STEP], s->b[B_EVENT], s->b[B_MOVE],
-                          s->b[B_TOPO], s->b[B_RM],   s->b[B_RB],   rev,          s->b[B_DISP]};
+  sessile_buffer *bm[] = {s->b[B_SP],   s->b[B_STAB],   s->b[B_STEP],       s->b[B_EVENT], s->b[B_MOVE],
+                          s->b[B_TOPO], s->b[B_RM],     s->b[B_RB],         rev,           s->b[B_DISP],
+                          s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
 }
 
 /* Records the stable bound (after record_edge and record_tet in mode 2,
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
-static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p) {
+static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p, int c) {
   if (sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX] && sds_gpu_fused(s, s->ncells, SDS_FUSE_MIN_CELLS)) { /* stable_all */
     sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
     sessile_buffer *b[] = {s->b[B_SP],   s->b[B_RM],   s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB],
                            s->b[B_EVENT], s->b[B_STEP], s->b[B_MOVE], s->b[B_TOPO], s->b[B_RM],
-                           s->b[B_RB],   rev,          s->b[B_DISP], s->b[B_CNT]};
+                           s->b[B_RB],   rev,          s->b[B_DISP], s->b[B_CNT],
+                           s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
     return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_ALL], sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p);
   }
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB], s->b[B_EVENT]};
   SESSILE_CALL(sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_STABLE), sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p));
-  return sds_gpu_record_stable_min(s, p);
+  return sds_gpu_record_stable_min(s, p, c);
 }
 
 sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int damping, int mode, uint32_t batch) {
@@ -64,7 +66,7 @@ sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int d
     SESSILE_CALL(record_edge(s, c, &p));
     SESSILE_CALL(record_tet(s, c, &p));
   }
-  if (mode == 2) SESSILE_CALL(record_stable(s, &p));
+  if (mode == 2) SESSILE_CALL(record_stable(s, &p, c));
   sessile_buffer *b[] = {s->b[B_SP],   s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM],      s->b[B_ATTRACT],
                          s->b[B_TOPO], s->b[B_ELF],    s->b[B_WORLD],  s->b[B_OBSTRI],  s->b[B_LIST],
                          s->b[B_XB],   s->b[B_X0 + nx],
@@ -75,7 +77,7 @@ sessile_status sds_gpu_record_forces(sessile_sds_gpu *s, int c, double dt, int d
 sessile_status sds_gpu_record_inverted(sessile_sds_gpu *s, int c, uint32_t batch) {
   sds_push p = sds_gpu_push_of(s, 0.0, 0, 0);
   p.batch = batch;
-  sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG], s->b[B_EVENT]};
+  sessile_buffer *b[] = {s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG], s->b[B_EVENT], s->b[B_SLIVER]};
   return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_INVERTED), sds_gpu_groups(s, SDS_INVERTED, s->ntets), b, &p);
 }
 
@@ -169,7 +171,7 @@ sessile_status sessile_sds_gpu_stable_dt(sessile_sds_gpu *s, double *bound) {
   SESSILE_CALL(sds_gpu_begin(s));
   SESSILE_CALL(record_edge(s, s->cur, &p));
   SESSILE_CALL(record_tet(s, s->cur, &p));
-  SESSILE_CALL(record_stable(s, &p));
+  SESSILE_CALL(record_stable(s, &p, s->cur));
   SESSILE_CALL(sessile_cmd_end(s->cmd));
   SESSILE_CALL(sds_gpu_submit(s));
   return sessile_buffer_download_reals(s->b[B_STEP], 2, bound, 1);

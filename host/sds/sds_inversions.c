@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "sds/sds_sim.h"
+#include "sessile/sds/sds_batch.h"
 
 /* Inverted tets that no transformation removed (they began the step inverted,
  * or their transformation was refused): the cavity around them is
@@ -20,6 +21,51 @@ static uint32_t sliver_find(const sds_sim *s, uint64_t h) {
   return e;
 }
 
+/* A tet named by its cells (cell indices outlive the renumbering of tets by
+ * a division elsewhere): an FNV-1a of its sorted cells. */
+static uint64_t tet_hash(const uint32_t *v) {
+  uint32_t q[4] = {v[0], v[1], v[2], v[3]};
+  for (int i = 1; i < 4; i++)
+    for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
+      uint32_t w = q[j];
+      q[j] = q[j - 1], q[j - 1] = w;
+    }
+  uint64_t h = 14695981039346656037ull;
+  for (int i = 0; i < 4; i++) h = (h ^ q[i]) * 1099511628211ull;
+  return h;
+}
+
+uint32_t sds_sliver_table(sds_sim *s, uint32_t *pairs) {
+  _Static_assert(SESSILE_SDS_SLIVERS_MAX == 64, "one bit an entry; sl_hash, sl_tet");
+  uint32_t n = s->nsliver;
+  if (n > SESSILE_SDS_SLIVERS_MAX) return UINT32_MAX;
+  /* each entry's tet where it was last found, while that tet still has the
+   * entry's name (a batch at a time: the whole complex is named only when an
+   * entry is new, moved or its tet renumbered) */
+  int cached = 1;
+  for (uint32_t e = 0; e < n && cached; e++)
+    cached = s->sl_hash[e] == s->sliver[3 * e] && s->sl_tet[e] < s->o.ntets &&
+             tet_hash(s->o.tet + 4 * (size_t)s->sl_tet[e]) == s->sl_hash[e];
+  if (!cached) {
+    uint64_t placed = 0; /* one bit per entry: its tet found once */
+    for (uint32_t t = 0; t < s->o.ntets && n; t++) {
+      uint32_t e = sliver_find(s, tet_hash(s->o.tet + 4 * (size_t)t));
+      if (e == n) continue;
+      if (placed >> e & 1) return UINT32_MAX; /* two tets of one name: leave them to the host */
+      placed |= 1ull << e;
+      s->sl_tet[e] = t, s->sl_hash[e] = s->sliver[3 * e];
+    }
+    uint64_t all = n == 64 ? ~0ull : (1ull << n) - 1;
+    if (placed != all) return UINT32_MAX; /* an entry's tet is gone: the host prunes it */
+  }
+  for (uint32_t e = 0; e < n; e++) {
+    uint64_t due = s->sliver[3 * e + 2], now = s->st->steps;
+    pairs[2 * e] = s->sl_tet[e];
+    pairs[2 * e + 1] = due <= now ? 0 : due - now > UINT32_MAX ? UINT32_MAX : (uint32_t)(due - now);
+  }
+  return n;
+}
+
 static sessile_status repair(sds_sim *s) {
   sessile_sds *o = &s->o;
   uint32_t *bad = malloc(((size_t)o->ntets + 1) * sizeof *bad), nbad = 0, ntry = 0;
@@ -28,23 +74,13 @@ static sessile_status repair(sds_sim *s) {
     free(bad), free(hb);
     return sessile_error_set(SESSILE_ERR_NO_MEMORY, "sds: out of host memory");
   }
-  /* the inverted tets, each named by its cells (cell indices outlive the
-   * renumbering of tets by a division elsewhere): an FNV-1a of its sorted
-   * cells */
+  /* the inverted tets, each named by its cells (tet_hash) */
   for (uint32_t t = 0; t < o->ntets; t++) {
     const uint32_t *v = o->tet + 4 * (size_t)t;
     if (sessile_sds_topo_volume(o->x + 3 * (size_t)v[0], o->x + 3 * (size_t)v[1], o->x + 3 * (size_t)v[2],
                                 o->x + 3 * (size_t)v[3]) > 0)
       continue;
-    uint32_t q[4] = {v[0], v[1], v[2], v[3]};
-    for (int i = 1; i < 4; i++)
-      for (int j = i; j > 0 && q[j - 1] > q[j]; j--) {
-        uint32_t w = q[j];
-        q[j] = q[j - 1], q[j - 1] = w;
-      }
-    uint64_t h = 14695981039346656037ull;
-    for (int i = 0; i < 4; i++) h = (h ^ q[i]) * 1099511628211ull;
-    hb[nbad] = h, bad[nbad++] = t;
+    hb[nbad] = tet_hash(v), bad[nbad++] = t;
   }
   /* The backoff, per inverted tet: after k failed tries in a row it waits
    * 2^k steps (at most 128) before the next.  A sliver can last thousands

@@ -91,6 +91,10 @@ sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop) {
   double to_stop = ceil((t_stop - s->time) / s->dt) + 1;
   uint32_t k = to_stop < s->batch_steps ? (uint32_t)(to_stop > 1 ? to_stop : 1) : s->batch_steps;
   sessile_sds_batch b = {.steps = k, .t_stop = t_stop, .time = s->time, .dt = s->dt, .log = s->blog};
+  /* the repairs' backoff table: a step whose inverted tets are its lasting
+   * slivers, none due, goes on as the host's loop would let it stand */
+  uint32_t pairs[2 * SESSILE_SDS_SLIVERS_MAX], ns = sds_sliver_table(s, pairs);
+  if (ns != UINT32_MAX) b.slivers = pairs, b.nslivers = ns;
   s->step_t0 = s->time;
   sessile_status fail = sessile_sds_gpu_batch(s->pg, &b);
   t->batches++;
@@ -100,6 +104,9 @@ sessile_status sds_device_batch(sds_sim *s, sessile_run *run, double t_stop) {
   sds_gpu_rules_batch_done(s->rules_dev, dev, nsub);
   SESSILE_CHECK(dev <= done && dev + 1 >= done, SESSILE_ERR_INTERNAL,
                 "sds: a batch of %u accepted steps made the rules of %u on the device", done, dev);
+  /* the slivers the steps kept, counted as the host's loop counts them (a
+   * last step the host completes counts its own) */
+  t->slivers += b.quiet - (dev < done ? b.quiet_last : 0);
   /* the next batch's size: the last event's distance (a step more), or
    * twice the batch when it ran all its steps; the stop time is no event
    * to learn from.  Only the speed depends on it: a batch's steps are the

@@ -38,6 +38,8 @@ typedef struct sds_sim {
   uint64_t *sliver;           /* the repairs' backoff: per failed inverted tet (FNV-1a of its cells),
                                  failures in a row, the step before which it is not tried again */
   uint32_t nsliver, sliver_cap;
+  uint64_t sl_hash[64];       /* sds_sliver_table's cache: entry e's name and tet when it was found */
+  uint32_t sl_tet[64];
   int topo_changed;           /* the complex changed since the last upload (refresh uploads it whole) */
   int sm_changed;             /* the edges' rest multipliers changed since (axial_growth) */
   int morph_lists_set;        /* the morphogen kernel has the current neighbour lists (neighbours() clears) */
@@ -123,6 +125,12 @@ sessile_status sds_divide(sds_sim *s, uint32_t c, const double dir[3]);
 /* sds_inversions.c: the tets the last step inverted (§3.1.2), and repairs
  * of lasting ones. */
 sessile_status sds_inversions(sds_sim *s, int *handled, double *frac);
+/* The backoff table as a batch on the device takes it (sessile_sds_batch's
+ * slivers: pairs of a tet and the steps until its repair is due, for up to
+ * SESSILE_SDS_SLIVERS_MAX entries); returns the entries, or UINT32_MAX when
+ * the table cannot be given (too long, or an entry whose tet is gone: the
+ * next inverted tet must go to the host, which prunes it). */
+uint32_t sds_sliver_table(sds_sim *s, uint32_t *pairs);
 
 /* sds_frames.c: a frame's surface (PLY) and complex (VTU), the PVD series,
  * one record per frame interval. */

@@ -15,7 +15,10 @@ void inverted_at(uint t) {
   }
   uint inv = tet_inverted(a, b, c);
   flag[t] = inv;
-  if (pc.batch != 0u && inv != 0u) atomicOr(ev[2], 1u); // stable_min stops the batch on it
+  if (pc.batch != 0u && inv != 0u) { // counted and listed: the check stops the batch on it unless it is a lasting sliver
+    uint i = atomicAdd(ev[2], 1u);
+    if (i < uint(SDS_SL_MAX)) sl[SL_LIST + i] = t;
+  }
 }
 
 #ifndef INVERTED_NO_MAIN

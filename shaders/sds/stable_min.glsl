@@ -22,12 +22,13 @@
 // growth check, no main).
 #include "sds_common.glsl"
 #include "group.glsl"
+#include "sliver.glsl"
 
 #ifndef SDS_PART_SHARED
 #define SDS_PART_SHARED 1 // also morph_bound.glsl's
 shared REAL part[SDS_SCAN_MAX];
 #endif
-shared uint bad, evs;
+shared uint bad, evs, loud;
 
 // The largest of v over the workgroup's lanes (exact in any order).
 REAL group_max(uint l, uint L, REAL v) {
@@ -51,11 +52,20 @@ void stop_dispatches() {
   for (uint i = 0u; i < n; i++) disp[4u + 3u * i] = 0u;
 }
 
-// The check of the batch's step j (its gather wrote move; inverted flagged
-// ev[2]): the events into ev[0] and evs, the step's dt and end time logged.
+// The check of the batch's step j (its gather wrote move; inverted counted
+// its inverted tets in ev[2] and listed them in sl): the events into ev[0]
+// and evs, the step's dt and end time logged.  Inverted tets stop the batch
+// unless they are exactly the slivers' table, each quiet (sliver.glsl).
 void check_step(uint l, uint L, uint n, uint j) {
-  if (l == 0u) bad = 0u;
+  if (l == 0u) bad = 0u, loud = 0u;
   GRP_BARRIER();
+  uint ninv = ev[2];
+  if (ninv != 0u) { // any lane: the same value
+    if (ninv != sl[SL_COUNT]) loud = 1u;
+    else
+      for (uint i = l; i < ninv; i += L)
+        if (!sl_quiet(sl[uint(SL_LIST) + i], j)) loud = 1u;
+  }
   REAL mv = REAL(0), far = REAL(0), far_surf = REAL(0);
   bool lists = pc.lcap > 0u;
   for (uint c = l; c < n; c += L) {
@@ -88,7 +98,10 @@ void check_step(uint l, uint L, uint n, uint j) {
       step[4] = t, step[3] = hn, step[7] = mv;
       step[SDS_STEP_LOG + 2u * j] = h, step[SDS_STEP_LOG + 2u * j + 1u] = t;
       if (!(hn >= sp[SP_DT_MIN])) e |= SDS_EV_DTMIN;
-      if (ev[2] != 0u) e |= SDS_EV_INVERTED;
+      uint q = 0u; // the step's quiet slivers, counted as the host's loop counts them
+      if (ninv != 0u && loud != 0u) e |= SDS_EV_INVERTED;
+      else q = ninv;
+      sl[SL_QUIET] += q, sl[SL_QLAST] = q;
       if (t >= step[5]) e |= SDS_EV_TIME;
     }
     ev[2] = 0u;

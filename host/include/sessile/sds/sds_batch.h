@@ -28,7 +28,17 @@ typedef struct sessile_sds_batch {
   uint32_t done;  /* out: the steps accepted */
   uint32_t events;/* out: SESSILE_SDS_EV_* of the step that stopped the batch (0: it ran all its steps) */
   double *log;    /* out, may be NULL: room for 2 x steps, each accepted step's dt and end time */
+  /* in, may be NULL: lasting slivers a step may keep (with the rules' hook
+   * only; docs/sds.md "The loop on the device"): nslivers pairs of a tet and
+   * the steps from the batch's start until its repair is due.  A step whose
+   * inverted tets are exactly these, none due and none inverting within the
+   * step, goes on; any other inverted tet stops the batch.  NULL: any. */
+  const uint32_t *slivers;
+  uint32_t nslivers;    /* in: at most SESSILE_SDS_SLIVERS_MAX */
+  uint32_t quiet;       /* out: the inverted tets of the accepted steps that went on, summed over the steps */
+  uint32_t quiet_last;  /* out: those of the last accepted step */
 } sessile_sds_batch;
+#define SESSILE_SDS_SLIVERS_MAX 64
 
 /* Up to b->steps accepted steps in one submission, each exactly the step of
  * sessile_sds_gpu_advance (the same bits on an fp64 device: the stable cap,
