@@ -22,10 +22,11 @@ PYEOF
 }
 
 # stopped by SIGINT after frame N, resumed: the bytes of the uninterrupted run
+# (to t = IR_T_END with IR_FRAMES frames: 6 and 5 unless set, as the reference's)
 interrupt_resume() { # label model dir frame reference [options of the run...]
   local label="$1" model="$2" dir="$3" frame="$4" ref="$5"
   shift 5
-  "$S" sds run "$model" --t-end 6 --frames 5 --quiet "$@" --out "$dir" >"$T/out" 2>"$T/err" &
+  "$S" sds run "$model" --t-end "${IR_T_END:-6}" --frames "${IR_FRAMES:-5}" --quiet "$@" --out "$dir" >"$T/out" 2>"$T/err" &
   local pid=$!
   for _ in $(seq 1 3000); do [ -e "$dir/sds/frame_000$frame.ply" ] && break; sleep 0.02; done
   kill -INT $pid 2>/dev/null

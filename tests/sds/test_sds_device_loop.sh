@@ -12,7 +12,8 @@
 #  - the fast limb with diffusion 2: several sub-steps a step, on the device
 #    (the count from step_check's bound: halving its rates fails this);
 #  - the rock model (an obstacle: the contact lists and their skin) to t = 5;
-#  - lasting slivers a batch keeps going over (the repairs' backoff table);
+#  - lasting slivers a batch keeps going over (the repairs' backoff table),
+#    and a run with them stopped by SIGINT at t = 15 and resumed;
 #  - a run stopped by SIGINT after frame 1 and resumed: the same bytes;
 #  - a discrete GPU's paths (SESSILE_STAGED=1): a batch's transfers ride in
 #    its own submission, so the loop on the device makes under half the
@@ -98,12 +99,14 @@ check "rock, no fused kernels: the same bytes, the same steps" same_run "$T/rock
 # the step) instead of stopping for the host.  The same bytes, the same
 # count of sliver-steps, and the host completes under half as many steps as
 # there were sliver-steps (2026-12-03: 696 of 2 311; 1 406 when every step
-# with an inverted tet stopped its batch)
+# with an inverted tet stopped its batch).  Stopped after frame 3 (t = 15:
+# 604 sliver-steps before, 1 707 after, the backoff table in the checkpoint)
+# and resumed: the same bytes and the same count.
 sed 's/^const Delta = .*/const Delta = 0.03/' "$M/rock_stripes.sds" >"$T/slivers.sds"
 check "the slivers model was made" grep -q '^const Delta = 0.03' "$T/slivers.sds"
-run sds run "$T/slivers.sds" --t-end 20 --frames 2 --out "$T/sl-h" --quiet
+run sds run "$T/slivers.sds" --t-end 20 --frames 4 --out "$T/sl-h" --quiet
 check "slivers: the host-driven loop completes" rc_is 0
-run sds run "$T/slivers.sds" --t-end 20 --frames 2 --out "$T/sl-d" --quiet --set device_loop=true
+run sds run "$T/slivers.sds" --t-end 20 --frames 4 --out "$T/sl-d" --quiet --set device_loop=true
 check "slivers: the loop on the device completes" rc_is 0
 check "slivers: the same bytes, the same steps" same_run "$T/sl-h" "$T/sl-d"
 sds_stat() { "$PY" -c 'import json,sys; print(json.load(open(sys.argv[1]))["sds"][sys.argv[2]])' "$1/manifest.json" "$2"; }
@@ -111,6 +114,9 @@ check "slivers: lasting slivers kept (sliver_steps > 100), the same count both l
   '[ "$(sds_stat "$T/sl-h" sliver_steps)" -gt 100 ] && [ "$(sds_stat "$T/sl-h" sliver_steps)" = "$(sds_stat "$T/sl-d" sliver_steps)" ]'
 check "slivers: the host completed fewer steps than half the sliver-steps" eval \
   '[ $(( $(loop_stat "$T/sl-d" host_completed_steps) * 2 )) -lt "$(sds_stat "$T/sl-d" sliver_steps)" ]'
+IR_T_END=20 IR_FRAMES=4 interrupt_resume slivers "$T/slivers.sds" "$T/slr" 3 "$T/sl-h" --set device_loop=true
+check "slivers, resumed: the same count of sliver-steps" eval \
+  '[ "$(sds_stat "$T/slr" sliver_steps)" = "$(sds_stat "$T/sl-h" sliver_steps)" ]'
 
 # stopped by SIGINT after frame 1 and resumed (sds_runs.sh)
 interrupt_resume "device loop" "$T/fast.sds" "$T/b" 1 "$T/fast-h" --set device_loop=true
