@@ -87,6 +87,7 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
   uint32_t tab[SL_TAB + 2 * SDS_SL_MAX] = {0};
   uint32_t ntab = b->slivers && s->hook ? b->nslivers : 0;
   tab[SL_COUNT] = ntab;
+  s->batch_slivers = ntab;
   if (ntab) memcpy(tab + SL_TAB, b->slivers, 2 * (size_t)ntab * sizeof *tab);
   SESSILE_CALL(sds_gpu_begin(s));
   SESSILE_CALL(sds_gpu_batch_rules_start(s));

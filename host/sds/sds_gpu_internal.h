@@ -92,6 +92,7 @@ struct sessile_sds_gpu {
   sds_gpu_batch_hook hook; /* a batch's per-step hook (implies split checks), and its context */
   void *hook_ctx;
   int check_fused; /* a batch step's check made by the rules' step_check (sds_gpu_batch_rules_check) */
+  uint32_t batch_slivers; /* entries of the batch being recorded's slivers' table (0: step_check_nosl) */
 };
 /* Does a fused kernel run for a part of `size` elements (SDS_FUSE_*)? */
 static inline int sds_gpu_fused(const sessile_sds_gpu *s, uint32_t size, uint32_t limit) {

@@ -20,8 +20,8 @@ struct sds_gpu_rules {
   /* rules_vm; a batch's morph_bound and morph_step_batch (each also through
    * texel buffers), and its rules with their first sub-step (rules_morph:
    * NULL without morphogens); a batch step's flags, check and bound
-   * (step_check) */
-  sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex, *k_fused, *k_check;
+   * (step_check; step_check_nosl where the batch has no slivers' table) */
+  sessile_kernel *k, *k_bound, *k_bound_tex, *k_morph, *k_morph_tex, *k_fused, *k_check, *k_check_nosl;
   /* the oriented growth and convergent extension after each batch step's
    * rules (axial_grad, then axial_grow and axial_extend; each NULL without
    * it): axial_growth A and convergent_extension C along the gradient of
@@ -90,6 +90,8 @@ sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model
   if (st == SESSILE_OK)
     st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_MORPH_STEP_BATCH_TEX], 8, 0, &r->k_morph_tex);
   if (st == SESSILE_OK) st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_STEP_CHECK], 8, 0, &r->k_check);
+  if (st == SESSILE_OK)
+    st = sessile_kernel_create_decl(g, &sessile_sds_kernels[SDS_STEP_CHECK_NOSL], 8, 0, &r->k_check_nosl);
   if (st == SESSILE_OK) st = ensure(r, R_CNT, 16);
   if (st == SESSILE_OK) { /* step_check's counter: zero between its dispatches (last_group.glsl) */
     const uint32_t zero[4] = {0, 0, 0, 0};
@@ -123,6 +125,7 @@ void sds_gpu_rules_destroy(sds_gpu_rules *r) {
   sessile_kernel_destroy(r->k_morph_tex);
   sessile_kernel_destroy(r->k_fused);
   sessile_kernel_destroy(r->k_check);
+  sessile_kernel_destroy(r->k_check_nosl);
   sessile_kernel_destroy(r->k_axial_grad);
   sessile_kernel_destroy(r->k_axial);
   sessile_kernel_destroy(r->k_extend);
@@ -433,7 +436,10 @@ sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c,
                          s->b[B_DISP], s->b[B_X0 + c], s->b[B_TOPO], s->b[B_FLAG],  r->b[R_OFF],  r->b[R_NBR],
                          r->b[R_DCOEF], r->b[R_EVENT], r->b[R_KONST], r->b[R_CNT], r->b[R_MRATE],
                          s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
-  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, r->k_check, check_groups(r, s->ntets), b, &p));
+  /* without a table the cubic's code would only cost every subgroup its
+   * masked run on llvmpipe (docs/sds.md, "Tails that every subgroup runs") */
+  sessile_kernel *kc = s->batch_slivers ? r->k_check : r->k_check_nosl;
+  SESSILE_CALL(sessile_cmd_dispatch(s->cmd, kc, check_groups(r, s->ntets), b, &p));
   *done = 1;
   return SESSILE_OK;
 }

@@ -13,6 +13,11 @@
 #define GRP_SUBGROUP 1 // the one-workgroup code runs on the last subgroup
 #define STABLE_NO_MAIN 1
 #include "stable.glsl"
+// no slivers' table reaches stable_all's check: it checks only in a batch
+// without the rules (not split), and only the rules' batches get a table
+// (sessile_sds_gpu_batch); the cubic's code left out of the tail
+#define SDS_SLIVERS 0
+#define STABLE_MIN_CHECK 0
 #define STABLE_MIN_NO_MAIN 1
 #include "stable_min.glsl"
 #include "last_group.glsl"

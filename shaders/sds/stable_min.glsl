@@ -22,7 +22,17 @@
 // growth check, no main).
 #include "sds_common.glsl"
 #include "group.glsl"
+// SDS_SLIVERS 0 (stable_all.comp, step_check_nosl.comp): no quiet slivers,
+// for a batch without a table, where any inverted tet stops the batch
+// anyway.  llvmpipe runs a fused kernel's tail, masked, in every subgroup of
+// its dispatch, so the cubic's code would cost every subgroup of every step
+// (docs/sds.md, "Tails that every subgroup runs").
+#ifndef SDS_SLIVERS
+#define SDS_SLIVERS 1
+#endif
+#if SDS_SLIVERS
 #include "sliver.glsl"
+#endif
 
 #ifndef SDS_PART_SHARED
 #define SDS_PART_SHARED 1 // also morph_bound.glsl's
@@ -61,10 +71,14 @@ void check_step(uint l, uint L, uint n, uint j) {
   GRP_BARRIER();
   uint ninv = ev[2];
   if (ninv != 0u) { // any lane: the same value
+#if SDS_SLIVERS
     if (ninv != sl[SL_COUNT]) loud = 1u;
     else
       for (uint i = l; i < ninv; i += L)
         if (!sl_quiet(sl[uint(SL_LIST) + i], j)) loud = 1u;
+#else
+    loud = 1u; // no table: every inverted tet stops the batch
+#endif
   }
   REAL mv = REAL(0), far = REAL(0), far_surf = REAL(0);
   bool lists = pc.lcap > 0u;
