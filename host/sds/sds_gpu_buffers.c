@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "sds/sds_gpu_internal.h"
 
 /* (Re)creates buffer i with room for `bytes` (contents lost when it grows). */
@@ -73,6 +74,15 @@ void sessile_sds_gpu_set_reads(sessile_sds_gpu *s, int storage) {
 uint32_t sds_gpu_groups(const sessile_sds_gpu *s, int k, uint32_t items) {
   uint32_t l = sessile_kernel_local_size(s->k[k]);
   return (items + l - 1) / l;
+}
+
+uint32_t sds_gpu_tail_cap(sessile_gpu *g) {
+  /* a CPU device's memory is unified, unless the options take a discrete
+   * GPU's paths (SESSILE_STAGED): then its launches too */
+  const sessile_gpu_info *i = sessile_gpu_info_of(g);
+  if (strcmp(i->type, "cpu") != 0 || !i->unified_memory) return 0;
+  long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n < 1 ? 2 : n > 16 ? 32 : 2 * (uint32_t)n;
 }
 
 sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int mode) {
@@ -324,6 +334,7 @@ sessile_status sessile_sds_gpu_create(sessile_gpu *g, const sessile_sds *o, cons
   SESSILE_CHECK(s, SESSILE_ERR_NO_MEMORY, "sds: out of memory");
   s->gpu = g;
   s->real_bytes = sessile_gpu_info_of(g)->precision == 64 ? 8 : 4;
+  s->tail_cap = sds_gpu_tail_cap(g);
   sessile_status st = SESSILE_OK;
   /* the physics' kernels: the layer's morphogen kernels, declared last, are
    * morph_gpu.c's */

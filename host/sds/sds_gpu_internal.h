@@ -30,8 +30,9 @@ enum { B_SP, B_X0, B_X1, B_V0, B_V1, B_RM, B_ATTRACT, B_TOPO, B_SM, B_ELF, B_WOR
  * (lavapipe, 2026-12-01).  elem_force (an edge's and a tet's code a
  * invocation) up to SDS_FUSE_ELEM_TETS tets; stable_all and step_check (the
  * last subgroup's minimum and check, run masked by every subgroup) up to
- * SDS_FUSE_MIN_CELLS cells and SDS_FUSE_CHECK_TETS tets.  Either way the
- * same bits. */
+ * SDS_FUSE_MIN_CELLS cells and SDS_FUSE_CHECK_TETS tets, and at any size on
+ * a CPU device, where they run on a few workgroups (sds_gpu_tail_cap,
+ * 2026-12-04).  Either way the same bits. */
 #define SDS_FUSE_ELEM_TETS 1000u
 #define SDS_FUSE_MIN_CELLS 400u
 #define SDS_FUSE_CHECK_TETS 2000u
@@ -46,6 +47,7 @@ typedef sessile_status (*sds_gpu_batch_hook)(sessile_sds_gpu *s, void *ctx, uint
 struct sessile_sds_gpu {
   sessile_gpu *gpu;
   uint32_t real_bytes;
+  uint32_t tail_cap; /* a fused kernel's most workgroups (sds_gpu_tail_cap; 0: one item an invocation) */
   sessile_kernel *k[SDS_MORPH_STEP]; /* the physics' kernels (kernels.def: the morphogens' come after) */
   sessile_cmd *cmd;
   sessile_buffer *b[B_COUNT];
@@ -94,9 +96,28 @@ struct sessile_sds_gpu {
   int check_fused; /* a batch step's check made by the rules' step_check (sds_gpu_batch_rules_check) */
   uint32_t batch_slivers; /* entries of the batch being recorded's slivers' table (0: step_check_nosl) */
 };
+/* A fused kernel's most workgroups on this device.  llvmpipe runs both
+ * sides of every branch, so each subgroup of a fused kernel runs the tail
+ * (the last subgroup's one-workgroup code) masked: on a CPU device the
+ * kernels loop over their items, launched on a few workgroups for each of
+ * the device's threads (two per processor online, at most 32); elsewhere, and
+ * with a discrete GPU's paths taken (SESSILE_STAGED), one item an
+ * invocation (0).  The same bits either way (docs/sds.md, "Tails
+ * that every subgroup runs"). */
+uint32_t sds_gpu_tail_cap(sessile_gpu *g);
+/* Workgroups of a fused kernel k over `items`, capped at cap (0: none). */
+static inline uint32_t sds_gpu_tail_groups(uint32_t local, uint32_t items, uint32_t cap) {
+  uint32_t n = items ? (items + local - 1) / local : 1;
+  return cap && n > cap ? cap : n;
+}
 /* Does a fused kernel run for a part of `size` elements (SDS_FUSE_*)? */
 static inline int sds_gpu_fused(const sessile_sds_gpu *s, uint32_t size, uint32_t limit) {
   return s->fuse == SESSILE_SDS_FUSE_ALWAYS || (s->fuse == SESSILE_SDS_FUSE_AUTO && size <= limit);
+}
+/* The same for a kernel with a tail (stable_all, step_check): at any size
+ * where the tail's masked runs are capped (a CPU device, sds_gpu_tail_cap). */
+static inline int sds_gpu_fused_tail(const sessile_sds_gpu *s, uint32_t size, uint32_t limit) {
+  return sds_gpu_fused(s, size, s->tail_cap ? UINT32_MAX : limit);
 }
 
 
@@ -114,6 +135,10 @@ sessile_status sds_gpu_begin(sessile_sds_gpu *s);
 sessile_status sds_gpu_submit(sessile_sds_gpu *s);
 sessile_kernel *sds_gpu_kern(const sessile_sds_gpu *s, int k);
 uint32_t sds_gpu_groups(const sessile_sds_gpu *s, int k, uint32_t items);
+/* stable_all (the bound and its minimum in one dispatch) rather than
+ * stable_tex and stable_min?  Its workgroups (those of stable otherwise). */
+int sds_gpu_stable_all(const sessile_sds_gpu *s);
+uint32_t sds_gpu_stable_groups(const sessile_sds_gpu *s);
 sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int mode);
 
 /* sds_gpu_step.c: edge, tet and gather dispatches (mode 0, 1 or 2; mode 2

@@ -31,6 +31,7 @@ struct sds_gpu_rules {
   uint32_t axis, sext;
   sessile_buffer *b[R_COUNT];
   uint32_t ncells, nmorph, nstate;
+  uint32_t tail_cap; /* step_check's most workgroups (sds_gpu_tail_cap) */
   uint32_t nk; /* the code's constants; a batch's control follows them in R_KONST (SDS_CTL) */
   double density;
   /* A batch's results downloaded in its own submission (record_results):
@@ -72,6 +73,7 @@ sessile_status sds_gpu_rules_create_kind(sessile_gpu *g, const sessile_sds_model
   sds_gpu_rules *r = calloc(1, sizeof *r);
   SESSILE_CHECK(r, SESSILE_ERR_NO_MEMORY, "out of host memory for the rules on the device");
   r->gpu = g, r->nmorph = (uint32_t)m->nmorph, r->nstate = (uint32_t)m->nstate;
+  r->tail_cap = sds_gpu_tail_cap(g);
   const sds_prog *p = m->prog;
   r->nk = (uint32_t)p->nk;
   double mc[2 * SDS_MAX_MORPH], dc[3 * SDS_MAX_MORPH];
@@ -371,8 +373,8 @@ sessile_status sds_gpu_rules_record_axial(sds_gpu_rules *r, sessile_cmd *cmd, se
 
 /* step_check's workgroups: one invocation per tet and per cell */
 static uint32_t check_groups(const sds_gpu_rules *r, uint32_t ntets) {
-  uint32_t l = sessile_kernel_local_size(r->k_check), n = ntets > r->ncells ? ntets : r->ncells;
-  return n ? (n + l - 1) / l : 1;
+  uint32_t n = ntets > r->ncells ? ntets : r->ncells;
+  return sds_gpu_tail_groups(sessile_kernel_local_size(r->k_check), n, r->tail_cap);
 }
 
 void sds_gpu_rules_groups(const sds_gpu_rules *r, uint32_t ntets, uint32_t out[3]) {
@@ -421,7 +423,7 @@ sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *st
 sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {
   sds_gpu_rules *r = s->rules;
   *done = 0;
-  if (!r || !r->k_check || !sds_gpu_fused(s, s->ntets, SDS_FUSE_CHECK_TETS) || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
+  if (!r || !r->k_check || !sds_gpu_fused_tail(s, s->ntets, SDS_FUSE_CHECK_TETS) || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
       !texels_fit(r, s->b[B_X0 + c], NULL))
     return SESSILE_OK;
   sds_push q = sds_gpu_push_of(s, 0.0, 1, 3);

@@ -42,14 +42,23 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p, 
 /* Records the stable bound (after record_edge and record_tet in mode 2,
  * whose terms it reads): per cell, then the min and the capped step into
  * stab. */
+int sds_gpu_stable_all(const sessile_sds_gpu *s) {
+  return sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX] && sds_gpu_fused_tail(s, s->ncells, SDS_FUSE_MIN_CELLS);
+}
+
+uint32_t sds_gpu_stable_groups(const sessile_sds_gpu *s) {
+  if (!sds_gpu_stable_all(s)) return sds_gpu_groups(s, SDS_STABLE, s->ncells);
+  return sds_gpu_tail_groups(sessile_kernel_local_size(s->k[SDS_STABLE_ALL]), s->ncells, s->tail_cap);
+}
+
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p, int c) {
-  if (sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX] && sds_gpu_fused(s, s->ncells, SDS_FUSE_MIN_CELLS)) { /* stable_all */
+  if (sds_gpu_stable_all(s)) {
     sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
     sessile_buffer *b[] = {s->b[B_SP],   s->b[B_RM],   s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB],
                            s->b[B_EVENT], s->b[B_STEP], s->b[B_MOVE], s->b[B_TOPO], s->b[B_RM],
                            s->b[B_RB],   rev,          s->b[B_DISP], s->b[B_CNT],
                            s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
-    return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_ALL], sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p);
+    return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_ALL], sds_gpu_stable_groups(s), b, p);
   }
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_RM], s->b[B_TOPO], s->b[B_ELF], s->b[B_STAB], s->b[B_EVENT]};
   SESSILE_CALL(sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_STABLE), sds_gpu_groups(s, SDS_STABLE, s->ncells), b, p));

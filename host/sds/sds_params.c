@@ -86,8 +86,9 @@ static const sessile_param_desc descs[] = {
      rules_kernel_names},
     {"device_fuse", SESSILE_PT_ENUM, OFF(device_fuse), 0, 0, 2, 0, "", "ours",
      "where the fused kernels run (one dispatch for several): auto (small complexes, where the dispatches they "
-     "save cost more than the code every invocation then runs: llvmpipe runs both sides of a branch), always or "
-     "never; the same bytes every way (docs/sds.md, \"Fewer dispatches a step\")",
+     "save cost more than the code every invocation then runs: llvmpipe runs both sides of a branch; the kernels "
+     "with a tail at any size on a CPU device, where they run on a few workgroups), always or never; the same "
+     "bytes every way (docs/sds.md, \"Fewer dispatches a step\")",
      fuse_names},
 };
 

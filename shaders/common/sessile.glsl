@@ -27,6 +27,8 @@ uint sessile_gid() {
   return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
 }
 uint sessile_group() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
+// The dispatch's invocations: the stride of a loop over more items than them.
+uint sessile_invocations() { return gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_WorkGroupSize.x; }
 
 // Compensated accumulation: exact two-sum in fp32, plain sum in fp64.
 void acc_add(inout REAL2 a, REAL x) {

@@ -17,14 +17,16 @@
 // without the rules (not split), and only the rules' batches get a table
 // (sessile_sds_gpu_batch); the cubic's code left out of the tail
 #define SDS_SLIVERS 0
-#define STABLE_MIN_CHECK 0
 #define STABLE_MIN_NO_MAIN 1
 #include "stable_min.glsl"
 #include "last_group.glsl"
 DECLARE_LAST_GROUP(cnt)
 
 void main() {
-  uint c = sessile_gid();
-  if (c < pc.ncells && !(pc.batch != 0u && ev[0] != 0u)) stable_cell(c); // else a batch that stopped
+  // each invocation every sessile_invocations()-th cell: on a CPU device the
+  // host launches few subgroups, each of which runs the tail masked
+  // (sds_gpu_tail_groups); one cell each elsewhere
+  for (uint c = sessile_gid(); c < pc.ncells; c += sessile_invocations())
+    if (!(pc.batch != 0u && ev[0] != 0u)) stable_cell(c); // else a batch that stopped
   if (LAST_GROUP(cnt, 0u)) stable_min_run();
 }

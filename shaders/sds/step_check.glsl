@@ -27,12 +27,17 @@
 DECLARE_LAST_GROUP(cnt)
 
 void main() {
-  uint t = sessile_gid(), l = GRP_LANE, L = GRP_SIZE, n = pc.ncells;
+  uint l = GRP_LANE, L = GRP_SIZE, n = pc.ncells, m = pc.ntets > n ? pc.ntets : n;
   uint bk = pc.batch & ~SDS_BATCH_SPLIT; // 2 + the step's index, as stable_min's mode 3
-  inverted_at(t); // pc.batch != 0: the flag raises ev[2]
-  // morph_bound's per-cell part (its cells' rates), here where every lane
-  // runs, not in the last subgroup
-  if (t < n && pc.nmorph > 0u && ev[0] == 0u) mrate[t] = mb_cell(t);
+  // each invocation every sessile_invocations()-th tet and cell: on a CPU
+  // device the host launches few subgroups, each of which runs the tail
+  // masked (sds_gpu_tail_groups); one each elsewhere
+  for (uint t = sessile_gid(); t < m; t += sessile_invocations()) {
+    inverted_at(t); // pc.batch != 0: the flag raises ev[2]
+    // morph_bound's per-cell part (its cells' rates), here where every lane
+    // runs, not in the last subgroup
+    if (t < n && pc.nmorph > 0u && ev[0] == 0u) mrate[t] = mb_cell(t);
+  }
   if (!LAST_GROUP(cnt, 0u)) return;
   // stable_min's mode 3 for step bk - 2 (stopped before: nothing)
   if (ev[0] == 0u) {

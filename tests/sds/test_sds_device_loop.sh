@@ -19,7 +19,8 @@
 #    its own submission, so the loop on the device makes under half the
 #    host-driven loop's submissions a step (counted by `bench sds`);
 #  - the interpreted rules (device_rules = bytecode) the same bytes too, and
-#    lavapipe on one thread or three (the fused kernels' last subgroup);
+#    lavapipe on one thread or three (the fused kernels' last subgroup), and
+#    with a discrete GPU's paths (one item an invocation in the fused kernels);
 #  - the fused kernels taken (bench sds --kernels names them);
 #  - the axial stiffness (springs born along phi's gradient 0.3 x as stiff
 #    on the surface): the same bytes both loops, another run than without
@@ -65,6 +66,11 @@ LP_NUM_THREADS=0 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-
 check "fast, lavapipe on its queue thread alone: the same bytes" same_run "$T/fast-d" "$T/fast-t0"
 LP_NUM_THREADS=3 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-t3" --quiet --set device_loop=true
 check "fast, lavapipe on three threads: the same bytes" same_run "$T/fast-d" "$T/fast-t3"
+# a discrete GPU's launches: the fused kernels one item an invocation, not a
+# loop over their items on a few workgroups as on a CPU device (docs/sds.md,
+# "Tails that every subgroup runs")
+SESSILE_STAGED=1 "$S" sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-st" --quiet --set device_loop=true
+check "fast, a discrete GPU's paths and launches: the same bytes" same_run "$T/fast-d" "$T/fast-st"
 
 # the interpreted rules (device_rules = bytecode: rules_morph.comp) as well
 run sds run "$T/fast.sds" --t-end 6 --frames 5 --out "$T/fast-b" --quiet --set device_loop=true --set device_rules=bytecode
