@@ -18,7 +18,7 @@ static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) 
 static sessile_status record_elem(sessile_sds_gpu *s, int c, const sds_push *p) {
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
                          s->b[B_ELF], s->b[B_EVENT], s->b[B_FLAG]};
-  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, s->nedges + s->ntets), b,
+  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, s->nedges > s->ntets ? s->nedges : s->ntets), b,
                               p);
 }
 
