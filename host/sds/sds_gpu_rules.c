@@ -371,7 +371,8 @@ sessile_status sds_gpu_rules_record_axial(sds_gpu_rules *r, sessile_cmd *cmd, se
   return sessile_cmd_dispatch(cmd, r->k_extend, (nedges + l - 1) / l, b, &p);
 }
 
-/* step_check's workgroups: one invocation per tet and per cell */
+/* step_check's workgroups: one invocation per tet and per cell, or on a CPU
+ * device at most tail_cap workgroups looping over them */
 static uint32_t check_groups(const sds_gpu_rules *r, uint32_t ntets) {
   uint32_t n = ntets > r->ncells ? ntets : r->ncells;
   return sds_gpu_tail_groups(sessile_kernel_local_size(r->k_check), n, r->tail_cap);
@@ -423,8 +424,8 @@ sessile_status sds_gpu_rules_get_cells(sds_gpu_rules *r, double *phi, double *st
 sessile_status sds_gpu_rules_record_check(sessile_sds_gpu *s, uint32_t k, int c, int *done) {
   sds_gpu_rules *r = s->rules;
   *done = 0;
-  if (!r || !r->k_check || !sds_gpu_fused_tail(s, s->ntets, SDS_FUSE_CHECK_TETS) || sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] ||
-      !texels_fit(r, s->b[B_X0 + c], NULL))
+  if (!r || !r->k_check || !sds_gpu_fused_tail(s, s->ntets, SDS_FUSE_CHECK_TETS) ||
+      sds_gpu_kern(s, SDS_INVERTED) != s->k[SDS_INVERTED_TEX] || !texels_fit(r, s->b[B_X0 + c], NULL))
     return SESSILE_OK;
   sds_push q = sds_gpu_push_of(s, 0.0, 1, 3);
   sds_check_push p;

@@ -18,8 +18,8 @@ static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) 
 static sessile_status record_elem(sessile_sds_gpu *s, int c, const sds_push *p) {
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
                          s->b[B_ELF], s->b[B_EVENT], s->b[B_FLAG]};
-  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, s->nedges > s->ntets ? s->nedges : s->ntets), b,
-                              p);
+  uint32_t n = s->nedges > s->ntets ? s->nedges : s->ntets; /* invocation i: edge i and tet i */
+  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, n), b, p);
 }
 
 static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
@@ -39,9 +39,6 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p, 
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
 }
 
-/* Records the stable bound (after record_edge and record_tet in mode 2,
- * whose terms it reads): per cell, then the min and the capped step into
- * stab. */
 int sds_gpu_stable_all(const sessile_sds_gpu *s) {
   return sds_gpu_kern(s, SDS_STABLE) == s->k[SDS_STABLE_TEX] && sds_gpu_fused_tail(s, s->ncells, SDS_FUSE_MIN_CELLS);
 }
@@ -51,6 +48,9 @@ uint32_t sds_gpu_stable_groups(const sessile_sds_gpu *s) {
   return sds_gpu_tail_groups(sessile_kernel_local_size(s->k[SDS_STABLE_ALL]), s->ncells, s->tail_cap);
 }
 
+/* Records the stable bound (after record_edge and record_tet in mode 2,
+ * whose terms it reads): per cell, then the min and the capped step into
+ * stab. */
 static sessile_status record_stable(sessile_sds_gpu *s, const sds_push *p, int c) {
   if (sds_gpu_stable_all(s)) {
     sessile_buffer *rev = s->rules ? sds_gpu_rules_buffer(s->rules, SDS_RULES_EVENT) : s->b[B_EVENT];
