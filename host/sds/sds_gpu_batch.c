@@ -95,8 +95,7 @@ sessile_status sessile_sds_gpu_batch(sessile_sds_gpu *s, sessile_sds_batch *b) {
    * counts): on lavapipe each launch, even of a kernel that returns at once,
    * is a round trip through its thread pool (docs/sds.md, "The loop on the
    * device"). */
-  uint32_t nelem = s->nedges > s->ntets ? s->nedges : s->ntets; /* elem_force: edge i and tet i */
-  uint32_t groups[10] = {sds_gpu_groups(s, SDS_ELEM, nelem), sds_gpu_groups(s, SDS_TET, s->ntets),
+  uint32_t groups[10] = {sds_gpu_elem_groups(s), sds_gpu_groups(s, SDS_TET, s->ntets),
                          sds_gpu_stable_groups(s), sds_gpu_groups(s, SDS_GATHER, s->ncells),
                          sds_gpu_groups(s, SDS_INVERTED, s->ntets), 1, 0, 0, 0,
                          sds_gpu_groups(s, SDS_EDGE, s->nedges)};

@@ -139,6 +139,8 @@ uint32_t sds_gpu_groups(const sessile_sds_gpu *s, int k, uint32_t items);
  * stable_tex and stable_min?  Its workgroups (those of stable otherwise). */
 int sds_gpu_stable_all(const sessile_sds_gpu *s);
 uint32_t sds_gpu_stable_groups(const sessile_sds_gpu *s);
+/* elem_force's workgroups: invocation i edge i and tet i. */
+uint32_t sds_gpu_elem_groups(const sessile_sds_gpu *s);
 sds_push sds_gpu_push_of(const sessile_sds_gpu *s, double dt, int damping, int mode);
 
 /* sds_gpu_step.c: edge, tet and gather dispatches (mode 0, 1 or 2; mode 2

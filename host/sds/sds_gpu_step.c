@@ -18,8 +18,7 @@ static sessile_status record_edge(sessile_sds_gpu *s, int c, const sds_push *p) 
 static sessile_status record_elem(sessile_sds_gpu *s, int c, const sds_push *p) {
   sessile_buffer *b[] = {s->b[B_SP], s->b[B_X0 + c], s->b[B_V0 + c], s->b[B_RM], s->b[B_TOPO], s->b[B_SM],
                          s->b[B_ELF], s->b[B_EVENT], s->b[B_FLAG]};
-  uint32_t n = s->nedges > s->ntets ? s->nedges : s->ntets; /* invocation i: edge i and tet i */
-  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_groups(s, SDS_ELEM, n), b, p);
+  return sessile_cmd_dispatch(s->cmd, sds_gpu_kern(s, SDS_ELEM), sds_gpu_elem_groups(s), b, p);
 }
 
 static sessile_status record_tet(sessile_sds_gpu *s, int c, const sds_push *p) {
@@ -37,6 +36,10 @@ sessile_status sds_gpu_record_stable_min(sessile_sds_gpu *s, const sds_push *p, 
                           s->b[B_TOPO], s->b[B_RM],     s->b[B_RB],         rev,           s->b[B_DISP],
                           s->b[B_SLIVER], s->b[B_X0 + 1 - c], s->b[B_X0 + c]};
   return sessile_cmd_dispatch(s->cmd, s->k[SDS_STABLE_MIN], 1, bm, p);
+}
+
+uint32_t sds_gpu_elem_groups(const sessile_sds_gpu *s) {
+  return sds_gpu_groups(s, SDS_ELEM, s->nedges > s->ntets ? s->nedges : s->ntets);
 }
 
 int sds_gpu_stable_all(const sessile_sds_gpu *s) {
