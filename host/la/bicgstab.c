@@ -1,7 +1,9 @@
 /* BiCGSTAB on the device with right preconditioning by any pc object (van der Vorst):
  *   β = (ρ'/ρ)(α/ω); p = r + β(p − ω v); p̂ = M p; v = A p̂; α = ρ/(r̂0·v);
  *   s = r − α v; ŝ = M s; t = A ŝ; ω = (t·s)/(t·t); x += α p̂ + ω ŝ; r = s − ω t
- * Converged on ‖r‖ (or already on ‖s‖, the half step). */
+ * Converged on ‖r‖ (or already on ‖s‖, the half step).  Where ρ' has fallen
+ * to rounding against ‖r̂0‖ ‖r‖ the iteration restarts from r (r̂0 = p = r;
+ * docs/la.md, "BiCGSTAB restarts"), as sessile_ref_bicgstab does. */
 #include <math.h>
 #include "pc_internal.h"
 
@@ -42,7 +44,7 @@ static sessile_status record_iterations(sessile_la *la, sessile_cmd *c, const se
   SESSILE_CALL(sessile_cmd_begin(c));
   for (int it = 0; it < k; it++) {
     SESSILE_CALL(scalar_op(la, c, 1));
-    sessile_buffer *pb[4] = {la->scalars, w->r->buf, w->v->buf, w->p->buf};
+    sessile_buffer *pb[5] = {la->scalars, w->r->buf, w->v->buf, w->p->buf, w->r0->buf};
     SESSILE_CALL(sessile_cmd_dispatch(c, la->k[K_BICG_P], la_groups(la, K_BICG_P, n4), pb, &vp));
     SESSILE_CALL(rec_pc(pc, c, vref_of(w->p), vref_of(w->ph), S_STOP));
     SESSILE_CALL(rec_spmv(la, c, a, vref_of(w->ph), vref_of(w->v), S_STOP));
@@ -82,6 +84,7 @@ static sessile_status bi_run(sessile_la *la, const sessile_ksp_options *o, const
   SESSILE_CALL(record_iterations(la, iter, a, x, pc, w, o->check_every));
   SESSILE_CALL(la_solver_loop(la, iter, o->check_every, o->max_it, o, "bicgstab", BI_RR, 1));
   la_solver_outcome(la, res, sqrt(fmax(la_scalar_read(la, BI_RR), 0) / la_scalar_read(la, S_BB)));
+  res->restarts += (int)la_scalar_read(la, BI_RESTARTS);
   return SESSILE_OK;
 }
 

@@ -35,6 +35,9 @@ static double *alloc_vectors(const char *solver, uint64_t count, uint64_t n) {
 /* Recorded reason for a breakdown; the status is informational, the caller
  * sees SESSILE_REF_BREAKDOWN in the result. */
 #define BREAKDOWN(...) ((void)sessile_error_set(SESSILE_ERR_NUMERIC, __VA_ARGS__))
+/* BiCGSTAB restarts where |r̂0·r| <= this × ‖r̂0‖ ‖r‖: 64 units in the last
+ * place of a double (shaders/la/bicgstab_scalar.comp's RESTART_EPS in fp64) */
+#define BICGSTAB_RESTART_EPS 1.4210854715202004e-14
 
 static int all_finite(uint64_t n, const double *x) {
   int ok = 1;
@@ -194,16 +197,25 @@ sessile_ref_result sessile_ref_bicgstab(const sessile_csr *a, const double *dinv
     res.status = SESSILE_REF_CONVERGED;
   } else {
     sessile_ref_copy(n, r, r0); /* shadow residual r̂0 = r0 */
-    double rho = 1.0, alpha = 1.0, omega = 1.0;
+    double rho = 1.0, alpha = 1.0, omega = 1.0, r0norm = rnorm;
     while (res.iterations < max_it) {
-      const double rho_new = sessile_ref_dot(n, r0, r);
+      double rho_new = sessile_ref_dot(n, r0, r);
+      int restart = res.iterations == 0;
+      if (isfinite(rho_new) && fabs(rho_new) <= BICGSTAB_RESTART_EPS * r0norm * rnorm && rnorm > 0.0) {
+        /* r̂0 and r orthogonal to rounding: restart from r (the device's
+         * bicgstab_scalar op 1; docs/la.md, "BiCGSTAB restarts") */
+        sessile_ref_copy(n, r, r0);
+        r0norm = rnorm;
+        rho_new = sessile_ref_dot(n, r0, r);
+        restart = 1;
+      }
       if (rho_new == 0.0 || !isfinite(rho_new)) {
         BREAKDOWN("%s: breakdown at iteration %d: rho = r̂0·r = %g", name, res.iterations,
                   rho_new);
         res.status = SESSILE_REF_BREAKDOWN;
         break;
       }
-      if (res.iterations == 0) {
+      if (restart) {
         sessile_ref_copy(n, r, p);
       } else {
         /* p = r + β (p − ω v),  β = (ρ_new/ρ)(α/ω) */

@@ -2,6 +2,13 @@
 #extension GL_GOOGLE_include_directive : require
 // BiCGSTAB scalar steps: 0 init, 1 β, 2 α, 3 ω, 4 convergence test.
 #include "la_kernels.glsl"
+// A restart when ρ = r̂0·r has fallen to rounding: |ρ| <= RESTART_EPS ‖r̂0‖ ‖r‖
+// (64 units in the last place; docs/la.md, "BiCGSTAB restarts").
+#if SESSILE_F64
+#define RESTART_EPS 1.4210854715202004e-14
+#else
+#define RESTART_EPS 7.62939453125e-6
+#endif
 void stop(REAL why, REAL reason) { s[S_STOP] = why; s[S_REASON] = reason; }
 void main() {
   if (s[S_STOP] != REAL(0)) return;
@@ -9,13 +16,22 @@ void main() {
     s[S_ITER] = REAL(0);
     s[S_TOL2] = s[S_RTOL2] * s[S_BB];
     s[BI_RHO] = REAL(1); s[BI_ALPHA] = REAL(1); s[BI_OMEGA] = REAL(1); s[BI_HALF] = REAL(0);
+    s[BI_R0R0] = s[BI_RR]; s[BI_RESTART] = REAL(0); s[BI_RESTARTS] = REAL(0);
     if (!is_finite(s[BI_RR])) stop(STOP_BREAKDOWN, R_NONFINITE);
     else if (s[BI_RR] <= s[S_TOL2]) stop(STOP_CONVERGED, REAL(0));
   } else if (pc.op == 1u) {
-    REAL rn = s[BI_RHONEW];
+    REAL rn = s[BI_RHONEW], rr = s[BI_RR];
+    s[BI_RESTART] = REAL(0);
     if (!is_finite(rn)) stop(STOP_BREAKDOWN, R_NONFINITE);
-    else if (rn == REAL(0)) stop(STOP_BREAKDOWN, R_RHO_ZERO);
-    else {
+    else if (abs(rn) <= RESTART_EPS * sqrt(s[BI_R0R0]) * sqrt(rr)) {
+      // r̂0 and r orthogonal to rounding: the next β and α would be noise.
+      // Restart from r (r̂0 = r, p = r: bicgstab_p), whose ρ is r·r > 0.
+      if (!(rr > REAL(0))) stop(STOP_BREAKDOWN, R_RHO_ZERO);
+      else {
+        s[BI_RESTART] = REAL(1), s[BI_R0R0] = rr, s[BI_RHO] = rr;
+        s[BI_RESTARTS] += REAL(1);
+      }
+    } else {
       s[BI_BETA] = (rn / s[BI_RHO]) * (s[BI_ALPHA] / s[BI_OMEGA]);
       s[BI_RHO] = rn;
     }

@@ -176,6 +176,7 @@ static int solve(const char *name, const sessile_mat *m, const double *b, uint32
   for (uint32_t i = 0; i < n; i++) r[i] = b[i] - r[i];
   double rel = sessile_ref_nrm2(n, r) / sessile_ref_nrm2(n, b);
   char what[200];
+  if (res.status == SESSILE_SOLVE_BREAKDOWN) printf("  why: %s\n", res.reason);
   snprintf(what, sizeof what, "%s %s+%s: %s after %d iterations (%.2f s), host true relres", name,
            sessile_ksp_type_name(type), pc == SESSILE_PC_ILU0 ? "ilu0" : "jacobi",
            sessile_solve_status_name(res.status), res.iterations, res.seconds);

@@ -403,6 +403,43 @@ static void test_indefinite(void) {
   free(x);
 }
 
+/* BiCGSTAB's restart: A = [4 1 -1; 1 4 1; 1 -2 4], b = e1, x0 = 0, Jacobi.
+ * With r̂0 = r0 = e1, s = r0 − α A M⁻¹ r0 has s_1 = 0 and A's first row
+ * gives (A M⁻¹ s)_1 = (s_2 − s_3)/4 = 0, so ρ_1 = r̂0·r_1 = 0 exactly (in
+ * fp32 too: every number is a power of two times a small integer) while
+ * r_1 ≠ 0 (0.139).  Without the restart BiCGSTAB stops there with a
+ * breakdown; with it (r̂0 = r_1) it converges, the device as the host's
+ * reference. */
+static void test_bicgstab_restart(void) {
+  printf("-- BiCGSTAB: r̂0·r = 0 exactly at iteration 1 (a restart, not a breakdown)\n");
+  static const double av[3][3] = {{4, 1, -1}, {1, 4, 1}, {1, -2, 4}};
+  sessile_csr a;
+  t_must("csr_alloc", sessile_csr_alloc(3, 3, 9, &a));
+  for (uint32_t i = 0; i < 3; i++) {
+    a.rowptr[i + 1] = 3 * (i + 1);
+    for (uint32_t j = 0; j < 3; j++) a.col[3 * i + j] = j, a.val[3 * i + j] = av[i][j];
+  }
+  double b[3] = {1, 0, 0}, x[3] = {0, 0, 0}, dinv[3] = {0.25, 0.25, 0.25};
+  sessile_mat *m = NULL;
+  t_must("mat_create_csr", sessile_mat_create_csr(la, &a, &m));
+  sessile_ksp_options o = opts(SESSILE_KSP_BICGSTAB, SESSILE_PC_JACOBI, 50);
+  o.check_every = 1;
+  sessile_solve_result r;
+  sessile_status s = solve(&o, m, b, x, &r);
+  check_converged("BiCGSTAB through rho = 0", s, &r, sessile_ref_true_relres(&a, b, x));
+  char what[160];
+  snprintf(what, sizeof what, "BiCGSTAB through rho = 0: at least one restart reported (%d)", r.restarts);
+  t_true(what, r.restarts >= 1);
+  double xr[3] = {0, 0, 0};
+  sessile_ref_result rr = sessile_ref_bicgstab(&a, dinv, b, xr, rtol, 50);
+  printf("   reference: status %d after %d iterations, true_relres %.3e\n", (int)rr.status, rr.iterations,
+         rr.true_relres);
+  t_true("the host's reference BiCGSTAB converges through rho = 0 too",
+         rr.status == SESSILE_REF_CONVERGED && rr.true_relres <= rtol);
+  sessile_mat_destroy(m);
+  sessile_csr_free(&a);
+}
+
 /* ---- singular: laplacian7 8^3 with row 0 zeroed (structure kept) ---- */
 static void test_singular(void) {
   printf("-- singular: laplacian7 8^3 with every value of row 0 set to 0\n");
@@ -599,6 +636,7 @@ int main(int argc, char **argv) {
   test_gmres_split();
   test_zero_rhs();
   test_indefinite();
+  test_bicgstab_restart();
   test_singular();
   test_nan();
   test_check_every();

@@ -216,6 +216,7 @@ const char *sessile_solve_status_name(sessile_solve_status s);
 typedef struct sessile_solve_result {
   int iterations;            /* Krylov iterations (GMRES: Arnoldi steps), all refinements */
   int refinements;           /* outer mixed-precision refinement steps (fp32 devices), else 0 */
+  int restarts;              /* BiCGSTAB: restarts where r̂0·r fell to rounding (docs/la.md), else 0 */
   double true_relres;        /* ‖b − A x‖/‖b‖ recomputed at the end (0 for b = 0) */
   double est_relres;         /* the solver's recursive estimate at the end */
   sessile_solve_status status;
