@@ -48,6 +48,15 @@ sessile_gpu *t_gpu(int precision) {
     printf("FAIL the context runs at fp%d, not the fp%d asked for\n", i->precision, want);
     exit(1);
   }
+  /* likewise a test registered at a subgroup size (SESSILE_TEST_SUBGROUP, the
+   * _sub4 and _sub16 tests, which ask lavapipe for it through
+   * LP_NATIVE_VECTOR_WIDTH) must run at it */
+  const char *sub = getenv("SESSILE_TEST_SUBGROUP");
+  if (sub && *sub && i->subgroup_size != (uint32_t)atoi(sub)) {
+    printf("FAIL the device's subgroups have %u lanes, not the %s asked for\n", i->subgroup_size, sub);
+    exit(1);
+  }
+  if (sub && *sub) printf("subgroup size %u\n", i->subgroup_size);
   return g;
 }
 
