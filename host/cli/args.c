@@ -156,6 +156,17 @@ int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts 
  * 400000, measured) instead of failing: refuse before creating it. */
 #define CLI_MIN_ADDRESS_SPACE (1024.0 * 1048576.0)
 
+static _Atomic unsigned long long validation_messages;
+
+/* The library's default line, counted (the layer may call from any thread). */
+static void on_validation(void *user, int is_error, const char *msg) {
+  (void)user;
+  validation_messages++;
+  fprintf(stderr, "sessile: vulkan validation %s: %s\n", is_error ? "error" : "warning", msg);
+}
+
+unsigned long long cli_validation_messages(void) { return validation_messages; }
+
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   struct rlimit rl;
   if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur < CLI_MIN_ADDRESS_SPACE)
@@ -168,6 +179,7 @@ sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g) {
   go.device = o->device;
   go.precision = o->precision;
   if (o->validation) go.validation = 1;
+  go.validation_message = on_validation;
   cli_gpu_env_store st;
   SESSILE_CALL(cli_gpu_env(&go, &st));
   return sessile_gpu_create(&go, g);

@@ -75,6 +75,10 @@ const char *cli_short(const char *name, char buf[CLI_SHORT_BUF]);
  * --validation); returns 1 if consumed, 0 if not one, -1 on a usage error. */
 int cli_gpu_option(const char *cmd, int argc, char **argv, int *i, cli_gpu_opts *o);
 sessile_status cli_gpu_create(const cli_gpu_opts *o, sessile_gpu **g);
+/* Validation-layer messages printed so far by the contexts cli_gpu_create
+ * made (each as "sessile: vulkan validation error|warning: ..."): main fails
+ * a command that printed any (docs/design.md, "Errors and diagnostics"). */
+unsigned long long cli_validation_messages(void);
 /* The device the options (or $SESSILE_DEVICE) name exists: cheap (lists the
  * devices, creates none), so that a command refuses an unknown device
  * before it writes anything.  SESSILE_OK when none is named. */

@@ -98,6 +98,11 @@ run --validation bench sds --no-physics --rock-t 0.05 --kernels
 check "'sessile bench sds --rock-t 0.05 --kernels' prints the rock run's kernels and their sum" eval \
   'rc_is 0 && grep -q "^sds rock (Figure 9)" "$T/out" && grep -q "^sds/gather" "$T/out" && grep -q "^all kernels" "$T/out"'
 check "bench sds --kernels under the validation layer is silent" no_validation
+# A validation message fails the command (the shell tests run under the layer
+# and need not read stderr): the layer's best-practices warnings as a source.
+VK_LAYER_ENABLES=VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT run --validation bench la --size 8 --repeat 1 --mg 0
+check "a validation message fails the command: exit 1, its messages and their count on stderr" eval \
+  'rc_is 1 && grep -q "vulkan validation warning" "$T/err" && grep -q "^sessile: error: the Vulkan validation layer printed [0-9]* messages" "$T/err" && grep -q "^spmv csr" "$T/out"'
 # the processor beside the figures: /proc/cpuinfo's first model name and
 # family, read here by another route (awk), and the CPUs online (getconf)
 cpu_named() {
