@@ -17,6 +17,7 @@
 #include <stdlib.h>
 
 #include "sessile/la/la_ref.h"
+#include "la_kernels.h" /* BI_RESTART_EPS64, the device's threshold */
 
 /* n-vectors in one block, with an overflow-checked size. */
 static double *alloc_vectors(const char *solver, uint64_t count, uint64_t n) {
@@ -35,9 +36,6 @@ static double *alloc_vectors(const char *solver, uint64_t count, uint64_t n) {
 /* Recorded reason for a breakdown; the status is informational, the caller
  * sees SESSILE_REF_BREAKDOWN in the result. */
 #define BREAKDOWN(...) ((void)sessile_error_set(SESSILE_ERR_NUMERIC, __VA_ARGS__))
-/* BiCGSTAB restarts where |r̂0·r| <= this × ‖r̂0‖ ‖r‖: 64 units in the last
- * place of a double (shaders/la/bicgstab_scalar.comp's RESTART_EPS in fp64) */
-#define BICGSTAB_RESTART_EPS 1.4210854715202004e-14
 
 static int all_finite(uint64_t n, const double *x) {
   int ok = 1;
@@ -201,7 +199,7 @@ sessile_ref_result sessile_ref_bicgstab(const sessile_csr *a, const double *dinv
     while (res.iterations < max_it) {
       double rho_new = sessile_ref_dot(n, r0, r);
       int restart = res.iterations == 0;
-      if (isfinite(rho_new) && fabs(rho_new) <= BICGSTAB_RESTART_EPS * r0norm * rnorm && rnorm > 0.0) {
+      if (isfinite(rho_new) && fabs(rho_new) <= BI_RESTART_EPS64 * r0norm * rnorm && rnorm > 0.0) {
         /* r̂0 and r orthogonal to rounding: restart from r (the device's
          * bicgstab_scalar op 1; docs/la.md, "BiCGSTAB restarts") */
         sessile_ref_copy(n, r, r0);

@@ -5,9 +5,9 @@
 // A restart when ρ = r̂0·r has fallen to rounding: |ρ| <= RESTART_EPS ‖r̂0‖ ‖r‖
 // (64 units in the last place; docs/la.md, "BiCGSTAB restarts").
 #if SESSILE_F64
-#define RESTART_EPS 1.4210854715202004e-14
+#define RESTART_EPS REAL(BI_RESTART_EPS64)
 #else
-#define RESTART_EPS 7.62939453125e-6
+#define RESTART_EPS REAL(BI_RESTART_EPS32)
 #endif
 void stop(REAL why, REAL reason) { s[S_STOP] = why; s[S_REASON] = reason; }
 void main() {
