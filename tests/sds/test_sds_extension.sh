@@ -18,13 +18,13 @@
 #    hand, 2026-12-02); SIGINT after frame 2 and --resume give the same
 #    bytes in both loops;
 #  - Figure 7 (issue 33) from the model's exact start at t = 200, read by
-#    tools/sds/figures.py limb: distal width <= 1.2 x the neck, the tip within
-#    its radius of the front, length >= 3 necks (measured 2026-12-02: 1.09,
-#    0.00 u, 4.83).  This is one trajectory at the model's step: at
-#    max_move 0.025 or 0.0125 the same start ends in a bulb (distal / neck
-#    1.55, 1.24), and over twenty starts the criteria hold from about half
-#    (tools/sds/limb_starts.sh; docs/sds_figures.md), so the check guards
-#    the shipped model's run, not the figure in general;
+#    tools/sds/figures.py limb (the width the complex's section): distal
+#    width <= 1.2 x the neck, the tip within its radius of the front, length
+#    >= 3 necks (measured 2026-12-04: 1.10, 0.00 u, 3.95).  This is one
+#    trajectory at the model's step: over forty starts the criteria hold
+#    from 35 (tools/sds/limb_starts.sh; docs/sds_figures.md, "How the limb's
+#    width is measured"), so the check guards the shipped model's run, not
+#    the figure in general;
 #  - refusals before the run folder exists: no state `extending`, no axis
 #    morphogen, C out of [0, 1].
 set -u

@@ -53,29 +53,40 @@ def chain(n):  # tets of four consecutive cells: every cell used, a path along t
     return np.array([[i, i + 1, i + 2, i + 3] for i in range(n - 3)])
 
 def limb_run(d, neck, bulb, tip_back):
-    """A unit sphere of cells (and one inside), and along +x rings of 8 surface cells round one
-    interior cell every 0.2 u from x = 1 to 3: radius `neck` up to x = 2,
-    `bulb` after; the tip on the axis, tip_back behind the front."""
-    ring = lambda x, r: [(x, r * np.cos(a), r * np.sin(a)) for a in np.arange(8) * np.pi / 4]
-    pts = [(1.0, 0, 0), (-1.0, 0, 0)]  # the body: poles and rings (symmetric: its centre on the axis)
-    for th in np.arange(1, 8) * np.pi / 8:
-        pts += ring(np.cos(th), np.sin(th))
-    surf = [1] * len(pts)
-    pts.append((0, 0, 0)); surf.append(0)
-    for x in np.arange(1.1, 3.0, 0.2):
-        rr = neck if x < 2 else bulb
-        pts += ring(x, rr); surf += [1] * 8
+    """A body and a limb along +x, each a stack of rings of 8 surface cells
+    round one interior cell on the axis, the prisms between rings cut into
+    tets: the body rings of radius 0.9 at x = -1, 0, 1; the limb's every 0.2 u
+    from x = 1.1 to 2.9, radius `neck` before x = 2 and `bulb` after; a cone
+    to a cell at x = 2.95 and a thin tet on to the front cell at x = 3.  The
+    tip is the cone's cell (tip_back 0.05) or the axis cell at x = 3 - tip_back.
+    Every section between rings is an octagon: of area 2 sqrt(2) r^2."""
+    xs = [(-1.0, 0.9), (0.0, 0.9), (1.0, 0.9)] + [(x, neck if x < 2 else bulb) for x in np.arange(1.1, 3.0, 0.2)]
+    pts, surf, rings = [], [], []
+    for x, r in xs:
+        rings.append(len(pts))  # its axis cell, then its ring
         pts.append((x, 0, 0)); surf.append(0)
-    pts.append((3.0, 0, 0)); surf.append(1)  # the front cell
-    pts.append((3.0 - tip_back, 0.0, 0.0)); surf.append(1)  # the tip (radius 0.1)
+        pts += [(x, r * np.cos(a), r * np.sin(a)) for a in np.arange(8) * np.pi / 4]; surf += [1] * 8
+    tets = []
+    for k in range(len(xs) - 1):  # each wedge (axis, p_i, p_i+1) of a prism: three tets
+        a, b = rings[k], rings[k + 1]
+        for i in range(8):
+            A = (a, a + 1 + i, a + 1 + (i + 1) % 8)
+            B = (b, b + 1 + i, b + 1 + (i + 1) % 8)
+            tets += [(A[0], A[1], A[2], B[2]), (A[0], A[1], B[1], B[2]), (A[0], B[0], B[1], B[2])]
+    last = rings[-1]
+    apex = len(pts); pts.append((2.95, 0, 0)); surf.append(1)
+    tets += [(last, last + 1 + i, last + 1 + (i + 1) % 8, apex) for i in range(8)]
+    pts.append((3.0, 0, 0)); surf.append(1)  # the front cell, beyond the apex
+    tets.append((apex, last + 1, last + 2, apex + 1))
     x = np.array(pts, float)
     n = len(x)
-    tip = np.zeros(n); tip[-1] = 1
+    tip = np.zeros(n)
+    tip[apex if abs(tip_back - 0.05) < 1e-12 else int(np.argmin(np.abs(x[:, 0] - (3 - tip_back)) + 9 * np.array(surf)))] = 1
     os.makedirs(d + "/sds", exist_ok=True)
-    for k, xx in enumerate((x, x)):  # frame 0 gives the axis: the tip's direction
-        write_vtu("%s/sds/frame_%04d.vtu" % (d, k), xx, {"radius": np.full(n, 0.1), "surface": np.array(surf),
-                  "tip": tip}, chain(n))
-    return n
+    for k in range(2):  # frame 0 gives the axis: the tip's direction
+        write_vtu("%s/sds/frame_%04d.vtu" % (d, k), x, {"radius": np.full(n, 0.1), "surface": np.array(surf),
+                  "tip": tip}, np.array(tets))
+    return n, x, np.array(tets)
 
 def fig(*a):
     out = subprocess.run([sys.executable, "-B", FIG] + list(a), capture_output=True, text=True)
@@ -89,21 +100,36 @@ def expect(what, cond):
     print(("ok   " if cond else "FAIL ") + what)
     ok &= bool(cond)
 
-ncells = limb_run(T + "/good", 0.5, 0.55, 0.05)
+OCT = 2 * np.sqrt(2 * np.sqrt(2) / np.pi)  # an octagon's width (a disc's diameter of its area) over its radius
+ncells, x, tets = limb_run(T + "/good", 0.5, 0.55, 0.05)
 m = fig("limb", T + "/good", "--slice", "0.2")
-expect("a straight limb: distal / neck = 0.55 / 0.5", abs(m["distal_over_neck"] - 1.1) < 1e-9)
+expect("a straight limb: distal / neck = 0.55 / 0.5, the neck the octagon's width",
+       abs(m["distal_over_neck"] - 1.1) < 1e-9 and abs(m["neck_width"] - 0.5 * OCT) < 1e-9)
 expect("... the neck one cell thick inside", m["neck_interior"] == 1)
-expect("... length 2 (3 - (-1) - 2 R0), 2 / neck width 1", abs(m["length"] - 2) < 1e-9 and abs(m["length_over_neck"] - 2) < 1e-9)
+expect("... length 2 (3 - (-1) - 2 R0), 2 / neck width", abs(m["length"] - 2) < 1e-9
+       and abs(m["length_over_neck"] - 2 / (0.5 * OCT)) < 1e-9)
 expect("... the tip 0.05 behind the front, within its radius", abs(m["tip_behind_front"] - 0.05) < 1e-9
        and m["criteria"]["tip_within_one_radius_of_front"] and m["criteria"]["distal_at_most_1.2_neck"])
 expect("... length < 3 necks: that criterion fails", not m["criteria"]["length_at_least_3_necks"])
 expect("... every used cell in one slice", sum(r["cells"] for r in m["profile"]) == ncells)
-limb_run(T + "/bulb", 0.3, 0.45, 0.2)
+sys.path.insert(0, os.path.dirname(FIG))
+import figures
+P = x[tets]
+vol = np.abs(np.einsum("ij,ij->i", np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), P[:, 3] - P[:, 0])).sum() / 6
+du = 4.0 / 4000
+A = figures.section_areas(x, tets, np.array([1.0, 0, 0]), np.zeros(3), -1 + du * (np.arange(4000) + 0.5))
+expect("... the sections integrate to the complex's volume (midpoint rule, 1e-6)", abs(A.sum() * du / vol - 1) < 1e-6)
+expect("... a section between two neck rings is the octagon's area",
+       abs(figures.section_areas(x, tets, np.array([1.0, 0, 0]), np.zeros(3), [1.234])[0] - 2 * np.sqrt(2) * 0.25) < 1e-12)
+m = fig("limb", T + "/good", "--slice", "0.2", "--width", "extent")
+expect("... by the centres' extent (the old measure): distal / neck 1.1 too", abs(m["distal_over_neck"] - 1.1) < 1e-9
+       and m["width_measure"] == "extent")
+limb_run(T + "/bulb", 0.3, 0.45, 0.3)
 m = fig("limb", T + "/bulb", "--slice", "0.2")
-expect("a bulb 1.5x the neck, the tip 2 radii back: both criteria fail, length / neck = 2 / 0.6",
+expect("a bulb 1.5x the neck, the tip 3 radii back: both criteria fail, length / neck = 2 / (0.3 x octagon)",
        abs(m["distal_over_neck"] - 1.5) < 1e-9 and not m["criteria"]["distal_at_most_1.2_neck"]
-       and not m["criteria"]["tip_within_one_radius_of_front"] and m["criteria"]["length_at_least_3_necks"])
-
+       and not m["criteria"]["tip_within_one_radius_of_front"] and m["criteria"]["length_at_least_3_necks"]
+       and abs(m["length_over_neck"] - 2 / (0.3 * OCT)) < 1e-9)
 # stripes: limb +x with stripe cells at 1.0-1.2, 2.0-2.2, 3.0-3.2 from the tip; limb -x at 0.5-0.7, 1.0-1.2
 d = T + "/stripes"
 os.makedirs(d + "/sds")

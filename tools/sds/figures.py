@@ -1,8 +1,10 @@
 """The paper's figures as measured outcomes (issue 33), from a run's own output.
 
-  figures.py limb RUN_DIR [--frame K | --time T] [--axis X Y Z] [--slice H]
+  figures.py limb RUN_DIR [--frame K | --time T] [--axis X Y Z] [--slice H] [--width section|extent]
       Figure 7: the profile along the limb's axis (width and interior cells
-      per slice), distal width / neck width, the tip's lead, length / neck.
+      per slice), distal width / neck width, the tip's lead, length / neck;
+      the width the complex's cross-section (section, the default) or the
+      centres' extent per slice (the measure before 2026-12-04).
   figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H] [--ref REF]
       Figures 9, 12: per limb, the stripe state along the limb (graph distance
       from its tip through the complex), stripes counted and their spacing;
@@ -152,8 +154,72 @@ def diameter(p):
     return float(np.sqrt((d * d).sum(-1)).max())
 
 
-def limb_profile(c, axis, origin, r0, h=None):
-    """Figure 7's metrics of one frame (docs/sds_figures.md)."""
+# the six edges of a tet, and its pairs of opposite edges
+TET_EDGES = ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3))
+
+
+def section_areas(x, tets, axis, origin, us):
+    """The area of the complex's section by each plane (x - origin) . axis = u,
+    u in us: over the tets the plane cuts, the area of each one's section, a
+    convex triangle or quadrilateral whose corners are where the plane
+    crosses the tet's edges (a corner on the plane counts as above it, so a
+    face in the plane is counted once).  Sum over a fine grid of planes times
+    the spacing is the complex's volume (test_sds_figures checks it)."""
+    P = x[tets]                                   # (m, 4, 3)
+    U = (P - origin) @ axis                       # (m, 4)
+    e1 = np.cross(axis, [1.0, 0, 0] if abs(axis[0]) < 0.9 else [0, 1.0, 0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    lo, hi = U.min(1), U.max(1)
+    out = np.zeros(len(us))
+    for j, u0 in enumerate(us):
+        cut = (lo < u0) & (hi >= u0)
+        if not cut.any():
+            continue
+        Pj, Uj = P[cut], U[cut] - u0
+        a1 = np.full((len(Pj), 6), np.nan)
+        a2 = np.full((len(Pj), 6), np.nan)
+        for k, (a, b) in enumerate(TET_EDGES):
+            ua, ub = Uj[:, a], Uj[:, b]
+            cross = (ua >= 0) != (ub >= 0)
+            t = np.where(cross, ua / np.where(cross, ua - ub, 1.0), 0.0)
+            q = Pj[:, a] + t[:, None] * (Pj[:, b] - Pj[:, a])
+            a1[cross, k], a2[cross, k] = q[cross] @ e1, q[cross] @ e2
+        n = (~np.isnan(a1)).sum(1)                # 3 or 4 corners
+        m1 = np.nanmean(a1, 1)[:, None]
+        m2 = np.nanmean(a2, 1)[:, None]
+        order = np.argsort(np.where(np.isnan(a1), np.inf, np.arctan2(a2 - m2, a1 - m1)), 1)
+        b1 = np.take_along_axis(a1, order, 1)     # the corners round their mean, then the NaNs
+        b2 = np.take_along_axis(a2, order, 1)
+        nxt = (np.arange(6)[None, :] + 1) % n[:, None]
+        c1, c2 = np.take_along_axis(b1, nxt, 1), np.take_along_axis(b2, nxt, 1)
+        term = np.where(np.arange(6)[None, :] < n[:, None], b1 * c2 - b2 * c1, 0.0)
+        out[j] = 0.5 * np.abs(term.sum(1)).sum()
+    return out
+
+
+def slab_widths(c, axis, origin, centres, h, per=8):
+    """The width of the complex round each centre: the diameter of the disc
+    whose area is the mean section over the slab [u - h/2, u + h/2] (its
+    volume over h; `per` planes at the slab's midpoints)."""
+    off = (np.arange(per) + 0.5) / per * h - h / 2
+    us = (np.asarray(centres, float)[:, None] + off[None, :]).ravel()
+    A = section_areas(c["x"][:], c["tets"], axis, origin, us).reshape(-1, per).mean(1)
+    return 2 * np.sqrt(A / np.pi)
+
+
+def limb_profile(c, axis, origin, r0, h=None, width="section"):
+    """Figure 7's metrics of one frame (docs/sds_figures.md, "How the limb's
+    width is measured").  width "section": the complex's cross-section as
+    the diameter of a disc of its area, averaged over one cell diameter
+    along the axis, on a grid of an eighth of that; the neck is its least in
+    the limb's proximal half, the distal width its largest in the distal
+    half.  width "extent" (before 2026-12-04, and the only one for PLY
+    frames, which have no tets): per slice one cell thick the largest
+    distance between two cell centres in it; its neck and distal width
+    swing by 0.3 of the ratio between frames 5 time units apart."""
+    if width == "section" and not c["complex"]:
+        width = "extent"
     keep = c["used"]
     x, surf, rad = c["x"][keep], c["surface"][keep], c["radius"][keep]
     tips = np.flatnonzero(c["tip"][keep] >= 0.5)
@@ -167,21 +233,43 @@ def limb_profile(c, axis, origin, r0, h=None):
     for i in range(int(np.ceil(np.ptp(u) / h))):
         lo, hi = front - (i + 1) * h, front - i * h
         s = (u >= lo) & ((u < hi) | (i == 0))
-        rows.append({"u": float(hi - h / 2), "cells": int(s.sum()), "width": diameter(perp[s]),
+        rows.append({"u": float(hi - h / 2), "cells": int(s.sum()), "extent": diameter(perp[s]),
                      "interior": int((s & ~surf).sum()) if c["complex"] else None,
                      "limb": bool(hi - h / 2 >= front - length)})
-    limb_rows = [r for r in rows if r["limb"]]
-    # the distal half (nearer the tip) and the proximal half (nearer the body)
-    distal = [r for r in limb_rows if r["u"] >= front - length / 2]
-    proximal = [r for r in limb_rows if r["u"] < front - length / 2]
-    m = {"slice": h, "front": float(front), "tip_u": float(tu), "tip_radius": float(rt),
+    if width == "section":
+        sw = slab_widths(c, axis, origin, [r["u"] for r in rows], h)
+        for r, w in zip(rows, sw):
+            r["width"] = float(w)
+    else:
+        for r in rows:
+            r["width"] = r["extent"]
+    m = {"width_measure": width, "slice": h, "front": float(front), "tip_u": float(tu), "tip_radius": float(rt),
          "tip_behind_front": float(front - tu), "length": length}
-    if distal and proximal:
-        neck = min(proximal, key=lambda r: r["width"])
-        m.update(neck_u=neck["u"], neck_width=neck["width"], neck_interior=neck["interior"],
-                 distal_width=max(r["width"] for r in distal))
-        m["distal_over_neck"] = m["distal_width"] / neck["width"] if neck["width"] > 0 else None
-        m["length_over_neck"] = length / neck["width"] if neck["width"] > 0 else None
+    if width == "section":
+        # slab centres every h/8 over the limb, each slab inside it
+        centres = np.arange(front - length + h / 2, front - h / 2 + 1e-12, h / 8)
+        half = front - length / 2
+        prox, dist = centres[centres < half], centres[centres >= half]
+        have = len(prox) > 0 and len(dist) > 0
+        if have:
+            wp, wd = slab_widths(c, axis, origin, prox, h), slab_widths(c, axis, origin, dist, h)
+            k = int(np.argmin(wp))
+            neck_u, neck_w, distal_w = float(prox[k]), float(wp[k]), float(wd.max())
+    else:
+        limb_rows = [r for r in rows if r["limb"]]
+        # the distal half (nearer the tip) and the proximal half (nearer the body)
+        distal = [r for r in limb_rows if r["u"] >= front - length / 2]
+        proximal = [r for r in limb_rows if r["u"] < front - length / 2]
+        have = bool(distal and proximal)
+        if have:
+            neck = min(proximal, key=lambda r: r["width"])
+            neck_u, neck_w, distal_w = neck["u"], neck["width"], max(r["width"] for r in distal)
+    if have:
+        # the neck's interior cells: those of the slice (above) that holds it
+        row = rows[min(len(rows) - 1, max(0, int((front - neck_u) // h)))]
+        m.update(neck_u=neck_u, neck_width=neck_w, neck_interior=row["interior"], distal_width=distal_w)
+        m["distal_over_neck"] = distal_w / neck_w if neck_w > 0 else None
+        m["length_over_neck"] = length / neck_w if neck_w > 0 else None
     else:  # a limb shorter than two slices has no neck to measure
         m.update(neck_u=None, neck_width=None, neck_interior=None, distal_width=None,
                  distal_over_neck=None, length_over_neck=None)
@@ -202,12 +290,15 @@ def cmd_limb(args):
     else:  # the tip's starting direction from the starting body's centre
         axis = c0["x"][np.flatnonzero(c0["tip"] >= 0.5)[0]] - origin
     axis /= np.linalg.norm(axis)
-    m, rows = limb_profile(c, axis, origin, model_value(args.run, "sphere_radius", 1.0), args.slice)
-    print("frame %d, t = %.3f; slices of %.3f u along the axis, from the front back" % (k, t, m["slice"]))
-    print("%8s %6s %8s %9s %5s" % ("u", "cells", "width", "interior", "limb"))
+    m, rows = limb_profile(c, axis, origin, model_value(args.run, "sphere_radius", 1.0), args.slice, args.width)
+    print("frame %d, t = %.3f; slices of %.3f u along the axis, from the front back; width: %s" % (
+        k, t, m["slice"], "the section's (a disc's diameter of its mean area)" if m["width_measure"] == "section"
+        else "the centres' extent"))
+    print("%8s %6s %8s %8s %9s %5s" % ("u", "cells", "width", "extent", "interior", "limb"))
     for r in rows:
-        print("%8.3f %6d %8.3f %9s %5s" % (r["u"], r["cells"], r["width"],
-                                           "-" if r["interior"] is None else r["interior"], "*" if r["limb"] else ""))
+        print("%8.3f %6d %8.3f %8.3f %9s %5s" % (r["u"], r["cells"], r["width"], r["extent"],
+                                                 "-" if r["interior"] is None else r["interior"],
+                                                 "*" if r["limb"] else ""))
     print(json.dumps(dict(figure=7, frame=k, time=t, axis=axis.tolist(), profile=rows, **m)))
 
 
@@ -544,6 +635,10 @@ def main(argv=None):
         p.add_argument("--time", type=float, help="the frame nearest this time (default: the last)")
     sub.choices["limb"].add_argument("--axis", type=float, nargs=3, help="default: the tip's starting direction")
     sub.choices["limb"].add_argument("--slice", type=float, help="slice thickness (default: the median cell diameter)")
+    sub.choices["limb"].add_argument("--width", choices=("section", "extent"), default="section",
+                                     help="section (default): the diameter of a disc of the complex's mean section "
+                                     "over one slice; extent: the largest distance between two centres of a slice "
+                                     "(the measure before 2026-12-04; PLY frames have only this)")
     st = sub.choices["stripes"]
     st.add_argument("--field", default="stripe", help="the stripe state or morphogen (default: stripe)")
     st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")

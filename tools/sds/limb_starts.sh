@@ -17,6 +17,8 @@
 #   JOBS     runs at a time (default 2)
 #   SETS     parameters over the model's for every run, "KEY=VALUE ..."
 #            (e.g. SETS="max_move=0.025": the same starts at a finer step)
+#   FIRST    the first seed (default 1, the exact sphere): FIRST=21 N=20 runs
+#            seeds 21-40, all realisations, to check a point chosen on 1-20
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
@@ -27,6 +29,8 @@ TIMES=("$@")
 [ ${#TIMES[@]} -gt 0 ] || TIMES=(200)
 BIN="${SESSILE:-$here/../../build/sessile}"
 JOBS="${JOBS:-2}"
+FIRST="${FIRST:-1}"
+[[ "$FIRST" =~ ^[1-9][0-9]*$ ]] || { echo "limb_starts: FIRST must be a positive integer (got $FIRST)" >&2; exit 2; }
 [ -x "$BIN" ] || { echo "limb_starts: no sessile binary at $BIN (build first, or set SESSILE)" >&2; exit 2; }
 [[ "$N" =~ ^[1-9][0-9]*$ ]] || { echo "limb_starts: N must be a positive integer (got $N)" >&2; exit 2; }
 for t in "${TIMES[@]}"; do
@@ -51,10 +55,11 @@ run_one() { # seed
 export -f run_one
 export BIN MODEL TEND FRAMES OUT SETS
 echo "limb_starts: $N starts of $MODEL to t = $TEND${SETS:+ ($SETS)}, $JOBS at a time" >&2
-seq 1 "$N" | xargs -P "$JOBS" -I{} bash -c 'run_one {}'
-/usr/bin/python3 - "$here" "$OUT" "$N" "${TIMES[@]}" <<'PYEOF'
+seq "$FIRST" $((FIRST + N - 1)) | xargs -P "$JOBS" -I{} bash -c 'run_one {}'
+/usr/bin/python3 - "$here" "$OUT" "$FIRST" "$N" "${TIMES[@]}" <<'PYEOF'
 import json, os, subprocess, sys
-here, out, n, times = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4:]
+here, out, first, n, times = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
+num = lambda v, f: "-" if v is None else f % v  # a limb too short for a neck has no ratios
 rows, lines = [], []
 def say(s):
     print(s)
@@ -62,7 +67,7 @@ def say(s):
 say("%5s %7s %9s %10s %9s %8s %5s" % ("seed", "t", "L/neck", "dist/neck", "tip lag", "tip r", "all3"))
 for t in times:
     met = 0
-    for s in range(1, n + 1):
+    for s in range(first, first + n):
         run = os.path.join(out, "s%d" % s)
         r = subprocess.run(["/usr/bin/python3", "-B", os.path.join(here, "figures.py"), "limb", run, "--time", t],
                            capture_output=True, text=True)
@@ -76,8 +81,9 @@ for t in times:
         rows.append({"seed": s, "time": float(t), "measured": True, "length_over_neck": m["length_over_neck"],
                      "distal_over_neck": m["distal_over_neck"], "tip_behind_front": m["tip_behind_front"],
                      "tip_radius": m["tip_radius"], "criteria": m["criteria"], "all": ok})
-        say("%5d %7s %9.2f %10.2f %9.2f %8.3f %5s" % (s, t, m["length_over_neck"], m["distal_over_neck"],
-                                                     m["tip_behind_front"], m["tip_radius"], "yes" if ok else "no"))
+        say("%5d %7s %9s %10s %9.2f %8.3f %5s" % (s, t, num(m["length_over_neck"], "%.2f"),
+                                                 num(m["distal_over_neck"], "%.2f"), m["tip_behind_front"],
+                                                 m["tip_radius"], "yes" if ok else "no"))
     say("t = %s: all three criteria from %d of %d starts" % (t, met, n))
 json.dump(rows, open(os.path.join(out, "limb_starts.json"), "w"), indent=1)
 open(os.path.join(out, "limb_starts.txt"), "w").write("\n".join(lines) + "\n")
