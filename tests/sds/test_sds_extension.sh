@@ -22,8 +22,8 @@
 #    width <= 1.2 x the neck, the tip within its radius of the front, length
 #    >= 3 necks (measured 2026-12-04: 1.10, 0.00 u, 3.95).  This is one
 #    trajectory at the model's step: over forty starts the criteria hold
-#    from 35 (tools/sds/limb_starts.sh; docs/sds_figures.md, "How the limb's
-#    width is measured"), so the check guards the shipped model's run, not
+#    from 35 (tools/sds/limb_starts.sh; docs/sds_figures.md, "The refit with the
+#    section width"), so the check guards the shipped model's run, not
 #    the figure in general;
 #  - refusals before the run folder exists: no state `extending`, no axis
 #    morphogen, C out of [0, 1].

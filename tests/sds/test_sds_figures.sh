@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The figures tool (tools/sds/figures.py, issue 33) measures what it claims:
 # on synthetic frames of a known shape (a limb of rings of cells with a neck
-# and a bulb, one interior cell per ring; two limbs with stripes at known
+# and a bulb, one interior cell per ring, cut into tets whose sections are
+# the rings' octagons; two limbs with stripes at known
 # places, and again with every gap doubled (--ref reads a ratio of 2, and 1
 # against itself); cell counts linear and exponential in time) its metrics are the
 # shape's own, and its criteria fail where the shape breaks them (a bulb
-# 1.5x the neck, the tip two radii behind the front, cells growing
+# 1.5x the neck, the tip three radii behind the front, cells growing
 # exponentially); the same for Figures 8, 10 and 11 (tips turned 30 degrees
 # against straight ones, tips drawn 0.5 u toward a point, buds that grow
 # 3.375x in volume against buds that keep their size) and Figure 12's divisions
@@ -118,6 +119,14 @@ P = x[tets]
 vol = np.abs(np.einsum("ij,ij->i", np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0]), P[:, 3] - P[:, 0])).sum() / 6
 du = 4.0 / 4000
 A = figures.section_areas(x, tets, np.array([1.0, 0, 0]), np.zeros(3), -1 + du * (np.arange(4000) + 0.5))
+# the shape's volume from its rings (octagons of area 2 sqrt(2) r^2): frustums between rings, the cone to
+# the apex 0.05 beyond the last ring, and the thin tet to the front; against the tets' sum it would catch
+# tets that overlap or leave gaps
+ring_x = [-1.0, 0.0, 1.0] + list(np.arange(1.1, 3.0, 0.2))
+ring_a = [2 * np.sqrt(2) * r * r for r in [0.9, 0.9, 0.9] + [0.5 if xx < 2 else 0.55 for xx in np.arange(1.1, 3.0, 0.2)]]
+exact = sum((ring_x[k + 1] - ring_x[k]) / 3 * (ring_a[k] + ring_a[k + 1] + np.sqrt(ring_a[k] * ring_a[k + 1]))
+            for k in range(len(ring_x) - 1)) + ring_a[-1] * 0.05 / 3 + abs(np.linalg.det(P[-1, 1:] - P[-1, 0])) / 6
+expect("... the tets' volume is the shape's (1e-12): they tile it", abs(vol / exact - 1) < 1e-12)
 expect("... the sections integrate to the complex's volume (midpoint rule, 1e-6)", abs(A.sum() * du / vol - 1) < 1e-6)
 expect("... a section between two neck rings is the octagon's area",
        abs(figures.section_areas(x, tets, np.array([1.0, 0, 0]), np.zeros(3), [1.234])[0] - 2 * np.sqrt(2) * 0.25) < 1e-12)

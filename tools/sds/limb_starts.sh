@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Figure 7's three criteria (issue 33) from many starts of one limb model:
-# the exact sphere (seed 1, no jitter) and N - 1 realisations of it
-# (start_jitter 0.1, seeds 2..N), each run to the last time asked, two at a
+# seeds FIRST to FIRST + N - 1 (default 1 to N), seed 1 the exact sphere
+# (no jitter), every other a realisation of it (start_jitter 0.1), each run
+# to the last time asked, two at a
 # time, then `figures.py limb` at each time: length / neck, distal / neck,
 # the tip's lag behind the front against its radius, and whether all three
 # criteria hold.  Prints a row per start and time and, per time, how many
 # starts meet all three; writes limb_starts.txt and limb_starts.json in OUT.
-# docs/sds_figures.md, "Convergent extension", reports its numbers.
+# docs/sds_figures.md, "Convergent extension" and "The refit with the
+# section width", reports its numbers.
 #
 #   tools/sds/limb_starts.sh MODEL OUT [N [TIME...]]
 #     MODEL  a shipped model name or a .sds file (default to use: limb_extension)
@@ -17,11 +19,12 @@
 #   JOBS     runs at a time (default 2)
 #   SETS     parameters over the model's for every run, "KEY=VALUE ..."
 #            (e.g. SETS="max_move=0.025": the same starts at a finer step)
-#   FIRST    the first seed (default 1, the exact sphere): FIRST=21 N=20 runs
-#            seeds 21-40, all realisations, to check a point chosen on 1-20
+#   FIRST    the first seed (default 1, the exact sphere): `FIRST=21
+#            limb_starts.sh MODEL OUT 20` runs seeds 21-40, all realisations,
+#            to check a point chosen on seeds 1-20
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [ $# -ge 2 ] || usage
 MODEL="$1" OUT="$2" N="${3:-20}"
 shift $(($# < 3 ? $# : 3))
