@@ -14,7 +14,10 @@ Each point draws the limb model's process constants and a few physics keys
 from the ranges below (log-uniform; numpy's generator seeded by --seed, so a
 search is repeatable), writes a copy of host/sds/models/limb.sds with them,
 runs it to --t-end (default 200) and measures the last frame with
-`figures.py limb`.  Its score is the sum of the three criteria's relative
+`figures.py limb` (whose width is the complex's section since 2026-12-04:
+the searches docs/sds_figures.md reports before that date were read with
+the centres' extent, now `--width extent`, and rerun give other scores).
+Its score is the sum of the three criteria's relative
 shortfalls (0 when all three hold):
   max(0, distal/neck / 1.2 - 1) + max(0, lag / tip radius - 1) + max(0, 1 - (L/neck) / 3).
 A point with no neck (a limb under two slices) scores 2-3 by its length;
