@@ -204,7 +204,9 @@ def slab_widths(c, axis, origin, centres, h, per=8):
     its volume over h: the mean of `per` planes at the slab's midpoints)."""
     off = (np.arange(per) + 0.5) / per * h - h / 2
     us = (np.asarray(centres, float)[:, None] + off[None, :]).ravel()
-    A = section_areas(c["x"][:], c["tets"], axis, origin, us).reshape(-1, per).mean(1)
+    # centres h/per apart share their planes: each distinct plane cut once
+    uq, inv = np.unique(np.round(us, 12), return_inverse=True)
+    A = section_areas(c["x"], c["tets"], axis, origin, uq)[inv].reshape(-1, per).mean(1)
     return 2 * np.sqrt(A / np.pi)
 
 
@@ -253,7 +255,8 @@ def limb_profile(c, axis, origin, r0, h=None, width="section"):
         prox, dist = centres[centres < half], centres[centres >= half]
         have = length >= 2 * h and len(prox) > 0 and len(dist) > 0
         if have:
-            wp, wd = slab_widths(c, axis, origin, prox, h), slab_widths(c, axis, origin, dist, h)
+            w = slab_widths(c, axis, origin, centres, h)
+            wp, wd = w[centres < half], w[centres >= half]
             k = int(np.argmin(wp))
             neck_u, neck_w, distal_w = float(prox[k]), float(wp[k]), float(wd.max())
     else:
