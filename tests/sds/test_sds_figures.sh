@@ -172,6 +172,30 @@ expect("--ref: spacings 2.0 and 1.0 against 1.0 and 0.5, a ratio of 2: the spaci
 m = fig("stripes", d, "--bin", "0.1", "--ref", d)
 expect("--ref against itself: a ratio of 1, not a doubling",
        abs(m["spacing_ratio"] - 1) < 1e-12 and not m["criteria"]["spacing_doubles_over_ref"])
+# --mask: limb +x alone, with two body cells (limb 0, stripe 0) beside each cell of the oldest band
+# (3.0-3.2 from the tip), joined to the chain 1e-6 away: they dilute its bins to 1/3, under the 0.5
+# of a stripe, unless the mask leaves them out
+d3 = T + "/stripes_mask"
+os.makedirs(d3 + "/sds")
+k3 = [int(round(v / 0.05)) for v in (3.0, 3.05, 3.1, 3.15)]
+body = [k for k in k3 for _ in range(2)]
+xb = np.array([[5 - s[k], 1e-6 * (1 if j % 2 else -1), 0] for j, k in enumerate(body)])
+x3 = np.concatenate([np.stack([5 - s, 0 * s, 0 * s], 1), xb])
+on3 = np.concatenate([np.where(s % 1.0 < 0.2 - 1e-9, 1.0, 0.0) * (s >= 1 - 1e-9), np.zeros(len(body))])
+tets3 = np.concatenate([chain(len(s)), np.array([[k, k + 1, k + 2, len(s) + j] for j, k in enumerate(body)])])
+tip3 = np.zeros(len(x3)); tip3[0] = 1
+limb3 = np.concatenate([np.ones(len(s)), np.zeros(len(body))])
+write_vtu(d3 + "/sds/frame_0000.vtu", x3, {"radius": np.full(len(x3), 0.025), "surface": np.ones(len(x3)),
+          "tip": tip3, "stripe": on3, "limb": limb3}, tets3)
+m = fig("stripes", d3, "--bin", "0.1")
+expect("body cells in the oldest band's bins (1/3 on): 2 stripes, 1.0 apart",
+       m["limbs"][0]["stripes"] == 2 and abs(m["limbs"][0]["spacing"] - 1.0) < 1e-9 and m["mask"] is None)
+m = fig("stripes", d3, "--bin", "0.1", "--mask", "limb")
+expect("--mask limb leaves them out: 3 stripes 1.0 apart, the limb's 80 cells",
+       m["limbs"][0]["stripes"] == 3 and abs(m["limbs"][0]["spacing"] - 1.0) < 1e-9
+       and m["limbs"][0]["cells"] == len(s) and m["mask"] == "limb")
+bad = subprocess.run([sys.executable, "-B", FIG, "stripes", d3, "--mask", "nosuch"], capture_output=True, text=True)
+expect("--mask naming no field: refused, naming it", bad.returncode != 0 and "nosuch" in bad.stderr)
 
 for name, f in (("line", lambda t: 100 + 5 * t), ("exp", lambda t: 100 * 2 ** (t / 40))):
     os.makedirs("%s/%s" % (T, name))

@@ -5,11 +5,14 @@
       per slice), distal width / neck width, the tip's lead, length / neck;
       the width the complex's cross-section (section, the default) or the
       centres' extent per slice (the measure before 2026-12-04).
-  figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H] [--ref REF]
+  figures.py stripes RUN_DIR [--frame K | --time T] [--field NAME] [--threshold F] [--bin H] [--mask NAME]
+                     [--ref REF]
       Figures 9, 12: per limb, the stripe state along the limb (graph distance
       from its tip through the complex), stripes counted and their spacing;
       with --ref (the model with the timer's decay doubled) the ratio of the
       mean spacings, which should be 2 (+- --tolerance).
+      With --mask NAME only the cells whose state NAME is set (a state the
+      rules set in the growth zone: the limb's own tissue) fill the bins.
   figures.py cells RUN_DIR [--from T0] [--to T1]
       Figure 12: cells against time from records.jsonl, a line fitted over
       [T0, T1] and its R^2.
@@ -354,8 +357,12 @@ def stripes_of(run, args, quiet=False):
     limbs = []
     say("frame %d, t = %.3f; field %s > %.3g, bins of %.3f u from each tip; a stripe: fraction >= %.2f"
         % (k, t, args.field, args.on, h, args.threshold))
+    if args.mask:  # the limb's own tissue: cells whose mask state is set (the body's left out)
+        assert args.mask in c, "no field %r in frame %d (the mask)" % (args.mask, k)
     for i, tip in enumerate(tips):
         mine = (owner == i) & c["used"]
+        if args.mask:  # distances still run through every cell; only the bins leave the others out
+            mine &= (c[args.mask] > 0.5) | (np.arange(len(mine)) == tip)
         s, on = dist[mine], c[args.field][mine] > args.on
         nb = int(np.ceil((s.max() + 1e-12) / h))
         idx = np.minimum(np.floor(s / h + 1e-9).astype(int), nb - 1)  # a cell on a bin's edge: the upper bin
@@ -372,7 +379,8 @@ def stripes_of(run, args, quiet=False):
             "%.3f" % sp.mean() if len(sp) else "-"))
         say("  profile: " + " ".join("%.2f" % f for f in frac))
     sps = [l["spacing"] for l in limbs if l["spacing"] is not None]
-    m = {"figure": 9, "frame": k, "time": t, "field": args.field, "on": args.on, "threshold": args.threshold,
+    m = {"figure": 9, "frame": k, "time": t, "field": args.field, "mask": args.mask, "on": args.on,
+         "threshold": args.threshold,
          "bin": h, "limbs": limbs, "stripes_min": min((l["stripes"] for l in limbs), default=0),
          "spacing_mean": float(np.mean(sps)) if sps else None,
          "criteria": {"three_stripes_per_limb": bool(limbs) and all(l["stripes"] >= 3 for l in limbs)}}
@@ -648,6 +656,9 @@ def main(argv=None):
     st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")
     st.add_argument("--threshold", type=float, default=0.5, help="a stripe: bins with at least this fraction on")
     st.add_argument("--bin", type=float, help="bin width along the limb (default: the median cell diameter)")
+    st.add_argument("--mask", help="count only cells whose state NAME passes 0.5 (and the tip), e.g. a state the "
+                    "rules set in the growth zone, so that body cells nearest a tip stay out of its bins "
+                    "(default: every cell)")
     st.add_argument("--ref", help="the same model with the timer's decay twice RUN's: RUN's mean spacing "
                     "should be twice the reference's")
     st.add_argument("--tolerance", type=float, default=0.3, help="the doubling's relative tolerance (default 0.3)")

@@ -25,6 +25,8 @@
 #     JITTER   start_jitter of the realisations (default 0.1)
 #     MODEL    a model file with a `timer clock decay=D` line (default the shipped rock.sds)
 #     TIME     when the stripes are counted; the runs end there (default 400)
+#   MASK=NAME (environment): count only the cells whose state NAME is set
+#     (`figures.py stripes --mask`: the limb's own tissue, the body left out)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -57,10 +59,13 @@ for s in $(seq 0 "$SEEDS"); do printf '%s %s\n' model "$s" model_half "$s"; done
       --quiet --progress none --no-preview && echo "stripes_ensemble: $5, start $6 done" >&2' \
     "$SESSILE" "$OUT" "$TIME" "$FRAMES" "$JITTER"
 FIG="/usr/bin/python3 -B $here/figures.py"
+MASKARG=()
+[ -n "${MASK:-}" ] && MASKARG=(--mask "$MASK")
 LINE_FROM=$(/usr/bin/python3 -c 'import sys; print(float(sys.argv[1]) / 4)' "$TIME")  # Figure 12's line: the last 3/4
 for s in $(seq 0 "$SEEDS"); do
-  $FIG stripes "$OUT/model_s$s" --time "$TIME" | tail -n 1 >"$OUT/stripes_s$s.json"
-  $FIG stripes "$OUT/model_half_s$s" --ref "$OUT/model_s$s" --time "$TIME" | tail -n 1 >"$OUT/stripes_half_s$s.json"
+  $FIG stripes "$OUT/model_s$s" --time "$TIME" "${MASKARG[@]}" | tail -n 1 >"$OUT/stripes_s$s.json"
+  $FIG stripes "$OUT/model_half_s$s" --ref "$OUT/model_s$s" --time "$TIME" "${MASKARG[@]}" |
+    tail -n 1 >"$OUT/stripes_half_s$s.json"
   $FIG cells "$OUT/model_s$s" --from "$LINE_FROM" --to "$TIME" | tail -n 1 >"$OUT/cells_s$s.json"
 done
 /usr/bin/python3 - "$OUT" "$SEEDS" "$JITTER" "$TIME" <<'PYEOF' | tee "$OUT/stripes_ensemble.txt"
