@@ -656,7 +656,7 @@ def main(argv=None):
     st.add_argument("--on", type=float, default=0.5, help="a cell is a stripe cell when the field passes this")
     st.add_argument("--threshold", type=float, default=0.5, help="a stripe: bins with at least this fraction on")
     st.add_argument("--bin", type=float, help="bin width along the limb (default: the median cell diameter)")
-    st.add_argument("--mask", help="count only cells whose state NAME passes 0.5 (and the tip), e.g. a state the "
+    st.add_argument("--mask", metavar="NAME", help="count only cells whose state NAME passes 0.5 (and the tip), e.g. a state the "
                     "rules set in the growth zone, so that body cells nearest a tip stay out of its bins "
                     "(default: every cell)")
     st.add_argument("--ref", help="the same model with the timer's decay twice RUN's: RUN's mean spacing "
