@@ -22,6 +22,9 @@ BUNDLE=$(cd "$1" && pwd) || exit 2
 RES=$2
 ROOT=$PWD
 [ -f "$ROOT/tests/sds/test_sds_frames.sh" ] || { echo "check.sh: run it from the source tree's root" >&2; exit 2; }
+if [ -e "$RES" ] && [ -n "$(ls -A "$RES")" ]; then
+  echo "check.sh: $RES is not empty (an earlier check's results stay as they are)" >&2; exit 2
+fi
 mkdir -p "$RES" && RES=$(cd "$RES" && pwd)
 JOBS=${JOBS:-$(( $(nproc) > 5 ? $(nproc) - 4 : 1 ))}
 TEST_LIMIT=${TEST_LIMIT:-200}
@@ -77,10 +80,8 @@ run_one() {  # NAME COMMAND...
 }
 export -f run_one
 {
-  for t in test_gpu test_rules_vm test_morph_gpu test_sds_batch test_sds_stable test_sds_lists \
-           test_sds_collide test_sds_forces test_sds_dynamics test_sds_collide_dyn test_sds_adhesion \
-           test_sds_axial test_sds_symmetric test_sds_complex test_vec test_spmv test_solvers; do
-    echo "$t $B/$t"
+  for t in "$B"/test_*; do  # the test binaries bundle.sh packed
+    echo "$(basename "$t") $t"
   done
   for t in test_sds_collide test_sds_forces test_sds_dynamics test_sds_lists test_morph_gpu; do
     echo "${t}_fp32 $B/$t --fp32"
